@@ -1,0 +1,201 @@
+/* common.h - what every example program shares: GNU-style options with --help, a progress line
+   on stderr, output folders, wall time and the zero-crossing period detector. Not part of the
+   library; each example includes it once. POSIX (mkdir, isatty, clock_gettime). */
+#ifndef SPS_EXAMPLE_COMMON_H
+#define SPS_EXAMPLE_COMMON_H
+#if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
+#undef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+#include "../sphsolid.h"
+
+#define PI 3.14159265358979323846
+
+/* ---- options ---- */
+typedef enum { OPT_INT, OPT_REAL, OPT_STRING, OPT_CHOICE, OPT_FLAG, OPT_PAIR } opt_type;
+typedef struct {
+    const char* name;     /* without the leading "--" */
+    opt_type type;
+    void* value;          /* int*, double*, const char**, int* (choice index / flag), int[2] (pair) */
+    const char* help;
+    double min, max;      /* allowed range for OPT_INT / OPT_REAL / OPT_PAIR */
+    const char* choices;  /* OPT_CHOICE: "a|b|c" */
+} opt_spec;
+
+static void opt_usage(const char* prog, const char* about, const opt_spec* o, int n) {
+    int i;
+    printf("%s - %s\n\nOptions (default in brackets):\n", prog, about);
+    for (i = 0; i < n; ++i) {
+        char def[64] = "";
+        switch (o[i].type) {
+        case OPT_INT: snprintf(def, sizeof def, "%d", *(int*)o[i].value); break;
+        case OPT_REAL: snprintf(def, sizeof def, "%g", *(double*)o[i].value); break;
+        case OPT_STRING: snprintf(def, sizeof def, "%s", *(const char**)o[i].value); break;
+        case OPT_FLAG: snprintf(def, sizeof def, "off"); break;
+        case OPT_PAIR: snprintf(def, sizeof def, "%d,%d", ((int*)o[i].value)[0], ((int*)o[i].value)[1]); break;
+        case OPT_CHOICE: {
+            const char* c = o[i].choices;
+            int k = *(int*)o[i].value;
+            while (k-- > 0 && strchr(c, '|')) c = strchr(c, '|') + 1;
+            snprintf(def, sizeof def, "%.*s", (int)(strchr(c, '|') ? (size_t)(strchr(c, '|') - c) : strlen(c)), c);
+        } break;
+        }
+        printf("  --%-12s %s%s%s [%s]\n", o[i].name, o[i].help, o[i].choices ? ": " : "", o[i].choices ? o[i].choices : "", def);
+    }
+    printf("  --%-12s %s\n", "help", "print this help and exit");
+}
+
+/* Exits with status 2 and a one-line reason on a bad option or value. */
+static void opt_fail(const char* prog, const char* fmt, const char* a, const char* b) {
+    fprintf(stderr, "%s: ", prog);
+    fprintf(stderr, fmt, a, b);
+    fprintf(stderr, " (see --help)\n");
+    exit(2);
+}
+
+static int opt_choice_index(const char* choices, const char* s) {
+    int k = 0;
+    size_t len = strlen(s);
+    const char* c = choices;
+    for (;;) {
+        const char* bar = strchr(c, '|');
+        size_t l = bar ? (size_t)(bar - c) : strlen(c);
+        if (l == len && strncmp(c, s, l) == 0) return k;
+        if (!bar) return -1;
+        c = bar + 1;
+        ++k;
+    }
+}
+
+static double opt_number(const char* prog, const opt_spec* o, const char* s) {
+    char* end;
+    double v;
+    errno = 0;
+    v = strtod(s, &end);
+    if (end == s || *end || errno || !(v == v)) opt_fail(prog, "--%s: '%s' is not a number", o->name, s);
+    if (v < o->min || v > o->max) {
+        char range[96];
+        snprintf(range, sizeof range, "'%s' is outside [%g, %g]", s, o->min, o->max);
+        opt_fail(prog, "--%s: %s", o->name, range);
+    }
+    if (o->type == OPT_INT && v != floor(v)) opt_fail(prog, "--%s: '%s' is not an integer", o->name, s);
+    return v;
+}
+
+/* Parses --name value, --name=value and --flag. */
+static void opt_parse(int argc, char** argv, const char* about, const opt_spec* o, int n) {
+    int i, k;
+    for (i = 1; i < argc; ++i) {
+        const char* arg = argv[i];
+        const char* val = NULL;
+        char name[64];
+        const opt_spec* s = NULL;
+        if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) { opt_usage(argv[0], about, o, n); exit(0); }
+        if (strncmp(arg, "--", 2) != 0) opt_fail(argv[0], "unexpected argument '%s'%s", arg, "");
+        snprintf(name, sizeof name, "%s", arg + 2);
+        if (strchr(name, '=')) { val = strchr(arg, '=') + 1; *strchr(name, '=') = 0; }
+        for (k = 0; k < n; ++k)
+            if (strcmp(o[k].name, name) == 0) s = &o[k];
+        if (!s) opt_fail(argv[0], "unknown option '--%s'%s", name, "");
+        if (s->type == OPT_FLAG) {
+            if (val) opt_fail(argv[0], "--%s takes no value%s", s->name, "");
+            *(int*)s->value = 1;
+            continue;
+        }
+        if (!val) {
+            if (i + 1 >= argc) opt_fail(argv[0], "--%s needs a value%s", s->name, "");
+            val = argv[++i];
+        }
+        switch (s->type) {
+        case OPT_INT: *(int*)s->value = (int)opt_number(argv[0], s, val); break;
+        case OPT_REAL: *(double*)s->value = opt_number(argv[0], s, val); break;
+        case OPT_STRING:
+            if (!*val) opt_fail(argv[0], "--%s: empty value%s", s->name, "");
+            *(const char**)s->value = val;
+            break;
+        case OPT_CHOICE:
+            if ((k = opt_choice_index(s->choices, val)) < 0) opt_fail(argv[0], "--%s: '%s' is not one of the choices", s->name, val);
+            *(int*)s->value = k;
+            break;
+        case OPT_PAIR: {
+            char buf[64], *comma;
+            snprintf(buf, sizeof buf, "%s", val);
+            if (!(comma = strchr(buf, ','))) opt_fail(argv[0], "--%s: '%s' is not of the form m,n", s->name, val);
+            *comma = 0;
+            ((int*)s->value)[0] = (int)opt_number(argv[0], s, buf);
+            ((int*)s->value)[1] = (int)opt_number(argv[0], s, comma + 1);
+        } break;
+        case OPT_FLAG: break;
+        }
+    }
+}
+
+/* Shear names in the order of the sps_shear enum. */
+#define SHEAR_CHOICES "eno|eno-a"
+static const char* shear_name(int s) { return s == SPS_SHEAR_ENO ? "eno" : "eno-a"; }
+
+/* ---- time, progress, files ---- */
+static double wall_seconds(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* One-line progress with simulated time and ETA, only on a terminal, at most 4 times a second. */
+static void progress(double t, double t_end, double wall_start, int quiet) {
+    static double last = 0;
+    double now = wall_seconds(), eta;
+    if (quiet || !isatty(2) || now - last < 0.25) return;
+    last = now;
+    eta = t > 0 ? (now - wall_start) * (t_end - t) / t : 0;
+    fprintf(stderr, "\r  t = %.4g / %.4g s   %3.0f%%   ETA %.0f s   ", t, t_end, 100 * t / t_end, eta);
+    if (t >= t_end) fprintf(stderr, "\n");
+}
+
+/* Creates dir and its parents (mkdir -p); returns 0 on success. */
+static int make_dirs(const char* dir) {
+    char buf[1024];
+    size_t i;
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (i = 1; buf[i]; ++i)
+        if (buf[i] == '/') {
+            buf[i] = 0;
+            if (mkdir(buf, 0755) != 0 && errno != EEXIST) return -1;
+            buf[i] = '/';
+        }
+    return mkdir(buf, 0755) != 0 && errno != EEXIST ? -1 : 0;
+}
+
+static FILE* open_out(const char* dir, const char* name) {
+    char path[1200];
+    FILE* f;
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (!(f = fopen(path, "w"))) { fprintf(stderr, "cannot write %s\n", path); exit(1); }
+    return f;
+}
+
+/* ---- period of an oscillation from the zero crossings of a signal starting at zero ---- */
+typedef struct {
+    double t_prev, s_prev, crossing[64];
+    int n;
+} period_detector;
+
+/* Feeds a sample; crossings are found by linear interpolation between samples. */
+static void period_feed(period_detector* p, double t, double s) {
+    if (t > 0 && p->t_prev > 0 && p->n < 64 && ((p->s_prev < 0 && s >= 0) || (p->s_prev > 0 && s <= 0)))
+        p->crossing[p->n++] = p->t_prev + (t - p->t_prev) * p->s_prev / (p->s_prev - s);
+    p->t_prev = t;
+    p->s_prev = s;
+}
+/* First period: the second zero crossing after the start (the signal starts at zero). */
+static double period_first(const period_detector* p) { return p->n >= 2 ? p->crossing[1] : -1; }
+
+#endif

@@ -1,0 +1,179 @@
+/* plate3d.c - 3D oscillating plate, simply supported, BENCHMARKS.md A2 (ENO 6.2, ANG 5.1.2).
+
+   A square plate L = W = 0.4, H = 0.01 (rho0 1000, E 1e8, nu 0.3) rests on a one-particle ring
+   outside [0, L] x [0, W] in the mid plane whose z-velocity is held at zero (the reference
+   code's simple support). It starts with v_z = sin(m pi x/L) sin(n pi y/W) and vibrates in mode
+   (m, n). We measure the first period and compare it with ANG Table 3 and with Kirchhoff plate
+   theory. The papers observe the plate centre; for even m or n the centre is a node of the
+   mode (no signal), so we observe the first antinode (L/2m, W/2n, 0), which is the centre
+   for mode (1,1).
+
+   Build: make examples        Run: ./build/plate3d --res 3 --mode 2,2
+   Expect: period 0.0149 s for mode (2,2) at H/dp = 3 (paper), 0.0133 s in theory. */
+#include "common.h"
+
+#define PLATE_L 0.4
+#define PLATE_W 0.4
+#define PLATE_H 0.01
+
+typedef struct { int m, n; } mode;
+static void initial_velocity(const sps_real x[3], sps_real v[3], void* user) {
+    const mode* md = (const mode*)user;
+    int inside = x[0] > 0 && x[0] < PLATE_L && x[1] > 0 && x[1] < PLATE_W;
+    v[0] = v[1] = 0;
+    v[2] = inside ? sin(md->m * PI * x[0] / PLATE_L) * sin(md->n * PI * x[1] / PLATE_W) : 0; /* ANG eq. 53 */
+}
+
+/* ANG Table 3 (ENO-A) and ENO Table 3 (ENO), H/dp = 3, 5, 9; -1 where the paper has no value. */
+static double paper_period(int shear, mode md, int res) {
+    static const double eno_a[3][3] = {{0.0573, 0.0543, 0.0528}, {0.0231, 0.0218, 0.0212}, {0.0149, 0.0141, 0.0136}};
+    static const double eno[3][3] = {{0.0572, 0.0543, 0.0529}, {0.0231, 0.0218, 0.0212}, {0.0148, 0.0140, 0.0136}};
+    int row = md.m == 1 && md.n == 1 ? 0 : md.m == 2 && md.n == 1 ? 1 : md.m == 2 && md.n == 2 ? 2 : -1;
+    int col = res == 3 ? 0 : res == 5 ? 1 : res == 9 ? 2 : -1;
+    if (row < 0 || col < 0) return -1;
+    return shear == SPS_SHEAR_ENO ? eno[row][col] : eno_a[row][col];
+}
+
+typedef struct {
+    sps_observer probe;
+    period_detector period;
+    double next_csv, next_vtk, csv_every, vtk_every, t_end, wall0, hg_max;
+    FILE* csv;
+    const char* out;
+    int quiet, frames, stop_at_period;
+} run_state;
+
+static int on_step(sps_world* w, void* user) {
+    run_state* s = (run_state*)user;
+    sps_real u[3];
+    double t = sps_world_time(w);
+    sps_observer_read(w, s->probe, u, NULL);
+    period_feed(&s->period, t, u[2]);
+    if (t >= s->next_csv - 1e-12) {
+        sps_diagnostics d;
+        char row[512];
+        sps_body all = {0};
+        sps_world_diagnostics(w, all, &d);
+        sps_diagnostics_csv_row(&d, row, sizeof row);
+        fprintf(s->csv, "%s,%.9g\n", row, (double)u[2]);
+        if (d.hourglass > s->hg_max) s->hg_max = d.hourglass;
+        s->next_csv += s->csv_every;
+    }
+    if (s->vtk_every > 0 && t >= s->next_vtk - 1e-12) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/plate3d_%04d.vtk", s->out, s->frames++);
+        sps_world_write_vtk(w, path);
+        s->next_vtk += s->vtk_every;
+    }
+    progress(t, s->t_end, s->wall0, s->quiet);
+    return s->stop_at_period && s->period.n >= 2;
+}
+
+/* The support ring: one row of particles just outside each edge, in the mid plane. */
+static void add_support_ring(sps_world* w, sps_body plate, double dp) {
+    int nx = (int)(PLATE_L / dp + 0.5), ny = (int)(PLATE_W / dp + 0.5), i;
+    sps_real p[3];
+    for (i = -1; i <= nx; ++i) { /* bottom and top rows, corners included */
+        p[0] = (i + 0.5) * dp; p[2] = 0;
+        p[1] = -0.5 * dp;          sps_body_add_particles(w, plate, 1, p, NULL);
+        p[1] = PLATE_W + 0.5 * dp; sps_body_add_particles(w, plate, 1, p, NULL);
+    }
+    for (i = 0; i < ny; ++i) { /* left and right columns */
+        p[1] = (i + 0.5) * dp; p[2] = 0;
+        p[0] = -0.5 * dp;          sps_body_add_particles(w, plate, 1, p, NULL);
+        p[0] = PLATE_L + 0.5 * dp; sps_body_add_particles(w, plate, 1, p, NULL);
+    }
+}
+
+int main(int argc, char** argv) {
+    int res = 3, shear = SPS_SHEAR_ENO_A, stepping = 0, threads = 0, quiet = 0, geometry = 0, full = 0, md_arg[2] = {1, 1};
+    double t_end = -1, vtk_every = 0, csv_every = 2e-4, E = 1e8, nu = 0.3, rho0 = 1000;
+    const char* out = "out/plate3d";
+    opt_spec opts[] = {
+        {"res", OPT_INT, &res, "resolution H/dp", 2, 40, NULL},
+        {"mode", OPT_PAIR, md_arg, "vibration mode m,n", 1, 20, NULL},
+        {"shear", OPT_CHOICE, &shear, "shear formulation", 0, 0, SHEAR_CHOICES},
+        {"stepping", OPT_CHOICE, &stepping, "time stepping", 0, 0, "dual|single"},
+        {"geometry", OPT_CHOICE, &geometry, "pair geometry in sub-steps", 0, 0, "frozen|recomputed"},
+        {"E", OPT_REAL, &E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},
+        {"nu", OPT_REAL, &nu, "Poisson ratio", -0.99, 0.4999, NULL},
+        {"rho0", OPT_REAL, &rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},
+        {"tend", OPT_REAL, &t_end, "end time [s]; -1 = stop once the first period is measured", -1, 1e4, NULL},
+        {"full", OPT_FLAG, &full, "with --tend, run to the end even after the period is found", 0, 0, NULL},
+        {"out", OPT_STRING, &out, "output folder", 0, 0, NULL},
+        {"vtk-every", OPT_REAL, &vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},
+        {"csv-every", OPT_REAL, &csv_every, "CSV row interval [s]", 1e-7, 1e4, NULL},
+        {"threads", OPT_INT, &threads, "OpenMP threads, 0 = all", 0, 1024, NULL},
+        {"quiet", OPT_FLAG, &quiet, "no progress line", 0, 0, NULL},
+    };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_body plate;
+    run_state s;
+    mode md;
+    double dp, D, analytical, paper, period, wall;
+    sps_real lo[3] = {0, 0, -PLATE_H / 2}, hi[3] = {PLATE_L, PLATE_W, PLATE_H / 2}, antinode[3];
+    sps_real ring_lo[4][3] = {{-1, -1, -1}, {PLATE_L, -1, -1}, {-1, -1, -1}, {-1, PLATE_W, -1}};
+    sps_real ring_hi[4][3] = {{0, 1, 1}, {1, 1, 1}, {1, 0, 1}, {1, 1, 1}};
+    int k;
+
+    opt_parse(argc, argv, "3D oscillating plate (BENCHMARKS.md A2)", opts, (int)(sizeof opts / sizeof *opts));
+    md.m = md_arg[0];
+    md.n = md_arg[1];
+    antinode[0] = PLATE_L / (2 * md.m);
+    antinode[1] = PLATE_W / (2 * md.n);
+    antinode[2] = 0;
+    D = E * pow(PLATE_H, 3) / (12 * (1 - nu * nu));                                                   /* ANG eq. 55 */
+    analytical = 2 / PI / (pow(md.m / PLATE_L, 2) + pow(md.n / PLATE_W, 2)) * sqrt(rho0 * PLATE_H / D); /* ANG eq. 54 */
+    if (t_end < 0) t_end = 1.6 * analytical; /* stops earlier, at the second zero crossing */
+    dp = PLATE_H / res;
+    wd.dim = 3;
+    wd.dp = dp;
+    wd.stepping = stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
+    wd.frozen_geometry = geometry == 0;
+    wd.threads = threads;
+    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
+    bd.name = "plate";
+    bd.material.density = rho0;
+    bd.material.youngs_modulus = E;
+    bd.material.poisson_ratio = nu;
+    bd.shear = (sps_shear)shear;
+    bd.track_stress = 1;
+    if (sps_world_add_body(w, &bd, &plate) != SPS_OK) return 2;
+    sps_body_add_box(w, plate, lo, hi, NULL);
+    add_support_ring(w, plate, dp);
+    for (k = 0; k < 4; ++k) sps_body_constrain_box(w, plate, ring_lo[k], ring_hi[k], SPS_AXIS_Z, NULL, NULL);
+    sps_body_set_velocity(w, plate, initial_velocity, &md);
+
+    memset(&s, 0, sizeof s);
+    s.out = out; s.quiet = quiet; s.t_end = t_end; s.csv_every = csv_every; s.vtk_every = vtk_every;
+    s.stop_at_period = !full;
+    if (make_dirs(out) != 0) { fprintf(stderr, "cannot create %s\n", out); return 1; }
+    if (sps_world_add_observer(w, plate, antinode, &s.probe) != SPS_OK) return 1;
+    s.csv = open_out(out, "plate3d.csv");
+    fprintf(s.csv, "%s,deflection\n", sps_diagnostics_csv_header());
+    s.wall0 = wall_seconds();
+    on_step(w, &s);
+    if (sps_world_advance(w, t_end, on_step, &s) != SPS_OK) {
+        fprintf(stderr, "plate3d: %s\n", sps_world_last_error(w));
+        return 1;
+    }
+    wall = wall_seconds() - s.wall0;
+    fclose(s.csv);
+    paper = paper_period(shear, md, res);
+    period = period_first(&s.period);
+    {
+        sps_diagnostics d;
+        sps_body all = {0};
+        sps_world_diagnostics(w, all, &d);
+        printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.4f paper=%.4f analytical=%.4f "
+               "err_paper=%.1f%% err_analytical=%.1f%% hourglass_max=%.3g particles=%d steps=%ld advection_steps=%ld "
+               "t_end=%.4g wall_s=%.2f out=%s\n",
+               shear_name(shear), res, md.m, md.n, stepping ? "single" : "dual", period, paper, analytical,
+               period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0, period > 0 ? 100 * (period - analytical) / analytical : 0,
+               s.hg_max, sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, out);
+    }
+    sps_world_destroy(w);
+    return 0;
+}
