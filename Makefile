@@ -11,7 +11,7 @@ WARN     = -Wall -Wextra -Wpedantic
 CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
 BUILD    = build
-EXAMPLES = plate2d plate3d
+EXAMPLES = plate2d plate3d spinning_plate spinning_cube
 HEADER   = sphsolid.h
 
 .PHONY: all check examples run test test-fast test-sanitize bench clean
@@ -40,7 +40,7 @@ check: $(CHECK_SRC) $(HEADER)
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) -c $< -o $@
-$(BUILD)/%: examples/%.c examples/common.h $(BUILD)/impl.o
+$(BUILD)/%: examples/%.c examples/common.h examples/spinning_plate.c $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
 

@@ -139,8 +139,11 @@ static void opt_parse(int argc, char** argv, const char* about, const opt_spec* 
 }
 
 /* Shear names in the order of the sps_shear enum. */
-#define SHEAR_CHOICES "eno|eno-a"
-static const char* shear_name(int s) { return s == SPS_SHEAR_ENO ? "eno" : "eno-a"; }
+#define SHEAR_CHOICES "eno|eno-a|og|oas|gno|gno-a"
+static const char* shear_name(int s) {
+    static const char* names[] = {"eno", "eno-a", "og", "oas", "gno", "gno-a"};
+    return s >= 0 && s < 6 ? names[s] : "?";
+}
 
 /* ---- time, progress, files ---- */
 static double wall_seconds(void) {
