@@ -1,7 +1,7 @@
 #!/bin/sh
 # Speed of the plate benchmarks: wall time and ns per particle per acoustic step, for
 # 1 and 2 threads and dual vs single stepping. Writes bench/results/$MACHINE/plates.csv.
-#   sh bench/run_bench.sh            full table (about 30 min on 2 cores)
+#   sh bench/run_bench.sh            full table (about 40 min on 2 idle cores)
 #   QUICK=1 sh bench/run_bench.sh    H/dp = 10 and 3D H/dp = 3 only
 # Run on an otherwise idle machine: the numbers are wall-clock times (minimum of REPEAT runs).
 set -eu
@@ -12,7 +12,7 @@ OUT=bench/results/$MACHINE
 mkdir -p "$OUT"
 CSV=$OUT/plates.csv
 make -s examples
-echo "scene,res,particles,threads,stepping,t_end,acoustic_steps,advection_steps,wall_s,ns_per_particle_step" > "$CSV"
+echo "scene,res,particles,threads,stepping,geometry,t_end,acoustic_steps,advection_steps,wall_s,ns_per_particle_step" > "$CSV"
 
 # field KEY LINE: the value of key=value in a RESULT line
 field() { echo "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
@@ -30,18 +30,20 @@ run() { # scene res t_end threads stepping extra-args...
     done
     n=$(field particles "$bestline"); steps=$(field steps "$bestline"); adv=$(field advection_steps "$bestline")
     ns=$(awk "BEGIN{printf \"%.1f\", 1e9 * $best / ($n * $steps)}")
-    echo "$scene,$res,$n,$thr,$st,$tend,$steps,$adv,$best,$ns" | tee -a "$CSV"
+    echo "$scene,$res,$n,$thr,$st,$geo,$tend,$steps,$adv,$best,$ns" | tee -a "$CSV"
 }
 
 if [ "${QUICK:-0}" = 1 ]; then RES2="10"; RES3="3"; else RES2="10 20 30"; RES3="3 5"; fi
-for res in $RES2; do
-    # t = 1 s at H/dp = 10 (the paper's Table 2 horizon); shorter at finer resolution, where
-    # ns per particle-step is what matters (wall time scales with t_end)
-    tend=1; [ "$res" -gt 10 ] && tend=0.1
-    for thr in 1 2; do for st in dual single; do run plate2d "$res" "$tend" "$thr" "$st" --shear eno-a; done; done
-done
-for res in $RES3; do
-    tend=0.005; [ "$res" -gt 3 ] && tend=0.002
-    for thr in 1 2; do for st in dual single; do run plate3d "$res" "$tend" "$thr" "$st" --shear eno-a --mode 2,2 --full; done; done
+# Horizons: t = 1 s at H/dp = 10 (the paper's Table 2 horizon, and the speed target); shorter at
+# finer resolution, where ns per particle-step is the figure (wall time scales with t_end).
+for geo in recomputed frozen; do
+    for res in $RES2; do
+        case $res in 10) tend=1 ;; 20) tend=0.05 ;; *) tend=0.02 ;; esac
+        for thr in 1 2; do for st in dual single; do run plate2d "$res" "$tend" "$thr" "$st" --shear eno-a --geometry "$geo"; done; done
+    done
+    for res in $RES3; do
+        case $res in 3) tend=0.002 ;; *) tend=0.0005 ;; esac
+        for thr in 1 2; do for st in dual single; do run plate3d "$res" "$tend" "$thr" "$st" --shear eno-a --mode 2,2 --full --geometry "$geo"; done; done
+    done
 done
 echo "written $CSV"

@@ -19,6 +19,13 @@
 
 #define PI 3.14159265358979323846
 
+/* Every example includes all of this file and uses part of it. */
+#if defined(__GNUC__) || defined(__clang__)
+#define EX_UNUSED __attribute__((unused))
+#else
+#define EX_UNUSED
+#endif
+
 /* ---- options ---- */
 typedef enum { OPT_INT, OPT_REAL, OPT_STRING, OPT_CHOICE, OPT_FLAG, OPT_PAIR } opt_type;
 typedef struct {
@@ -30,7 +37,7 @@ typedef struct {
     const char* choices;  /* OPT_CHOICE: "a|b|c" */
 } opt_spec;
 
-static void opt_usage(const char* prog, const char* about, const opt_spec* o, int n) {
+EX_UNUSED static void opt_usage(const char* prog, const char* about, const opt_spec* o, int n) {
     int i;
     printf("%s - %s\n\nOptions (default in brackets):\n", prog, about);
     for (i = 0; i < n; ++i) {
@@ -54,14 +61,14 @@ static void opt_usage(const char* prog, const char* about, const opt_spec* o, in
 }
 
 /* Exits with status 2 and a one-line reason on a bad option or value. */
-static void opt_fail(const char* prog, const char* fmt, const char* a, const char* b) {
+EX_UNUSED static void opt_fail(const char* prog, const char* fmt, const char* a, const char* b) {
     fprintf(stderr, "%s: ", prog);
     fprintf(stderr, fmt, a, b);
     fprintf(stderr, " (see --help)\n");
     exit(2);
 }
 
-static int opt_choice_index(const char* choices, const char* s) {
+EX_UNUSED static int opt_choice_index(const char* choices, const char* s) {
     int k = 0;
     size_t len = strlen(s);
     const char* c = choices;
@@ -75,7 +82,7 @@ static int opt_choice_index(const char* choices, const char* s) {
     }
 }
 
-static double opt_number(const char* prog, const opt_spec* o, const char* s) {
+EX_UNUSED static double opt_number(const char* prog, const opt_spec* o, const char* s) {
     char* end;
     double v;
     errno = 0;
@@ -91,7 +98,7 @@ static double opt_number(const char* prog, const opt_spec* o, const char* s) {
 }
 
 /* Parses --name value, --name=value and --flag. */
-static void opt_parse(int argc, char** argv, const char* about, const opt_spec* o, int n) {
+EX_UNUSED static void opt_parse(int argc, char** argv, const char* about, const opt_spec* o, int n) {
     int i, k;
     for (i = 1; i < argc; ++i) {
         const char* arg = argv[i];
@@ -140,20 +147,20 @@ static void opt_parse(int argc, char** argv, const char* about, const opt_spec* 
 
 /* Shear names in the order of the sps_shear enum. */
 #define SHEAR_CHOICES "eno|eno-a|og|oas|gno|gno-a"
-static const char* shear_name(int s) {
+EX_UNUSED static const char* shear_name(int s) {
     static const char* names[] = {"eno", "eno-a", "og", "oas", "gno", "gno-a"};
     return s >= 0 && s < 6 ? names[s] : "?";
 }
 
 /* ---- time, progress, files ---- */
-static double wall_seconds(void) {
+EX_UNUSED static double wall_seconds(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* One-line progress with simulated time and ETA, only on a terminal, at most 4 times a second. */
-static void progress(double t, double t_end, double wall_start, int quiet) {
+EX_UNUSED static void progress(double t, double t_end, double wall_start, int quiet) {
     static double last = 0;
     double now = wall_seconds(), eta;
     if (quiet || !isatty(2) || now - last < 0.25) return;
@@ -164,7 +171,7 @@ static void progress(double t, double t_end, double wall_start, int quiet) {
 }
 
 /* Creates dir and its parents (mkdir -p); returns 0 on success. */
-static int make_dirs(const char* dir) {
+EX_UNUSED static int make_dirs(const char* dir) {
     char buf[1024];
     size_t i;
     snprintf(buf, sizeof buf, "%s", dir);
@@ -177,7 +184,7 @@ static int make_dirs(const char* dir) {
     return mkdir(buf, 0755) != 0 && errno != EEXIST ? -1 : 0;
 }
 
-static FILE* open_out(const char* dir, const char* name) {
+EX_UNUSED static FILE* open_out(const char* dir, const char* name) {
     char path[1200];
     FILE* f;
     snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -192,13 +199,13 @@ typedef struct {
 } period_detector;
 
 /* Feeds a sample; crossings are found by linear interpolation between samples. */
-static void period_feed(period_detector* p, double t, double s) {
+EX_UNUSED static void period_feed(period_detector* p, double t, double s) {
     if (t > 0 && p->t_prev > 0 && p->n < 64 && ((p->s_prev < 0 && s >= 0) || (p->s_prev > 0 && s <= 0)))
         p->crossing[p->n++] = p->t_prev + (t - p->t_prev) * p->s_prev / (p->s_prev - s);
     p->t_prev = t;
     p->s_prev = s;
 }
 /* First period: the second zero crossing after the start (the signal starts at zero). */
-static double period_first(const period_detector* p) { return p->n >= 2 ? p->crossing[1] : -1; }
+EX_UNUSED static double period_first(const period_detector* p) { return p->n >= 2 ? p->crossing[1] : -1; }
 
 #endif

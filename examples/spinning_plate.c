@@ -35,7 +35,7 @@ static void rigid_rotation(const sps_real x[3], sps_real v[3], void* user) {
 static double norm3(const sps_real* a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 int main(int argc, char** argv) {
-    int shear = SPS_SHEAR_GNO_A, rotation = 0, stepping = 0, geometry = 1, threads = 0, quiet = 0, corner_id, frames = 0;
+    int shear = SPS_SHEAR_GNO_A, rotation = 0, stepping = 0, geometry = 0, threads = 0, quiet = 0, corner_id, frames = 0;
     double dp = 0.05, omega = 50, t_end = 0.5, vtk_every = 0.1, csv_every = 0.001, cfl = 0.4, E = 1.7e7, nu = NU, rho0 = 1100;
     const char* out = "out/" CASE;
     opt_spec opts[] = {
@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
         {"shear", OPT_CHOICE, &shear, "shear formulation", 0, 0, SHEAR_CHOICES},
         {"rotation", OPT_CHOICE, &rotation, "-A rotation", 0, 0, "mean|particle"},
         {"stepping", OPT_CHOICE, &stepping, "time stepping", 0, 0, "dual|single"},
-        {"geometry", OPT_CHOICE, &geometry, "pair geometry in sub-steps", 0, 0, "frozen|recomputed"},
+        {"geometry", OPT_CHOICE, &geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},
         {"cfl", OPT_REAL, &cfl, "acoustic CFL number", 0.01, 1, NULL},
         {"E", OPT_REAL, &E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},
         {"nu", OPT_REAL, &nu, "Poisson ratio", -0.99, 0.4999, NULL},
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     wd.dp = dp;
     wd.cfl_acoustic = cfl;
     wd.stepping = stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
-    wd.frozen_geometry = geometry == 0;
+    wd.frozen_geometry = geometry == 1;
     wd.threads = threads;
     if (sps_world_create(&wd, &w) != SPS_OK) return 2;
     bd.name = CASE;
