@@ -457,14 +457,12 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #define SPS__SIN sinf
 #define SPS__COS cosf
 #define SPS__FLOOR floorf
-#define SPS__FMOD fmodf
 #define SPS__ATAN2 atan2f
 #else
 #define SPS__SQRT sqrt
 #define SPS__SIN sin
 #define SPS__COS cos
 #define SPS__FLOOR floor
-#define SPS__FMOD fmod
 #define SPS__ATAN2 atan2
 #endif
 #define SPS__PI SPS_R(3.14159265358979323846)
@@ -549,7 +547,7 @@ struct sps_world {
     sps_real time, dt, vmax, c0_max;
     sps_real thread_max[SPS__MAX_THREADS]; /* per-thread max |v|^2 of the kick */
     long acoustic_steps, advection_steps;
-    int has_gradient, has_stress, has_rotation_mean, has_art, allocated_for;
+    int has_gradient, allocated_for;
 };
 
 /* >>util */
@@ -1383,10 +1381,7 @@ static sps_result sps__commit(sps_world* w) {
         if (!(w->art = (sps_real*)sps__alloc(w, sizeof(sps_real) * 3 * (size_t)w->cap))) return SPS_ERR_OUT_OF_MEMORY;
     }
     w->allocated_for = w->cap;
-    w->has_art = need_art;
     w->has_gradient = need_gradient;
-    w->has_stress = need_stress;
-    w->has_rotation_mean = need_mean;
     /* group particles by body (stable), then set ranges */
     sps__sort_range(w, 0, w->n, w->body, w->nbodies);
     for (bi = 0; bi < w->nbodies; ++bi) w->bodies[bi].begin = w->bodies[bi].end = 0;

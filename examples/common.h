@@ -192,18 +192,69 @@ EX_UNUSED static FILE* open_out(const char* dir, const char* name) {
     return f;
 }
 
+/* ---- CSV rows and VTK snapshots at fixed intervals of simulated time ---- */
+typedef struct {
+    FILE* csv;
+    const char *dir, *name;
+    double csv_every, vtk_every, next_csv, next_vtk, hourglass_max, min_spacing;
+    int frames;
+} output_plan;
+
+/* Creates dir, opens dir/name.csv and writes the header: the diagnostics' columns, then the
+   case's own (extra_header starts with a comma). Exits with a message if it cannot. */
+EX_UNUSED static void output_open(output_plan* o, const char* dir, const char* name, double csv_every, double vtk_every,
+                                  const char* extra_header) {
+    char file[256];
+    memset(o, 0, sizeof *o);
+    o->dir = dir; o->name = name; o->csv_every = csv_every; o->vtk_every = vtk_every; o->min_spacing = 1e30;
+    if (make_dirs(dir) != 0) { fprintf(stderr, "cannot create %s\n", dir); exit(1); }
+    snprintf(file, sizeof file, "%s.csv", name);
+    o->csv = open_out(dir, file);
+    fprintf(o->csv, "%s%s\n", sps_diagnostics_csv_header(), extra_header);
+}
+
+/* Writes what is due at the world's time: a CSV row (diagnostics, then extra, the case's own
+   columns starting with a comma) and a VTK snapshot. Returns 1 and fills d when a row was written. */
+EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra, sps_diagnostics* d) {
+    double t = sps_world_time(w);
+    int wrote = 0;
+    if (t >= o->next_csv - 1e-12) {
+        char row[512];
+        sps_body all = {0};
+        sps_world_diagnostics(w, all, d);
+        sps_diagnostics_csv_row(d, row, sizeof row);
+        fprintf(o->csv, "%s%s\n", row, extra);
+        if (d->hourglass > o->hourglass_max) o->hourglass_max = d->hourglass;
+        if (d->min_spacing < o->min_spacing) o->min_spacing = d->min_spacing;
+        o->next_csv += o->csv_every;
+        wrote = 1;
+    }
+    if (o->vtk_every > 0 && t >= o->next_vtk - 1e-12) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/%s_%04d.vtk", o->dir, o->name, o->frames++);
+        sps_world_write_vtk(w, path);
+        o->next_vtk += o->vtk_every;
+    }
+    return wrote;
+}
+
 /* ---- period of an oscillation from the zero crossings of a signal starting at zero ---- */
 typedef struct {
-    double t_prev, s_prev, crossing[64];
-    int n;
+    double t_prev, s_prev, crossing[64]; /* the first 64 crossing times */
+    int n;                               /* all crossings seen */
 } period_detector;
 
-/* Feeds a sample; crossings are found by linear interpolation between samples. */
-EX_UNUSED static void period_feed(period_detector* p, double t, double s) {
-    if (t > 0 && p->t_prev > 0 && p->n < 64 && ((p->s_prev < 0 && s >= 0) || (p->s_prev > 0 && s <= 0)))
-        p->crossing[p->n++] = p->t_prev + (t - p->t_prev) * p->s_prev / (p->s_prev - s);
+/* Feeds a sample; crossings are found by linear interpolation between samples. Returns 1 when
+   this sample completed a full cycle (an even number of crossings). */
+EX_UNUSED static int period_feed(period_detector* p, double t, double s) {
+    int cycle = 0;
+    if (t > 0 && p->t_prev > 0 && ((p->s_prev < 0 && s >= 0) || (p->s_prev > 0 && s <= 0))) {
+        if (p->n < 64) p->crossing[p->n] = p->t_prev + (t - p->t_prev) * p->s_prev / (p->s_prev - s);
+        cycle = ++p->n % 2 == 0;
+    }
     p->t_prev = t;
     p->s_prev = s;
+    return cycle;
 }
 /* First period: the second zero crossing after the start (the signal starts at zero). */
 EX_UNUSED static double period_first(const period_detector* p) { return p->n >= 2 ? p->crossing[1] : -1; }

@@ -44,40 +44,26 @@ static double paper_period(int shear, double vf) {
 typedef struct {
     sps_observer tip;
     period_detector period;
-    double amp_first, amp_last, amp_cur, hg_max, next_csv, next_vtk, csv_every, vtk_every, t_end, wall0;
-    FILE* csv;
-    const char* out;
-    int quiet, frames;
+    output_plan output;
+    double amp_first, amp_last, amp_cur, t_end, wall0; /* amplitudes: max |deflection| per cycle */
+    int quiet;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_real u[3];
+    sps_diagnostics d;
+    char extra[64];
     double t = sps_world_time(w);
     sps_observer_read(w, s->tip, u, NULL);
-    period_feed(&s->period, t, u[1]);
     if (fabs(u[1]) > s->amp_cur) s->amp_cur = fabs(u[1]);
-    if (s->period.n >= 2 && s->amp_first == 0) s->amp_first = s->amp_cur;          /* first cycle */
-    if (s->period.n >= 2 && s->period.n % 2 == 0 && s->period.s_prev * u[1] <= 0) { /* cycle ended */
+    if (period_feed(&s->period, t, u[1])) { /* a cycle ended */
+        if (s->amp_first == 0) s->amp_first = s->amp_cur;
         s->amp_last = s->amp_cur;
         s->amp_cur = 0;
     }
-    if (t >= s->next_csv - 1e-12) {
-        sps_diagnostics d;
-        char row[512];
-        sps_body all = {0};
-        sps_world_diagnostics(w, all, &d);
-        sps_diagnostics_csv_row(&d, row, sizeof row);
-        fprintf(s->csv, "%s,%.9g\n", row, (double)u[1]);
-        if (d.hourglass > s->hg_max) s->hg_max = d.hourglass;
-        s->next_csv += s->csv_every;
-    }
-    if (s->vtk_every > 0 && t >= s->next_vtk - 1e-12) {
-        char path[1200];
-        snprintf(path, sizeof path, "%s/plate2d_%04d.vtk", s->out, s->frames++);
-        sps_world_write_vtk(w, path);
-        s->next_vtk += s->vtk_every;
-    }
+    snprintf(extra, sizeof extra, ",%.9g", (double)u[1]);
+    output_tick(w, &s->output, extra, &d);
     progress(t, s->t_end, s->wall0, s->quiet);
     return 0;
 }
@@ -143,11 +129,9 @@ int main(int argc, char** argv) {
     sps_body_set_velocity(w, plate, initial_velocity, &v0);
 
     memset(&s, 0, sizeof s);
-    s.out = out; s.quiet = quiet; s.t_end = t_end; s.csv_every = csv_every; s.vtk_every = vtk_every;
-    if (make_dirs(out) != 0) { fprintf(stderr, "cannot create %s\n", out); return 1; }
+    s.quiet = quiet; s.t_end = t_end;
     if (sps_world_add_observer(w, plate, tip, &s.tip) != SPS_OK) return 1;
-    s.csv = open_out(out, "plate2d.csv");
-    fprintf(s.csv, "%s,deflection\n", sps_diagnostics_csv_header());
+    output_open(&s.output, out, "plate2d", csv_every, vtk_every, ",deflection");
     s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0 row and snapshot */
     if (sps_world_advance(w, t_end, on_step, &s) != SPS_OK) {
@@ -155,7 +139,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     wall = wall_seconds() - s.wall0;
-    fclose(s.csv);
+    fclose(s.output.csv);
 
     omega = sqrt(E * PLATE_H * PLATE_H * pow(KL / PLATE_L, 4) / (12 * rho0 * (1 - nu * nu))); /* ANG eq. 52 */
     analytical = 2 * PI / omega;
@@ -170,7 +154,7 @@ int main(int argc, char** argv) {
                "hourglass_end=%.3g particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
                shear_name(shear), res, vf, stepping ? "single" : "dual", period, paper, analytical,
                period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
-               s.period.n / 2, s.amp_first, s.amp_last, s.hg_max, (double)d.hourglass, sps_world_particle_count(w),
+               s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, sps_world_particle_count(w),
                d.acoustic_steps, d.advection_steps, wall, out);
     }
     sps_world_destroy(w);

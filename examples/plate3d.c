@@ -40,35 +40,21 @@ static double paper_period(int shear, mode md, int res) {
 typedef struct {
     sps_observer probe;
     period_detector period;
-    double next_csv, next_vtk, csv_every, vtk_every, t_end, wall0, hg_max;
-    FILE* csv;
-    const char* out;
-    int quiet, frames, stop_at_period;
+    output_plan output;
+    double t_end, wall0;
+    int quiet, stop_at_period;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_real u[3];
-    double t = sps_world_time(w);
+    sps_diagnostics d;
+    char extra[64];
     sps_observer_read(w, s->probe, u, NULL);
-    period_feed(&s->period, t, u[2]);
-    if (t >= s->next_csv - 1e-12) {
-        sps_diagnostics d;
-        char row[512];
-        sps_body all = {0};
-        sps_world_diagnostics(w, all, &d);
-        sps_diagnostics_csv_row(&d, row, sizeof row);
-        fprintf(s->csv, "%s,%.9g\n", row, (double)u[2]);
-        if (d.hourglass > s->hg_max) s->hg_max = d.hourglass;
-        s->next_csv += s->csv_every;
-    }
-    if (s->vtk_every > 0 && t >= s->next_vtk - 1e-12) {
-        char path[1200];
-        snprintf(path, sizeof path, "%s/plate3d_%04d.vtk", s->out, s->frames++);
-        sps_world_write_vtk(w, path);
-        s->next_vtk += s->vtk_every;
-    }
-    progress(t, s->t_end, s->wall0, s->quiet);
+    period_feed(&s->period, sps_world_time(w), u[2]);
+    snprintf(extra, sizeof extra, ",%.9g", (double)u[2]);
+    output_tick(w, &s->output, extra, &d);
+    progress(sps_world_time(w), s->t_end, s->wall0, s->quiet);
     return s->stop_at_period && s->period.n >= 2;
 }
 
@@ -163,12 +149,10 @@ int main(int argc, char** argv) {
     sps_body_set_velocity(w, plate, initial_velocity, &md);
 
     memset(&s, 0, sizeof s);
-    s.out = out; s.quiet = quiet; s.t_end = t_end; s.csv_every = csv_every; s.vtk_every = vtk_every;
+    s.quiet = quiet; s.t_end = t_end;
     s.stop_at_period = !full;
-    if (make_dirs(out) != 0) { fprintf(stderr, "cannot create %s\n", out); return 1; }
     if (sps_world_add_observer(w, plate, antinode, &s.probe) != SPS_OK) return 1;
-    s.csv = open_out(out, "plate3d.csv");
-    fprintf(s.csv, "%s,deflection\n", sps_diagnostics_csv_header());
+    output_open(&s.output, out, "plate3d", csv_every, vtk_every, ",deflection");
     s.wall0 = wall_seconds();
     on_step(w, &s);
     if (sps_world_advance(w, t_end, on_step, &s) != SPS_OK) {
@@ -176,7 +160,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     wall = wall_seconds() - s.wall0;
-    fclose(s.csv);
+    fclose(s.output.csv);
     paper = paper_period(shear, md, res);
     period = period_first(&s.period);
     {
@@ -188,7 +172,7 @@ int main(int argc, char** argv) {
                "t_end=%.4g wall_s=%.2f out=%s\n",
                shear_name(shear), res, md.m, md.n, stepping ? "single" : "dual", period, paper, analytical,
                period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0, period > 0 ? 100 * (period - analytical) / analytical : 0,
-               s.hg_max, sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, out);
+               s.output.hourglass_max, sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, out);
     }
     sps_world_destroy(w);
     return 0;

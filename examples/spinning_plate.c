@@ -35,7 +35,7 @@ static void rigid_rotation(const sps_real x[3], sps_real v[3], void* user) {
 static double norm3(const sps_real* a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 int main(int argc, char** argv) {
-    int shear = SPS_SHEAR_GNO_A, rotation = 0, stepping = 0, geometry = 0, threads = 0, quiet = 0, corner_id, frames = 0;
+    int shear = SPS_SHEAR_GNO_A, rotation = 0, stepping = 0, geometry = 0, threads = 0, quiet = 0, corner_id;
     double dp = 0.05, omega = 50, t_end = 0.5, vtk_every = 0.1, csv_every = 0.001, cfl = 0.4, E = 1.7e7, nu = NU, rho0 = 1100;
     const char* out = "out/" CASE;
     opt_spec opts[] = {
@@ -63,9 +63,9 @@ int main(int argc, char** argv) {
     sps_diagnostics d0, d;
     sps_body all = {0};
     sps_real lo[3] = {-0.5, -0.5, -0.5}, hi[3] = {0.5, 0.5, 0.5}, corner[3] = {0.5, 0.5, 0.5};
-    double wall0, next_csv = 0, next_vtk = 0, max_err = 0, max_p_drift = 0, min_spacing = 1e30, hg_max = 0, p_scale = 0;
+    double wall0, max_err = 0, max_p_drift = 0, p_scale = 0;
     int i, n;
-    FILE* csv;
+    output_plan output;
 
     opt_parse(argc, argv, "spinning " CASE " (BENCHMARKS.md A3/A4)", opts, (int)(sizeof opts / sizeof *opts));
     wd.dim = DIM;
@@ -87,9 +87,7 @@ int main(int argc, char** argv) {
     sps_body_set_velocity(w, block, rigid_rotation, &omega);
     corner_id = sps_world_nearest_particle(w, block, corner);
 
-    if (make_dirs(out) != 0) { fprintf(stderr, "cannot create %s\n", out); return 1; }
-    csv = open_out(out, CASE ".csv");
-    fprintf(csv, "%s,corner_ux,corner_uy,corner_vx,corner_vy\n", sps_diagnostics_csv_header());
+    output_open(&output, out, CASE, csv_every, vtk_every, ",corner_ux,corner_uy,corner_vx,corner_vy");
     n = sps_world_particle_count(w);
     for (i = 0; i < n; ++i) { /* momentum scale sum m |v| for the linear-momentum drift */
         const sps_real *vx = sps_world_field(w, SPS_FIELD_VELOCITY_X), *vy = sps_world_field(w, SPS_FIELD_VELOCITY_Y);
@@ -99,26 +97,15 @@ int main(int argc, char** argv) {
     wall0 = wall_seconds();
     for (;;) {
         double t = sps_world_time(w);
-        if (t >= next_csv - 1e-12) {
-            sps_particle_state c;
-            char row[512];
-            sps_world_diagnostics(w, all, &d);
-            sps_world_particle(w, corner_id, &c);
-            sps_diagnostics_csv_row(&d, row, sizeof row);
-            fprintf(csv, "%s,%.9g,%.9g,%.9g,%.9g\n", row, (double)c.displacement[0], (double)c.displacement[1],
-                    (double)c.velocity[0], (double)c.velocity[1]);
-            if (fabs(d.angular_momentum[2] - d0.angular_momentum[2]) / fabs(d0.angular_momentum[2]) > max_err)
-                max_err = fabs(d.angular_momentum[2] - d0.angular_momentum[2]) / fabs(d0.angular_momentum[2]);
+        sps_particle_state c;
+        char extra[160];
+        sps_world_particle(w, corner_id, &c);
+        snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g,%.9g", (double)c.displacement[0], (double)c.displacement[1],
+                 (double)c.velocity[0], (double)c.velocity[1]);
+        if (output_tick(w, &output, extra, &d)) {
+            double err = fabs(d.angular_momentum[2] - d0.angular_momentum[2]) / fabs(d0.angular_momentum[2]);
+            if (err > max_err) max_err = err;
             if (norm3(d.linear_momentum) / p_scale > max_p_drift) max_p_drift = norm3(d.linear_momentum) / p_scale;
-            if (d.min_spacing < min_spacing) min_spacing = d.min_spacing;
-            if (d.hourglass > hg_max) hg_max = d.hourglass;
-            next_csv += csv_every;
-        }
-        if (vtk_every > 0 && t >= next_vtk - 1e-12) {
-            char path[1200];
-            snprintf(path, sizeof path, "%s/%s_%04d.vtk", out, CASE, frames++);
-            sps_world_write_vtk(w, path);
-            next_vtk += vtk_every;
         }
         if (t >= t_end) break;
         if (sps_world_advance(w, t + csv_every < t_end ? t + csv_every : t_end, NULL, NULL) != SPS_OK) {
@@ -127,12 +114,12 @@ int main(int argc, char** argv) {
         }
         progress(sps_world_time(w), t_end, wall0, quiet);
     }
-    fclose(csv);
+    fclose(output.csv);
     printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s cfl=%g max_angmom_err=%.2f%% paper=%.2f%% "
            "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n",
            CASE, shear_name(shear), rotation ? "particle" : "mean", dp, omega, stepping ? "single" : "dual", cfl, 100 * max_err,
-           paper_error[shear], max_p_drift, min_spacing, hg_max, (double)d0.kinetic_energy, (double)d.kinetic_energy, n,
+           paper_error[shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy, n,
            d.acoustic_steps, wall_seconds() - wall0, out);
     sps_world_destroy(w);
     return 0;
