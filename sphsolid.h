@@ -106,7 +106,16 @@
       A def is checked field by field at creation; the message names the field, its value and
       the allowed range, and lists every broken rule. A step that meets a non-finite velocity,
       position or density stops with SPS_ERR_UNSTABLE naming time, body, particle and quantity;
-      the world stays readable (diagnostics, VTK) after that.
+      the world stays readable (diagnostics, VTK) after that. So does a speed whose square
+      overflows, a step that makes no progress, and a particle with more neighbours than
+      neighbor_capacity allows (clustering).
+      Validated: world def: cookie (start from sps_default_world_def), dim, dp, h_over_dp,
+      kernel, stepping, cfl_acoustic, cfl_advection, max_substeps, gravity, frozen_geometry,
+      neighbor_capacity, threads, allocator (both or neither). Body def: cookie, density,
+      youngs_modulus, poisson_ratio, shear (OAS only in 2D), rotation, zeta, xi, oas_epsilon,
+      oas_exponent, track_stress. Calls: body and observer handles (of this world), boxes
+      (finite, lo < hi, at most 2e8 particles), particle coordinates and volumes (finite, > 0),
+      velocities from callbacks (finite), constraint masks and velocities, t_end (finite).
 
    MEMORY
       Allocation happens in sps_world_create, when particles, constraints or observers are added,
@@ -390,8 +399,13 @@ SPSDEF int sps_world_nearest_particle(const sps_world* w, sps_body b, const sps_
 /* Kernel value and derivative dW/dr for the world's kernel (for tests and teaching). */
 SPSDEF sps_real sps_world_kernel(const sps_world* w, sps_real r);
 SPSDEF sps_real sps_world_kernel_derivative(const sps_world* w, sps_real r);
-/* Low-dissipation Riemann interface pressure P* (ENO eqs. 13-16) along e_ij for left state
-   (rho_l, u_l, p_l, c_l) and right state (rho_r, u_r, p_r, c_r). limiter = 0: beta = 1. */
+/* Low-dissipation Riemann interface pressure P* (ENO eq. 14) for left state (rho_l, u_l, p_l, c_l)
+   and right state (rho_r, u_r, p_r, c_r); u_l and u_r are the velocities along the direction
+   from left to right, so u_l > u_r means compression (ANG eq. 18's convention). limiter = 0:
+   beta = 1 (what the library uses for solids); limiter = 1: beta = min(3 max((u_l - u_r) / c, 0),
+   1) with c the mean sound speed, dissipation only under compression. ENO eq. 16 prints
+   (p_l + p_r)(u_l - u_r)/(rho_l c_l + rho_r c_r) inside the max, which is not dimensionless;
+   we use the velocity jump over the sound speed instead. */
 SPSDEF sps_real sps_riemann_pressure(sps_real rho_l, sps_real u_l, sps_real p_l, sps_real c_l,
                                      sps_real rho_r, sps_real u_r, sps_real p_r, sps_real c_r, int limiter);
 
@@ -747,8 +761,8 @@ SPSDEF sps_real sps_riemann_pressure(sps_real rho_l, sps_real u_l, sps_real p_l,
                                      sps_real rho_r, sps_real u_r, sps_real p_r, sps_real c_r, int limiter) {
     sps_real zl = rho_l * c_l, zr = rho_r * c_r;
     sps_real beta = 1;
-    if (limiter) { /* ENO eq. 16: dissipation only under compression */
-        sps_real b = 3 * ((p_l + p_r) * (u_l - u_r) / (zl + zr));
+    if (limiter) { /* dissipation only under compression (ENO eq. 16, made dimensionless) */
+        sps_real b = 3 * (u_l - u_r) / (SPS_R(0.5) * (c_l + c_r));
         beta = b < 0 ? 0 : b > 1 ? 1 : b;
     }
     /* ENO eq. 14 */
