@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
         sps_diagnostics d;
         sps_body all = {0};
         sps_world_diagnostics(w, all, &d);
-        printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.4f paper=%.4f analytical=%.4f "
+        printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.5f paper=%.4f analytical=%.4f "
                "err_paper=%.1f%% err_analytical=%.1f%% hourglass_max=%.3g particles=%d steps=%ld advection_steps=%ld "
                "t_end=%.4g wall_s=%.2f out=%s\n",
                shear_name(shear), res, md.m, md.n, stepping ? "single" : "dual", period, paper, analytical,
