@@ -1122,7 +1122,8 @@ static void sps__permute_int(sps_world* w, int* f, int begin, int count) {
     memcpy(f + begin, tmp, sizeof(int) * (size_t)count);
 }
 
-/* Fields rebuilt within every sub-step (acc_p, acc_d, grad, bmat) are not carried along. */
+/* Fields rebuilt within every sub-step before they are read (acc_p, acc_d, bmat, art) are not
+   carried along; grad is, because the next kick reads it (per-particle half-step rotation). */
 static void sps__sort_range(sps_world* w, int begin, int count, const int* key, int nkeys) {
     int i, a, *start = w->cell_start;
     for (i = 0; i <= nkeys; ++i) start[i] = 0;
@@ -1136,6 +1137,7 @@ static void sps__sort_range(sps_world* w, int begin, int count, const int* key, 
     sps__permute_real(w, w->rho, begin, count, 1); sps__permute_real(w, w->drho, begin, count, 1);
     sps__permute_real(w, w->p, begin, count, 1); sps__permute_real(w, w->vol, begin, count, 1);
     sps__permute_real(w, w->mass, begin, count, 1); sps__permute_real(w, w->tau, begin, count, 6);
+    sps__permute_real(w, w->grad, begin, count, 9);
     sps__permute_int(w, w->id, begin, count); sps__permute_int(w, w->body, begin, count);
     sps__permute_int(w, w->cons, begin, count);
     for (i = begin; i < begin + count; ++i) w->slot_of_id[w->id[i]] = i;
