@@ -2,7 +2,8 @@
 # Speed of the plate benchmarks: wall time and ns per particle per acoustic step, for
 # 1 and 2 threads and dual vs single stepping. Writes bench/results/$MACHINE/plates.csv.
 #   sh bench/run_bench.sh            full table (about 40 min on 2 idle cores)
-#   QUICK=1 sh bench/run_bench.sh    H/dp = 10 and 3D H/dp = 3 only
+#   QUICK=1 sh bench/run_bench.sh    H/dp = 10 and 3D H/dp = 3 only (about 8 min)
+#   RES2="20 30" RES3="5" APPEND=1 sh bench/run_bench.sh   add resolutions to the table
 # Run on an otherwise idle machine: the numbers are wall-clock times (minimum of REPEAT runs).
 set -eu
 cd "$(dirname "$0")/.."
@@ -12,7 +13,10 @@ OUT=bench/results/$MACHINE
 mkdir -p "$OUT"
 CSV=$OUT/plates.csv
 make -s examples
-echo "scene,res,particles,threads,stepping,geometry,t_end,acoustic_steps,advection_steps,wall_s,ns_per_particle_step" > "$CSV"
+# APPEND=1 adds rows to an existing table (e.g. RES2="20 30" RES3="5" APPEND=1 after a QUICK run)
+if [ "${APPEND:-0}" != 1 ] || [ ! -f "$CSV" ]; then
+    echo "scene,res,particles,threads,stepping,geometry,t_end,acoustic_steps,advection_steps,wall_s,ns_per_particle_step" > "$CSV"
+fi
 
 # field KEY LINE: the value of key=value in a RESULT line
 field() { echo "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
@@ -33,7 +37,7 @@ run() { # scene res t_end threads stepping extra-args...
     echo "$scene,$res,$n,$thr,$st,$geo,$tend,$steps,$adv,$best,$ns" | tee -a "$CSV"
 }
 
-if [ "${QUICK:-0}" = 1 ]; then RES2="10"; RES3="3"; else RES2="10 20 30"; RES3="3 5"; fi
+if [ "${QUICK:-0}" = 1 ]; then RES2=${RES2-10}; RES3=${RES3-3}; else RES2=${RES2-"10 20 30"}; RES3=${RES3-"3 5"}; fi
 # Horizons: t = 1 s at H/dp = 10 (the paper's Table 2 horizon, and the speed target); shorter at
 # finer resolution, where ns per particle-step is the figure (wall time scales with t_end).
 for geo in recomputed frozen; do
