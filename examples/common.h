@@ -152,6 +152,42 @@ EX_UNUSED static const char* shear_name(int s) {
     return s >= 0 && s < 6 ? names[s] : "?";
 }
 
+/* ---- the options every example shares ---- */
+typedef struct {
+    int shear, rotation, stepping, geometry, threads, quiet; /* choice indices and flags */
+    double t_end, vtk_every, csv_every, E, nu, rho0;
+    const char* out;
+} common_options;
+
+/* The opt_spec entries of common_options c, for an example's option table. */
+#define COMMON_OPTION_SPECS(c)                                                                          \
+    {"shear", OPT_CHOICE, &(c).shear, "shear formulation", 0, 0, SHEAR_CHOICES},                        \
+    {"rotation", OPT_CHOICE, &(c).rotation, "-A variants: rotation", 0, 0, "mean|particle"},            \
+    {"stepping", OPT_CHOICE, &(c).stepping, "time stepping", 0, 0, "dual|single"},                      \
+    {"geometry", OPT_CHOICE, &(c).geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},   \
+    {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
+    {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
+    {"rho0", OPT_REAL, &(c).rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},                                 \
+    {"tend", OPT_REAL, &(c).t_end, "end time [s]", 0, 1e4, NULL},                                       \
+    {"out", OPT_STRING, &(c).out, "output folder", 0, 0, NULL},                                         \
+    {"vtk-every", OPT_REAL, &(c).vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},       \
+    {"csv-every", OPT_REAL, &(c).csv_every, "CSV row interval [s]", 1e-7, 1e4, NULL},                   \
+    {"threads", OPT_INT, &(c).threads, "OpenMP threads, 0 = all", 0, 1024, NULL},                       \
+    {"quiet", OPT_FLAG, &(c).quiet, "no progress line", 0, 0, NULL}
+
+/* Copies the shared options into the world and body defs. */
+EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, sps_body_def* bd) {
+    wd->stepping = c->stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
+    wd->frozen_geometry = c->geometry == 1;
+    wd->threads = c->threads;
+    bd->material.density = c->rho0;
+    bd->material.youngs_modulus = c->E;
+    bd->material.poisson_ratio = c->nu;
+    bd->shear = (sps_shear)c->shear;
+    bd->rotation = c->rotation ? SPS_ROTATION_PER_PARTICLE : SPS_ROTATION_MEAN;
+    bd->track_stress = 1; /* von Mises output and the shear part of the strain energy */
+}
+
 /* ---- time, progress, files ---- */
 EX_UNUSED static double wall_seconds(void) {
     struct timespec ts;

@@ -69,26 +69,14 @@ static int on_step(sps_world* w, void* user) {
 }
 
 int main(int argc, char** argv) {
-    int res = 10, shear = SPS_SHEAR_ENO_A, stepping = 0, threads = 0, quiet = 0, rotation = 0, geometry = 0, kernel = 0;
-    double vf = 0.05, t_end = 1.0, vtk_every = 0.1, csv_every = 0.002, E = 2e6, nu = 0.3975, rho0 = 1000;
-    const char* out = "out/plate2d";
+    int res = 10, kernel = 0;
+    double vf = 0.05;
+    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 1.0, 0.1, 0.002, 2e6, 0.3975, 1000, "out/plate2d"};
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "resolution H/dp", 2, 200, NULL},
-        {"shear", OPT_CHOICE, &shear, "shear formulation", 0, 0, SHEAR_CHOICES},
-        {"rotation", OPT_CHOICE, &rotation, "ENO-A rotation", 0, 0, "mean|particle"},
-        {"stepping", OPT_CHOICE, &stepping, "time stepping", 0, 0, "dual|single"},
-        {"geometry", OPT_CHOICE, &geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},
-        {"kernel", OPT_CHOICE, &kernel, "kernel", 0, 0, "wendland|spline"},
         {"vf", OPT_REAL, &vf, "initial velocity factor v_f", 0, 1, NULL},
-        {"E", OPT_REAL, &E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},
-        {"nu", OPT_REAL, &nu, "Poisson ratio", -0.99, 0.4999, NULL},
-        {"rho0", OPT_REAL, &rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},
-        {"tend", OPT_REAL, &t_end, "end time [s]", 0, 1e4, NULL},
-        {"out", OPT_STRING, &out, "output folder", 0, 0, NULL},
-        {"vtk-every", OPT_REAL, &vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},
-        {"csv-every", OPT_REAL, &csv_every, "CSV row interval [s]", 1e-6, 1e4, NULL},
-        {"threads", OPT_INT, &threads, "OpenMP threads, 0 = all", 0, 1024, NULL},
-        {"quiet", OPT_FLAG, &quiet, "no progress line", 0, 0, NULL},
+        {"kernel", OPT_CHOICE, &kernel, "kernel", 0, 0, "wendland|spline"},
+        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -103,18 +91,10 @@ int main(int argc, char** argv) {
     dp = PLATE_H / res;
     wd.dim = 2;
     wd.dp = dp;
-    wd.stepping = stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
-    wd.frozen_geometry = geometry == 1;
     wd.kernel = kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
-    wd.threads = threads;
-    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
     bd.name = "plate";
-    bd.material.density = rho0;
-    bd.material.youngs_modulus = E;
-    bd.material.poisson_ratio = nu;
-    bd.shear = (sps_shear)shear;
-    bd.rotation = rotation ? SPS_ROTATION_PER_PARTICLE : SPS_ROTATION_MEAN;
-    bd.track_stress = 1; /* von Mises output and the shear part of the strain energy */
+    apply_common(&c, &wd, &bd);
+    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
     if (sps_world_add_body(w, &bd, &plate) != SPS_OK) return 2;
     lo[0] = -HOLDER_LAYERS * dp; lo[1] = -PLATE_H / 2; lo[2] = 0;
     hi[0] = PLATE_L;             hi[1] = PLATE_H / 2;  hi[2] = 0;
@@ -129,21 +109,21 @@ int main(int argc, char** argv) {
     sps_body_set_velocity(w, plate, initial_velocity, &v0);
 
     memset(&s, 0, sizeof s);
-    s.quiet = quiet; s.t_end = t_end;
+    s.quiet = c.quiet; s.t_end = c.t_end;
     if (sps_world_add_observer(w, plate, tip, &s.tip) != SPS_OK) return 1;
-    output_open(&s.output, out, "plate2d", csv_every, vtk_every, ",deflection");
+    output_open(&s.output, c.out, "plate2d", c.csv_every, c.vtk_every, ",deflection");
     s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0 row and snapshot */
-    if (sps_world_advance(w, t_end, on_step, &s) != SPS_OK) {
+    if (sps_world_advance(w, c.t_end, on_step, &s) != SPS_OK) {
         fprintf(stderr, "plate2d: %s\n", sps_world_last_error(w));
         return 1;
     }
     wall = wall_seconds() - s.wall0;
     fclose(s.output.csv);
 
-    omega = sqrt(E * PLATE_H * PLATE_H * pow(KL / PLATE_L, 4) / (12 * rho0 * (1 - nu * nu))); /* ANG eq. 52 */
+    omega = sqrt(c.E * PLATE_H * PLATE_H * pow(KL / PLATE_L, 4) / (12 * c.rho0 * (1 - c.nu * c.nu))); /* ANG eq. 52 */
     analytical = 2 * PI / omega;
-    paper = paper_period(shear, vf);
+    paper = paper_period(c.shear, vf);
     period = period_first(&s.period);
     {
         sps_diagnostics d;
@@ -152,10 +132,10 @@ int main(int argc, char** argv) {
         printf("RESULT case=plate2d shear=%s res=%d vf=%g stepping=%s period=%.4f paper=%.3f paper_res=30 analytical=%.4f "
                "err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
                "hourglass_end=%.3g particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
-               shear_name(shear), res, vf, stepping ? "single" : "dual", period, paper, analytical,
+               shear_name(c.shear), res, vf, c.stepping ? "single" : "dual", period, paper, analytical,
                period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
                s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, sps_world_particle_count(w),
-               d.acoustic_steps, d.advection_steps, wall, out);
+               d.acoustic_steps, d.advection_steps, wall, c.out);
     }
     sps_world_destroy(w);
     return 0;

@@ -79,26 +79,15 @@ static void add_support_ring(sps_world* w, sps_body plate, double dp, int res, i
 }
 
 int main(int argc, char** argv) {
-    int res = 3, shear = SPS_SHEAR_ENO_A, stepping = 0, threads = 0, quiet = 0, geometry = 0, full = 0, md_arg[2] = {1, 1}, support = 0;
-    double t_end = -1, vtk_every = 0, csv_every = 2e-4, E = 1e8, nu = 0.3, rho0 = 1000;
-    const char* out = "out/plate3d";
+    int res = 3, full = 0, md_arg[2] = {1, 1}, support = 0;
+    /* t_end 0: stop once the first period is measured (at most 1.6 x theory) */
+    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 0, 0, 2e-4, 1e8, 0.3, 1000, "out/plate3d"};
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "resolution H/dp", 2, 40, NULL},
         {"mode", OPT_PAIR, md_arg, "vibration mode m,n", 1, 20, NULL},
-        {"shear", OPT_CHOICE, &shear, "shear formulation", 0, 0, SHEAR_CHOICES},
-        {"stepping", OPT_CHOICE, &stepping, "time stepping", 0, 0, "dual|single"},
-        {"geometry", OPT_CHOICE, &geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},
-        {"E", OPT_REAL, &E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},
-        {"nu", OPT_REAL, &nu, "Poisson ratio", -0.99, 0.4999, NULL},
-        {"rho0", OPT_REAL, &rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},
-        {"tend", OPT_REAL, &t_end, "end time [s]; -1 = stop once the first period is measured", -1, 1e4, NULL},
         {"support", OPT_CHOICE, &support, "simple support: mid-plane edge particles | mid-plane ring outside | full-thickness ring outside", 0, 0, "edge|ring|thick"},
         {"full", OPT_FLAG, &full, "with --tend, run to the end even after the period is found", 0, 0, NULL},
-        {"out", OPT_STRING, &out, "output folder", 0, 0, NULL},
-        {"vtk-every", OPT_REAL, &vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},
-        {"csv-every", OPT_REAL, &csv_every, "CSV row interval [s]", 1e-7, 1e4, NULL},
-        {"threads", OPT_INT, &threads, "OpenMP threads, 0 = all", 0, 1024, NULL},
-        {"quiet", OPT_FLAG, &quiet, "no progress line", 0, 0, NULL},
+        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -118,22 +107,15 @@ int main(int argc, char** argv) {
     antinode[0] = PLATE_L / (2 * md.m);
     antinode[1] = PLATE_W / (2 * md.n);
     antinode[2] = 0;
-    D = E * pow(PLATE_H, 3) / (12 * (1 - nu * nu));                                                   /* ANG eq. 55 */
-    analytical = 2 / PI / (pow(md.m / PLATE_L, 2) + pow(md.n / PLATE_W, 2)) * sqrt(rho0 * PLATE_H / D); /* ANG eq. 54 */
-    if (t_end < 0) t_end = 1.6 * analytical; /* stops earlier, at the second zero crossing */
+    D = c.E * pow(PLATE_H, 3) / (12 * (1 - c.nu * c.nu));                                                 /* ANG eq. 55 */
+    analytical = 2 / PI / (pow(md.m / PLATE_L, 2) + pow(md.n / PLATE_W, 2)) * sqrt(c.rho0 * PLATE_H / D); /* ANG eq. 54 */
+    if (c.t_end == 0) c.t_end = 1.6 * analytical; /* stops earlier, at the second zero crossing */
     dp = PLATE_H / res;
     wd.dim = 3;
     wd.dp = dp;
-    wd.stepping = stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
-    wd.frozen_geometry = geometry == 1;
-    wd.threads = threads;
-    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
     bd.name = "plate";
-    bd.material.density = rho0;
-    bd.material.youngs_modulus = E;
-    bd.material.poisson_ratio = nu;
-    bd.shear = (sps_shear)shear;
-    bd.track_stress = 1;
+    apply_common(&c, &wd, &bd);
+    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
     if (sps_world_add_body(w, &bd, &plate) != SPS_OK) return 2;
     sps_body_add_box(w, plate, lo, hi, NULL);
     if (support == 0) { /* the mid-plane particles (the two middle layers when H/dp is even) of the sides */
@@ -149,19 +131,19 @@ int main(int argc, char** argv) {
     sps_body_set_velocity(w, plate, initial_velocity, &md);
 
     memset(&s, 0, sizeof s);
-    s.quiet = quiet; s.t_end = t_end;
+    s.quiet = c.quiet; s.t_end = c.t_end;
     s.stop_at_period = !full;
     if (sps_world_add_observer(w, plate, antinode, &s.probe) != SPS_OK) return 1;
-    output_open(&s.output, out, "plate3d", csv_every, vtk_every, ",deflection");
+    output_open(&s.output, c.out, "plate3d", c.csv_every, c.vtk_every, ",deflection");
     s.wall0 = wall_seconds();
     on_step(w, &s);
-    if (sps_world_advance(w, t_end, on_step, &s) != SPS_OK) {
+    if (sps_world_advance(w, c.t_end, on_step, &s) != SPS_OK) {
         fprintf(stderr, "plate3d: %s\n", sps_world_last_error(w));
         return 1;
     }
     wall = wall_seconds() - s.wall0;
     fclose(s.output.csv);
-    paper = paper_period(shear, md, res);
+    paper = paper_period(c.shear, md, res);
     period = period_first(&s.period);
     {
         sps_diagnostics d;
@@ -170,9 +152,9 @@ int main(int argc, char** argv) {
         printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.5f paper=%.4f analytical=%.4f "
                "err_paper=%.1f%% err_analytical=%.1f%% hourglass_max=%.3g particles=%d steps=%ld advection_steps=%ld "
                "t_end=%.4g wall_s=%.2f out=%s\n",
-               shear_name(shear), res, md.m, md.n, stepping ? "single" : "dual", period, paper, analytical,
+               shear_name(c.shear), res, md.m, md.n, c.stepping ? "single" : "dual", period, paper, analytical,
                period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0, period > 0 ? 100 * (period - analytical) / analytical : 0,
-               s.output.hourglass_max, sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, out);
+               s.output.hourglass_max, sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, c.out);
     }
     sps_world_destroy(w);
     return 0;
