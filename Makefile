@@ -6,7 +6,11 @@
 #   make clean
 CC      ?= cc
 CXX     ?= c++
-OPT     ?= -O2 -march=native
+# -fno-math-errno lets sqrt vectorise (the library never reads errno). On x86-64, GCC's generic
+# tuning (what -march=native picks on CPUs it does not name) emits no gather instructions, and
+# the neighbour loops need them: -mtune=icelake-server measured 1.6x faster on the 2D plate.
+TUNE    ?= $(if $(filter x86_64,$(shell uname -m)),-mtune=icelake-server,)
+OPT     ?= -O2 -march=native $(TUNE) -fno-math-errno
 WARN     = -Wall -Wextra -Wpedantic
 CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm

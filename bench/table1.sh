@@ -1,0 +1,50 @@
+#!/bin/sh
+# ANG Table 1: first period of the 2D plate (BENCHMARKS.md A1) for the six shear formulations
+# and v_f = 0.001, 0.01, 0.03, 0.05, next to the paper's values. Writes
+# bench/results/$MACHINE/table1.csv (one row per run; rows already there are kept, so an
+# interrupted sweep resumes) and prints the table in markdown.
+#   sh bench/table1.sh                    H/dp = 30 (the paper's), about 2 h on one core
+#   RES=10 sh bench/table1.sh             a quick look (about 4 min)
+#   THREADS=2 SHEARS="gno-a eno-a" sh bench/table1.sh
+set -eu
+cd "$(dirname "$0")/.."
+MACHINE=${MACHINE:-$(uname -m)-$(nproc)core}
+RES=${RES:-30}
+THREADS=${THREADS:-1}
+SHEARS=${SHEARS:-"gno-a eno-a eno gno oas og"}
+VFS="0.001 0.01 0.03 0.05"
+BIN=${BIN:-./build/plate2d}
+OUT=bench/results/$MACHINE
+CSV=$OUT/table1.csv
+mkdir -p "$OUT"
+[ -n "${BIN_GIVEN:-}" ] || make -s examples
+[ -f "$CSV" ] || echo "res,shear,vf,period,paper,err_paper_pct,err_analytical_pct,hourglass_max,wall_s" > "$CSV"
+
+field() { echo "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+
+for shear in $SHEARS; do
+    for vf in $VFS; do
+        if grep -q "^$RES,$shear,$vf," "$CSV"; then continue; fi
+        # 0.4 s covers the first period (0.25-0.29 s) of every formulation that does not break down
+        line=$("$BIN" --quiet --res "$RES" --shear "$shear" --vf "$vf" --tend 0.4 --threads "$THREADS" \
+               --vtk-every 0 --csv-every 0.0005 --out "out/table1_${shear}_$vf" | grep '^RESULT' || true)
+        if [ -z "$line" ]; then echo "$RES,$shear,$vf,stopped,,,,," >> "$CSV"; continue; fi
+        echo "$RES,$shear,$vf,$(field period "$line"),$(field paper "$line"),$(field err_paper "$line" | tr -d %),$(field err_analytical "$line" | tr -d %),$(field hourglass_max "$line"),$(field wall_s "$line")" | tee -a "$CSV"
+    done
+done
+
+echo
+echo "First period [s] at H/dp = $RES, ours (paper, ANG Table 1); analytical 0.2541 s"
+echo
+echo "| formulation | v_f = 0.001 | 0.01 | 0.03 | 0.05 |"
+echo "|---|---|---|---|---|"
+for shear in $SHEARS; do
+    row="| $shear |"
+    for vf in $VFS; do
+        cell=$(awk -F, -v r="$RES" -v s="$shear" -v v="$vf" '$1==r && $2==s && $3==v {
+            if ($4 == "stopped" || $4 < 0) printf "none"; else printf "%s", $4;
+            if ($5 != "" && $5 > 0) printf " (%s)", $5 }' "$CSV")
+        row="$row ${cell:-n/a} |"
+    done
+    echo "$row"
+done
