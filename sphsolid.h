@@ -540,7 +540,7 @@ struct sps_world {
     sps_real *tau;  /* 6 per particle (xx xy xz yy yz zz) when any body tracks stress */
     sps_real *art;  /* Gray's artificial stress R, 3 per particle (xx xy yy), OAS bodies only */
     sps_real *grad; /* velocity gradient, 9 per particle, when needed */
-    sps_real *bmat; /* correction matrix B, 9 per particle, when needed */
+    sps_real *bmat; /* correction matrix B, 9 per particle, when needed with frozen geometry */
     int *id, *body, *slot_of_id, *cons;
     int needs_sort_by_body; /* particles were added since the last step */
 
@@ -1299,9 +1299,7 @@ static sps_result sps__build_neighbors(sps_world* w) {
 }
 
 /* Lane-group slots from the per-particle lists: each group is as long as its longest list
-   (serial prefix sum, deterministic); the pair geometry (frozen mode) and the correction
-   matrix B_i need the same distances and kernel gradients, so both are computed here in one
-   sweep. */
+   (serial prefix sum, deterministic). */
 static sps_result sps__fill_lane_slots(sps_world* w) {
     int bi, g, total_groups = 0;
     long total = 0;
@@ -1335,9 +1333,11 @@ static sps_result sps__fill_lane_slots(sps_world* w) {
 }
 
 /* The len slots of particle i (a lane of its group, first slot s): its neighbours, then
-   itself as padding; lanes past the body's end get padding only. */
+   itself as padding; lanes past the body's end get padding only. With frozen geometry also the
+   stored pair geometry (zeros in padding) and B_i; recomputed geometry needs neither here (the
+   continuity pass builds B_i from the current positions). */
 static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, int s, int len) {
-    const int count = i < b->end ? w->nb_count[i] : 0;
+    const int count = i < b->end ? w->nb_count[i] : 0, frozen = w->def.frozen_geometry;
     const int* list = w->nb_ell + (size_t)i * w->ell_width;
     sps_real A[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     int k, a, c;
@@ -1346,24 +1346,23 @@ static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, in
         int j = k < count ? list[k] : i;
         sps_real d[3] = {0, 0, 0}, r2 = 0, r, dw;
         w->nb_j[s] = j;
-        if (w->def.frozen_geometry && k >= count) {
+        if (!frozen) continue;
+        if (k >= count) {
             w->nb_dw[s] = w->nb_dw_r[s] = 0;
             for (a = 0; a < w->dim; ++a) w->nb_e[a][s] = 0;
+            continue;
         }
-        if (k >= count || (!w->def.frozen_geometry && !b->needs_gradient)) continue;
         for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
         r = SPS__SQRT(r2);
         dw = sps__dwdr(w, r);
-        if (w->def.frozen_geometry) {
-            w->nb_dw[s] = dw;
-            w->nb_dw_r[s] = dw / r;
-            for (a = 0; a < w->dim; ++a) w->nb_e[a][s] = d[a] / r;
-        }
+        w->nb_dw[s] = dw;
+        w->nb_dw_r[s] = dw / r;
+        for (a = 0; a < w->dim; ++a) w->nb_e[a][s] = d[a] / r;
         if (b->needs_gradient) /* -r_ij (x) grad W_ij V_j = -d d^T dW/r V_j */
             for (a = 0; a < w->dim; ++a)
                 for (c = 0; c < w->dim; ++c) A[3 * a + c] -= dw / r * w->vol[j] * d[a] * d[c];
     }
-    if (i < b->end && b->needs_gradient) sps__regularized_inverse(w->dim, A, w->bmat + (size_t)9 * i);
+    if (frozen && i < b->end && b->needs_gradient) sps__regularized_inverse(w->dim, A, w->bmat + (size_t)9 * i);
 }
 
 /* >>linalg */
