@@ -2046,7 +2046,10 @@ static void sps__finish(sps_world* w, sps_real dt) {
         const int dim = w->dim, mean = b->mean;
         const sps_real* R = b->mean_rotation;
         int i;
-        SPS__OMP_FOR
+        /* no barrier: the next pass to read other particles' fields (the pressure pass) comes
+           after the half drift's barrier, and the half drift touches the same particles per
+           thread (same static schedule) */
+        SPS__PRAGMA(omp for schedule(static) nowait)
         for (i = b->begin; i < b->end; ++i) {
             int a, c;
             w->rho[i] += SPS_R(0.5) * dt * w->drho[i];
@@ -2119,12 +2122,14 @@ static sps_result sps__update_configuration(sps_world* w) {
     return sps__build_neighbors(w); /* also B_i when a body needs the velocity gradient */
 }
 
-/* Acoustic sub-step size: ENO eq. 26, shortened to end the advection step at dt_ad and to land
-   on t_limit. Computed identically by every thread from shared values. */
-static sps_real sps__substep_dt(const sps_world* w, int sub, sps_real elapsed, sps_real dt_ad, sps_real t_limit) {
-    sps_real dt = w->def.cfl_acoustic * w->h / (w->c0_max + w->vmax);
+/* Acoustic sub-step size at time t with maximum speed vmax: ENO eq. 26, shortened to end the
+   advection step at dt_ad and to land on t_limit. Every thread computes it from its own copies
+   of t and vmax, which are identical in all threads. */
+static sps_real sps__substep_dt(const sps_world* w, sps_real t, sps_real vmax, int sub, sps_real elapsed, sps_real dt_ad,
+                                sps_real t_limit) {
+    sps_real dt = w->def.cfl_acoustic * w->h / (w->c0_max + vmax);
     if (sub > 0 && elapsed + dt > dt_ad) dt = dt_ad - elapsed;
-    if (w->time + dt > t_limit) dt = t_limit - w->time;
+    if (t + dt > t_limit) dt = t_limit - t;
     return dt;
 }
 
@@ -2148,31 +2153,36 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
     max_sub = w->def.stepping == SPS_STEPPING_SINGLE ? 1 : w->def.max_substeps;
     steps_before = w->acoustic_steps;
     /* One thread team for the whole advection step: the passes are work-shared loops. Every
-       thread runs this loop control on identical values, so all leave it together. */
+       thread runs this loop control on its own copies of the time and the maximum speed, which
+       stay identical in all threads (the kick returns the same max |v|^2 to each), so all leave
+       the loop together and no barrier is spent on shared loop state. */
     SPS__PRAGMA(omp parallel num_threads(w->threads) if (w->n > 512))
     {
-        sps_real elapsed = 0, travel = 0;
-        int sub = 0, blew_up = 0;
+        sps_real elapsed = 0, travel = 0, t = w->time, vmax = w->vmax, dt_last = w->dt;
+        int sub = 0, done = 0, blew_up = 0;
         for (;;) {
-            sps_real dt = sps__substep_dt(w, sub, elapsed, dt_ad, t_limit), vmax2;
+            sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, dt_ad, t_limit), vmax2;
             if (!(dt > 0)) break;
             vmax2 = sps__acoustic_substep(w, dt);
             elapsed += dt;
             ++sub;
             if (!(vmax2 < (sps_real)INFINITY)) { blew_up = 1; break; } /* same in all threads */
-            travel += SPS__SQRT(vmax2) * dt;
-            SPS__PRAGMA(omp barrier) /* everyone has read w->time and w->vmax */
-            SPS__PRAGMA(omp single)
-            {
-                w->dt = dt;
-                w->time += dt;
-                w->vmax = SPS__SQRT(vmax2);
-                w->acoustic_steps++;
-            }
-            if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || w->time >= t_limit) break;
+            t += dt; /* the time of the last finished sub-step */
+            dt_last = dt;
+            ++done;
+            vmax = SPS__SQRT(vmax2);
+            travel += vmax * dt;
+            if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || t >= t_limit) break;
         }
+        SPS__PRAGMA(omp barrier) /* every thread has left the loop before the shared state changes */
         SPS__PRAGMA(omp master)
-        unstable = blew_up;
+        {
+            unstable = blew_up;
+            w->time = t;
+            w->vmax = vmax;
+            w->dt = dt_last;
+            w->acoustic_steps += done;
+        }
     }
     if (unstable) {
         if (sps__check_finite(w, "acoustic step") == SPS_OK)
