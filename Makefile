@@ -20,7 +20,7 @@ HEADER   = sphsolid.h
 
 .PHONY: all check examples run test test-fast test-sanitize bench clean
 
-all: check examples
+all: check examples $(BUILD)/torque_probe
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -66,6 +66,8 @@ test: check test-fast test-sanitize
 # ---- bench ----
 bench: examples
 	sh bench/run_bench.sh
+$(BUILD)/torque_probe: bench/torque_probe.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 
 clean:
 	rm -rf $(BUILD) out
