@@ -236,7 +236,7 @@ typedef struct sps_world_def {
     sps_stepping stepping;            /* Default SPS_STEPPING_DUAL. */
     sps_real cfl_acoustic;            /* CFL_ac in (0, 1]. Default 0.4. */
     sps_real cfl_advection;           /* CFL_ad in (0, 1]. Default 0.2. */
-    int max_substeps;                 /* acoustic sub-steps per advection step, >= 1. Default 100. */
+    int max_substeps;                 /* acoustic sub-steps per advection step, [1, 10000]. Default 100. */
     sps_real gravity[3];              /* uniform body force [m/s^2]. Default 0. */
     int frozen_geometry;              /* 0: pair geometry (e_ij, dW, B_i) from the current positions
                                          in every sub-step: exact, needed for rotating bodies.
@@ -587,6 +587,8 @@ struct sps_world {
     sps_real ref_lo[3], ref_hi[3]; /* bounding box of the reference positions */
     sps_real escape;               /* effective escape distance [m] */
     int stopped;                   /* a step failed with SPS_ERR_UNSTABLE: no more steps */
+    int lists_valid;               /* the neighbour lists match the particle order (a failed
+                                      configuration update may leave them half built) */
     char failure[1024];            /* ... and its message */
     /* last good state (keep_last_good_state): positions, velocities, density, pressure (and the
        stress) at the last configuration update, field-major with stride good_cap, in the
@@ -748,7 +750,8 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
     SPS__CHECK(def->stepping == SPS_STEPPING_DUAL || def->stepping == SPS_STEPPING_SINGLE, "stepping = %d, allowed 0 (dual) or 1 (single)", (int)def->stepping);
     SPS__CHECK(def->cfl_acoustic > 0 && def->cfl_acoustic <= 1, "cfl_acoustic = %g, allowed (0, 1]", (double)def->cfl_acoustic);
     SPS__CHECK(def->cfl_advection > 0 && def->cfl_advection <= 1, "cfl_advection = %g, allowed (0, 1]", (double)def->cfl_advection);
-    SPS__CHECK(def->max_substeps >= 1, "max_substeps = %d, allowed >= 1", def->max_substeps);
+    /* a scene at rest has no advection limit: this bound is what ends its advection steps */
+    SPS__CHECK(def->max_substeps >= 1 && def->max_substeps <= 10000, "max_substeps = %d, allowed [1, 10000]", def->max_substeps);
     SPS__CHECK(sps__finite(def->gravity[0]) && sps__finite(def->gravity[1]) && sps__finite(def->gravity[2]), "gravity = (%g, %g, %g), allowed finite", (double)def->gravity[0], (double)def->gravity[1], (double)def->gravity[2]);
     SPS__CHECK(def->frozen_geometry == 0 || def->frozen_geometry == 1, "frozen_geometry = %d, allowed 0 or 1", def->frozen_geometry);
     SPS__CHECK(def->neighbor_capacity >= 1 && def->neighbor_capacity <= 64, "neighbor_capacity = %g, allowed [1, 64]", (double)def->neighbor_capacity);
@@ -1090,6 +1093,7 @@ static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_
         double c = SPS__FLOOR((hi[a] - lo[a]) / dp + SPS_R(1e-6)); /* count lattice points inside [lo, hi) */
         cells *= c;
         cnt[a] = (int)(c < 1e9 ? c : 1e9);
+        if (c < 1) return SPS_OK; /* no lattice point along this axis (and 0 x inf is NaN) */
     }
     if (cells > (double)(SPS__MAX_PARTICLES - w->n)) {
         sps__set_error(w, 0, "%s: box holds %.3g lattice points, the world %d particles; allowed a total of %d", fn, cells, w->n, SPS__MAX_PARTICLES);
@@ -2166,10 +2170,15 @@ static void sps__save_good_state(sps_world* w) {
 static sps_result sps__update_configuration(sps_world* w) {
     sps_result r;
     if ((r = sps__check_bodies_filled(w)) != SPS_OK) return r;
-    if (w->needs_sort_by_body && (r = sps__commit(w)) != SPS_OK) return r;
+    if (w->needs_sort_by_body) {
+        w->lists_valid = 0; /* the sort by body reorders the particles */
+        if ((r = sps__commit(w)) != SPS_OK) return r;
+    }
     if ((r = sps__check_finite(w, "configuration update")) != SPS_OK) return r;
     if ((r = sps__check_escape(w)) != SPS_OK) return r;
+    w->lists_valid = 0;
     if ((r = sps__build_neighbors(w)) != SPS_OK) return r; /* also B_i when a body needs the velocity gradient */
+    w->lists_valid = 1;
     sps__save_good_state(w);
     return SPS_OK;
 }
@@ -2263,7 +2272,7 @@ static void sps__restore_good_state(sps_world* w) {
         if (w->good_has_tau) memcpy(w->tau + (size_t)6 * i, w->good + 8 * c + (size_t)6 * k, 6 * sizeof(sps_real));
     }
     w->time = w->good_time;
-    if (!w->needs_sort_by_body) sps__build_neighbors(w);
+    if (!w->needs_sort_by_body) w->lists_valid = sps__build_neighbors(w) == SPS_OK;
 }
 
 /* A step that fails with SPS_ERR_UNSTABLE stops the world for good: the state (or the last
@@ -2473,7 +2482,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
     if (body.id != 0) {
         if ((k = sps__check_body(w, body, "sps_world_diagnostics")) < 0) return SPS_ERR_INVALID_ARG;
     }
-    if (w->needs_sort_by_body || w->advection_steps == 0) {
+    if (w->needs_sort_by_body || !w->lists_valid) {
         sps_result r = sps__update_configuration(w); /* lists for the hourglass indicator */
         if (r != SPS_OK) return r;
     }

@@ -919,6 +919,7 @@ static int test_validation_world_def(void) {
     bad = d; bad.cfl_acoustic = 1.5;      ENSURE(rejects_world_def(&bad, "cfl_acoustic = 1.5") == 0);
     bad = d; bad.cfl_advection = -0.2;    ENSURE(rejects_world_def(&bad, "cfl_advection = -0.2") == 0);
     bad = d; bad.max_substeps = 0;        ENSURE(rejects_world_def(&bad, "max_substeps = 0") == 0);
+    bad = d; bad.max_substeps = 10001;    ENSURE(rejects_world_def(&bad, "max_substeps = 10001, allowed [1, 10000]") == 0);
     bad = d; bad.neighbor_capacity = 0.5; ENSURE(rejects_world_def(&bad, "neighbor_capacity = 0.5") == 0);
     bad = d; bad.threads = -1;            ENSURE(rejects_world_def(&bad, "threads = -1") == 0);
     bad = d; bad.gravity[1] = INFINITY;   ENSURE(rejects_world_def(&bad, "gravity") == 0);
@@ -1368,6 +1369,23 @@ static int test_foreign_and_destroyed_handles(void) {
     ENSURE(sps_world_nearest_particle(w2, b1, x) == -1);
     ENSURE(sps_observer_read(w2, o1, u, NULL) == SPS_ERR_INVALID_ARG && error_names(w2, "not an observer of this world") == 0);
     sps_world_destroy(w2);
+    return 0;
+}
+
+/* A box with no lattice point along one axis adds nothing, at once, however long the other axes
+   (the count 0 x 1e32 x 1e32 must not turn into 1e18 empty loop turns). The alarm turns a hang
+   into a failure. */
+static int test_flat_box_is_empty(void) {
+    sps_world* w = new_world(3, 0.01);
+    sps_body_def bd = sps_default_body_def();
+    sps_body b;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {0.001, 1e30, 1e30};
+    int added = -1;
+    ENSURE(w && sps_world_add_body(w, &bd, &b) == SPS_OK);
+    alarm(10);
+    ENSURE(sps_body_add_box(w, b, lo, hi, &added) == SPS_OK && added == 0);
+    alarm(0);
+    sps_world_destroy(w);
     return 0;
 }
 
@@ -2057,6 +2075,7 @@ int main(int argc, char** argv) {
     RUN(test_null_world_arguments);
     RUN(test_bad_arguments_named);
     RUN(test_foreign_and_destroyed_handles);
+    RUN(test_flat_box_is_empty);
     RUN(test_step_empty_body);
     RUN(test_add_after_step_stress_output);
     RUN(test_guard_escape);
