@@ -3,8 +3,9 @@
    Build and run:    make build/test_sphsolid && ./build/test_sphsolid
    Under sanitizers: make build/test_sanitize && ./build/test_sanitize --quick
    Options: --quick skips the long physics regressions (the three plate periods); --no-fork
-   runs every test in this process (for a debugger); any other argument is a substring filter
-   on the test names (e.g. ./build/test_sphsolid riemann).
+   runs every test in this process (for a debugger); --exclude text skips the tests whose names
+   contain text; any other argument is a substring filter on the test names (e.g.
+   ./build/test_sphsolid riemann).
 
    Each test is a short function returning 0 on pass. ENSURE(c) and ENSURE_NEAR(a, b, tol) print
    the failing line and return 1. Every tolerance carries a comment with its reason. Each test
@@ -31,6 +32,7 @@
 
 static int g_quick;             /* --quick: skip the long physics regressions */
 static const char* g_filter;    /* substring filter on test names, or NULL */
+static const char* g_exclude;   /* --exclude: skip the tests whose names contain it, or NULL */
 static int g_passed, g_failed, g_skipped;
 
 #define ENSURE(c)                                                                   \
@@ -65,7 +67,7 @@ static void run_test(const char* name, int (*fn)(void), int is_long) {
     double t0;
     int failed, status = 0;
     pid_t pid;
-    if (g_filter && !strstr(name, g_filter)) return;
+    if ((g_filter && !strstr(name, g_filter)) || (g_exclude && strstr(name, g_exclude))) return;
     if (is_long && g_quick) {
         printf("%-40s skipped (--quick)\n", name);
         ++g_skipped;
@@ -2040,10 +2042,12 @@ int main(int argc, char** argv) {
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) g_quick = 1;
         else if (strcmp(argv[i], "--no-fork") == 0) g_no_fork = 1;
+        else if (strcmp(argv[i], "--exclude") == 0 && i + 1 < argc) g_exclude = argv[++i];
         else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("usage: %s [--quick] [--no-fork] [name-filter]\n"
-                   "  --quick    skip the long physics regressions\n"
-                   "  --no-fork  run the tests in this process (for a debugger)\n", argv[0]);
+            printf("usage: %s [--quick] [--no-fork] [--exclude text] [name-filter]\n"
+                   "  --quick         skip the long physics regressions\n"
+                   "  --no-fork       run the tests in this process (for a debugger)\n"
+                   "  --exclude text  skip the tests whose names contain text\n", argv[0]);
             return 0;
         } else g_filter = argv[i];
     }
