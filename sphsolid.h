@@ -2283,8 +2283,8 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
 
 /* keep_last_good_state: puts the saved state back (by particle id: a failed configuration
    update may have re-sorted the particles since) and rebuilds the neighbour lists for it, so
-   diagnostics and output describe that state. Cannot fail: the same positions fitted the
-   same capacity when they were saved. */
+   diagnostics and output describe that state. The same positions fitted the capacity when
+   they were saved; if the rebuild fails anyway, the lists stay marked invalid. */
 static void sps__restore_good_state(sps_world* w) {
     const size_t c = (size_t)w->good_cap;
     int k, a;
