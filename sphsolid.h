@@ -155,9 +155,10 @@
    THREADING & DETERMINISM
       With OpenMP, each pass is a gather: the thread that owns particle i writes only particle i,
       with no atomics. Sums (diagnostics, the mean rotation of ENO-A) use fixed blocks of
-      particles added in a fixed order. Results are bit-identical for any number of threads and
-      from run to run (both tested).
+      particles added in a fixed order. Results are bit-identical for any number of threads.
       A world must not be used from two threads at once; separate worlds are independent.
+
+      Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
@@ -539,7 +540,6 @@ typedef struct sps__body {
     sps_body_def def;
     char name[32];
     int begin, end;       /* particle range in the current (sorted) order */
-    int count;            /* particles added (a body must have some before the first step) */
     sps_real rho0, c0, G, K, zeta;
     sps_real z_riemann;   /* rho0 c0: dissipation impedance of the Riemann solver */
     int needs_gradient;   /* velocity gradient L: spin (-A variants) or stress */
@@ -552,6 +552,7 @@ typedef struct sps__body {
     sps_real xi, oas_eps, oas_n, oas_w_dp;
     sps_real mean_rotation[9];
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
+    int count;                 /* particles added (a body must have some before the first step) */
 } sps__body;
 
 typedef struct sps__constraint {
@@ -580,6 +581,20 @@ struct sps_world {
     sps_real *bmat; /* correction matrix B, 9 per particle, when needed */
     int *id, *body, *slot_of_id, *cons;
     int needs_sort_by_body; /* particles were added since the last step */
+
+    /* run-time guards (sps__check_state, sps__check_time_step) */
+    sps_real ref_lo[3], ref_hi[3]; /* bounding box of the reference positions */
+    sps_real escape;               /* effective escape distance [m] */
+    int stopped;                   /* a step failed with SPS_ERR_UNSTABLE: no more steps */
+    int lists_valid;               /* the neighbour lists match the particle order (a failed
+                                      configuration update may leave them half built) */
+    char failure[1024];            /* ... and its message */
+    /* last good state (keep_last_good_state): positions, velocities, density, pressure (and the
+       stress) at the last configuration update, field-major with stride good_cap, in the
+       particle order of that moment (good_id) */
+    sps_real* good;
+    int *good_id, good_n, good_cap, good_has_tau;
+    sps_real good_time;
 
     sps__body* bodies;
     int nbodies, bodies_cap;
@@ -611,20 +626,6 @@ struct sps_world {
     sps_real thread_max[SPS__MAX_THREADS]; /* per-thread max |v|^2 of the kick */
     long acoustic_steps, advection_steps;
     int has_gradient, allocated_for;
-
-    /* run-time guards (sps__check_state, sps__check_time_step) */
-    sps_real ref_lo[3], ref_hi[3]; /* bounding box of the reference positions */
-    sps_real escape;               /* effective escape distance [m] */
-    int stopped;                   /* a step failed with SPS_ERR_UNSTABLE: no more steps */
-    int lists_valid;               /* the neighbour lists match the particle order (a failed
-                                      configuration update may leave them half built) */
-    char failure[1024];            /* ... and its message */
-    /* last good state (keep_last_good_state): positions, velocities, density, pressure (and the
-       stress) at the last configuration update, field-major with stride good_cap, in the
-       particle order of that moment (good_id) */
-    sps_real* good;
-    int *good_id, good_n, good_cap, good_has_tau;
-    sps_real good_time;
 };
 
 /* >>util */
@@ -1071,8 +1072,6 @@ static sps_result sps__reserve(sps_world* w, int need) {
         !sps__grow(w, &w->body, sizeof(int), o, (size_t)nc) || !sps__grow(w, &w->slot_of_id, sizeof(int), o, (size_t)nc))
         return SPS_ERR_OUT_OF_MEMORY;
     if (w->cons && !sps__grow(w, &w->cons, sizeof(int), o, (size_t)nc)) return SPS_ERR_OUT_OF_MEMORY;
-    /* the stress is output (von Mises) before the next step re-commits, so it grows here */
-    if (w->tau && !sps__grow(w, &w->tau, 6 * r, o, (size_t)nc)) return SPS_ERR_OUT_OF_MEMORY;
     w->cap = nc;
     return SPS_OK;
 }
@@ -1091,7 +1090,6 @@ static sps_result sps__add_one(sps_world* w, int body, const sps_real x[3], sps_
     w->mass[i] = b->rho0 * volume; w->vol[i] = volume;
     w->id[i] = i; w->slot_of_id[i] = i; w->body[i] = body;
     if (w->cons) w->cons[i] = -1;
-    if (w->tau) memset(w->tau + (size_t)6 * i, 0, 6 * sizeof(sps_real));
     b->count++;
     w->n++;
     w->needs_sort_by_body = 1;
@@ -1511,39 +1509,35 @@ static sps_result sps__commit(sps_world* w) {
     }
     if (sps__ensure_neighbor_storage(w) != SPS_OK) {
         w->pair_cap = 0; /* some lists may be NULL: the next call must allocate them again */
-        return sps__oom(w, "the neighbour lists");
+        return SPS_ERR_OUT_OF_MEMORY;
     }
     if (need_gradient && (!w->grad || !w->bmat || w->allocated_for < w->cap)) {
         sps__free(w, w->grad); sps__free(w, w->bmat);
         w->grad = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * (size_t)w->cap);
         w->bmat = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * (size_t)w->cap);
-        if (!w->grad || !w->bmat) return sps__oom(w, "the velocity gradients");
+        if (!w->grad || !w->bmat) return SPS_ERR_OUT_OF_MEMORY;
         memset(w->grad, 0, sizeof(sps_real) * 9 * (size_t)w->cap);
     }
-    if (need_stress && !w->tau) { /* once allocated, sps__reserve grows it with the particles */
-        if (!(w->tau = (sps_real*)sps__alloc(w, sizeof(sps_real) * 6 * (size_t)w->cap))) return sps__oom(w, "the stresses");
-        memset(w->tau, 0, sizeof(sps_real) * 6 * (size_t)w->cap);
+    if (need_stress && (!w->tau || w->allocated_for < w->cap)) {
+        sps_real* t = (sps_real*)sps__alloc(w, sizeof(sps_real) * 6 * (size_t)w->cap);
+        if (!t) return SPS_ERR_OUT_OF_MEMORY;
+        memset(t, 0, sizeof(sps_real) * 6 * (size_t)w->cap);
+        if (w->tau) memcpy(t, w->tau, sizeof(sps_real) * 6 * (size_t)w->allocated_for);
+        sps__free(w, w->tau);
+        w->tau = t;
     }
     if (need_mean && (!w->acc_d[0] || !w->acc_d[1] || !w->acc_d[2] || w->allocated_for < w->cap)) {
         int a;
         for (a = 0; a < 3; ++a) {
             sps__free(w, w->acc_d[a]);
             w->acc_d[a] = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)w->cap);
-            if (!w->acc_d[a]) return sps__oom(w, "the shear increments");
+            if (!w->acc_d[a]) return SPS_ERR_OUT_OF_MEMORY;
             memset(w->acc_d[a], 0, sizeof(sps_real) * (size_t)w->cap);
         }
     }
     if (need_art && (!w->art || w->allocated_for < w->cap)) { /* recomputed every sub-step */
         sps__free(w, w->art);
-        if (!(w->art = (sps_real*)sps__alloc(w, sizeof(sps_real) * 3 * (size_t)w->cap))) return sps__oom(w, "the artificial stresses");
-    }
-    if (w->def.keep_last_good_state && w->good_cap < w->cap) {
-        sps__free(w, w->good); sps__free(w, w->good_id);
-        w->good_cap = w->good_n = 0;
-        w->good = (sps_real*)sps__alloc(w, sizeof(sps_real) * SPS__GOOD_FIELDS * (size_t)w->cap);
-        w->good_id = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
-        if (!w->good || !w->good_id) return sps__oom(w, "the last good state");
-        w->good_cap = w->cap;
+        if (!(w->art = (sps_real*)sps__alloc(w, sizeof(sps_real) * 3 * (size_t)w->cap))) return SPS_ERR_OUT_OF_MEMORY;
     }
     w->allocated_for = w->cap;
     w->has_gradient = need_gradient;
@@ -1553,7 +1547,6 @@ static sps_result sps__commit(sps_world* w) {
     for (i = w->n - 1; i >= 0; --i) w->bodies[w->body[i]].begin = i;
     for (i = 0; i < w->n; ++i) w->bodies[w->body[i]].end = i + 1;
     w->needs_sort_by_body = 0;
-    sps__set_escape_box(w);
     return SPS_OK;
 }
 
@@ -2177,6 +2170,18 @@ static sps_result sps__check_bodies_filled(sps_world* w) {
     return SPS_OK;
 }
 
+/* keep_last_good_state: room for the copy, allocated with the other step fields. */
+static sps_result sps__ensure_good_state(sps_world* w) {
+    if (!w->def.keep_last_good_state || w->good_cap >= w->cap) return SPS_OK;
+    sps__free(w, w->good); sps__free(w, w->good_id);
+    w->good_cap = w->good_n = 0;
+    w->good = (sps_real*)sps__alloc(w, sizeof(sps_real) * SPS__GOOD_FIELDS * (size_t)w->cap);
+    w->good_id = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
+    if (!w->good || !w->good_id) return sps__oom(w, "the last good state");
+    w->good_cap = w->cap;
+    return SPS_OK;
+}
+
 /* keep_last_good_state: copies the state that just passed the checks (plain copies, in the
    current particle order, remembered in good_id). */
 static void sps__save_good_state(sps_world* w) {
@@ -2201,8 +2206,10 @@ static sps_result sps__update_configuration(sps_world* w) {
     if ((r = sps__check_bodies_filled(w)) != SPS_OK) return r;
     if (w->needs_sort_by_body) {
         w->lists_valid = 0; /* the sort by body reorders the particles */
-        if ((r = sps__commit(w)) != SPS_OK) return r;
+        if ((r = sps__commit(w)) != SPS_OK) return r == SPS_ERR_OUT_OF_MEMORY ? sps__oom(w, "the neighbour lists and step fields") : r;
+        sps__set_escape_box(w);
     }
+    if ((r = sps__ensure_good_state(w)) != SPS_OK) return r; /* allocates only after adds (or a refusal) */
     if ((r = sps__check_finite(w, "configuration update")) != SPS_OK) return r;
     if ((r = sps__check_escape(w)) != SPS_OK) return r;
     w->lists_valid = 0;
@@ -2364,7 +2371,7 @@ static void sps__validate_particles(const sps_world* w, char* msg, size_t msg_si
             sps__tally_check(&ref, sps__finite(w->ref[a][i]), i, w->ref[a][i]);
             sps__tally_check(&acc, sps__finite(w->acc_s[a][i]), i, w->acc_s[a][i]);
         }
-        for (a = 0; a < 6 && w->tau; ++a) sps__tally_check(&tau, sps__finite(w->tau[(size_t)6 * i + a]), i, w->tau[(size_t)6 * i + a]);
+        for (a = 0; a < 6 && w->tau && i < w->allocated_for; ++a) sps__tally_check(&tau, sps__finite(w->tau[(size_t)6 * i + a]), i, w->tau[(size_t)6 * i + a]);
         sps__tally_check(&rho, w->rho[i] > 0 && sps__finite(w->rho[i]), i, w->rho[i]);
         sps__tally_check(&p, sps__finite(w->p[i]), i, w->p[i]);
         sps__tally_check(&mass, w->mass[i] > 0 && sps__finite(w->mass[i]), i, w->mass[i]);
@@ -2446,7 +2453,9 @@ SPSDEF sps_result sps_world_validate(const sps_world* w, char* msg, size_t msg_s
 static sps_real sps__von_mises(const sps_world* w, int i) {
     sps_real s[6] = {0, 0, 0, 0, 0, 0}, p = w->p[i];
     int a;
-    if (w->bodies[w->body[i]].needs_stress && w->tau) /* NULL until the first step */
+    /* tau holds the particles of the last commit (none before the first step); those added
+       since have no stress yet */
+    if (w->bodies[w->body[i]].needs_stress && w->tau && i < w->allocated_for)
         for (a = 0; a < 6; ++a) s[a] = w->tau[(size_t)6 * i + a];
     s[0] -= p; s[3] -= p; /* sigma = -p I + tau */
     if (w->dim == 2) return SPS__SQRT(s[0] * s[0] + s[3] * s[3] - s[0] * s[3] + 3 * s[1] * s[1]);

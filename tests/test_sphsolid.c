@@ -1686,6 +1686,7 @@ static int oom_scenario(counting_allocator* ca, int* failed_calls) {
        earlier refusal (no body, no particles) */
 #define OOM_CALL(call)                                                                                   \
     r[k] = call;                                                                                         \
+    if (!(r[k] == SPS_OK || r[k] == SPS_ERR_OUT_OF_MEMORY || r[k] == SPS_ERR_INVALID_ARG || r[k] == SPS_ERR_STATE)) printf("    call %d: %s\n", k, sps_world_last_error(w)); \
     ENSURE(r[k] == SPS_OK || r[k] == SPS_ERR_OUT_OF_MEMORY || r[k] == SPS_ERR_INVALID_ARG || r[k] == SPS_ERR_STATE); \
     if (r[k] == SPS_ERR_OUT_OF_MEMORY) { ENSURE(strstr(sps_world_last_error(w), "out of memory")); ++*failed_calls; } \
     ++k;
