@@ -1,7 +1,9 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
 #   make          header checks (C99 gcc/clang, C++, float, static) and the examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
-#   make test     the test runner (optimised, OpenMP) and the unit tests under ASan + UBSan
+#   make test     the randomized API test (10,000 cases), the test runner (optimised, OpenMP),
+#                 and both again under ASan + UBSan (quick tests, 1,000 random cases)
+#   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~5 min)
 #   make bench    speed tables (bench/results/)
 #   make clean
 CC      ?= cc
@@ -14,11 +16,12 @@ OPT     ?= -O2 -march=native $(TUNE) -fno-math-errno
 WARN     = -Wall -Wextra -Wpedantic
 CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
+SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 BUILD    = build
 EXAMPLES = plate2d plate3d spinning_plate spinning_cube
 HEADER   = sphsolid.h
 
-.PHONY: all check examples run test test-fast test-sanitize bench clean
+.PHONY: all check examples run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
 all: check examples $(BUILD)/torque_probe
 
@@ -56,12 +59,38 @@ run: $(BUILD)/plate2d
 $(BUILD)/test_sphsolid: tests/test_sphsolid.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/test_sanitize: tests/test_sphsolid.c $(HEADER) | $(BUILD)
-	$(CC) -std=c99 -O1 -g $(WARN) -fopenmp -fsanitize=address,undefined -fno-sanitize-recover=undefined $< -o $@ $(LDLIBS)
+	$(CC) -std=c99 -O1 -g $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
 test-fast: $(BUILD)/test_sphsolid
 	./$(BUILD)/test_sphsolid
 test-sanitize: $(BUILD)/test_sanitize
 	ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/test_sanitize --quick
-test: check test-fast test-sanitize
+# the fuzz output goes first so that the test runner's "N passed, M failed" closes make test
+test: check fuzz fuzz-sanitize test-fast test-sanitize
+
+# ---- randomized API test (tests/fuzz_api.c); replay a case: build/fuzz_api --seed S --cases 1 --verbose ----
+FUZZ_CASES ?= 10000
+$(BUILD)/fuzz_api: tests/fuzz_api.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/fuzz_sanitize: tests/fuzz_api.c $(HEADER) | $(BUILD)
+	$(CC) -std=c99 -O1 -g $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
+# passive OpenMP waits, as the test runner sets for itself: spinning threads crawl on a busy machine
+fuzz: $(BUILD)/fuzz_api
+	OMP_WAIT_POLICY=passive ./$(BUILD)/fuzz_api --cases $(FUZZ_CASES) --out $(BUILD)
+fuzz-sanitize: $(BUILD)/fuzz_sanitize
+	OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_sanitize --cases 1000 --out $(BUILD)
+
+# ---- valgrind: serial builds (no OpenMP runtime and its thread caches to suppress) ----
+VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect
+$(BUILD)/test_memcheck: tests/test_sphsolid.c $(HEADER) | $(BUILD)
+	$(CC) -std=c99 -O1 -g $(WARN) $< -o $@ $(LDLIBS)
+$(BUILD)/fuzz_memcheck: tests/fuzz_api.c $(HEADER) | $(BUILD)
+	$(CC) -std=c99 -O1 -g $(WARN) $< -o $@ $(LDLIBS)
+# OMP_WAIT_POLICY set: the runner re-executes itself without it, and valgrind does not follow exec.
+# The thread-count determinism test is left out: serial, it compares identical runs, and under
+# valgrind it alone takes over 5 minutes.
+memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
+	OMP_WAIT_POLICY=passive $(VALGRIND) ./$(BUILD)/test_memcheck --quick --exclude determinism_threads
+	$(VALGRIND) ./$(BUILD)/fuzz_memcheck --cases 300 --out $(BUILD)
 
 # ---- bench ----
 bench: examples

@@ -1,6 +1,7 @@
-/* common.h - what every example program shares: GNU-style options with --help, a progress line
-   on stderr, output folders, wall time and the zero-crossing period detector. Not part of the
-   library; each example includes it once. POSIX (mkdir, isatty, clock_gettime). */
+/* common.h - what every example program shares: GNU-style options with --help, errors as one
+   line on stderr with exit status 2, a progress line on stderr, output folders, wall time,
+   jittered lattices and the zero-crossing period detector. Not part of the library; each
+   example includes it once. POSIX (mkdir, isatty, clock_gettime). */
 #ifndef SPS_EXAMPLE_COMMON_H
 #define SPS_EXAMPLE_COMMON_H
 #if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
@@ -68,6 +69,32 @@ EX_UNUSED static void opt_fail(const char* prog, const char* fmt, const char* a,
     exit(2);
 }
 
+/* ---- library errors: one line on stderr, exit status 2 ---- */
+static const char* g_prog = "example"; /* argv[0], set by opt_parse */
+static char g_create_error[1024];      /* sps_world_create's message: there is no world to keep it */
+
+/* The examples' log callback: errors are kept for ex_check to print (once), the rest printed. */
+EX_UNUSED static void ex_log(int level, const char* message, void* user) {
+    (void)user;
+    if (level == 0) snprintf(g_create_error, sizeof g_create_error, "%s", message);
+    else fprintf(stderr, "%s: %s\n", g_prog, message);
+}
+
+/* Ends the program on a library error: "prog: message" on stderr, exit status 2. */
+EX_UNUSED static void ex_check(const sps_world* w, sps_result r) {
+    if (r == SPS_OK) return;
+    fprintf(stderr, "%s: %s: %s\n", g_prog, sps_result_string(r), w ? sps_world_last_error(w) : g_create_error);
+    exit(2);
+}
+
+/* sps_world_create or exit (a bad def's message names every broken field, value and range). */
+EX_UNUSED static sps_world* ex_create(sps_world_def* wd) {
+    sps_world* w = NULL;
+    wd->log = ex_log;
+    ex_check(NULL, sps_world_create(wd, &w));
+    return w;
+}
+
 EX_UNUSED static int opt_choice_index(const char* choices, const char* s) {
     int k = 0;
     size_t len = strlen(s);
@@ -87,19 +114,28 @@ EX_UNUSED static double opt_number(const char* prog, const opt_spec* o, const ch
     double v;
     errno = 0;
     v = strtod(s, &end);
-    if (end == s || *end || errno || !(v == v)) opt_fail(prog, "--%s: '%s' is not a number", o->name, s);
+    if (end == s || *end || errno || !(v == v)) {
+        char what[128];
+        snprintf(what, sizeof what, "'%s' is not a number in [%g, %g]", s, o->min, o->max);
+        opt_fail(prog, "--%s: %s", o->name, what);
+    }
     if (v < o->min || v > o->max) {
         char range[96];
         snprintf(range, sizeof range, "'%s' is outside [%g, %g]", s, o->min, o->max);
         opt_fail(prog, "--%s: %s", o->name, range);
     }
-    if (o->type == OPT_INT && v != floor(v)) opt_fail(prog, "--%s: '%s' is not an integer", o->name, s);
+    if (o->type == OPT_INT && v != floor(v)) {
+        char what[128];
+        snprintf(what, sizeof what, "'%s' is not an integer in [%g, %g]", s, o->min, o->max);
+        opt_fail(prog, "--%s: %s", o->name, what);
+    }
     return v;
 }
 
 /* Parses --name value, --name=value and --flag. */
 EX_UNUSED static void opt_parse(int argc, char** argv, const char* about, const opt_spec* o, int n) {
     int i, k;
+    g_prog = argv[0];
     for (i = 1; i < argc; ++i) {
         const char* arg = argv[i];
         const char* val = NULL;
@@ -129,7 +165,11 @@ EX_UNUSED static void opt_parse(int argc, char** argv, const char* about, const 
             *(const char**)s->value = val;
             break;
         case OPT_CHOICE:
-            if ((k = opt_choice_index(s->choices, val)) < 0) opt_fail(argv[0], "--%s: '%s' is not one of the choices", s->name, val);
+            if ((k = opt_choice_index(s->choices, val)) < 0) {
+                char what[256];
+                snprintf(what, sizeof what, "'%s' is not one of %s", val, s->choices);
+                opt_fail(argv[0], "--%s: %s", s->name, what);
+            }
             *(int*)s->value = k;
             break;
         case OPT_PAIR: {
@@ -157,6 +197,8 @@ typedef struct {
     int shear, rotation, stepping, geometry, threads, quiet; /* choice indices and flags */
     double t_end, vtk_every, csv_every, E, nu, rho0;
     const char* out;
+    double cfl, jitter; /* acoustic CFL; lattice jitter in dp */
+    int seed;           /* of the jitter */
 } common_options;
 
 /* The opt_spec entries of common_options c, for an example's option table. */
@@ -173,6 +215,9 @@ typedef struct {
     {"vtk-every", OPT_REAL, &(c).vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},       \
     {"csv-every", OPT_REAL, &(c).csv_every, "CSV row interval [s]", 1e-7, 1e4, NULL},                   \
     {"threads", OPT_INT, &(c).threads, "OpenMP threads, 0 = all", 0, 1024, NULL},                       \
+    {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number", 0.01, 1, NULL},                                 \
+    {"jitter", OPT_REAL, &(c).jitter, "lattice jitter: each coordinate moved by U(-j/2, j/2) dp", 0, 0.5, NULL}, \
+    {"seed", OPT_INT, &(c).seed, "seed of the jitter", 0, 2147483647, NULL},                           \
     {"quiet", OPT_FLAG, &(c).quiet, "no progress line", 0, 0, NULL}
 
 /* Copies the shared options into the world and body defs. */
@@ -180,12 +225,42 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     wd->stepping = c->stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
     wd->frozen_geometry = c->geometry == 1;
     wd->threads = c->threads;
+    wd->cfl_acoustic = c->cfl;
+    wd->keep_last_good_state = 1; /* the VTK written after an instability shows the last good state */
     bd->material.density = c->rho0;
     bd->material.youngs_modulus = c->E;
     bd->material.poisson_ratio = c->nu;
     bd->shear = (sps_shear)c->shear;
     bd->rotation = c->rotation ? SPS_ROTATION_PER_PARTICLE : SPS_ROTATION_MEAN;
     bd->track_stress = 1; /* von Mises output and the shear part of the strain energy */
+}
+
+/* Fills [lo, hi) of body b like sps_body_add_box (points lo + (i + 1/2) dp), each coordinate
+   then moved by a uniform random amount in [-j/2, j/2] dp (splitmix64 from seed), so neighbours
+   start at least (1 - j) dp apart along an axis. j = 0 is sps_body_add_box itself. Exits on error. */
+EX_UNUSED static void ex_add_box(sps_world* w, sps_body b, const sps_real lo[3], const sps_real hi[3], double j, int seed) {
+    const sps_world_def* wd = sps_world_get_def(w);
+    const double dp = wd->dp;
+    int cnt[3] = {1, 1, 1}, a, i, k, l, n = 0;
+    uint64_t rng = (uint64_t)seed;
+    sps_real* xyz;
+    if (j == 0) { ex_check(w, sps_body_add_box(w, b, lo, hi, NULL)); return; }
+    for (a = 0; a < wd->dim; ++a) cnt[a] = (int)floor((hi[a] - lo[a]) / dp + 1e-6);
+    if (!(xyz = (sps_real*)malloc(sizeof(sps_real) * 3 * (size_t)cnt[0] * cnt[1] * cnt[2]))) { fprintf(stderr, "%s: out of memory\n", g_prog); exit(2); }
+    for (l = 0; l < cnt[2]; ++l)
+        for (k = 0; k < cnt[1]; ++k)
+            for (i = 0; i < cnt[0]; ++i, ++n) {
+                int idx[3] = {i, k, l};
+                for (a = 0; a < 3; ++a) {
+                    uint64_t z = (rng += 0x9e3779b97f4a7c15ULL); /* splitmix64 */
+                    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+                    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+                    z ^= z >> 31;
+                    xyz[3 * n + a] = a < wd->dim ? lo[a] + (idx[a] + 0.5 + j * ((double)(z >> 11) / 9007199254740992.0 - 0.5)) * dp : 0;
+                }
+            }
+    ex_check(w, sps_body_add_particles(w, b, n, xyz, NULL));
+    free(xyz);
 }
 
 /* ---- time, progress, files ---- */
@@ -257,7 +332,7 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
     if (t >= o->next_csv - 1e-12) {
         char row[512];
         sps_body all = {0};
-        sps_world_diagnostics(w, all, d);
+        ex_check(w, sps_world_diagnostics(w, all, d));
         sps_diagnostics_csv_row(d, row, sizeof row);
         fprintf(o->csv, "%s%s\n", row, extra);
         if (d->hourglass > o->hourglass_max) o->hourglass_max = d->hourglass;
@@ -268,10 +343,21 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
     if (o->vtk_every > 0 && t >= o->next_vtk - 1e-12) {
         char path[1200];
         snprintf(path, sizeof path, "%s/%s_%04d.vtk", o->dir, o->name, o->frames++);
-        sps_world_write_vtk(w, path);
+        ex_check(w, sps_world_write_vtk(w, path));
         o->next_vtk += o->vtk_every;
     }
     return wrote;
+}
+
+/* A step failed (r): writes the world, rolled back to its last good state (keep_last_good_state
+   in apply_common), to dir/name_failed.vtk, then exits with one line naming both. */
+EX_UNUSED static void ex_step_failed(sps_world* w, sps_result r, const output_plan* o) {
+    char path[1200], failure[1024];
+    snprintf(failure, sizeof failure, "%s", sps_world_last_error(w));
+    snprintf(path, sizeof path, "%s/%s_failed.vtk", o->dir, o->name);
+    if (sps_world_write_vtk(w, path) != SPS_OK) snprintf(path, sizeof path, "(not written)");
+    fprintf(stderr, "%s: %s: %s (state at t = %g written to %s)\n", g_prog, sps_result_string(r), failure, (double)sps_world_time(w), path);
+    exit(2);
 }
 
 /* ---- period of an oscillation from the zero crossings of a signal starting at zero ---- */

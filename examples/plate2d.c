@@ -55,7 +55,7 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d;
     char extra[64];
     double t = sps_world_time(w);
-    sps_observer_read(w, s->tip, u, NULL);
+    ex_check(w, sps_observer_read(w, s->tip, u, NULL));
     if (fabs(u[1]) > s->amp_cur) s->amp_cur = fabs(u[1]);
     if (period_feed(&s->period, t, u[1])) { /* a cycle ended */
         if (s->amp_first == 0) s->amp_first = s->amp_cur;
@@ -71,7 +71,7 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     int res = 10, kernel = 0;
     double vf = 0.05;
-    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 1.0, 0.1, 0.002, 2e6, 0.3975, 1000, "out/plate2d"};
+    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 1.0, 0.1, 0.002, 2e6, 0.3975, 1000, "out/plate2d", 0.4, 0, 1};
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "resolution H/dp", 2, 200, NULL},
         {"vf", OPT_REAL, &vf, "initial velocity factor v_f", 0, 1, NULL},
@@ -94,29 +94,29 @@ int main(int argc, char** argv) {
     wd.kernel = kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
     bd.name = "plate";
     apply_common(&c, &wd, &bd);
-    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
-    if (sps_world_add_body(w, &bd, &plate) != SPS_OK) return 2;
+    w = ex_create(&wd);
+    ex_check(w, sps_world_add_body(w, &bd, &plate));
     lo[0] = -HOLDER_LAYERS * dp; lo[1] = -PLATE_H / 2; lo[2] = 0;
     hi[0] = PLATE_L;             hi[1] = PLATE_H / 2;  hi[2] = 0;
-    sps_body_add_box(w, plate, lo, hi, NULL);
-    sps_body_constrain_box(w, plate, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL); /* holder x < 0 */
+    ex_add_box(w, plate, lo, hi, c.jitter, c.seed);
+    ex_check(w, sps_body_constrain_box(w, plate, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL)); /* holder x < 0 */
     {
         sps_real c0;
-        sps_body_material_constants(w, plate, &c0, NULL, NULL);
+        ex_check(w, sps_body_material_constants(w, plate, &c0, NULL, NULL));
         v0.vf = vf;
         v0.c0 = c0;
     }
-    sps_body_set_velocity(w, plate, initial_velocity, &v0);
+    ex_check(w, sps_body_set_velocity(w, plate, initial_velocity, &v0));
 
     memset(&s, 0, sizeof s);
     s.quiet = c.quiet; s.t_end = c.t_end;
-    if (sps_world_add_observer(w, plate, tip, &s.tip) != SPS_OK) return 1;
+    ex_check(w, sps_world_add_observer(w, plate, tip, &s.tip));
     output_open(&s.output, c.out, "plate2d", c.csv_every, c.vtk_every, ",deflection");
     s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0 row and snapshot */
-    if (sps_world_advance(w, c.t_end, on_step, &s) != SPS_OK) {
-        fprintf(stderr, "plate2d: %s\n", sps_world_last_error(w));
-        return 1;
+    {
+        sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
+        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
     }
     wall = wall_seconds() - s.wall0;
     fclose(s.output.csv);
@@ -128,14 +128,14 @@ int main(int argc, char** argv) {
     {
         sps_diagnostics d;
         sps_body all = {0};
-        sps_world_diagnostics(w, all, &d);
-        printf("RESULT case=plate2d shear=%s res=%d vf=%g stepping=%s period=%.4f paper=%.3f paper_res=30 analytical=%.4f "
-               "err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
-               "hourglass_end=%.3g particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
-               shear_name(c.shear), res, vf, c.stepping ? "single" : "dual", period, paper, analytical,
+        ex_check(w, sps_world_diagnostics(w, all, &d));
+        printf("RESULT case=plate2d shear=%s res=%d vf=%g stepping=%s nu=%g cfl=%g jitter=%g period=%.4f paper=%.3f paper_res=30 "
+               "analytical=%.4f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
+               "hourglass_end=%.3g min_spacing=%.3f particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
+               shear_name(c.shear), res, vf, c.stepping ? "single" : "dual", c.nu, c.cfl, c.jitter, period, paper, analytical,
                period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
-               s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, sps_world_particle_count(w),
-               d.acoustic_steps, d.advection_steps, wall, c.out);
+               s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing,
+               sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
     }
     sps_world_destroy(w);
     return 0;

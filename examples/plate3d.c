@@ -50,7 +50,7 @@ static int on_step(sps_world* w, void* user) {
     sps_real u[3];
     sps_diagnostics d;
     char extra[64];
-    sps_observer_read(w, s->probe, u, NULL);
+    ex_check(w, sps_observer_read(w, s->probe, u, NULL));
     period_feed(&s->period, sps_world_time(w), u[2]);
     snprintf(extra, sizeof extra, ",%.9g", (double)u[2]);
     output_tick(w, &s->output, extra, &d);
@@ -67,13 +67,13 @@ static void add_support_ring(sps_world* w, sps_body plate, double dp, int res, i
         p[2] = full ? -PLATE_H / 2 + (l + 0.5) * dp : 0;
         for (i = -1; i <= nx; ++i) { /* bottom and top rows, corners included */
             p[0] = (i + 0.5) * dp;
-            p[1] = -0.5 * dp;          sps_body_add_particles(w, plate, 1, p, NULL);
-            p[1] = PLATE_W + 0.5 * dp; sps_body_add_particles(w, plate, 1, p, NULL);
+            p[1] = -0.5 * dp;          ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
+            p[1] = PLATE_W + 0.5 * dp; ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
         }
         for (i = 0; i < ny; ++i) { /* left and right columns */
             p[1] = (i + 0.5) * dp;
-            p[0] = -0.5 * dp;          sps_body_add_particles(w, plate, 1, p, NULL);
-            p[0] = PLATE_L + 0.5 * dp; sps_body_add_particles(w, plate, 1, p, NULL);
+            p[0] = -0.5 * dp;          ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
+            p[0] = PLATE_L + 0.5 * dp; ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
         }
     }
 }
@@ -81,7 +81,7 @@ static void add_support_ring(sps_world* w, sps_body plate, double dp, int res, i
 int main(int argc, char** argv) {
     int res = 3, full = 0, md_arg[2] = {1, 1}, support = 0;
     /* t_end 0: stop once the first period is measured (at most 1.6 x theory) */
-    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 0, 0, 2e-4, 1e8, 0.3, 1000, "out/plate3d"};
+    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 0, 0, 2e-4, 1e8, 0.3, 1000, "out/plate3d", 0.4, 0, 1};
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "resolution H/dp", 2, 40, NULL},
         {"mode", OPT_PAIR, md_arg, "vibration mode m,n", 1, 20, NULL},
@@ -115,9 +115,9 @@ int main(int argc, char** argv) {
     wd.dp = dp;
     bd.name = "plate";
     apply_common(&c, &wd, &bd);
-    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
-    if (sps_world_add_body(w, &bd, &plate) != SPS_OK) return 2;
-    sps_body_add_box(w, plate, lo, hi, NULL);
+    w = ex_create(&wd);
+    ex_check(w, sps_world_add_body(w, &bd, &plate));
+    ex_add_box(w, plate, lo, hi, c.jitter, c.seed);
     if (support == 0) { /* the mid-plane particles (the two middle layers when H/dp is even) of the sides */
         for (k = 0; k < 4; ++k) {
             ring_lo[k][2] = -0.5001 * dp;
@@ -127,19 +127,19 @@ int main(int argc, char** argv) {
     } else {
         add_support_ring(w, plate, dp, res, support == 2);
     }
-    for (k = 0; k < 4; ++k) sps_body_constrain_box(w, plate, ring_lo[k], ring_hi[k], SPS_AXIS_Z, NULL, NULL);
-    sps_body_set_velocity(w, plate, initial_velocity, &md);
+    for (k = 0; k < 4; ++k) ex_check(w, sps_body_constrain_box(w, plate, ring_lo[k], ring_hi[k], SPS_AXIS_Z, NULL, NULL));
+    ex_check(w, sps_body_set_velocity(w, plate, initial_velocity, &md));
 
     memset(&s, 0, sizeof s);
     s.quiet = c.quiet; s.t_end = c.t_end;
     s.stop_at_period = !full;
-    if (sps_world_add_observer(w, plate, antinode, &s.probe) != SPS_OK) return 1;
+    ex_check(w, sps_world_add_observer(w, plate, antinode, &s.probe));
     output_open(&s.output, c.out, "plate3d", c.csv_every, c.vtk_every, ",deflection");
     s.wall0 = wall_seconds();
     on_step(w, &s);
-    if (sps_world_advance(w, c.t_end, on_step, &s) != SPS_OK) {
-        fprintf(stderr, "plate3d: %s\n", sps_world_last_error(w));
-        return 1;
+    {
+        sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
+        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
     }
     wall = wall_seconds() - s.wall0;
     fclose(s.output.csv);
@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
     {
         sps_diagnostics d;
         sps_body all = {0};
-        sps_world_diagnostics(w, all, &d);
+        ex_check(w, sps_world_diagnostics(w, all, &d));
         printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.5f paper=%.4f analytical=%.4f "
                "err_paper=%.1f%% err_analytical=%.1f%% hourglass_max=%.3g particles=%d steps=%ld advection_steps=%ld "
                "t_end=%.4g wall_s=%.2f out=%s\n",

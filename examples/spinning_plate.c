@@ -36,12 +36,11 @@ static double norm3(const sps_real* a) { return sqrt(a[0] * a[0] + a[1] * a[1] +
 
 int main(int argc, char** argv) {
     int corner_id;
-    double dp = 0.05, omega = 50, cfl = 0.4;
-    common_options c = {SPS_SHEAR_GNO_A, 0, 0, 0, 0, 0, 0.5, 0.1, 0.001, 1.7e7, NU, 1100, "out/" CASE};
+    double dp = 0.05, omega = 50;
+    common_options c = {SPS_SHEAR_GNO_A, 0, 0, 0, 0, 0, 0.5, 0.1, 0.001, 1.7e7, NU, 1100, "out/" CASE, 0.4, 0, 1};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.25, NULL},
         {"omega", OPT_REAL, &omega, "angular velocity [rad/s]", 0, 1e4, NULL},
-        {"cfl", OPT_REAL, &cfl, "acoustic CFL number", 0.01, 1, NULL},
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -58,14 +57,13 @@ int main(int argc, char** argv) {
     opt_parse(argc, argv, "spinning " CASE " (BENCHMARKS.md A3/A4)", opts, (int)(sizeof opts / sizeof *opts));
     wd.dim = DIM;
     wd.dp = dp;
-    wd.cfl_acoustic = cfl;
     bd.name = CASE;
     apply_common(&c, &wd, &bd);
-    if (sps_world_create(&wd, &w) != SPS_OK) return 2;
-    if (sps_world_add_body(w, &bd, &block) != SPS_OK) return 2;
-    sps_body_add_box(w, block, lo, hi, NULL);
-    sps_body_set_velocity(w, block, rigid_rotation, &omega);
-    corner_id = sps_world_nearest_particle(w, block, corner);
+    w = ex_create(&wd);
+    ex_check(w, sps_world_add_body(w, &bd, &block));
+    ex_add_box(w, block, lo, hi, c.jitter, c.seed);
+    ex_check(w, sps_body_set_velocity(w, block, rigid_rotation, &omega));
+    if ((corner_id = sps_world_nearest_particle(w, block, corner)) < 0) ex_check(w, SPS_ERR_INVALID_ARG);
 
     output_open(&output, c.out, CASE, c.csv_every, c.vtk_every, ",corner_ux,corner_uy,corner_vx,corner_vy");
     n = sps_world_particle_count(w);
@@ -73,13 +71,13 @@ int main(int argc, char** argv) {
         const sps_real *vx = sps_world_field(w, SPS_FIELD_VELOCITY_X), *vy = sps_world_field(w, SPS_FIELD_VELOCITY_Y);
         p_scale += sps_world_field(w, SPS_FIELD_MASS)[i] * sqrt(vx[i] * vx[i] + vy[i] * vy[i]); /* v_z = 0 */
     }
-    sps_world_diagnostics(w, all, &d0);
+    ex_check(w, sps_world_diagnostics(w, all, &d0));
     wall0 = wall_seconds();
     for (;;) {
         double t = sps_world_time(w);
         sps_particle_state pc;
         char extra[160];
-        sps_world_particle(w, corner_id, &pc);
+        ex_check(w, sps_world_particle(w, corner_id, &pc));
         snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g,%.9g", (double)pc.displacement[0], (double)pc.displacement[1],
                  (double)pc.velocity[0], (double)pc.velocity[1]);
         if (output_tick(w, &output, extra, &d)) {
@@ -88,17 +86,17 @@ int main(int argc, char** argv) {
             if (norm3(d.linear_momentum) / p_scale > max_p_drift) max_p_drift = norm3(d.linear_momentum) / p_scale;
         }
         if (t >= c.t_end) break;
-        if (sps_world_advance(w, t + c.csv_every < c.t_end ? t + c.csv_every : c.t_end, NULL, NULL) != SPS_OK) {
-            fprintf(stderr, "%s: %s\n", CASE, sps_world_last_error(w));
-            return 1;
+        {
+            sps_result r = sps_world_advance(w, t + c.csv_every < c.t_end ? t + c.csv_every : c.t_end, NULL, NULL);
+            if (r != SPS_OK) ex_step_failed(w, r, &output);
         }
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
     fclose(output.csv);
-    printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s cfl=%g max_angmom_err=%.2f%% paper=%.2f%% "
-           "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g particles=%d "
+    printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s nu=%g cfl=%g jitter=%g max_angmom_err=%.2f%% "
+           "paper=%.2f%% max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n",
-           CASE, shear_name(c.shear), c.rotation ? "particle" : "mean", dp, omega, c.stepping ? "single" : "dual", cfl, 100 * max_err,
+           CASE, shear_name(c.shear), c.rotation ? "particle" : "mean", dp, omega, c.stepping ? "single" : "dual", c.nu, c.cfl, c.jitter, 100 * max_err,
            paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy, n,
            d.acoustic_steps, wall_seconds() - wall0, c.out);
     sps_world_destroy(w);
