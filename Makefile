@@ -3,6 +3,7 @@
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
 #   make test     the test runner (optimised, OpenMP) and the unit tests under ASan + UBSan
 #   make bench    speed tables (bench/results/)
+#   make bench-knobs  what each setting costs and buys (bench/knobs.sh, about 30 min)
 #   make clean
 CC      ?= cc
 CXX     ?= c++
@@ -20,7 +21,7 @@ HEADER   = sphsolid.h
 
 .PHONY: all check examples run test test-fast test-sanitize bench clean
 
-all: check examples
+all: check examples float-examples
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -47,6 +48,16 @@ $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)
 $(BUILD)/%: examples/%.c examples/common.h examples/spinning_plate.c $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+
+# ---- the examples built with sps_real = float (bench/knobs.sh measures what float costs) ----
+FLOAT = $(BUILD)/float
+$(FLOAT)/impl.o: examples/impl.c $(HEADER)
+	@mkdir -p $(FLOAT)
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -c $< -o $@
+$(FLOAT)/%: examples/%.c examples/common.h examples/spinning_plate.c $(FLOAT)/impl.o
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
+float-examples: $(addprefix $(FLOAT)/,$(EXAMPLES))
+.PHONY: float-examples
 
 run: $(BUILD)/plate2d
 	./$(BUILD)/plate2d --res 10 --vf 0.05 --shear eno-a --tend 1 --out out/plate2d

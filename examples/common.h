@@ -154,8 +154,8 @@ EX_UNUSED static const char* shear_name(int s) {
 
 /* ---- the options every example shares ---- */
 typedef struct {
-    int shear, rotation, stepping, geometry, threads, quiet; /* choice indices and flags */
-    double t_end, vtk_every, csv_every, E, nu, rho0;
+    int shear, rotation, stepping, geometry, kernel, threads, quiet; /* choice indices and flags */
+    double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
     const char* out;
 } common_options;
 
@@ -165,6 +165,8 @@ typedef struct {
     {"rotation", OPT_CHOICE, &(c).rotation, "-A variants: rotation", 0, 0, "mean|particle"},            \
     {"stepping", OPT_CHOICE, &(c).stepping, "time stepping", 0, 0, "dual|single"},                      \
     {"geometry", OPT_CHOICE, &(c).geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},   \
+    {"kernel", OPT_CHOICE, &(c).kernel, "smoothing kernel", 0, 0, "wendland|spline"},                    \
+    {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number CFL_ac", 0.01, 1, NULL},                            \
     {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
     {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
     {"rho0", OPT_REAL, &(c).rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},                                 \
@@ -179,6 +181,8 @@ typedef struct {
 EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, sps_body_def* bd) {
     wd->stepping = c->stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
     wd->frozen_geometry = c->geometry == 1;
+    wd->kernel = c->kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
+    wd->cfl_acoustic = c->cfl;
     wd->threads = c->threads;
     bd->material.density = c->rho0;
     bd->material.youngs_modulus = c->E;
@@ -186,6 +190,14 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->shear = (sps_shear)c->shear;
     bd->rotation = c->rotation ? SPS_ROTATION_PER_PARTICLE : SPS_ROTATION_MEAN;
     bd->track_stress = 1; /* von Mises output and the shear part of the strain energy */
+}
+
+/* The shared settings as RESULT fields, so that every RESULT line says what produced it. */
+EX_UNUSED static const char* common_result_fields(const common_options* c) {
+    static char fields[160];
+    snprintf(fields, sizeof fields, "kernel=%s cfl=%g geometry=%s threads=%d real=%s", c->kernel ? "spline" : "wendland", c->cfl,
+             c->geometry ? "frozen" : "recomputed", c->threads, sps_is_double() ? "double" : "float");
+    return fields;
 }
 
 /* ---- time, progress, files ---- */

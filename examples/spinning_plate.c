@@ -36,12 +36,12 @@ static double norm3(const sps_real* a) { return sqrt(a[0] * a[0] + a[1] * a[1] +
 
 int main(int argc, char** argv) {
     int corner_id;
-    double dp = 0.05, omega = 50, cfl = 0.4;
-    common_options c = {SPS_SHEAR_GNO_A, 0, 0, 0, 0, 0, 0.5, 0.1, 0.001, 1.7e7, NU, 1100, "out/" CASE};
+    double dp = 0.05, omega = 50;
+    common_options c = {.shear = SPS_SHEAR_GNO_A, .cfl = 0.4, .t_end = 0.5, .vtk_every = 0.1, .csv_every = 0.001,
+                        .E = 1.7e7, .nu = NU, .rho0 = 1100, .out = "out/" CASE};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.25, NULL},
         {"omega", OPT_REAL, &omega, "angular velocity [rad/s]", 0, 1e4, NULL},
-        {"cfl", OPT_REAL, &cfl, "acoustic CFL number", 0.01, 1, NULL},
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -58,7 +58,6 @@ int main(int argc, char** argv) {
     opt_parse(argc, argv, "spinning " CASE " (BENCHMARKS.md A3/A4)", opts, (int)(sizeof opts / sizeof *opts));
     wd.dim = DIM;
     wd.dp = dp;
-    wd.cfl_acoustic = cfl;
     bd.name = CASE;
     apply_common(&c, &wd, &bd);
     if (sps_world_create(&wd, &w) != SPS_OK) return 2;
@@ -95,11 +94,11 @@ int main(int argc, char** argv) {
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
     fclose(output.csv);
-    printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s cfl=%g max_angmom_err=%.2f%% paper=%.2f%% "
-           "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g particles=%d "
+    printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s max_angmom_err=%.4g%% paper=%.2f%% "
+           "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g %s particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n",
-           CASE, shear_name(c.shear), c.rotation ? "particle" : "mean", dp, omega, c.stepping ? "single" : "dual", cfl, 100 * max_err,
-           paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy, n,
+           CASE, shear_name(c.shear), c.rotation ? "particle" : "mean", dp, omega, c.stepping ? "single" : "dual", 100 * max_err,
+           paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy, common_result_fields(&c), n,
            d.acoustic_steps, wall_seconds() - wall0, c.out);
     sps_world_destroy(w);
     return 0;
