@@ -21,7 +21,7 @@ HEADER   = sphsolid.h
 
 .PHONY: all check examples run test test-fast test-sanitize bench clean
 
-all: check examples float-examples
+all: check examples float-examples bench-tools
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -45,7 +45,7 @@ check: $(CHECK_SRC) $(HEADER)
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) -c $< -o $@
-$(BUILD)/%: examples/%.c examples/common.h examples/spinning_plate.c $(BUILD)/impl.o
+$(BUILD)/%: examples/%.c examples/common.h examples/spinning_plate.c examples/spinning_scene.h $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
 
@@ -54,10 +54,19 @@ FLOAT = $(BUILD)/float
 $(FLOAT)/impl.o: examples/impl.c $(HEADER)
 	@mkdir -p $(FLOAT)
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -c $< -o $@
-$(FLOAT)/%: examples/%.c examples/common.h examples/spinning_plate.c $(FLOAT)/impl.o
+$(FLOAT)/%: examples/%.c examples/common.h examples/spinning_plate.c examples/spinning_scene.h $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
 float-examples: $(addprefix $(FLOAT)/,$(EXAMPLES))
-.PHONY: float-examples
+
+# ---- bench programs: the real-time loop (double and float) and the SVG plotter ----
+$(BUILD)/realtime: bench/realtime.c examples/common.h examples/spinning_scene.h $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(FLOAT)/realtime: bench/realtime.c examples/common.h examples/spinning_scene.h $(HEADER) $(FLOAT)/impl.o
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
+$(BUILD)/svgplot: bench/svgplot.c | $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/svgplot
+.PHONY: float-examples bench-tools bench-knobs
 
 run: $(BUILD)/plate2d
 	./$(BUILD)/plate2d --res 10 --vf 0.05 --shear eno-a --tend 1 --out out/plate2d
@@ -77,6 +86,8 @@ test: check test-fast test-sanitize
 # ---- bench ----
 bench: examples
 	sh bench/run_bench.sh
+bench-knobs: all
+	sh bench/knobs.sh
 
 clean:
 	rm -rf $(BUILD) out
