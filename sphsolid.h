@@ -1066,7 +1066,9 @@ static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_
     if ((k = sps__check_body(w, b, fn)) < 0 || !sps__check_box(w, fn, lo, hi)) return SPS_ERR_INVALID_ARG;
     dp = w->def.dp;
     for (a = 0; a < w->dim; ++a) {
-        double c = SPS__FLOOR((hi[a] - lo[a]) / dp + SPS_R(1e-6)); /* count lattice points inside [lo, hi) */
+        /* count lattice points inside [lo, hi); the slack absorbs the rounding of lo, hi and dp,
+           relative 1e-7 in float: 1e-6 dp lost a whole column of a 204-dp plate there */
+        double c = SPS__FLOOR((hi[a] - lo[a]) / dp + (sizeof(sps_real) == sizeof(float) ? SPS_R(1e-3) : SPS_R(1e-6)));
         cells *= c;
         cnt[a] = (int)(c < 1e9 ? c : 1e9);
     }
