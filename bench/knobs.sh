@@ -8,7 +8,7 @@
 #   knobs_plate2d.svg      2D plate: CPU time vs |period error|, with the Pareto front
 #   knobs_spinning.svg     spinning plate: CPU time vs angular-momentum error per formulation
 #
-#   sh bench/knobs.sh            the sweep (about 20 min on 2 busy cores), then the report
+#   sh bench/knobs.sh            the sweep (about 15 min on 2 busy cores), then the report
 #   sh bench/knobs.sh report     the report again from knobs.csv (no runs)
 #   RESUME=1 sh bench/knobs.sh   keep the rows already in knobs.csv (an interrupted sweep)
 #
@@ -114,7 +114,10 @@ sweep() {
     plate2d combined "frozen+float" float 10 eno-a dual 0.4 frozen wendland 1
     plate2d combined "frozen+float+CFL 0.6" float 10 eno-a dual 0.6 frozen wendland 1
     plate2d combined "H/dp 5 frozen+float+CFL 0.6" float 5 eno-a dual 0.6 frozen wendland 1
+    plate2d combined "H/dp 20 CFL 0.6" double 20 eno-a dual 0.6 recomputed wendland 1
+    plate2d combined "H/dp 20 float+CFL 0.6" float 20 eno-a dual 0.6 recomputed wendland 1
     plate2d combined "H/dp 20 frozen+CFL 0.6" double 20 eno-a dual 0.6 frozen wendland 1
+    plate2d combined "H/dp 20 frozen+float+CFL 0.6" float 20 eno-a dual 0.6 frozen wendland 1
 
     for dp in 0.1 0.05 0.033; do
         for shear in gno-a eno-a eno gno oas og; do
@@ -145,6 +148,7 @@ sweep() {
     realtime "dp 0.05" double 0.05 recomputed 0.8
     realtime "dp 0.05 float+frozen" float 0.05 frozen 0.8
     realtime "dp 0.1" double 0.1 recomputed 0.8
+    realtime "dp 0.1 float" float 0.1 recomputed 0.8
     realtime "dp 0.1 float+frozen" float 0.1 frozen 0.8
     realtime "dp 0.1 float+frozen no budget" float 0.1 frozen 0
 }
