@@ -148,8 +148,9 @@
       update; with single stepping nothing is cut). Without a wall budget a frame is
       deterministic: the same k from the same state gives the same state, bit for bit, for any
       thread count, and covered is the simulated time of its k sub-steps. To show simulated time
-      at wall-clock speed at F frames per second, take k about 1/(F dt_ac), with
-      dt_ac = CFL_ac h/(c0 + |v|max) (sps_diagnostics.dt_acoustic after a frame). A wall budget
+      at wall-clock speed at F frames per second, run a first frame of k0 sub-steps without a
+      budget and then take k = k0 / (F covered): the mean sub-step is shorter than
+      CFL_ac h/(c0 + |v|max), since every advection step ends on a shortened one. A wall budget
       below 1/F (say 80% of it) keeps the loop at F frames per second on a machine too slow for
       k sub-steps per frame: the frame stops early, between advection steps, and the scene runs
       in slow motion (covered < 1/F) instead of dropping frames. The budget is measured with

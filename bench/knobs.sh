@@ -199,8 +199,8 @@ float_table() {
             split(frow[k], f, ",")
             col = pick(frow[k])
             what = col == "period_err_pct" ? "period error" : col == "angmom_err_pct" ? "max angular-momentum error" : "energy drift"
-            printf "| %s | %s %s, %s, %s, CFL %s, t = %s s | %s | %s%% | %s%% | %s | %s | %.2f |\n", f[c["scene"]], f[c["scene"]] == "spinning_plate" ? "dp" : "H/dp",
-                   f[c["res"]], f[c["shear"]], f[c["geometry"]], f[c["cfl"]], f[c["t_end"]] == 0 ? "first period" : f[c["t_end"]], what,
+            printf "| %s | %s %s, %s, %s, CFL %s, %s | %s | %s%% | %s%% | %s | %s | %.2f |\n", f[c["scene"]], f[c["scene"]] ~ /^(spinning_plate|realtime)$/ ? "dp" : "H/dp",
+                   f[c["res"]], f[c["shear"]], f[c["geometry"]], f[c["cfl"]], f[c["t_end"]] == 0 ? "to the first period" : "t = " f[c["t_end"]] " s", what,
                    metric(drow[k], col), metric(frow[k], col), cpu(drow[k]), cpu(frow[k]),
                    (cpu(drow[k]) > 0 ? cpu(frow[k]) / cpu(drow[k]) : 0)
         }

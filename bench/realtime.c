@@ -1,7 +1,9 @@
 /* realtime.c - a real-time loop: the spinning plate (examples/spinning_plate.c) shown at a fixed
    frame rate. Each frame advances the world with sps_world_advance_frame by the acoustic
    sub-steps that cover one frame period of simulated time, within a wall budget (a fraction of
-   the frame period), then waits for the next frame as a renderer with vsync would. It reports
+   the frame period), then waits for the next frame as a renderer with vsync would. The first
+   frame runs without a budget and calibrates the sub-steps per frame (manual, REAL-TIME
+   FRAMES); the loop then keeps that number. It reports
    simulated seconds per wall second (1: real time; below 1 the budget cut frames short and the
    scene ran in slow motion), the physics time per frame, and the angular-momentum error of the
    run (frames cut advection steps short, so it may differ from the example's).
@@ -14,7 +16,7 @@
 #include "../examples/common.h"
 #include "../examples/spinning_scene.h"
 
-/* Sub-steps that cover one frame period at the current acoustic time step CFL_ac h/(c0 + |v|max). */
+/* First guess of the sub-steps per frame: one frame period at CFL_ac h/(c0 + |v|max). */
 static int frame_substeps(sps_world* w, sps_body block, double max_speed, double fps) {
     const sps_world_def* wd = sps_world_get_def(w);
     sps_real c0;
@@ -36,7 +38,7 @@ static void sleep_until(double t) {
 
 int main(int argc, char** argv) {
     double dp = 0.05, omega = 50, fps = 60, budget = 0.8, period, start, next, physics = 0, physics_max = 0, max_err = 0;
-    int substeps = 0;
+    int substeps = 0, calibrate;
     long frames = 0, over_budget = 0;
     common_options c = spinning_defaults();
     opt_spec opts[] = {
@@ -59,18 +61,21 @@ int main(int argc, char** argv) {
     if (spinning_scene(&c, dp, omega, &w, &block) != 0) return 2;
     sps_world_diagnostics(w, all, &d0);
     period = 1 / fps;
-    if (substeps == 0) substeps = frame_substeps(w, block, d0.max_speed, fps);
+    calibrate = substeps == 0;
+    if (calibrate) substeps = frame_substeps(w, block, d0.max_speed, fps);
     output_open(&output, c.out, "realtime", c.csv_every, c.vtk_every, ",frame_physics_ms");
 
     start = next = wall_seconds();
     while (sps_world_time(w) < c.t_end) {
         double t0 = wall_seconds(), spent;
+        sps_real covered;
         char extra[32];
-        if (sps_world_advance_frame(w, substeps, budget * period, NULL) != SPS_OK) {
+        if (sps_world_advance_frame(w, substeps, frames == 0 ? 0 : budget * period, &covered) != SPS_OK) {
             fprintf(stderr, "realtime: %s\n", sps_world_last_error(w));
             return 1;
         }
         spent = wall_seconds() - t0;
+        if (calibrate && frames == 0) substeps = (int)ceil(substeps * period / covered); /* the mean sub-step, measured */
         ++frames;
         physics += spent;
         if (spent > physics_max) physics_max = spent;
