@@ -21,7 +21,7 @@ HEADER   = sphsolid.h
 
 .PHONY: all check examples run test test-fast test-sanitize bench clean
 
-all: check examples float-examples bench-tools
+all: check examples
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -66,6 +66,9 @@ $(FLOAT)/realtime: bench/realtime.c examples/common.h examples/spinning_scene.h 
 $(BUILD)/svgplot: bench/svgplot.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
 bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/svgplot
+all: float-examples bench-tools
+bench-knobs: all
+	sh bench/knobs.sh
 .PHONY: float-examples bench-tools bench-knobs
 
 run: $(BUILD)/plate2d
@@ -86,8 +89,6 @@ test: check test-fast test-sanitize
 # ---- bench ----
 bench: examples
 	sh bench/run_bench.sh
-bench-knobs: all
-	sh bench/knobs.sh
 
 clean:
 	rm -rf $(BUILD) out

@@ -80,6 +80,22 @@
       (frozen_geometry = 1, the reference code's way; 2x faster, but in a spinning plate the
       stored directions lag the rotation and the angular-momentum error grows tenfold).
 
+   REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
+      A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
+      cut short so that the frame ends on the count (the next frame starts with a configuration
+      update; with single stepping nothing is cut). Without a wall budget a frame is
+      deterministic: the same k from the same state gives the same state, bit for bit, for any
+      thread count, and covered is the simulated time of its k sub-steps. To show simulated time
+      at wall-clock speed at F frames per second, run a first frame of k0 sub-steps without a
+      budget and then take k = k0 / (F covered): the mean sub-step is shorter than
+      CFL_ac h/(c0 + |v|max), since every advection step ends on a shortened one. A wall budget
+      below 1/F (say 80% of it) keeps the loop at F frames per second on a machine too slow for
+      k sub-steps per frame: the frame stops early, between advection steps, and the scene runs
+      in slow motion (covered < 1/F) instead of dropping frames. The budget is measured with
+      SPHSOLID_WALL_SECONDS() (CONFIG MACROS). Cutting advection steps at frame ends costs one
+      extra neighbour-list rebuild per frame; bench/realtime.c measures a whole loop (simulated
+      seconds per wall second).
+
    SHEAR FORMULATIONS (per body, sps_body_def.shear)
       SPS_SHEAR_OG     original: tau by the Jaumann rate, a = (1/rho) div tau (ENO eq. 17).
                        Zero-energy (hourglass) modes are not resisted: it zigzags and fractures.
@@ -141,22 +157,6 @@
       vector width does not change a result either. Sums (diagnostics, the mean rotation of ENO-A) use fixed blocks of
       particles added in a fixed order. Results are bit-identical for any number of threads.
       A world must not be used from two threads at once; separate worlds are independent.
-
-   REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
-      A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
-      cut short so that the frame ends on the count (the next frame starts with a configuration
-      update; with single stepping nothing is cut). Without a wall budget a frame is
-      deterministic: the same k from the same state gives the same state, bit for bit, for any
-      thread count, and covered is the simulated time of its k sub-steps. To show simulated time
-      at wall-clock speed at F frames per second, run a first frame of k0 sub-steps without a
-      budget and then take k = k0 / (F covered): the mean sub-step is shorter than
-      CFL_ac h/(c0 + |v|max), since every advection step ends on a shortened one. A wall budget
-      below 1/F (say 80% of it) keeps the loop at F frames per second on a machine too slow for
-      k sub-steps per frame: the frame stops early, between advection steps, and the scene runs
-      in slow motion (covered < 1/F) instead of dropping frames. The budget is measured with
-      SPHSOLID_WALL_SECONDS() (CONFIG MACROS). Cutting advection steps at frame ends costs one
-      extra neighbour-list rebuild per frame; bench/realtime.c measures a whole loop (simulated
-      seconds per wall second).
 
    DOES NOT (yet)
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
@@ -413,7 +413,8 @@ SPSDEF sps_real sps_world_time(const sps_world* w);
      covered        (may be NULL) the simulated time the frame advanced [s], also on error.
    Returns SPS_OK, SPS_ERR_INVALID_ARG (message names the argument, its value and the allowed
    range) or an error of sps_world_step. No allocation (except, like sps_world_step, at the
-   first step after particles were added). O(N neighbours) per sub-step. */
+   first step after particles were added). O(N neighbours) per sub-step. Not for two threads on
+   one world at once. */
 SPSDEF sps_result sps_world_advance_frame(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered);
 
 /* Diagnostics for the whole world (b.id == 0) or one body. Allocates scratch on first call. O(N). */

@@ -192,14 +192,6 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->track_stress = 1; /* von Mises output and the shear part of the strain energy */
 }
 
-/* The shared settings as RESULT fields, so that every RESULT line says what produced it. */
-EX_UNUSED static const char* common_result_fields(const common_options* c) {
-    static char fields[160];
-    snprintf(fields, sizeof fields, "kernel=%s cfl=%g geometry=%s threads=%d real=%s", c->kernel ? "spline" : "wendland", c->cfl,
-             c->geometry ? "frozen" : "recomputed", c->threads, sps_is_double() ? "double" : "float");
-    return fields;
-}
-
 /* ---- time, progress, files ---- */
 EX_UNUSED static double wall_seconds(void) {
     struct timespec ts;
@@ -238,6 +230,14 @@ EX_UNUSED static FILE* open_out(const char* dir, const char* name) {
     snprintf(path, sizeof path, "%s/%s", dir, name);
     if (!(f = fopen(path, "w"))) { fprintf(stderr, "cannot write %s\n", path); exit(1); }
     return f;
+}
+
+/* The shared settings as RESULT fields, so that every RESULT line says what produced it. */
+EX_UNUSED static const char* common_result_fields(const common_options* c) {
+    static char fields[160];
+    snprintf(fields, sizeof fields, "kernel=%s cfl=%g geometry=%s threads=%d real=%s", c->kernel ? "spline" : "wendland", c->cfl,
+             c->geometry ? "frozen" : "recomputed", c->threads, sps_is_double() ? "double" : "float");
+    return fields;
 }
 
 /* ---- CSV rows and VTK snapshots at fixed intervals of simulated time ---- */
