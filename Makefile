@@ -5,6 +5,7 @@
 #                 and both again under ASan + UBSan (quick tests, 1,000 random cases)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~5 min)
 #   make bench    speed tables (bench/results/)
+#   make bench-knobs  what each setting costs and buys (bench/knobs.sh, about 30 min)
 #   make clean
 CC      ?= cc
 CXX     ?= c++
@@ -47,9 +48,31 @@ check: $(CHECK_SRC) $(HEADER)
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) -c $< -o $@
-$(BUILD)/%: examples/%.c examples/common.h examples/spinning_plate.c $(BUILD)/impl.o
+$(BUILD)/%: examples/%.c examples/common.h examples/spinning_plate.c examples/spinning_scene.h $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+
+# ---- the examples built with sps_real = float (bench/knobs.sh measures what float costs) ----
+FLOAT = $(BUILD)/float
+$(FLOAT)/impl.o: examples/impl.c $(HEADER)
+	@mkdir -p $(FLOAT)
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -c $< -o $@
+$(FLOAT)/%: examples/%.c examples/common.h examples/spinning_plate.c examples/spinning_scene.h $(FLOAT)/impl.o
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
+float-examples: $(addprefix $(FLOAT)/,$(EXAMPLES))
+
+# ---- bench programs: the real-time loop (double and float) and the SVG plotter ----
+$(BUILD)/realtime: bench/realtime.c examples/common.h examples/spinning_scene.h $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(FLOAT)/realtime: bench/realtime.c examples/common.h examples/spinning_scene.h $(HEADER) $(FLOAT)/impl.o
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
+$(BUILD)/svgplot: bench/svgplot.c | $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/svgplot
+all: float-examples bench-tools
+bench-knobs: all
+	sh bench/knobs.sh
+.PHONY: float-examples bench-tools bench-knobs
 
 run: $(BUILD)/plate2d
 	./$(BUILD)/plate2d --res 10 --vf 0.05 --shear eno-a --tend 1 --out out/plate2d

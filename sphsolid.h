@@ -42,6 +42,12 @@
                                default allocator (malloc/free); define both or neither.
       SPS_ASSERT(c)            assertion for programmer errors (default: assert.h).
       SPHSOLID_NO_STDIO        drop the file writers and the default stderr logger.
+      SPHSOLID_WALL_SECONDS()  wall clock in seconds for the frame budget of
+                               sps_world_advance_frame. Implementation-only. Default:
+                               clock_gettime(CLOCK_MONOTONIC) where <time.h> declares it (POSIX:
+                               define _POSIX_C_SOURCE >= 199309L before any #include in the
+                               implementation file, or build with -std=gnu99), else C99 clock(),
+                               which counts processor time (of all threads) instead.
 
    CONCEPTS & UNITS
       SI units throughout: m, s, kg, Pa. 2D runs are plane strain per unit depth, so "mass",
@@ -73,6 +79,22 @@
       each pass (frozen_geometry = 0, default) or are stored at the configuration update
       (frozen_geometry = 1, the reference code's way; 2x faster, but in a spinning plate the
       stored directions lag the rotation and the angular-momentum error grows tenfold).
+
+   REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
+      A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
+      cut short so that the frame ends on the count (the next frame starts with a configuration
+      update; with single stepping nothing is cut). Without a wall budget a frame is
+      deterministic: the same k from the same state gives the same state, bit for bit, for any
+      thread count, and covered is the simulated time of its k sub-steps. To show simulated time
+      at wall-clock speed at F frames per second, run a first frame of k0 sub-steps without a
+      budget and then take k = k0 / (F covered): the mean sub-step is shorter than
+      CFL_ac h/(c0 + |v|max), since every advection step ends on a shortened one. A wall budget
+      below 1/F (say 80% of it) keeps the loop at F frames per second on a machine too slow for
+      k sub-steps per frame: the frame stops early, between advection steps, and the scene runs
+      in slow motion (covered < 1/F) instead of dropping frames. The budget is measured with
+      SPHSOLID_WALL_SECONDS() (CONFIG MACROS). Cutting advection steps at frame ends costs one
+      extra neighbour-list rebuild per frame; bench/realtime.c measures a whole loop (simulated
+      seconds per wall second).
 
    SHEAR FORMULATIONS (per body, sps_body_def.shear)
       SPS_SHEAR_OG     original: tau by the Jaumann rate, a = (1/rho) div tau (ENO eq. 17).
@@ -423,6 +445,23 @@ SPSDEF sps_result sps_world_step(sps_world* w);
    step (may be NULL; return nonzero to stop early). */
 SPSDEF sps_result sps_world_advance(sps_world* w, sps_real t_end, sps_step_fn fn, void* user);
 SPSDEF sps_real sps_world_time(const sps_world* w);
+/* One frame of a real-time loop (see REAL-TIME FRAMES): runs max_substeps acoustic sub-steps,
+   or fewer when wall_budget_s > 0 and the wall clock runs out first.
+     max_substeps   acoustic sub-steps in the frame, >= 1. The frame runs whole advection steps
+                    and cuts the last one short to end exactly on the count.
+     wall_budget_s  0: no budget; the frame always runs max_substeps sub-steps, and the state
+                    after it depends only on the state before and max_substeps (bit-identical
+                    for any thread count). > 0 (finite) [s]: wall time allowed from the call.
+                    Between advection steps the frame estimates how many more sub-steps fit
+                    (from its cost per sub-step so far), stops when not one does, and cuts the
+                    next advection step to what fits; the first advection step always runs. The
+                    frame then depends on the machine's speed.
+     covered        (may be NULL) the simulated time the frame advanced [s], also on error.
+   Returns SPS_OK, SPS_ERR_INVALID_ARG (message names the argument, its value and the allowed
+   range) or an error of sps_world_step. No allocation (except, like sps_world_step, at the
+   first step after particles were added). O(N neighbours) per sub-step. Not for two threads on
+   one world at once. */
+SPSDEF sps_result sps_world_advance_frame(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered);
 
 /* Diagnostics for the whole world (b.id == 0) or one body. Allocates scratch on first call. O(N). */
 SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body b, sps_diagnostics* out);
@@ -1144,7 +1183,9 @@ static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_
     if ((k = sps__check_body(w, b, fn)) < 0 || !sps__check_box(w, fn, lo, hi)) return SPS_ERR_INVALID_ARG;
     dp = w->def.dp;
     for (a = 0; a < w->dim; ++a) {
-        double c = SPS__FLOOR((hi[a] - lo[a]) / dp + SPS_R(1e-6)); /* count lattice points inside [lo, hi) */
+        /* count lattice points inside [lo, hi); the slack absorbs the rounding of lo, hi and dp,
+           relative 1e-7 in float: 1e-6 dp lost a whole column of a 204-dp plate there */
+        double c = SPS__FLOOR((hi[a] - lo[a]) / dp + (sizeof(sps_real) == sizeof(float) ? SPS_R(1e-3) : SPS_R(1e-6)));
         cells *= c;
         cnt[a] = (int)(c < 1e9 ? c : 1e9);
         if (c < 1) return SPS_OK; /* no lattice point along this axis (and 0 x inf is NaN) */
@@ -2906,6 +2947,76 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) {
     return SPS_OK;
 }
 #endif
+
+/* >>realtime */
+
+#include <time.h>
+#ifndef SPHSOLID_WALL_SECONDS
+#ifdef CLOCK_MONOTONIC /* POSIX, when <time.h> declares it (_POSIX_C_SOURCE >= 199309L) */
+static double sps__monotonic_seconds(void) {
+    struct timespec ts;
+    if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) return (double)clock() / CLOCKS_PER_SEC;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+#define SPHSOLID_WALL_SECONDS() sps__monotonic_seconds()
+#else
+/* C99 has no wall clock: clock() counts the processor time of the process (all its threads). */
+#define SPHSOLID_WALL_SECONDS() ((double)clock() / CLOCKS_PER_SEC)
+#endif
+#endif
+
+/* The frame reaches its sub-step count through the cap every advection step already has:
+   sps_world_step runs at most def.max_substeps sub-steps, so the frame lowers that cap for its
+   last step and restores it at once. Going through sps_world_step keeps every guard of a step. */
+static sps_result sps__capped_step(sps_world* w, int cap) {
+    const int cap_of_def = w->def.max_substeps;
+    sps_result r;
+    if (cap < cap_of_def) w->def.max_substeps = cap;
+    r = sps_world_step(w);
+    w->def.max_substeps = cap_of_def;
+    return r;
+}
+
+/* Sub-steps that still fit in the budget at the cost per sub-step measured so far in the frame
+   (a sub-step's share of the neighbour-list rebuild included); huge when nothing is measured. */
+static double sps__substeps_fitting(double budget_s, double spent_s, int done) {
+    if (done == 0 || spent_s <= 0) return 1e18;
+    return (budget_s - spent_s) / (spent_s / done);
+}
+
+SPSDEF sps_result sps_world_advance_frame(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered) {
+    sps_result r = SPS_OK;
+    sps_real t0;
+    double start = 0;
+    int done = 0, budget_ok;
+    if (covered) *covered = 0;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    budget_ok = wall_budget_s >= 0 && wall_budget_s - wall_budget_s == 0; /* >= 0 and finite */
+    if (max_substeps < 1 || !budget_ok) {
+        char msg[256] = "";
+        int broken = 0;
+        if (max_substeps < 1) sps__rule(msg, sizeof msg, &broken, "max_substeps = %d, allowed >= 1", max_substeps);
+        if (!budget_ok)
+            sps__rule(msg, sizeof msg, &broken, "wall_budget_s = %g, allowed 0 (no budget) or finite > 0", wall_budget_s);
+        sps__set_error(w, 0, "sps_world_advance_frame: %s", msg);
+        return SPS_ERR_INVALID_ARG;
+    }
+    t0 = w->time;
+    if (wall_budget_s > 0) start = SPHSOLID_WALL_SECONDS();
+    while (done < max_substeps) {
+        long before = w->acoustic_steps;
+        double chunk = max_substeps - done;
+        if (wall_budget_s > 0) {
+            double fitting = sps__substeps_fitting(wall_budget_s, SPHSOLID_WALL_SECONDS() - start, done);
+            if (fitting < 1) break;
+            if (fitting < chunk) chunk = fitting;
+        }
+        if ((r = sps__capped_step(w, (int)chunk)) != SPS_OK) break;
+        done += (int)(w->acoustic_steps - before);
+    }
+    if (covered) *covered = w->time - t0;
+    return r;
+}
 
 #endif /* SPHSOLID_IMPLEMENTATION_INCLUDED */
 #endif /* SPHSOLID_IMPLEMENTATION */

@@ -194,11 +194,11 @@ EX_UNUSED static const char* shear_name(int s) {
 
 /* ---- the options every example shares ---- */
 typedef struct {
-    int shear, rotation, stepping, geometry, threads, quiet; /* choice indices and flags */
-    double t_end, vtk_every, csv_every, E, nu, rho0;
+    int shear, rotation, stepping, geometry, kernel, threads, quiet; /* choice indices and flags */
+    double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
     const char* out;
-    double cfl, jitter; /* acoustic CFL; lattice jitter in dp */
-    int seed;           /* of the jitter */
+    double jitter; /* lattice jitter in dp */
+    int seed;      /* of the jitter */
 } common_options;
 
 /* The opt_spec entries of common_options c, for an example's option table. */
@@ -207,6 +207,8 @@ typedef struct {
     {"rotation", OPT_CHOICE, &(c).rotation, "-A variants: rotation", 0, 0, "mean|particle"},            \
     {"stepping", OPT_CHOICE, &(c).stepping, "time stepping", 0, 0, "dual|single"},                      \
     {"geometry", OPT_CHOICE, &(c).geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},   \
+    {"kernel", OPT_CHOICE, &(c).kernel, "smoothing kernel", 0, 0, "wendland|spline"},                    \
+    {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number CFL_ac", 0.01, 1, NULL},                            \
     {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
     {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
     {"rho0", OPT_REAL, &(c).rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},                                 \
@@ -215,7 +217,6 @@ typedef struct {
     {"vtk-every", OPT_REAL, &(c).vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},       \
     {"csv-every", OPT_REAL, &(c).csv_every, "CSV row interval [s]", 1e-7, 1e4, NULL},                   \
     {"threads", OPT_INT, &(c).threads, "OpenMP threads, 0 = all", 0, 1024, NULL},                       \
-    {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number", 0.01, 1, NULL},                                 \
     {"jitter", OPT_REAL, &(c).jitter, "lattice jitter: each coordinate moved by U(-j/2, j/2) dp", 0, 0.5, NULL}, \
     {"seed", OPT_INT, &(c).seed, "seed of the jitter", 0, 2147483647, NULL},                           \
     {"quiet", OPT_FLAG, &(c).quiet, "no progress line", 0, 0, NULL}
@@ -224,8 +225,9 @@ typedef struct {
 EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, sps_body_def* bd) {
     wd->stepping = c->stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
     wd->frozen_geometry = c->geometry == 1;
-    wd->threads = c->threads;
+    wd->kernel = c->kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
     wd->cfl_acoustic = c->cfl;
+    wd->threads = c->threads;
     wd->keep_last_good_state = 1; /* the VTK written after an instability shows the last good state */
     bd->material.density = c->rho0;
     bd->material.youngs_modulus = c->E;
@@ -245,7 +247,8 @@ EX_UNUSED static void ex_add_box(sps_world* w, sps_body b, const sps_real lo[3],
     uint64_t rng = (uint64_t)seed;
     sps_real* xyz;
     if (j == 0) { ex_check(w, sps_body_add_box(w, b, lo, hi, NULL)); return; }
-    for (a = 0; a < wd->dim; ++a) cnt[a] = (int)floor((hi[a] - lo[a]) / dp + 1e-6);
+    /* the library's lattice count (sps__fill), slack included: float rounding of lo, hi and dp */
+    for (a = 0; a < wd->dim; ++a) cnt[a] = (int)floor((hi[a] - lo[a]) / dp + (sps_is_double() ? 1e-6 : 1e-3));
     if (!(xyz = (sps_real*)malloc(sizeof(sps_real) * 3 * (size_t)cnt[0] * cnt[1] * cnt[2]))) { fprintf(stderr, "%s: out of memory\n", g_prog); exit(2); }
     for (l = 0; l < cnt[2]; ++l)
         for (k = 0; k < cnt[1]; ++k)
@@ -301,6 +304,14 @@ EX_UNUSED static FILE* open_out(const char* dir, const char* name) {
     snprintf(path, sizeof path, "%s/%s", dir, name);
     if (!(f = fopen(path, "w"))) { fprintf(stderr, "cannot write %s\n", path); exit(1); }
     return f;
+}
+
+/* The shared settings as RESULT fields, so that every RESULT line says what produced it. */
+EX_UNUSED static const char* common_result_fields(const common_options* c) {
+    static char fields[160];
+    snprintf(fields, sizeof fields, "kernel=%s cfl=%g geometry=%s threads=%d real=%s", c->kernel ? "spline" : "wendland", c->cfl,
+             c->geometry ? "frozen" : "recomputed", c->threads, sps_is_double() ? "double" : "float");
+    return fields;
 }
 
 /* ---- CSV rows and VTK snapshots at fixed intervals of simulated time ---- */

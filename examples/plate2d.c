@@ -69,13 +69,13 @@ static int on_step(sps_world* w, void* user) {
 }
 
 int main(int argc, char** argv) {
-    int res = 10, kernel = 0;
+    int res = 10;
     double vf = 0.05;
-    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 1.0, 0.1, 0.002, 2e6, 0.3975, 1000, "out/plate2d", 0.4, 0, 1};
+    common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 1.0, .vtk_every = 0.1, .csv_every = 0.002,
+                        .E = 2e6, .nu = 0.3975, .rho0 = 1000, .out = "out/plate2d", .jitter = 0, .seed = 1};
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "resolution H/dp", 2, 200, NULL},
         {"vf", OPT_REAL, &vf, "initial velocity factor v_f", 0, 1, NULL},
-        {"kernel", OPT_CHOICE, &kernel, "kernel", 0, 0, "wendland|spline"},
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -91,7 +91,6 @@ int main(int argc, char** argv) {
     dp = PLATE_H / res;
     wd.dim = 2;
     wd.dp = dp;
-    wd.kernel = kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
     bd.name = "plate";
     apply_common(&c, &wd, &bd);
     w = ex_create(&wd);
@@ -129,13 +128,13 @@ int main(int argc, char** argv) {
         sps_diagnostics d;
         sps_body all = {0};
         ex_check(w, sps_world_diagnostics(w, all, &d));
-        printf("RESULT case=plate2d shear=%s res=%d vf=%g stepping=%s nu=%g cfl=%g jitter=%g period=%.4f paper=%.3f paper_res=30 "
-               "analytical=%.4f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
-               "hourglass_end=%.3g min_spacing=%.3f particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
-               shear_name(c.shear), res, vf, c.stepping ? "single" : "dual", c.nu, c.cfl, c.jitter, period, paper, analytical,
+        printf("RESULT case=plate2d shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
+               "analytical=%.6f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
+               "hourglass_end=%.3g min_spacing=%.3f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
+               shear_name(c.shear), res, vf, c.stepping ? "single" : "dual", c.nu, c.jitter, period, paper, analytical,
                period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
                s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing,
-               sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
+               common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
     }
     sps_world_destroy(w);
     return 0;

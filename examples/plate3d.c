@@ -81,7 +81,9 @@ static void add_support_ring(sps_world* w, sps_body plate, double dp, int res, i
 int main(int argc, char** argv) {
     int res = 3, full = 0, md_arg[2] = {1, 1}, support = 0;
     /* t_end 0: stop once the first period is measured (at most 1.6 x theory) */
-    common_options c = {SPS_SHEAR_ENO_A, 0, 0, 0, 0, 0, 0, 0, 2e-4, 1e8, 0.3, 1000, "out/plate3d", 0.4, 0, 1};
+    common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 2e-4,
+                        .E = 1e8, .nu = 0.3, .rho0 = 1000, .out = "out/plate3d",
+                        .jitter = 0, .seed = 1};
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "resolution H/dp", 2, 40, NULL},
         {"mode", OPT_PAIR, md_arg, "vibration mode m,n", 1, 20, NULL},
@@ -149,12 +151,12 @@ int main(int argc, char** argv) {
         sps_diagnostics d;
         sps_body all = {0};
         ex_check(w, sps_world_diagnostics(w, all, &d));
-        printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.5f paper=%.4f analytical=%.4f "
-               "err_paper=%.1f%% err_analytical=%.1f%% hourglass_max=%.3g particles=%d steps=%ld advection_steps=%ld "
+        printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.6f paper=%.4f analytical=%.6f "
+               "err_paper=%.1f%% err_analytical=%.1f%% hourglass_max=%.3g %s particles=%d steps=%ld advection_steps=%ld "
                "t_end=%.4g wall_s=%.2f out=%s\n",
                shear_name(c.shear), res, md.m, md.n, c.stepping ? "single" : "dual", period, paper, analytical,
                period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0, period > 0 ? 100 * (period - analytical) / analytical : 0,
-               s.output.hourglass_max, sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, c.out);
+               s.output.hourglass_max, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, c.out);
     }
     sps_world_destroy(w);
     return 0;

@@ -11,58 +11,37 @@
    Build: make examples     Run: ./build/spinning_plate --shear gno-a
    Expect: max_angmom_err about 0.5 % for GNO-A, a few % for ENO-A, tens of % for ENO. */
 #include "common.h"
+#include "spinning_scene.h"
 
 #ifdef SPINNING_CUBE
-#define CASE "spinning_cube"
-#define DIM 3
-#define NU 0.3
 /* ANG 5.1.4, rows in sps_shear order (ENO, ENO-A, OG, OAS, GNO, GNO-A); -1: not in the paper */
 static const double paper_error[6] = {-1, 2.67, -1, -1, -1, 1.18};
 #else
-#define CASE "spinning_plate"
-#define DIM 2
-#define NU 0.45
 static const double paper_error[6] = {59.17, 2.58, -1, -1, 1.12, 0.55}; /* ANG Fig. 13 [%] */
 #endif
-
-static void rigid_rotation(const sps_real x[3], sps_real v[3], void* user) {
-    double omega = *(const double*)user; /* v = omega e_z x r */
-    v[0] = -omega * x[1];
-    v[1] = omega * x[0];
-    v[2] = 0;
-}
 
 static double norm3(const sps_real* a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 int main(int argc, char** argv) {
     int corner_id;
     double dp = 0.05, omega = 50;
-    common_options c = {SPS_SHEAR_GNO_A, 0, 0, 0, 0, 0, 0.5, 0.1, 0.001, 1.7e7, NU, 1100, "out/" CASE, 0.4, 0, 1};
+    common_options c = spinning_defaults();
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.25, NULL},
         {"omega", OPT_REAL, &omega, "angular velocity [rad/s]", 0, 1e4, NULL},
         COMMON_OPTION_SPECS(c),
     };
-    sps_world_def wd = sps_default_world_def();
-    sps_body_def bd = sps_default_body_def();
     sps_world* w;
     sps_body block;
     sps_diagnostics d0, d;
     sps_body all = {0};
-    sps_real lo[3] = {-0.5, -0.5, -0.5}, hi[3] = {0.5, 0.5, 0.5}, corner[3] = {0.5, 0.5, 0.5};
+    sps_real corner[3] = {0.5, 0.5, 0.5};
     double wall0, max_err = 0, max_p_drift = 0, p_scale = 0;
     int i, n;
     output_plan output;
 
     opt_parse(argc, argv, "spinning " CASE " (BENCHMARKS.md A3/A4)", opts, (int)(sizeof opts / sizeof *opts));
-    wd.dim = DIM;
-    wd.dp = dp;
-    bd.name = CASE;
-    apply_common(&c, &wd, &bd);
-    w = ex_create(&wd);
-    ex_check(w, sps_world_add_body(w, &bd, &block));
-    ex_add_box(w, block, lo, hi, c.jitter, c.seed);
-    ex_check(w, sps_body_set_velocity(w, block, rigid_rotation, &omega));
+    spinning_scene(&c, dp, omega, &w, &block);
     if ((corner_id = sps_world_nearest_particle(w, block, corner)) < 0) ex_check(w, SPS_ERR_INVALID_ARG);
 
     output_open(&output, c.out, CASE, c.csv_every, c.vtk_every, ",corner_ux,corner_uy,corner_vx,corner_vy");
@@ -81,7 +60,7 @@ int main(int argc, char** argv) {
         snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g,%.9g", (double)pc.displacement[0], (double)pc.displacement[1],
                  (double)pc.velocity[0], (double)pc.velocity[1]);
         if (output_tick(w, &output, extra, &d)) {
-            double err = fabs(d.angular_momentum[2] - d0.angular_momentum[2]) / fabs(d0.angular_momentum[2]);
+            double err = angmom_error(&d, &d0);
             if (err > max_err) max_err = err;
             if (norm3(d.linear_momentum) / p_scale > max_p_drift) max_p_drift = norm3(d.linear_momentum) / p_scale;
         }
@@ -93,11 +72,12 @@ int main(int argc, char** argv) {
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
     fclose(output.csv);
-    printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s nu=%g cfl=%g jitter=%g max_angmom_err=%.2f%% "
-           "paper=%.2f%% max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g particles=%d "
+    printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s nu=%g jitter=%g max_angmom_err=%.4g%% paper=%.2f%% "
+           "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g %s particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n",
-           CASE, shear_name(c.shear), c.rotation ? "particle" : "mean", dp, omega, c.stepping ? "single" : "dual", c.nu, c.cfl, c.jitter, 100 * max_err,
-           paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy, n,
+           CASE, shear_name(c.shear), c.rotation ? "particle" : "mean", dp, omega, c.stepping ? "single" : "dual", c.nu, c.jitter, 100 * max_err,
+           paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy,
+           common_result_fields(&c), n,
            d.acoustic_steps, wall_seconds() - wall0, c.out);
     sps_world_destroy(w);
     return 0;

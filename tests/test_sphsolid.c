@@ -2031,6 +2031,196 @@ static int test_plate3d_period_mode22(void) {
 }
 
 /* ============================================================================================ */
+/* >>realtime: sps_world_advance_frame                                                          */
+
+typedef struct { unsigned long long seed; double amplitude; } random_field;
+static void random_velocity_of(const sps_real x[3], sps_real v[3], void* user) {
+    random_field* f = (random_field*)user;
+    (void)x;
+    v[0] = f->amplitude * rnd(&f->seed);
+    v[1] = f->amplitude * rnd(&f->seed);
+    v[2] = 0;
+}
+
+/* A free 2D block of 16 x 16 particles (default material, c0 = 28.9 m/s) with random velocities
+   up to `speed`, the given stepping and sub-step cap per advection step; ca (may be NULL)
+   counts its allocations. */
+static sps_world* frame_world(sps_stepping stepping, int max_substeps, double speed, counting_allocator* ca) {
+    sps_world_def wd = sps_default_world_def();
+    sps_world* w;
+    sps_body b;
+    random_field field;
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.16, 0.16, 0};
+    int n;
+    wd.threads = 1; wd.log = quiet_log;
+    wd.stepping = stepping;
+    wd.max_substeps = max_substeps;
+    if (ca) { wd.allocator.alloc = counting_alloc; wd.allocator.free = counting_free; wd.allocator.user = ca; }
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
+    field.seed = 7;
+    field.amplitude = speed;
+    b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
+    if (!b.id || n != 256 || sps_body_set_velocity(w, b, random_velocity_of, &field) != SPS_OK) { sps_world_destroy(w); return NULL; }
+    return w;
+}
+
+static long acoustic_steps_of(sps_world* w) {
+    sps_diagnostics d;
+    sps_world_diagnostics(w, ALL_BODIES, &d);
+    return d.acoustic_steps;
+}
+
+/* Both worlds hold the same positions and velocities, bit for bit, at the same time. */
+static int same_state(const sps_world* a, const sps_world* b) {
+    int n = sps_world_particle_count(a), same;
+    double *sa = snapshot(a), *sb = snapshot(b);
+    ENSURE(sa && sb && n == sps_world_particle_count(b));
+    same = memcmp(sa, sb, sizeof(double) * 6 * (size_t)n) == 0;
+    free(sa); free(sb);
+    ENSURE(same);
+    ENSURE(sps_world_time(a) == sps_world_time(b));
+    return 0;
+}
+
+/* Bad arguments are rejected before anything moves, with a message naming the argument, its
+   value and the allowed range (every broken one); an empty world reports its state error. */
+static int test_frame_arguments_rejected(void) {
+    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.3, NULL);
+    sps_world* empty = new_world(2, 0.01);
+    sps_real covered = 5;
+    ENSURE(w && empty);
+    ENSURE(sps_world_advance_frame(NULL, 10, 0, &covered) == SPS_ERR_INVALID_ARG);
+    ENSURE(covered == 0);
+    ENSURE(sps_world_advance_frame(w, 0, 0, NULL) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(sps_world_last_error(w), "max_substeps = 0, allowed >= 1"));
+    ENSURE(strstr(g_log_last, "max_substeps = 0")); /* also logged */
+    ENSURE(sps_world_advance_frame(w, -3, 0, NULL) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(sps_world_last_error(w), "max_substeps = -3"));
+    ENSURE(sps_world_advance_frame(w, 10, -1, NULL) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(sps_world_last_error(w), "wall_budget_s = -1, allowed 0 (no budget) or finite > 0"));
+    ENSURE(sps_world_advance_frame(w, 10, NAN, NULL) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(sps_world_last_error(w), "wall_budget_s = ") && strstr(sps_world_last_error(w), "nan"));
+    ENSURE(sps_world_advance_frame(w, 10, INFINITY, NULL) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(sps_world_last_error(w), "wall_budget_s = inf"));
+    ENSURE(sps_world_advance_frame(w, 0, -2, &covered) == SPS_ERR_INVALID_ARG); /* both named */
+    ENSURE(strstr(sps_world_last_error(w), "max_substeps = 0") && strstr(sps_world_last_error(w), "wall_budget_s = -2"));
+    ENSURE(covered == 0 && sps_world_time(w) == 0 && acoustic_steps_of(w) == 0);
+    ENSURE(sps_world_advance_frame(empty, 10, 0, &covered) == SPS_ERR_STATE);
+    ENSURE(covered == 0 && sps_world_get_def(empty)->max_substeps == 100); /* the cap is restored */
+    sps_world_destroy(w);
+    sps_world_destroy(empty);
+    return 0;
+}
+
+/* Single stepping: an advection step is one sub-step, so 10 frames of 3 sub-steps are the same
+   30 steps as sps_world_step's, bit for bit. */
+static int test_frame_single_stepping_equals_steps(void) {
+    sps_world *a = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL), *b = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL);
+    int k;
+    ENSURE(a && b);
+    for (k = 0; k < 10; ++k) ENSURE(sps_world_advance_frame(a, 3, 0, NULL) == SPS_OK);
+    for (k = 0; k < 30; ++k) ENSURE(sps_world_step(b) == SPS_OK);
+    ENSURE(acoustic_steps_of(a) == 30 && acoustic_steps_of(b) == 30);
+    ENSURE(same_state(a, b) == 0);
+    sps_world_destroy(a);
+    sps_world_destroy(b);
+    return 0;
+}
+
+/* Dual stepping where every advection step runs its full cap of 4 sub-steps (speeds of 1 mm/s
+   against c0 = 28.9 m/s: the advection bound allows ~10^4): frames of 8 sub-steps end on
+   advection-step boundaries and equal sps_world_step bit for bit. Frames never allocate after
+   the first step, and the def's cap is left as it was. */
+static int test_frame_whole_advection_steps_equal_steps(void) {
+    counting_allocator ca;
+    sps_world *a, *b;
+    sps_real covered, sum = 0;
+    long calls_after_first;
+    int k;
+    memset(&ca, 0, sizeof ca); /* whatever fields the counting allocator has */
+    a = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, &ca);
+    b = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, NULL);
+    ENSURE(a && b);
+    ENSURE(sps_world_advance_frame(a, 8, 0, &covered) == SPS_OK);
+    sum += covered;
+    calls_after_first = ca.calls;
+    for (k = 1; k < 10; ++k) {
+        ENSURE(sps_world_advance_frame(a, 8, 0, &covered) == SPS_OK);
+        sum += covered;
+    }
+    ENSURE(ca.calls == calls_after_first); /* no allocation in frames */
+    for (k = 0; k < 20; ++k) ENSURE(sps_world_step(b) == SPS_OK);
+    ENSURE(acoustic_steps_of(a) == 80 && acoustic_steps_of(b) == 80);
+    ENSURE(same_state(a, b) == 0);
+    ENSURE(sps_world_get_def(a)->max_substeps == 4);
+    ENSURE_NEAR(sum, sps_world_time(a), 1e-12 * sps_world_time(a)); /* rounding of the differences */
+    sps_world_destroy(a);
+    sps_world_destroy(b);
+    return 0;
+}
+
+/* Frames that cut advection steps (the 2D plate at H/dp = 8, about 10 sub-steps per advection
+   step, frames of 7): exactly 7 sub-steps per frame, covered adds up to the time, a frame of one
+   sub-step covers that sub-step's dt, and the motion is the one of sps_world_advance to the same
+   time: the cuts only rebuild the neighbour lists earlier, so the sub-steps differ in size by
+   the change of the maximum speed within an advection step. Tolerance 1e-4 of the deflection
+   (measured 2e-6). */
+static int test_frame_cuts_advection_steps(void) {
+    sps_observer tip_a, tip_b;
+    sps_world *a = plate2d_build(8, SPS_SHEAR_ENO_A, 0.05, 1, &tip_a), *b = plate2d_build(8, SPS_SHEAR_ENO_A, 0.05, 1, &tip_b);
+    sps_real covered, sum = 0, ua[3], ub[3];
+    sps_diagnostics d;
+    int k;
+    ENSURE(a && b);
+    for (k = 0; k < 30; ++k) {
+        ENSURE(sps_world_advance_frame(a, 7, 0, &covered) == SPS_OK);
+        ENSURE(covered > 0);
+        sum += covered;
+    }
+    ENSURE(acoustic_steps_of(a) == 210);
+    ENSURE_NEAR(sum, sps_world_time(a), 1e-12 * sps_world_time(a)); /* rounding of the differences */
+    for (k = 0; k < 5; ++k) {
+        ENSURE(sps_world_advance_frame(a, 1, 0, &covered) == SPS_OK);
+        ENSURE(sps_world_diagnostics(a, ALL_BODIES, &d) == SPS_OK);
+        ENSURE_NEAR(covered, d.dt_acoustic, 1e-9 * d.dt_acoustic); /* t + dt - t: rounding of t */
+    }
+    ENSURE(sps_world_get_def(a)->max_substeps == 100);
+    ENSURE(sps_world_advance(b, sps_world_time(a), NULL, NULL) == SPS_OK);
+    ENSURE(sps_observer_read(a, tip_a, ua, NULL) == SPS_OK && sps_observer_read(b, tip_b, ub, NULL) == SPS_OK);
+    printf("    t = %.6f s: tip deflection %.9f (frames) vs %.9f (advance)\n", (double)sps_world_time(a), (double)ua[1], (double)ub[1]);
+    ENSURE(fabs(ub[1]) > 1e-4); /* the plate has moved */
+    ENSURE_NEAR(ua[1], ub[1], 1e-4 * fabs(ub[1])); /* see above */
+    sps_world_destroy(a);
+    sps_world_destroy(b);
+    return 0;
+}
+
+/* The wall budget: with a budget too small for anything, the frame still runs its first
+   advection step, exactly as sps_world_step would (bit for bit), and stops there; a 0.05 s
+   budget stops a frame of 10^7 sub-steps (about 30 min of work here) early, after some. */
+static int test_frame_wall_budget(void) {
+    sps_observer tip_a, tip_b;
+    sps_world *a = plate2d_build(8, SPS_SHEAR_ENO_A, 0.05, 1, &tip_a), *b = plate2d_build(8, SPS_SHEAR_ENO_A, 0.05, 1, &tip_b);
+    sps_real covered;
+    double t0;
+    long before;
+    ENSURE(a && b);
+    ENSURE(sps_world_advance_frame(a, 1000, 1e-9, &covered) == SPS_OK);
+    ENSURE(sps_world_step(b) == SPS_OK);
+    ENSURE(same_state(a, b) == 0);
+    ENSURE(covered == sps_world_time(a));
+    before = acoustic_steps_of(a);
+    t0 = wall_seconds();
+    ENSURE(sps_world_advance_frame(a, 10000000, 0.05, &covered) == SPS_OK);
+    printf("    0.05 s budget: %ld sub-steps, %.4f s simulated in %.3f s\n", acoustic_steps_of(a) - before, (double)covered, wall_seconds() - t0);
+    ENSURE(covered > 0 && acoustic_steps_of(a) > before && acoustic_steps_of(a) - before < 10000000);
+    ENSURE(wall_seconds() - t0 < 5); /* 100 x the budget: room for a busy machine's scheduling */
+    sps_world_destroy(a);
+    sps_world_destroy(b);
+    return 0;
+}
+
+/* ============================================================================================ */
 
 int main(int argc, char** argv) {
     int i;
@@ -2067,6 +2257,11 @@ int main(int argc, char** argv) {
     RUN(test_uniform_translation);
     RUN(test_add_after_step_and_constraints);
     RUN(test_determinism_threads);
+    RUN(test_frame_arguments_rejected);
+    RUN(test_frame_single_stepping_equals_steps);
+    RUN(test_frame_whole_advection_steps_equal_steps);
+    RUN(test_frame_cuts_advection_steps);
+    RUN(test_frame_wall_budget);
     RUN(test_validation_world_def);
     RUN(test_validation_zero_def);
     RUN(test_validation_body_def);
