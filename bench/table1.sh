@@ -6,6 +6,7 @@
 #   sh bench/table1.sh                    H/dp = 30 (the paper's), about 2 h on one core
 #   RES=10 sh bench/table1.sh             a quick look (about 4 min)
 #   THREADS=2 SHEARS="gno-a eno-a" sh bench/table1.sh
+#   REPORT=1 RES=30 sh bench/table1.sh   print the table from the CSV, run nothing
 set -eu
 cd "$(dirname "$0")/.."
 MACHINE=${MACHINE:-$(uname -m)-$(nproc)core}
@@ -20,12 +21,13 @@ BIN=${BIN:-./build/plate2d}
 OUT=bench/results/$MACHINE
 CSV=$OUT/table1.csv
 mkdir -p "$OUT"
-[ -n "${BIN_GIVEN:-}" ] || make -s examples
+[ -n "${BIN_GIVEN:-}" ] || [ "${REPORT:-0}" = 1 ] || make -s examples
 [ -f "$CSV" ] || echo "res,shear,vf,period,paper,err_paper_pct,err_analytical_pct,hourglass_max,wall_s" > "$CSV"
 
 field() { echo "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
 
 for shear in $SHEARS; do
+    [ "${REPORT:-0}" = 1 ] && break
     for vf in $VFS; do
         if grep -q "^$RES,$shear,$vf," "$CSV"; then continue; fi
         line=$("$BIN" --quiet --res "$RES" --shear "$shear" --vf "$vf" --tend "$TEND" --threads "$THREADS" \
