@@ -192,6 +192,9 @@
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
+      0.2.0 (2026-11-22) neighbour passes one particle per SIMD lane (1.6x); fewer barriers
+                         per sub-step; sps_world_validate, escape and time-step guards,
+                         keep_last_good_state; sps_world_advance_frame (real-time frames).
       0.1.0 (2026-11-21) first release: UL-SPH with OG, OAS, ENO, ENO-A, GNO, GNO-A;
                          dual-criteria stepping; observers; diagnostics; CSV/VTK.
    ========================================================================================
@@ -203,9 +206,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 1
+#define SPHSOLID_VERSION_MINOR 2
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.1.0"
+#define SPHSOLID_VERSION_STRING "0.2.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
