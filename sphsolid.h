@@ -1772,26 +1772,27 @@ SPS__INLINE sps__group sps__group_of(const sps_world* w, const sps__body* b, int
     return q;
 }
 
-/* Runs body(w, b, g, DIM, GEO, ...) for every lane group g of body b, work-shared, with literal
-   DIM and GEO (see sps__mode). The literals must appear inside the loop: OpenMP outlines the
-   loop into its own function, where a constant passed from outside would arrive as a variable
-   and the dimension loops would not be unrolled (measured: 3x slower). */
-#define SPS__FOR_GROUPS(w, b, body, ...)                                                                   \
-    do {                                                                                                   \
-        int g_, ng_ = (b)->ngroups;                                                                        \
-        switch (sps__mode(w)) {                                                                            \
-        case 0: SPS__OMP_FOR for (g_ = 0; g_ < ng_; ++g_) body(w, b, g_, 2, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
-        case 1: SPS__OMP_FOR for (g_ = 0; g_ < ng_; ++g_) body(w, b, g_, 2, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
-        case 2: SPS__OMP_FOR for (g_ = 0; g_ < ng_; ++g_) body(w, b, g_, 2, SPS__GEO_FROZEN, __VA_ARGS__); break;   \
-        case 3: SPS__OMP_FOR for (g_ = 0; g_ < ng_; ++g_) body(w, b, g_, 3, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
-        case 4: SPS__OMP_FOR for (g_ = 0; g_ < ng_; ++g_) body(w, b, g_, 3, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
-        default: SPS__OMP_FOR for (g_ = 0; g_ < ng_; ++g_) body(w, b, g_, 3, SPS__GEO_FROZEN, __VA_ARGS__); break;  \
-        }                                                                                                  \
+/* Runs body(w, b, k, DIM, GEO, ...) for k = 0 .. count-1 (the lane groups, or the blocks, of
+   body b), work-shared, with literal DIM and GEO (see sps__mode). The literals must appear
+   inside the loop: OpenMP outlines the loop into its own function, where a constant passed from
+   outside would arrive as a variable and the dimension loops would not be unrolled (measured:
+   3x slower). */
+#define SPS__FOR_EACH(w, b, count, body, ...)                                                             \
+    do {                                                                                                 \
+        int k_, n_ = (count);                                                                            \
+        switch (sps__mode(w)) {                                                                          \
+        case 0: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 2, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
+        case 1: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 2, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
+        case 2: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 2, SPS__GEO_FROZEN, __VA_ARGS__); break;   \
+        case 3: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 3, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
+        case 4: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 3, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
+        default: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 3, SPS__GEO_FROZEN, __VA_ARGS__); break;  \
+        }                                                                                                \
     } while (0)
 
-
-/* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of
-   the shear stress (ENO eq. 17); with art (OAS) Gray et al.'s artificial stress
+/* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with
+   beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of the shear stress
+   (ENO eq. 17); with art (OAS) Gray et al.'s artificial stress
    sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp). stress and art are literals at
    every call so each variant's loop is branch-free. Each lane sums its own particle's
    neighbours in list order, so the result does not depend on the vector width. */
@@ -2089,14 +2090,7 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
     int blk, a;
     sps_real acc[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (count == 0) return;
-    switch (sps__mode(w)) { /* literal dim and geo inside each loop, as in SPS__FOR_GROUPS */
-    case 0: SPS__OMP_FOR for (blk = 0; blk < nblocks; ++blk) sps__continuity_block(w, b, blk, 2, SPS__GEO_WENDLAND, dt); break;
-    case 1: SPS__OMP_FOR for (blk = 0; blk < nblocks; ++blk) sps__continuity_block(w, b, blk, 2, SPS__GEO_SPLINE, dt); break;
-    case 2: SPS__OMP_FOR for (blk = 0; blk < nblocks; ++blk) sps__continuity_block(w, b, blk, 2, SPS__GEO_FROZEN, dt); break;
-    case 3: SPS__OMP_FOR for (blk = 0; blk < nblocks; ++blk) sps__continuity_block(w, b, blk, 3, SPS__GEO_WENDLAND, dt); break;
-    case 4: SPS__OMP_FOR for (blk = 0; blk < nblocks; ++blk) sps__continuity_block(w, b, blk, 3, SPS__GEO_SPLINE, dt); break;
-    default: SPS__OMP_FOR for (blk = 0; blk < nblocks; ++blk) sps__continuity_block(w, b, blk, 3, SPS__GEO_FROZEN, dt); break;
-    }
+    SPS__FOR_EACH(w, b, nblocks, sps__continuity_block, dt);
     if (!b->mean) return;
     SPS__PRAGMA(omp single)
     {
@@ -2328,11 +2322,11 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
     int bi;
     sps_real vmax2;
     sps__half_drift(w, dt);
-    for (bi = 0; bi < w->nbodies; ++bi) SPS__FOR_GROUPS(w, &w->bodies[bi], sps__pressure_group, 0);
+    for (bi = 0; bi < w->nbodies; ++bi) SPS__FOR_EACH(w, &w->bodies[bi], w->bodies[bi].ngroups, sps__pressure_group, 0);
     vmax2 = sps__kick(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
-        if (w->bodies[bi].penalty) SPS__FOR_GROUPS(w, &w->bodies[bi], sps__penalty_group, dt);
+        if (w->bodies[bi].penalty) SPS__FOR_EACH(w, &w->bodies[bi], w->bodies[bi].ngroups, sps__penalty_group, dt);
     sps__finish(w, dt);
     return vmax2;
 }
