@@ -553,6 +553,13 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #else
 #define SPS__PRAGMA(x)
 #endif
+/* Unrolls a short loop (over dimensions or matrix entries) inside a lane loop: GCC vectorises a
+   lane loop only when no loop is left inside it. */
+#if defined(__GNUC__) && !defined(__INTEL_COMPILER)
+#define SPS__UNROLL _Pragma("GCC unroll 9")
+#else
+#define SPS__UNROLL
+#endif
 /* Parallel loop with its own thread team (configuration updates, diagnostics): static schedule
    so each thread's share is fixed; serial when the loop is too small to pay for the fork. */
 #define SPS__PARALLEL_FOR(w, n) SPS__PRAGMA(omp parallel for schedule(static) num_threads((w)->threads) if ((n) > 256))
@@ -575,7 +582,6 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #endif
 #define SPS__PI SPS_R(3.14159265358979323846)
 #define SPS__COOKIE 0x5350531
-#define SPS__BLOCK 256 /* particles per block of a deterministic sum */
 /* Particles per lane group: the neighbour passes work on SPS__LANES consecutive particles at
    once, one per SIMD lane (a 512-bit vector of sps_real). Per-particle arrays carry
    SPS__LANES zeroed slots beyond the capacity so a group that runs past the last particle
@@ -671,8 +677,7 @@ struct sps_world {
     int *cell_of, *cell_start, *perm;
     int cell_cap;
     void* scratch; /* permutation buffer: cap reals */
-    sps_real* block_sum;
-    int block_cap;
+    sps_real* group_sum; /* per lane group: its sum of Rodrigues matrices (mean rotation, fixed order) */
     sps_real* diag_scratch; /* 2 * 9 * cap reals: B and displacement gradient */
     int diag_cap;
     int grid_wrap[3], grid_n[3];
@@ -1025,7 +1030,7 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->nb_ell);
     sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm);
-    sps__free(w, w->scratch); sps__free(w, w->block_sum); sps__free(w, w->diag_scratch);
+    sps__free(w, w->scratch); sps__free(w, w->group_sum); sps__free(w, w->diag_scratch);
     sps__free(w, w->good); sps__free(w, w->good_id);
 }
 
@@ -1534,31 +1539,36 @@ static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, in
 
 /* >>linalg */
 
-/* Inverse of a d x d matrix (row-major, stride 3) blended with the identity when nearly
-   singular: B = w A^-1 + (1 - w) I, w = det^2 / (det^2 + 1e-6). Exact for well-posed A;
-   bounded for isolated particles (their B tends to I instead of blowing up). */
-static void sps__regularized_inverse(int dim, const sps_real* A, sps_real* B) {
-    sps_real det, inv[9], wgt;
-    int a, c;
-    if (dim == 2) {
-        det = A[0] * A[4] - A[1] * A[3];
-        inv[0] = A[4]; inv[1] = -A[1]; inv[3] = -A[3]; inv[4] = A[0];
-    } else {
-        inv[0] = A[4] * A[8] - A[5] * A[7];
-        inv[1] = A[2] * A[7] - A[1] * A[8];
-        inv[2] = A[1] * A[5] - A[2] * A[4];
-        inv[3] = A[5] * A[6] - A[3] * A[8];
-        inv[4] = A[0] * A[8] - A[2] * A[6];
-        inv[5] = A[2] * A[3] - A[0] * A[5];
-        inv[6] = A[3] * A[7] - A[4] * A[6];
-        inv[7] = A[1] * A[6] - A[0] * A[7];
-        inv[8] = A[0] * A[4] - A[1] * A[3];
-        det = A[0] * inv[0] + A[1] * inv[3] + A[2] * inv[6];
+/* Inverse of a symmetric d x d matrix blended with the identity when nearly singular:
+   B = w A^-1 + (1 - w) I, w = det^2 / (det^2 + 1e-6). Exact for well-posed A; bounded for
+   isolated particles (their B tends to I instead of blowing up). A's entries xx xy xz yy yz zz
+   are a[k as], B's nine (row-major, 3 per row) b[k bs]: strides so that the lane loops can keep
+   one matrix per lane (stride SPS__LANES) and vectorise this branch-free code. */
+SPS__INLINE void sps__blended_inverse(const sps_real* a, int as, sps_real* b, int bs, const int dim) {
+    const sps_real xx = a[0], xy = a[as], yy = a[3 * as];
+    const sps_real xz = dim == 3 ? a[2 * as] : 0, yz = dim == 3 ? a[4 * as] : 0, zz = dim == 3 ? a[5 * as] : 1;
+    /* cofactors; in 2D zz = 1 and xz = yz = 0 reduce them to the 2x2 ones */
+    const sps_real c00 = yy * zz - yz * yz, c01 = xz * yz - xy * zz, c02 = xy * yz - xz * yy;
+    const sps_real c11 = xx * zz - xz * xz, c12 = xy * xz - xx * yz, c22 = xx * yy - xy * xy;
+    const sps_real det = xx * c00 + xy * c01 + xz * c02;
+    const sps_real scale = det / (det * det + SPS_R(1e-6)), keep = 1 - det * scale; /* w / det and 1 - w */
+    b[0] = scale * c00 + keep;
+    b[bs] = b[3 * bs] = scale * c01;
+    b[4 * bs] = scale * c11 + keep;
+    if (dim == 3) {
+        b[2 * bs] = b[6 * bs] = scale * c02;
+        b[5 * bs] = b[7 * bs] = scale * c12;
+        b[8 * bs] = scale * c22 + keep;
     }
-    wgt = det * det / (det * det + SPS_R(1e-6));
-    for (a = 0; a < dim; ++a)
-        for (c = 0; c < dim; ++c)
-            B[3 * a + c] = (det != 0 ? wgt * inv[3 * a + c] / det : 0) + (a == c ? 1 - wgt : 0);
+}
+
+/* B from a full symmetric 3x3 A (stride 3) into B (stride 3): the configuration-update form. */
+static void sps__regularized_inverse(int dim, const sps_real* A, sps_real* B) {
+    const sps_real sym6[6] = {A[0], A[1], A[2], A[4], A[5], A[8]};
+    int k;
+    for (k = 0; k < 9; ++k) B[k] = 0;
+    if (dim == 2) sps__blended_inverse(sym6, 1, B, 1, 2);
+    else sps__blended_inverse(sym6, 1, B, 1, 3);
 }
 
 /* Correction matrices B_i = (-sum_j r_ij (x) grad_i W_ij V_j)^-1 (ANG eq. 21) from the current
@@ -1687,12 +1697,11 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r);
     for (a = 0; a < 3; ++a) { sps__free(w, w->nb_e[a]); w->nb_e[a] = NULL; }
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm); sps__free(w, w->scratch);
-    sps__free(w, w->block_sum);
+    sps__free(w, w->group_sum);
     w->nb_dw = w->nb_dw_r = NULL;
     w->ell_width = width;
     w->pair_cap = pairs;
     w->cell_cap = 4 * w->cap + 64 + 1;
-    w->block_cap = w->cap / SPS__BLOCK + 1;
     w->group_cap = w->cap / SPS__LANES + w->nbodies + 1;
     w->nb_group_start = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->group_cap + 1));
     w->nb_first = (int*)sps__alloc(w, sizeof(int) * cap);
@@ -1703,9 +1712,9 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     w->cell_start = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->cell_cap + (size_t)w->nbodies + 1));
     w->perm = (int*)sps__alloc(w, sizeof(int) * cap);
     w->scratch = sps__alloc(w, sizeof(sps_real) * 9 * cap);
-    w->block_sum = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * (size_t)w->block_cap);
+    w->group_sum = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * (size_t)w->group_cap);
     if (!w->nb_group_start || !w->nb_first || !w->nb_count || !w->nb_ell || !w->nb_j || !w->cell_of || !w->cell_start ||
-        !w->perm || !w->scratch || !w->block_sum)
+        !w->perm || !w->scratch || !w->group_sum)
         return SPS_ERR_OUT_OF_MEMORY;
     if (w->def.frozen_geometry) {
         w->nb_dw = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
@@ -1872,38 +1881,48 @@ static void sps__artificial_stress(sps_world* w, const sps__body* b, int i) {
     w->art[(size_t)3 * i + 2] = s * s * rxx + c * c * ryy;
 }
 
-/* Rodrigues rotation matrix exp(W dt) of the spin W = (L - L^T)/2 (ANG eqs. 38-40). */
-SPS__INLINE void sps__rodrigues(const sps_real* L, sps_real dt, const int dim, sps_real R[9]) {
-    int a;
-    for (a = 0; a < 9; ++a) R[a] = (a % 4 == 0) ? 1 : 0;
-    if (dim == 2) {
-        sps_real th = SPS_R(0.5) * (L[3] - L[1]) * dt, c, s, t2 = th * th;
-        if (t2 < SPS_R(1e-4)) { /* |th| < 0.01 (the usual case): Taylor terms to th^9, exact in double */
-            s = th * (1 - t2 / 6 * (1 - t2 / 20 * (1 - t2 / 42)));
-            c = 1 - t2 / 2 * (1 - t2 / 12 * (1 - t2 / 30 * (1 - t2 / 56)));
-        } else {
-            s = SPS__SIN(th);
-            c = SPS__COS(th);
-        }
-        R[0] = c; R[1] = -s; R[3] = s; R[4] = c;
+/* exp(W dt) for the spin W = (L - L^T)/2 of a velocity gradient L (9 entries, row-major), in
+   the Rodrigues form R = I + s1 W + s2 W^2 with s1 = sin(th)/|w|, s2 = (1 - cos th)/|w|^2,
+   th = |w| dt (ANG eqs. 38-40; in 2D W has only its xy entries), written to R[k rs]. With
+   series = 1 (a literal), s1 and s2 come from their Taylor series in th^2, exact in double for
+   th below 0.01 (every sub-step of a sound run) and free of sqrt, sin and branches, so lane
+   loops vectorise them. Returns th^2: the caller checks the series held. */
+#define SPS__SERIES_THETA2 SPS_R(1e-4) /* th < 0.01: the series to th^9 is exact in double */
+
+SPS__INLINE sps_real sps__rodrigues_form(const sps_real* L, sps_real dt, const int dim, const int series, sps_real* R, int rs) {
+    /* W = [0 a b; -a 0 c; -b -c 0] */
+    const sps_real wa = SPS_R(0.5) * (L[1] - L[3]);
+    const sps_real wb = dim == 3 ? SPS_R(0.5) * (L[2] - L[6]) : 0, wc = dim == 3 ? SPS_R(0.5) * (L[5] - L[7]) : 0;
+    const sps_real om2 = wa * wa + wb * wb + wc * wc, t2 = om2 * dt * dt;
+    sps_real s1, s2;
+    if (series) {
+        s1 = dt * (1 - t2 / 6 * (1 - t2 / 20 * (1 - t2 / 42)));
+        s2 = SPS_R(0.5) * dt * dt * (1 - t2 / 12 * (1 - t2 / 30 * (1 - t2 / 56)));
     } else {
-        sps_real W[9], W2[9], om, th, s1, s2, sh;
-        int c, m;
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) W[3 * a + c] = SPS_R(0.5) * (L[3 * a + c] - L[3 * c + a]);
-        om = SPS__SQRT(W[7] * W[7] + W[2] * W[2] + W[3] * W[3]); /* |omega| = sqrt(-tr(W^2)/2) */
-        if (om == 0) return;
-        th = om * dt;
-        sh = SPS__SIN(SPS_R(0.5) * th);
-        s1 = SPS__SIN(th) / om;
-        s2 = 2 * sh * sh / (om * om); /* (1 - cos th)/om^2 without cancellation */
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) {
-                sps_real acc = 0;
-                for (m = 0; m < 3; ++m) acc += W[3 * a + m] * W[3 * m + c];
-                W2[3 * a + c] = acc;
-            }
-        for (a = 0; a < 9; ++a) R[a] += s1 * W[a] + s2 * W2[a];
+        sps_real om = SPS__SQRT(om2), th = om * dt, sh = SPS__SIN(SPS_R(0.5) * th);
+        s1 = om > 0 ? SPS__SIN(th) / om : dt;
+        s2 = om > 0 ? 2 * sh * sh / om2 : SPS_R(0.5) * dt * dt; /* 1 - cos th = 2 sin^2(th/2): no cancellation */
+    }
+    /* R = I + s1 W + s2 W^2, W^2 written out */
+    R[0] = 1 - s2 * (wa * wa + wb * wb);
+    R[rs] = s1 * wa - s2 * wb * wc;
+    R[3 * rs] = -s1 * wa - s2 * wb * wc;
+    R[4 * rs] = 1 - s2 * (wa * wa + wc * wc);
+    R[2 * rs] = s1 * wb + s2 * wa * wc;
+    R[5 * rs] = s1 * wc - s2 * wa * wb;
+    R[6 * rs] = -s1 * wb + s2 * wa * wc;
+    R[7 * rs] = -s1 * wc - s2 * wa * wb;
+    R[8 * rs] = 1 - s2 * (wb * wb + wc * wc);
+    return t2;
+}
+
+/* The Rodrigues matrix of L over dt into R (9 entries), by the series when it is exact, else
+   by sin and cos. */
+static void sps__rodrigues(const sps_real* L, sps_real dt, const int dim, sps_real R[9]) {
+    if (dim == 2) {
+        if (sps__rodrigues_form(L, dt, 2, 1, R, 1) >= SPS__SERIES_THETA2) sps__rodrigues_form(L, dt, 2, 0, R, 1);
+    } else if (sps__rodrigues_form(L, dt, 3, 1, R, 1) >= SPS__SERIES_THETA2) {
+        sps__rodrigues_form(L, dt, 3, 0, R, 1);
     }
 }
 
@@ -1952,75 +1971,109 @@ SPS__INLINE void sps__update_stress(sps_real* t6, const sps_real* L, sps_real G,
         }
 }
 
-/* Adds the increment da to the accumulated shear acceleration a_s of particle i: plainly (ENO,
-   GNO), after rotating a_s by the particle's Rodrigues matrix (ANG eq. 34), or, for the mean
-   rotation, stored in acc_d and applied in sps__finish once the mean is known (ANG eq. 42). */
-SPS__INLINE void sps__accumulate(sps_world* w, const sps__body* b, int i, const int dim, sps_real dt, const sps_real da[3]) {
-    int a, c;
-    if (!b->rotated) {
-        for (a = 0; a < dim; ++a) w->acc_s[a][i] += da[a];
-    } else if (b->mean) {
-        for (a = 0; a < dim; ++a) w->acc_d[a][i] = da[a];
-    } else {
-        sps_real R[9], old[3];
-        sps__rodrigues(w->grad + (size_t)9 * i, dt, dim, R);
-        for (a = 0; a < dim; ++a) old[a] = w->acc_s[a][i];
+/* The Rodrigues matrix of each particle of lane group q from its velocity gradient (the lanes
+   by the series, vectorised, then any lane that turned more than 0.01 rad by sin and cos). */
+SPS__INLINE void sps__rotation_lanes(const sps_world* w, sps__group q, sps_real dt, const int dim, sps_real R[9][SPS__LANES]) {
+    const sps_real* SPS__RESTRICT grad = w->grad + (size_t)9 * q.i0;
+    sps_real theta2[SPS__LANES], exact[9];
+    int l, a;
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l) theta2[l] = sps__rodrigues_form(grad + 9 * l, dt, dim, 1, &R[0][l], SPS__LANES);
+    for (l = 0; l < SPS__LANES; ++l)
+        if (theta2[l] >= SPS__SERIES_THETA2) {
+            sps__rodrigues(grad + 9 * l, dt, dim, exact);
+            for (a = 0; a < 9; ++a) R[a][l] = exact[a];
+        }
+}
+
+/* Adds the increments da of lane group q to the accumulated shear acceleration a_s: plainly
+   (ENO, GNO), after rotating a_s by the particle's Rodrigues matrix (ANG eq. 34), or, for the
+   mean rotation, stored in acc_d and applied in sps__finish once the mean is known (ANG eq. 42).
+   R: the lanes' Rodrigues matrices, used by the per-particle rotation only. */
+SPS__INLINE void sps__add_increments(sps_world* w, const sps__body* b, sps__group q, const int dim,
+                                     sps_real da[3][SPS__LANES], sps_real R[9][SPS__LANES]) {
+    const int rotated = b->rotated, mean = b->mean, end = b->end;
+    int l, a, c;
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l) {
+        const int i = q.i0 + l;
+        sps_real next[3];
+        SPS__UNROLL
         for (a = 0; a < dim; ++a) {
-            sps_real s = da[a];
-            for (c = 0; c < dim; ++c) s += R[3 * a + c] * old[c];
-            w->acc_s[a][i] = s;
+            next[a] = da[a][l];
+            if (!rotated) next[a] += w->acc_s[a][i];
+            else if (!mean)
+                SPS__UNROLL
+                for (c = 0; c < dim; ++c) next[a] += R[3 * a + c][l] * w->acc_s[c][i];
         }
-    }
-}
-
-/* The per-particle end of the continuity pass for particle i, from its pair sums: density
-   rate, velocity gradient L = M B^T (ANG eq. 20; B from A when the geometry is recomputed),
-   Jaumann stress, the ENO increment (ENO eq. 24), and its share of the mean rotation in rsum. */
-SPS__INLINE void sps__continuity_particle(sps_world* w, const sps__body* b, int i, const int dim, const int geo, sps_real dt,
-                                          sps_real drho, const sps_real lap[3], const sps_real M[9], const sps_real A[9],
-                                          sps_real* rsum) {
-    sps_real da[3];
-    int a, c, m;
-    w->drho[i] = w->rho[i] * drho;
-    for (a = 0; a < dim; ++a) da[a] = 2 * b->zeta * b->G * dt / w->rho[i] * lap[a]; /* ENO eq. 24 */
-    if (b->needs_gradient) { /* L = M B^T, i.e. -sum v_ij (x) (B grad W) V_j */
-        sps_real Bnow[9];
-        const sps_real* B = w->bmat + (size_t)9 * i;
-        sps_real* L = w->grad + (size_t)9 * i;
-        if (geo != SPS__GEO_FROZEN) { /* current B: frozen in a rotating body it would lag the rotation */
-            sps__regularized_inverse(dim, A, Bnow);
-            B = Bnow;
-        }
-        for (a = 0; a < dim; ++a)
-            for (c = 0; c < dim; ++c) {
-                sps_real s = 0;
-                for (m = 0; m < dim; ++m) s += M[3 * a + m] * B[3 * c + m];
-                L[3 * a + c] = s;
+        if (i < end)
+            SPS__UNROLL
+            for (a = 0; a < dim; ++a) {
+                if (mean) w->acc_d[a][i] = next[a];
+                else w->acc_s[a][i] = next[a];
             }
-        if (b->needs_stress) sps__update_stress(w->tau + (size_t)6 * i, L, b->G, dt, dim);
     }
-    if (b->mean) { /* ANG eq. 41: this particle's share of the mean rotation */
-        sps_real R[9];
-        sps__rodrigues(w->grad + (size_t)9 * i, dt, dim, R);
-        for (a = 0; a < 9; ++a) rsum[a] += R[a];
-    }
-    if (b->eno) sps__accumulate(w, b, i, dim, dt, da);
 }
 
-/* Continuity pass (step 4) for lane group g: the pair sums, then sps__continuity_particle per
-   particle. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG eq. 15); lap += u/r dW V_j e_ij
-   (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient before correction); A -= r_ij (x)
-   e_ij dW V_j (B^-1, recomputed geometry). The gradient test sits outside the pair loop so the
-   loop without it carries no branch. */
-SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo,
-                                       sps_real dt, sps_real* rsum) {
-    enum { DRHO, LX, LY, LZ, M00, M01, M02, M10, M11, M12, M20, M21, M22, A00, A01, A02, A11, A12, A22, NSUM };
+/* The sums of the continuity pass's pair loop, per lane (see sps__continuity_group). */
+enum { SPS__DRHO, SPS__LAP, SPS__M = SPS__LAP + 3, SPS__A = SPS__M + 9, SPS__NSUM = SPS__A + 6 };
+
+/* The lane-parallel end of the continuity pass for lane group q: density rate, the ENO
+   increment without rotation (ENO eq. 24) into da, and, with gradient (a literal), the velocity
+   gradient L = M B^T (ANG eq. 20; B from A when the geometry is recomputed: a frozen B would
+   lag a rotating body). */
+SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, const int dim, const int geo, const int gradient,
+                                       sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES], sps_real da[3][SPS__LANES]) {
+    const sps_real* SPS__RESTRICT rho = w->rho + q.i0;
+    const sps_real* SPS__RESTRICT bmat = w->bmat + (size_t)9 * q.i0;
+    sps_real* SPS__RESTRICT drho = w->drho + q.i0;
+    sps_real* SPS__RESTRICT grad = w->grad + (size_t)9 * q.i0;
+    sps_real B[9][SPS__LANES];
+    int l, a, c, m;
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l) {
+        const int mine = q.i0 + l < end;
+        const sps_real rho_read = rho[l], rho_l = mine ? rho_read : 1; /* padding lanes: no 1/0 */
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a) da[a][l] = shear_rate / rho_l * sum[SPS__LAP + a][l];
+        if (mine) drho[l] = rho_l * sum[SPS__DRHO][l];
+        if (gradient) { /* L = M B^T, i.e. -sum v_ij (x) (B grad W) V_j */
+            if (geo == SPS__GEO_FROZEN) {
+                SPS__UNROLL
+                for (a = 0; a < 9; ++a) B[a][l] = bmat[9 * l + a];
+            } else {
+                sps__blended_inverse(&sum[SPS__A][l], SPS__LANES, &B[0][l], SPS__LANES, dim);
+            }
+            SPS__UNROLL
+            for (a = 0; a < dim; ++a)
+                SPS__UNROLL
+                for (c = 0; c < dim; ++c) {
+                    sps_real s = 0;
+                    SPS__UNROLL
+                    for (m = 0; m < dim; ++m) s += sum[SPS__M + 3 * a + m][l] * B[3 * c + m][l];
+                    if (mine) grad[9 * l + 3 * a + c] = s;
+                }
+        }
+    }
+}
+
+/* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
+   eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
+   before correction); A -= r_ij (x) e_ij dW V_j (B^-1, recomputed geometry). The gradient test
+   sits outside the pair loop so the loop without it carries no branch. Then, lane-parallel:
+   density rate, ENO increment (ENO eq. 24), L = M B^T (ANG eq. 20; B from A when the geometry
+   is recomputed: a frozen B would lag a rotating body), the Jaumann stress when tracked, the
+   Rodrigues matrices and this group's share of the mean rotation in rsum (ANG eq. 41). */
+SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
+    enum { DRHO = SPS__DRHO, LX = SPS__LAP, LY, LZ, M00 = SPS__M, M01, M02, M10, M11, M12, M20, M21, M22,
+           A00 = SPS__A, A01, A02, A11, A12, A22, NSUM = SPS__NSUM };
     const sps__group q = sps__group_of(w, b, g);
-    const int gradient = b->needs_gradient;
+    const int gradient = b->needs_gradient, end = b->end;
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
-    sps_real sum[NSUM][SPS__LANES];
-    int k, l, t;
+    const sps_real shear_rate = 2 * b->zeta * b->G * dt; /* ENO eq. 24 without 1/rho_i */
+    sps_real sum[NSUM][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES], rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    int k, l, t, a;
     for (t = 0; t < NSUM; ++t)
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
 #define SPS__CONTINUITY_PAIR                                                           \
@@ -2065,38 +2118,32 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
         }
     }
 #undef SPS__CONTINUITY_PAIR
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        const sps_real lap[3] = {sum[LX][l], sum[LY][l], sum[LZ][l]};
-        const sps_real M[9] = {sum[M00][l], sum[M01][l], sum[M02][l], sum[M10][l], sum[M11][l],
-                               sum[M12][l], sum[M20][l], sum[M21][l], sum[M22][l]};
-        const sps_real A[9] = {sum[A00][l], sum[A01][l], sum[A02][l], sum[A01][l], sum[A11][l],
-                               sum[A12][l], sum[A02][l], sum[A12][l], sum[A22][l]};
-        sps__continuity_particle(w, b, q.i0 + l, dim, geo, dt, sum[DRHO][l], lap, M, A, rsum);
+    if (gradient) sps__continuity_lanes(w, q, end, dim, geo, 1, shear_rate, sum, da);
+    else sps__continuity_lanes(w, q, end, dim, geo, 0, shear_rate, sum, da);
+    if (b->needs_stress)
+        for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
+            sps__update_stress(w->tau + (size_t)6 * (q.i0 + l), w->grad + (size_t)9 * (q.i0 + l), b->G, dt, dim);
+    if (b->rotated) sps__rotation_lanes(w, q, dt, dim, R);
+    if (b->mean) {
+        for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
+            SPS__UNROLL
+            for (a = 0; a < 9; ++a) rsum[a] += R[a][l];
+        memcpy(w->group_sum + (size_t)9 * (b->group0 + g), rsum, sizeof rsum);
     }
-}
-
-/* The continuity pass over one block of SPS__BLOCK particles (whole lane groups); the block's
-   sum of rotation matrices goes to block_sum so the mean rotation is summed in a fixed order. */
-SPS__INLINE void sps__continuity_block(sps_world* w, const sps__body* b, int blk, const int dim, const int geo, sps_real dt) {
-    sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    int g, g0 = blk * (SPS__BLOCK / SPS__LANES), g1 = g0 + SPS__BLOCK / SPS__LANES;
-    if (g1 > b->ngroups) g1 = b->ngroups;
-    for (g = g0; g < g1; ++g) sps__continuity_group(w, b, g, dim, geo, dt, rsum);
-    memcpy(w->block_sum + (size_t)9 * blk, rsum, sizeof rsum);
+    if (b->eno) sps__add_increments(w, b, q, dim, da, R);
 }
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
-    const int count = b->end - b->begin, nblocks = (count + SPS__BLOCK - 1) / SPS__BLOCK;
-    int blk, a;
+    int g, a;
     sps_real acc[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    if (count == 0) return;
-    SPS__FOR_EACH(w, b, nblocks, sps__continuity_block, dt);
+    if (b->end == b->begin) return;
+    SPS__FOR_EACH(w, b, b->ngroups, sps__continuity_group, dt);
     if (!b->mean) return;
     SPS__PRAGMA(omp single)
     {
-        for (blk = 0; blk < nblocks; ++blk) /* ANG eq. 41: mean rotation, blocks in a fixed order */
-            for (a = 0; a < 9; ++a) acc[a] += w->block_sum[(size_t)9 * blk + a];
-        for (a = 0; a < 9; ++a) b->mean_rotation[a] = acc[a] / count;
+        for (g = 0; g < b->ngroups; ++g) /* ANG eq. 41: mean rotation, groups in a fixed order */
+            for (a = 0; a < 9; ++a) acc[a] += w->group_sum[(size_t)9 * (b->group0 + g) + a];
+        for (a = 0; a < 9; ++a) b->mean_rotation[a] = acc[a] / (b->end - b->begin);
         sps__spin_of_rotation(b->mean_rotation, dt, w->dim, b->mean_spin);
     }
 }
@@ -2111,8 +2158,10 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real* SPS__RESTRICT L = w->grad;
     const int projected = b->def.shear == SPS_SHEAR_GNO_A;
-    sps_real sum[3][SPS__LANES];
+    const sps_real penalty_rate = b->xi * b->G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
+    sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES];
     int k, l, a, c;
+    SPS__UNROLL
     for (a = 0; a < 3; ++a)
         for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
     for (k = 0; k < q.len; ++k) {
@@ -2123,21 +2172,26 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
             const sps__pair_geometry pg = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo);
             const sps_real e[3] = {pg.ex, pg.ey, pg.ez}, dw = pg.dw, dw_r = pg.dw_r;
             sps_real vhat[3], u = 0;
+            SPS__UNROLL
             for (a = 0; a < dim; ++a) {
                 sps_real le = 0;
+                SPS__UNROLL
                 for (c = 0; c < dim; ++c) le += (L[(size_t)9 * i + 3 * a + c] + L[(size_t)9 * j + 3 * a + c]) * e[c];
                 vhat[a] = ((w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw) * vol[j];
                 u += vhat[a] * e[a];
             }
+            SPS__UNROLL
             for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * e[a] : vhat[a];
         }
     }
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        const int i = q.i0 + l;
-        sps_real da[3] = {0, 0, 0};
-        for (a = 0; a < dim; ++a) da[a] = b->xi * b->G * dt / w->rho[i] * sum[a][l];
-        sps__accumulate(w, b, i, dim, dt, da);
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l) {
+        const sps_real rho = q.i0 + l < b->end ? w->rho[q.i0 + l] : 1;
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a) da[a][l] = penalty_rate / rho * sum[a][l];
     }
+    if (b->rotated && !b->mean) sps__rotation_lanes(w, q, dt, dim, R);
+    sps__add_increments(w, b, q, dim, da, R);
 }
 
 /* >>integrate */
