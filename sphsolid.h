@@ -1396,75 +1396,92 @@ static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, in
 /* The k-th neighbour of particle i (k < nb_count[i]). */
 SPS__INLINE int sps__neighbor(const sps_world* w, int i, int k) { return w->nb_j[w->nb_first[i] + k * SPS__LANES]; }
 
+/* The neighbours of particle gi of the body starting at begin, in cell c of the body's grid,
+   into list (at most width; returns the count): the particles of the 3^d cells around c within
+   the support. Where an axis does not wrap, the three cells of a row are adjacent in the sorted
+   order, so each row is one contiguous run of candidates. */
+SPS__INLINE int sps__collect_neighbors(const sps_world* w, int begin, int gi, int c, int* list, int width, const int dim) {
+    const int gx = w->grid_n[0], gy = w->grid_n[1], gz = w->grid_n[2];
+    const int cx = c % gx, cy = c / gx % gy, cz = c / (gx * gy);
+    const sps_real cut2 = w->support * w->support, xi = w->pos[0][gi], yi = w->pos[1][gi];
+    const sps_real zi = dim == 3 ? w->pos[2][gi] : 0;
+    int m = 0, dy, dz, cell[3], ncell, k, x0, x1;
+    if (!w->grid_wrap[0]) { /* one run per row: cells x0..x1 */
+        x0 = cx > 0 ? cx - 1 : 0;
+        x1 = cx < gx - 1 ? cx + 1 : gx - 1;
+    } else {
+        x0 = x1 = 0;
+    }
+    for (dz = -(dim == 3); dz <= (dim == 3); ++dz) {
+        int z = cz + dz;
+        if (!w->grid_wrap[2] && (z < 0 || z >= gz)) continue;
+        z = (z + gz) % gz;
+        for (dy = -1; dy <= 1; ++dy) {
+            int y = cy + dy, row;
+            if (!w->grid_wrap[1] && (y < 0 || y >= gy)) continue;
+            y = (y + gy) % gy;
+            row = gx * (y + gy * z);
+            if (!w->grid_wrap[0]) {
+                cell[0] = row + x0;
+                ncell = 1;
+            } else { /* a wrapped axis has at least 3 cells: the three are distinct */
+                for (k = 0; k < 3; ++k) cell[k] = row + (cx - 1 + k + gx) % gx;
+                ncell = 3;
+            }
+            for (k = 0; k < ncell; ++k) {
+                const int s0 = w->cell_start[cell[k]], s1 = w->cell_start[cell[k] + (ncell == 1 ? x1 - x0 + 1 : 1)];
+                int s;
+                for (s = s0; s < s1; ++s) {
+                    const int gj = begin + s;
+                    const sps_real dx = xi - w->pos[0][gj], dyy = yi - w->pos[1][gj], dzz = dim == 3 ? zi - w->pos[2][gj] : 0;
+                    const sps_real r2 = dx * dx + dyy * dyy + dzz * dzz;
+                    /* itself and coincident particles (r = 0, no direction) do not interact */
+                    if (r2 < cut2 && r2 > 0) {
+                        if (m < width) list[m] = gj;
+                        ++m;
+                    }
+                }
+            }
+        }
+    }
+    return m;
+}
+
 /* Sorts each body's particles by cell and builds the neighbour lists (same body only). */
 static sps_result sps__build_neighbors(sps_world* w) {
     int bi, i;
-    const sps_real cut2 = w->support * w->support;
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
-        int begin = b->begin, count = b->end - b->begin, ncell, gx, gy, gz;
+        int begin = b->begin, count = b->end - b->begin, ncell, c, overflow = -1;
         const int dim = w->dim, width = w->ell_width;
         if (count == 0) continue;
         ncell = sps__setup_grid(w, begin, b->end);
         for (i = 0; i < count; ++i) {
-            int c = 0, a;
-            for (a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, w->pos[a][begin + i]);
+            int a;
+            for (c = 0, a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, w->pos[a][begin + i]);
             w->cell_of[i] = c;
         }
         sps__sort_range(w, begin, count, w->cell_of, ncell);
-        /* sps__sort_range left cell_start[c] = end of cell c; recompute starts */
-        for (i = ncell; i > 0; --i) w->cell_start[i] = w->cell_start[i - 1];
+        /* sps__sort_range left cell_start[c] = end of cell c: shift to starts, and note each
+           sorted particle's cell */
+        for (c = ncell; c > 0; --c) w->cell_start[c] = w->cell_start[c - 1];
         w->cell_start[0] = 0;
-        gx = w->grid_n[0]; gy = w->grid_n[1]; gz = w->grid_n[2];
-        {
-            int overflow = -1;
-            SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (count > 256) reduction(max : overflow))
-            for (i = 0; i < count; ++i) {
-                int gi = begin + i, cx, cy, cz, dx, dy, dz, m = 0;
-                int* list = w->nb_ell + (size_t)gi * width;
-                cx = sps__cell_coord(w, 0, w->pos[0][gi]);
-                cy = sps__cell_coord(w, 1, w->pos[1][gi]);
-                cz = dim == 3 ? sps__cell_coord(w, 2, w->pos[2][gi]) : 0;
-                for (dz = (dim == 3 ? -1 : 0); dz <= (dim == 3 ? 1 : 0); ++dz) {
-                    int z = cz + dz;
-                    if (dim == 3) {
-                        if (!w->grid_wrap[2] && (z < 0 || z >= gz)) continue;
-                        z = (z + gz) % gz;
-                    }
-                    for (dy = -1; dy <= 1; ++dy) {
-                        int y = cy + dy;
-                        if (!w->grid_wrap[1] && (y < 0 || y >= gy)) continue;
-                        y = (y + gy) % gy;
-                        for (dx = -1; dx <= 1; ++dx) {
-                            int x = cx + dx, c, s;
-                            if (!w->grid_wrap[0] && (x < 0 || x >= gx)) continue;
-                            x = (x + gx) % gx;
-                            c = x + gx * (y + gy * z);
-                            for (s = w->cell_start[c]; s < w->cell_start[c + 1]; ++s) {
-                                int gj = begin + s, a;
-                                sps_real r2 = 0;
-                                if (gj == gi) continue;
-                                for (a = 0; a < dim; ++a) {
-                                    sps_real d = w->pos[a][gi] - w->pos[a][gj];
-                                    r2 += d * d;
-                                }
-                                /* coincident particles (r = 0) have no direction: they do not interact */
-                                if (r2 >= cut2 || r2 <= 0) continue;
-                                if (m < width) list[m] = gj;
-                                ++m;
-                            }
-                        }
-                    }
-                }
-                w->nb_count[gi] = m;
-                if (m > width && gi > overflow) overflow = gi;
-            }
-            if (overflow >= 0) {
-                sps__set_error(w, 0, "t = %g: particle %d of body '%s' has %d neighbours, more than the capacity %d "
-                               "(particles are clustering; raise world def neighbor_capacity if the compression is physical)",
-                               (double)w->time, w->id[overflow], b->name, w->nb_count[overflow], width);
-                return SPS_ERR_UNSTABLE;
-            }
+        for (c = 0; c < ncell; ++c)
+            for (i = w->cell_start[c]; i < w->cell_start[c + 1]; ++i) w->cell_of[i] = c;
+        SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (count > 256) reduction(max : overflow))
+        for (i = 0; i < count; ++i) {
+            const int gi = begin + i;
+            int* list = w->nb_ell + (size_t)gi * width;
+            const int m = dim == 2 ? sps__collect_neighbors(w, begin, gi, w->cell_of[i], list, width, 2)
+                                   : sps__collect_neighbors(w, begin, gi, w->cell_of[i], list, width, 3);
+            w->nb_count[gi] = m;
+            if (m > width && gi > overflow) overflow = gi;
+        }
+        if (overflow >= 0) {
+            sps__set_error(w, 0, "t = %g: particle %d of body '%s' has %d neighbours, more than the capacity %d "
+                           "(particles are clustering; raise world def neighbor_capacity if the compression is physical)",
+                           (double)w->time, w->id[overflow], b->name, w->nb_count[overflow], width);
+            return SPS_ERR_UNSTABLE;
         }
     }
     return sps__fill_lane_slots(w);
