@@ -24,7 +24,7 @@ HEADER   = sphsolid.h
 
 .PHONY: all check examples run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
-all: check examples $(BUILD)/torque_probe
+all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -119,6 +119,8 @@ memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 bench: examples
 	sh bench/run_bench.sh
 $(BUILD)/torque_probe: bench/torque_probe.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/rotation_probe: bench/rotation_probe.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 
 clean:
