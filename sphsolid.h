@@ -1904,16 +1904,16 @@ static void sps__artificial_stress(sps_world* w, const sps__body* b, int i) {
 
 /* exp(W dt) for the spin W = (L - L^T)/2 of a velocity gradient L (9 entries, row-major), in
    the Rodrigues form R = I + s1 W + s2 W^2 with s1 = sin(th)/|w|, s2 = (1 - cos th)/|w|^2,
-   th = |w| dt (ANG eqs. 38-40; in 2D W has only its xy entries), written to R[k rs]. With
+   th = |w| dt (ANG eqs. 38-40; in 2D W has only its xy entries); L[k ls] and R[k rs]. With
    series = 1 (a literal), s1 and s2 come from their Taylor series in th^2, exact in double for
    th below 0.01 (every sub-step of a sound run) and free of sqrt, sin and branches, so lane
    loops vectorise them. Returns th^2: the caller checks the series held. */
 #define SPS__SERIES_THETA2 SPS_R(1e-4) /* th < 0.01: the series to th^9 is exact in double */
 
-SPS__INLINE sps_real sps__rodrigues_form(const sps_real* L, sps_real dt, const int dim, const int series, sps_real* R, int rs) {
+SPS__INLINE sps_real sps__rodrigues_form(const sps_real* L, int ls, sps_real dt, const int dim, const int series, sps_real* R, int rs) {
     /* W = [0 a b; -a 0 c; -b -c 0] */
-    const sps_real wa = SPS_R(0.5) * (L[1] - L[3]);
-    const sps_real wb = dim == 3 ? SPS_R(0.5) * (L[2] - L[6]) : 0, wc = dim == 3 ? SPS_R(0.5) * (L[5] - L[7]) : 0;
+    const sps_real wa = SPS_R(0.5) * (L[ls] - L[3 * ls]);
+    const sps_real wb = dim == 3 ? SPS_R(0.5) * (L[2 * ls] - L[6 * ls]) : 0, wc = dim == 3 ? SPS_R(0.5) * (L[5 * ls] - L[7 * ls]) : 0;
     const sps_real om2 = wa * wa + wb * wb + wc * wc, t2 = om2 * dt * dt;
     sps_real s1, s2;
     if (series) {
@@ -1941,9 +1941,9 @@ SPS__INLINE sps_real sps__rodrigues_form(const sps_real* L, sps_real dt, const i
    by sin and cos. */
 static void sps__rodrigues(const sps_real* L, sps_real dt, const int dim, sps_real R[9]) {
     if (dim == 2) {
-        if (sps__rodrigues_form(L, dt, 2, 1, R, 1) >= SPS__SERIES_THETA2) sps__rodrigues_form(L, dt, 2, 0, R, 1);
-    } else if (sps__rodrigues_form(L, dt, 3, 1, R, 1) >= SPS__SERIES_THETA2) {
-        sps__rodrigues_form(L, dt, 3, 0, R, 1);
+        if (sps__rodrigues_form(L, 1, dt, 2, 1, R, 1) >= SPS__SERIES_THETA2) sps__rodrigues_form(L, 1, dt, 2, 0, R, 1);
+    } else if (sps__rodrigues_form(L, 1, dt, 3, 1, R, 1) >= SPS__SERIES_THETA2) {
+        sps__rodrigues_form(L, 1, dt, 3, 0, R, 1);
     }
 }
 
@@ -1992,14 +1992,20 @@ SPS__INLINE void sps__update_stress(sps_real* t6, const sps_real* L, sps_real G,
         }
 }
 
-/* The Rodrigues matrix of each particle of lane group q from its velocity gradient (the lanes
-   by the series, vectorised, then any lane that turned more than 0.01 rad by sin and cos). */
-SPS__INLINE void sps__rotation_lanes(const sps_world* w, sps__group q, sps_real dt, const int dim, sps_real R[9][SPS__LANES]) {
+/* The Rodrigues matrix of each particle of lane group q from its velocity gradient: from the
+   lane arrays L when given (the continuity pass has them at hand; contiguous, so the lanes
+   vectorise), else from w->grad. Lanes that turned more than 0.01 rad are redone by sin and cos. */
+SPS__INLINE void sps__rotation_lanes(const sps_world* w, sps__group q, sps_real dt, const int dim, sps_real L[9][SPS__LANES],
+                                     sps_real R[9][SPS__LANES]) {
     const sps_real* SPS__RESTRICT grad = w->grad + (size_t)9 * q.i0;
     sps_real theta2[SPS__LANES], exact[9];
     int l, a;
-    SPS__PRAGMA(omp simd)
-    for (l = 0; l < SPS__LANES; ++l) theta2[l] = sps__rodrigues_form(grad + 9 * l, dt, dim, 1, &R[0][l], SPS__LANES);
+    if (L) {
+        SPS__PRAGMA(omp simd)
+        for (l = 0; l < SPS__LANES; ++l) theta2[l] = sps__rodrigues_form(&L[0][l], SPS__LANES, dt, dim, 1, &R[0][l], SPS__LANES);
+    } else {
+        for (l = 0; l < SPS__LANES; ++l) theta2[l] = sps__rodrigues_form(grad + 9 * l, 1, dt, dim, 1, &R[0][l], SPS__LANES);
+    }
     for (l = 0; l < SPS__LANES; ++l)
         if (theta2[l] >= SPS__SERIES_THETA2) {
             sps__rodrigues(grad + 9 * l, dt, dim, exact);
@@ -2044,7 +2050,8 @@ enum { SPS__DRHO, SPS__LAP, SPS__M = SPS__LAP + 3, SPS__A = SPS__M + 9, SPS__NSU
    gradient L = M B^T (ANG eq. 20; B from A when the geometry is recomputed: a frozen B would
    lag a rotating body). */
 SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, const int dim, const int geo, const int gradient,
-                                       sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES], sps_real da[3][SPS__LANES]) {
+                                       sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES], sps_real da[3][SPS__LANES],
+                                       sps_real L[9][SPS__LANES]) {
     const sps_real* SPS__RESTRICT rho = w->rho + q.i0;
     const sps_real* SPS__RESTRICT bmat = w->bmat + (size_t)9 * q.i0;
     sps_real* SPS__RESTRICT drho = w->drho + q.i0;
@@ -2072,6 +2079,7 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, cons
                     sps_real s = 0;
                     SPS__UNROLL
                     for (m = 0; m < dim; ++m) s += sum[SPS__M + 3 * a + m][l] * B[3 * c + m][l];
+                    L[3 * a + c][l] = s;
                     if (mine) grad[9 * l + 3 * a + c] = s;
                 }
         }
@@ -2093,7 +2101,8 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real shear_rate = 2 * b->zeta * b->G * dt; /* ENO eq. 24 without 1/rho_i */
-    sps_real sum[NSUM][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES], rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    sps_real sum[NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
+    sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     int k, l, t, a;
     for (t = 0; t < NSUM; ++t)
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
@@ -2139,12 +2148,12 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
         }
     }
 #undef SPS__CONTINUITY_PAIR
-    if (gradient) sps__continuity_lanes(w, q, end, dim, geo, 1, shear_rate, sum, da);
-    else sps__continuity_lanes(w, q, end, dim, geo, 0, shear_rate, sum, da);
+    if (gradient) sps__continuity_lanes(w, q, end, dim, geo, 1, shear_rate, sum, da, L);
+    else sps__continuity_lanes(w, q, end, dim, geo, 0, shear_rate, sum, da, L);
     if (b->needs_stress)
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
             sps__update_stress(w->tau + (size_t)6 * (q.i0 + l), w->grad + (size_t)9 * (q.i0 + l), b->G, dt, dim);
-    if (b->rotated) sps__rotation_lanes(w, q, dt, dim, R);
+    if (b->rotated) sps__rotation_lanes(w, q, dt, dim, L, R);
     if (b->mean) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
             SPS__UNROLL
@@ -2211,7 +2220,7 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
         SPS__UNROLL
         for (a = 0; a < dim; ++a) da[a][l] = penalty_rate / rho * sum[a][l];
     }
-    if (b->rotated && !b->mean) sps__rotation_lanes(w, q, dt, dim, R);
+    if (b->rotated && !b->mean) sps__rotation_lanes(w, q, dt, dim, NULL, R);
     sps__add_increments(w, b, q, dim, da, R);
 }
 
