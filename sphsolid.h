@@ -2156,7 +2156,6 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
     if (b->rotated) sps__rotation_lanes(w, q, dt, dim, L, R);
     if (b->mean) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
-            SPS__UNROLL
             for (a = 0; a < 9; ++a) rsum[a] += R[a][l];
         memcpy(w->group_sum + (size_t)9 * (b->group0 + g), rsum, sizeof rsum);
     }
@@ -2191,7 +2190,6 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
     const sps_real penalty_rate = b->xi * b->G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
     sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES];
     int k, l, a, c;
-    SPS__UNROLL
     for (a = 0; a < 3; ++a)
         for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
     for (k = 0; k < q.len; ++k) {
