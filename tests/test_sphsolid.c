@@ -468,6 +468,37 @@ static int test_velocity_gradient_affine(void) {
     return 0;
 }
 
+/* The Rodrigues matrix (ANG eqs. 38-40) of a pure spin, by its series (turn below 0.01 rad) and
+   by sin and cos (above), against the rotation by angle th about the unit axis n written out:
+   R = cos th I + sin th [n]x + (1 - cos th) n n^T. Tolerance: round-off of a few terms of order 1
+   (1e-14), and the series must agree with the trigonometric form to the same digits. */
+static int test_rodrigues_matrix(void) {
+    static const double turns[4] = {1e-6, 4e-3, 0.0099, 0.8}; /* rad per dt: series x3, then sin/cos */
+    const double n[3] = {2.0 / 7, -3.0 / 7, 6.0 / 7}, dt = 1e-3;
+    int k, dim, a, c;
+    for (dim = 2; dim <= 3; ++dim)
+        for (k = 0; k < 4; ++k) {
+            const double th = turns[k], om = th / dt;
+            const double ax[3] = {dim == 3 ? n[0] : 0, dim == 3 ? n[1] : 0, dim == 3 ? n[2] : 1};
+            sps_real L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, R[9];
+            double worst = 0;
+            /* L = om [n]x (a skew velocity gradient: rigid rotation at om about n) */
+            L[1] = (sps_real)(-om * ax[2]); L[3] = (sps_real)(om * ax[2]);
+            L[2] = (sps_real)(om * ax[1]); L[6] = (sps_real)(-om * ax[1]);
+            L[5] = (sps_real)(-om * ax[0]); L[7] = (sps_real)(om * ax[0]);
+            sps__rodrigues(L, (sps_real)dt, dim, R);
+            for (a = 0; a < 3; ++a)
+                for (c = 0; c < 3; ++c) {
+                    const double cross[9] = {0, -ax[2], ax[1], ax[2], 0, -ax[0], -ax[1], ax[0], 0};
+                    double exact = (a == c ? cos(th) : 0) + sin(th) * cross[3 * a + c] + (1 - cos(th)) * ax[a] * ax[c];
+                    worst = fmax(worst, fabs((double)R[3 * a + c] - exact));
+                }
+            printf("    dim %d turn %-7g rad: max |R - R_exact| = %.1e\n", dim, th, worst);
+            ENSURE(worst < (sps_is_double() ? 1e-14 : 1e-6));
+        }
+    return 0;
+}
+
 /* ============================================================================================ */
 /* >>riemann                                                                                    */
 
@@ -2250,6 +2281,7 @@ int main(int argc, char** argv) {
     RUN(test_gradient_antisymmetry);
     RUN(test_moment_matrix_lattice);
     RUN(test_velocity_gradient_affine);
+    RUN(test_rodrigues_matrix);
     RUN(test_riemann_pressure);
     RUN(test_rigid_rotation_zero_increment);
     RUN(test_spinning_disc_stays_rigid);
