@@ -2089,10 +2089,10 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, cons
 /* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
    eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
    before correction); A -= r_ij (x) e_ij dW V_j (B^-1, recomputed geometry). The gradient test
-   sits outside the pair loop so the loop without it carries no branch. Then, lane-parallel:
-   density rate, ENO increment (ENO eq. 24), L = M B^T (ANG eq. 20; B from A when the geometry
-   is recomputed: a frozen B would lag a rotating body), the Jaumann stress when tracked, the
-   Rodrigues matrices and this group's share of the mean rotation in rsum (ANG eq. 41). */
+   sits outside the pair loop so the loop without it carries no branch. Then the lanes' ends
+   (sps__continuity_lanes), the Jaumann stress when tracked, the Rodrigues matrices, this group's
+   share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass) and the
+   ENO increments. */
 SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
     enum { DRHO = SPS__DRHO, LX = SPS__LAP, LY, LZ, M00 = SPS__M, M01, M02, M10, M11, M12, M20, M21, M22,
            A00 = SPS__A, A01, A02, A11, A12, A22, NSUM = SPS__NSUM };
