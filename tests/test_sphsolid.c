@@ -860,8 +860,8 @@ static double* snapshot(const sps_world* w) {
 }
 
 /* 2D: the cantilever at H/dp = 8 (672 particles, above the 512 where the step goes parallel),
-   30 advection steps (~300 sub-steps, neighbour lists rebuilt and re-sorted 30 times), frozen
-   pair geometry as in examples/plate2d.c. */
+   30 advection steps (~300 sub-steps, neighbour lists rebuilt and re-sorted 30 times), the
+   default pair geometry (recomputed in every sub-step) as in examples/plate2d.c. */
 static double* run_plate2d_small(int threads, int* n) {
     sps_observer tip;
     sps_world* w = plate2d_build(8, SPS_SHEAR_ENO_A, 0.05, threads, &tip);
@@ -876,7 +876,7 @@ static double* run_plate2d_small(int threads, int* n) {
     return s;
 }
 
-/* 3D: a free 9^3 block (729 particles) with random velocities, ENO-A mean rotation (block
+/* 3D: a free 9^3 block (729 particles) with random velocities, ENO-A mean rotation (lane-group
    sums), the default pair geometry (recomputed in every sub-step). */
 static double* run_block3d_small(int threads, int* n) {
     sps_world_def wd = sps_default_world_def();
