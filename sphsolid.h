@@ -2042,8 +2042,13 @@ SPS__INLINE void sps__add_increments(sps_world* w, const sps__body* b, sps__grou
     }
 }
 
-/* The sums of the continuity pass's pair loop, per lane (see sps__continuity_group). */
-enum { SPS__DRHO, SPS__LAP, SPS__M = SPS__LAP + 3, SPS__A = SPS__M + 9, SPS__NSUM = SPS__A + 6 };
+/* The sums of the continuity pass's pair loop, per lane (see sps__continuity_group): density
+   rate, Laplacian, uncorrected velocity gradient M (row-major) and the symmetric A = B^-1. */
+enum {
+    SPS__DRHO, SPS__LX, SPS__LY, SPS__LZ,
+    SPS__M00, SPS__M01, SPS__M02, SPS__M10, SPS__M11, SPS__M12, SPS__M20, SPS__M21, SPS__M22,
+    SPS__A00, SPS__A01, SPS__A02, SPS__A11, SPS__A12, SPS__A22, SPS__NSUM
+};
 
 /* The lane-parallel end of the continuity pass for lane group q: density rate, the ENO
    increment without rotation (ENO eq. 24) into da, and, with gradient (a literal), the velocity
@@ -2063,14 +2068,14 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, cons
         const int mine = q.i0 + l < end;
         const sps_real rho_read = rho[l], rho_l = mine ? rho_read : 1; /* padding lanes: no 1/0 */
         SPS__UNROLL
-        for (a = 0; a < dim; ++a) da[a][l] = shear_rate / rho_l * sum[SPS__LAP + a][l];
+        for (a = 0; a < dim; ++a) da[a][l] = shear_rate / rho_l * sum[SPS__LX + a][l];
         if (mine) drho[l] = rho_l * sum[SPS__DRHO][l];
         if (gradient) { /* L = M B^T, i.e. -sum v_ij (x) (B grad W) V_j */
             if (geo == SPS__GEO_FROZEN) {
                 SPS__UNROLL
                 for (a = 0; a < 9; ++a) B[a][l] = bmat[9 * l + a];
             } else {
-                sps__blended_inverse(&sum[SPS__A][l], SPS__LANES, &B[0][l], SPS__LANES, dim);
+                sps__blended_inverse(&sum[SPS__A00][l], SPS__LANES, &B[0][l], SPS__LANES, dim);
             }
             SPS__UNROLL
             for (a = 0; a < dim; ++a)
@@ -2078,7 +2083,7 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, cons
                 for (c = 0; c < dim; ++c) {
                     sps_real s = 0;
                     SPS__UNROLL
-                    for (m = 0; m < dim; ++m) s += sum[SPS__M + 3 * a + m][l] * B[3 * c + m][l];
+                    for (m = 0; m < dim; ++m) s += sum[SPS__M00 + 3 * a + m][l] * B[3 * c + m][l];
                     L[3 * a + c][l] = s;
                     if (mine) grad[9 * l + 3 * a + c] = s;
                 }
@@ -2094,33 +2099,31 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, cons
    share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass) and the
    ENO increments. */
 SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
-    enum { DRHO = SPS__DRHO, LX = SPS__LAP, LY, LZ, M00 = SPS__M, M01, M02, M10, M11, M12, M20, M21, M22,
-           A00 = SPS__A, A01, A02, A11, A12, A22, NSUM = SPS__NSUM };
     const sps__group q = sps__group_of(w, b, g);
     const int gradient = b->needs_gradient, end = b->end;
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real shear_rate = 2 * b->zeta * b->G * dt; /* ENO eq. 24 without 1/rho_i */
-    sps_real sum[NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
+    sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
     sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     int k, l, t, a;
-    for (t = 0; t < NSUM; ++t)
+    for (t = 0; t < SPS__NSUM; ++t)
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
-#define SPS__CONTINUITY_PAIR                                                           \
-    const int i = q.i0 + l, j = js[l];                                                 \
-    const sps__pair_geometry e = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo); \
-    const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r; \
-    sps_real dvx, dvy, dvz, u, dwv, lv;                                                \
-    dvx = vx[i] - vx[j];                                                               \
-    dvy = vy[i] - vy[j];                                                               \
-    dvz = dim == 3 ? vz[i] - vz[j] : 0;                                                \
-    u = dvx * ex + dvy * ey + dvz * ez;                                                \
-    dwv = dw * vol[j];                                                                 \
-    sum[DRHO][l] += u * dwv;                                                           \
-    lv = u * dw_r * vol[j];                                                            \
-    sum[LX][l] += lv * ex;                                                             \
-    sum[LY][l] += lv * ey;                                                             \
-    if (dim == 3) sum[LZ][l] += lv * ez;
+#define SPS__CONTINUITY_PAIR                                                               \
+    const int i = q.i0 + l, j = js[l];                                                     \
+    const sps__pair_geometry e = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo);  \
+    const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;              \
+    sps_real dvx, dvy, dvz, u, dwv, lv;                                                    \
+    dvx = vx[i] - vx[j];                                                                   \
+    dvy = vy[i] - vy[j];                                                                   \
+    dvz = dim == 3 ? vz[i] - vz[j] : 0;                                                    \
+    u = dvx * ex + dvy * ey + dvz * ez;                                                    \
+    dwv = dw * vol[j];                                                                     \
+    sum[SPS__DRHO][l] += u * dwv;                                                          \
+    lv = u * dw_r * vol[j];                                                                \
+    sum[SPS__LX][l] += lv * ex;                                                            \
+    sum[SPS__LY][l] += lv * ey;                                                            \
+    if (dim == 3) sum[SPS__LZ][l] += lv * ez;
     for (k = 0; k < q.len; ++k) {
         const int* SPS__RESTRICT js = w->nb_j + q.s0 + k * SPS__LANES;
         if (gradient) {
@@ -2128,16 +2131,22 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
             for (l = 0; l < SPS__LANES; ++l) {
                 SPS__CONTINUITY_PAIR
                 sps_real gx = dvx * dwv, gy = dvy * dwv, gz = dvz * dwv;
-                sum[M00][l] -= gx * ex; sum[M01][l] -= gx * ey;
-                sum[M10][l] -= gy * ex; sum[M11][l] -= gy * ey;
+                sum[SPS__M00][l] -= gx * ex; sum[SPS__M01][l] -= gx * ey;
+                sum[SPS__M10][l] -= gy * ex; sum[SPS__M11][l] -= gy * ey;
                 if (dim == 3) {
-                    sum[M02][l] -= gx * ez; sum[M12][l] -= gy * ez;
-                    sum[M20][l] -= gz * ex; sum[M21][l] -= gz * ey; sum[M22][l] -= gz * ez;
+                    sum[SPS__M02][l] -= gx * ez; sum[SPS__M12][l] -= gy * ez;
+                    sum[SPS__M20][l] -= gz * ex; sum[SPS__M21][l] -= gz * ey; sum[SPS__M22][l] -= gz * ez;
                 }
                 if (geo != SPS__GEO_FROZEN) {
                     sps_real rdwv = e.r * dwv;
-                    sum[A00][l] -= rdwv * ex * ex; sum[A01][l] -= rdwv * ex * ey; sum[A11][l] -= rdwv * ey * ey;
-                    if (dim == 3) { sum[A02][l] -= rdwv * ex * ez; sum[A12][l] -= rdwv * ey * ez; sum[A22][l] -= rdwv * ez * ez; }
+                    sum[SPS__A00][l] -= rdwv * ex * ex;
+                    sum[SPS__A01][l] -= rdwv * ex * ey;
+                    sum[SPS__A11][l] -= rdwv * ey * ey;
+                    if (dim == 3) {
+                        sum[SPS__A02][l] -= rdwv * ex * ez;
+                        sum[SPS__A12][l] -= rdwv * ey * ez;
+                        sum[SPS__A22][l] -= rdwv * ez * ez;
+                    }
                 }
             }
         } else {
