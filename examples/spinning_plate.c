@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     int i, n;
     output_plan output;
 
-    opt_parse(argc, argv, "spinning " CASE " (BENCHMARKS.md A3/A4)", opts, (int)(sizeof opts / sizeof *opts));
+    opt_parse(argc, argv, TITLE, opts, (int)(sizeof opts / sizeof *opts));
     spinning_scene(&c, dp, omega, &w, &block);
     if ((corner_id = sps_world_nearest_particle(w, block, corner)) < 0) ex_check(w, SPS_ERR_INVALID_ARG);
 

@@ -9,10 +9,12 @@
 
 #ifdef SPINNING_CUBE
 #define CASE "spinning_cube"
+#define TITLE "3D spinning cube (BENCHMARKS.md A4)"
 #define DIM 3
 #define NU 0.3
 #else
 #define CASE "spinning_plate"
+#define TITLE "2D spinning plate (BENCHMARKS.md A3)"
 #define DIM 2
 #define NU 0.45
 #endif
