@@ -19,6 +19,7 @@
      2 the rotation by omega_L dt, omega_L = L_z/I_z
      3 the previous step's mean matrix (ANG eq. 42 read literally: R^n from Omega^n)
      4 no half-step rotation in the kick (mean_spin = 0 after each step)
+     5 3 and 4 together: ANG Algorithm 1 to the letter
    --damp-from T1 --damp-to T2 [--damp c]: between T1 and T2, after every advection step, scale
    the non-rigid velocity (v minus the rigid motion with the same P and L_z) by 1 - c (0.05);
    P and L_z are unchanged, the breathing oscillation is removed.
@@ -26,7 +27,7 @@
    velocity increments after every advection step; the error is then measured from t = T.
 
    Usage: ./build/rotation_probe [--dim 2|3] [--dp 0.05] [--nu 0.3] [--shear 1] [--variant 0]
-                                 [--tend 0.5] [--every 0.05] [--ramp 0]
+                                 [--tend 0.5] [--every 0.05] [--ramp 0] [--cfl 0.4]
    Reads library internals (world fields): a diagnostic, not an example of the API. Serial
    only (run with OMP_NUM_THREADS=1; the hook does its sums in one thread). */
 #include "../sphsolid.h"
@@ -98,14 +99,14 @@ static void probe_finish(sps_world* w, sps_real dt) {
     for (a = 0; a < 9; ++a) saved[a] = b->mean_rotation[a];
     if (variant == 1) rotz(fit - th_fit_prev, w->dim, b->mean_rotation);
     if (variant == 2) rotz(Lz / Iz * dt, w->dim, b->mean_rotation);
-    if (variant == 3 && have_prev)
+    if ((variant == 3 || variant == 5) && have_prev)
         for (a = 0; a < 9; ++a) b->mean_rotation[a] = (sps_real)R_prev[a];
     if (variant >= 1 && variant <= 3) sps__spin_of_rotation(b->mean_rotation, dt, w->dim, b->mean_spin);
     for (a = 0; a < 9; ++a) R_prev[a] = saved[a];
     have_prev = 1;
     th_fit_prev = th_fit = fit;
     sps__finish_lib(w, dt);
-    if (variant == 4)
+    if (variant == 4 || variant == 5)
         for (a = 0; a < 9; ++a) b->mean_spin[a] = 0;
 }
 
