@@ -1,5 +1,5 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
-#   make          header checks (C99 gcc/clang, C++, float, static) and the examples
+#   make          header checks (C99 gcc/clang, C++, float, static; the README quick start) and the examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
 #   make test     the randomized API test (10,000 cases), the test runner (optimised, OpenMP),
 #                 and both again under ASan + UBSan (quick tests, 1,000 random cases)
@@ -33,7 +33,7 @@ $(BUILD):
 CHECK_SRC = $(BUILD)/check_impl.c
 $(CHECK_SRC): | $(BUILD)
 	printf '#define SPHSOLID_IMPLEMENTATION\n#include "../sphsolid.h"\nint main(void){return 0;}\n' > $@
-check: $(CHECK_SRC) $(HEADER)
+check: $(CHECK_SRC) $(HEADER) README.md
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp $(CHECK_SRC) -o $(BUILD)/check_omp $(LDLIBS)
 	$(CC) -std=c99 -O1 $(WARN) -Werror $(CHECK_SRC) -o $(BUILD)/check_serial $(LDLIBS)
 	$(CC) -std=c99 -O1 $(WARN) -Werror -DSPHSOLID_FLOAT $(CHECK_SRC) -o $(BUILD)/check_float $(LDLIBS)
@@ -43,7 +43,9 @@ check: $(CHECK_SRC) $(HEADER)
 	@if command -v clang >/dev/null 2>&1; then \
 	  clang -std=c99 -O1 $(WARN) -Werror $(CHECK_SRC) -o $(BUILD)/check_clang $(LDLIBS) && echo "clang: ok"; \
 	else echo "clang not found: skipped"; fi
-	@echo "header checks passed"
+	awk '/^## Quick start/{q=1} q&&/^```c/{f=1;next} f&&/^```/{exit} f' README.md > $(BUILD)/quickstart.c
+	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp -I. $(BUILD)/quickstart.c -o $(BUILD)/quickstart $(LDLIBS)
+	@echo "header checks passed (and the README's quick start compiles)"
 
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)
