@@ -8,7 +8,7 @@
        - amplitude: large rotations of the cross-sections (geometric nonlinearity); at v_f = 0.05
          the tip swings about L/2.
      The SPH plate is a 2D continuum; this program is an independent check of how far the SPH
-     periods are from the continuum truth, not a model of the SPH clamp (see "Limits").
+     periods are from the continuum truth, not a model of the SPH clamp (see "Assumptions and limits").
 
    The case (SI units, plane strain, unit depth)
      free length L = 0.2 (clamped at x = 0), thickness H = 0.02, rho0 = 1000, E = 2e6, nu = 0.3975.
@@ -60,29 +60,41 @@
        these factors: what is left of them is about 1e-3 of the Timoshenko correction (< 1e-5
        of the period). The time step shrinks by about 1000.
 
+   Independent checks (printed with the table)
+     1. The exact first period of the linear Timoshenko cantilever, from its ordinary
+        differential equations by shooting (Runge-Kutta 4 and bisection), with the shear and the
+        rotary-inertia parts separately: checks the element, the masses and the clamp.
+     2. A one-mode estimate of the amplitude effect (an inextensible thin beam to fourth order,
+        harmonic balance): checks the sign and size of the geometric nonlinearity.
+     3. The --euler-bernoulli run against thin-plate theory (the verification of the code).
+
    Assumptions and limits
      A beam is one-dimensional: cross-sections stay plane (warping enters only through the
-     shear coefficient kappa), the transverse normal stress is neglected except through the
-     plane-strain modulus E', and the clamp fixes the section's centre and rotation. The SPH
-     plate is a 2D continuum held by a block of clamped particles: near the root the stress
-     field is two-dimensional and the root is somewhat compliant, which a beam does not see.
-     For H/L = 0.1 those root effects are of order (H/L)^2 like the Timoshenko correction
-     itself, so this program bounds the thickness effect rather than settling the last 1%.
+     shear coefficient kappa), the stress across the thickness is neglected (plane strain only
+     enters through E'), and the clamp fixes the section's centre and rotation but lets the
+     section contract sideways. The stresses are linear in the beam strains: at v_f = 0.05 the
+     bending strain at the skin of the root reaches 10%, where real material laws differ from
+     each other by terms of order strain^2 (an estimated 0.1% on the period). The SPH plate is a
+     2D continuum whose root is held by a block of fixed particles: it cannot contract sideways
+     at the clamp, which stiffens the root. A plane-strain finite-element check (bilinear
+     elements, refined to 64 across H and extrapolated; see bench/results/beam_reference.txt)
+     puts that effect at about -0.6% on the period, as large as the shear correction: at
+     H/L = 0.1 the details of the clamp matter at the 1% level and a beam cannot settle them.
+     The initial rotation rate of the sections barely matters: the same check with v_x = 0
+     (the SPH setup: no section rotation at t = 0) moved the period by 0.006%.
 
    Usage
-     ./build/beam_reference                  the table below (all runs, about a second or two)
+     ./build/beam_reference                  the table below (all runs, a few seconds)
      ./build/beam_reference [--vf 0.05] [--elements 80] [--tend 1] [--linear]
                             [--euler-bernoulli] [--kappa 0.8333] [--every 0.01]
          one run: the tip trace every --every seconds (t, u_x, u_y, theta at the tip, relative
          energy error), then every period found (successive up-crossings) and the first one.
      Any option other than --kappa selects the single run; --kappa alone changes the table.
+     Build: make build/beam_reference (gcc -std=c99 -O2, libc and libm only, one thread).
 
-   Expected output (default run; the numbers of bench/results/beam_reference.txt)
-     A table of first periods for v_f = 0.001, 0.01, 0.03, 0.05: the nonlinear Timoshenko beam at
-     N = 20, 40, 80, 160 elements, the linear Timoshenko beam (N = 160), thin-plate theory and the
-     tip amplitude of the first cycle; then the Euler-Bernoulli check (the beam code with
-     --euler-bernoulli at v_f = 0.001 against 0.2541 s, within 0.1%), the time steps and the run
-     time. Build: make build/beam_reference (gcc -std=c99 -O2, libc and libm only). */
+   Expected output (default run; all of it in bench/results/beam_reference.txt)
+EXPECTED_TABLE
+*/
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -90,7 +102,8 @@
 #include <time.h>
 
 static const double PI = 3.14159265358979323846;
-static const double KL_FIRST_MODE = 1.875; /* the benchmark's k L (the root is 1.8751040687) */
+static const double KL_FIRST_MODE = 1.875;        /* the benchmark's k L */
+static const double KL_EXACT_ROOT = 1.8751040687; /* root of 1 + cos kL cosh kL = 0 */
 static const double SAFETY = 0.8;          /* fraction of the stable time step used */
 static const double EB_SHEAR_FACTOR = 1e3;   /* --euler-bernoulli: shear rigidity x this */
 static const double EB_INERTIA_FACTOR = 1e-3; /* --euler-bernoulli: rotary inertia x this */
@@ -138,6 +151,11 @@ static double mode_slope(double k, double L, double x) {
                 - (cos(k * L) + cosh(k * L)) * (cos(k * x) - cosh(k * x)));
 }
 
+static double mode_curvature(double k, double L, double x) {
+    return k * k * ((sin(k * L) + sinh(k * L)) * (-cos(k * x) - cosh(k * x))
+                    - (cos(k * L) + cosh(k * L)) * (-sin(k * x) - sinh(k * x)));
+}
+
 /* ---- the beam ---- */
 
 typedef enum { NONLINEAR_TIMOSHENKO, LINEAR_TIMOSHENKO } kinematics;
@@ -159,6 +177,7 @@ typedef struct {
     double *ux, *uy, *theta;                                 /* displacements, rotation */
     double *vx, *vy, *spin;                                  /* their rates */
     double *fx, *fy, *moment;                                /* nodal forces (external sign) */
+    double peak_curvature;                                   /* largest |theta'| seen so far */
 } beam;
 
 static double* zeros(int n) {
@@ -190,6 +209,7 @@ static beam beam_create(const plate_case* c, const run_options* o) {
     b.ux = zeros(b.nodes), b.uy = zeros(b.nodes), b.theta = zeros(b.nodes);
     b.vx = zeros(b.nodes), b.vy = zeros(b.nodes), b.spin = zeros(b.nodes);
     b.fx = zeros(b.nodes), b.fy = zeros(b.nodes), b.moment = zeros(b.nodes);
+    b.peak_curvature = 0;
     /* lumped mass: each element gives half its mass and rotary inertia to each end */
     for (i = 0; i < o->elements; i++) {
         double m = c->density * area * b.element_length / 2;
@@ -281,6 +301,7 @@ static double compute_forces(beam* b) {
         b->fx[e + 1] -= s.fx, b->fy[e + 1] -= s.fy;
         b->moment[e] += 0.5 * s.couple + s.bending_moment;
         b->moment[e + 1] += 0.5 * s.couple - s.bending_moment;
+        if (fabs(s.curvature) > b->peak_curvature) b->peak_curvature = fabs(s.curvature);
         strain_energy += 0.5 * h * (s.axial_force * s.axial_strain + s.shear_force * s.shear_strain
                                     + s.bending_moment * s.curvature);
     }
@@ -334,6 +355,7 @@ typedef struct {
     double tip_amplitude;  /* largest tip deflection before the first down-crossing */
     double time_step;
     double energy_error;   /* max |E(t) - E(0)| / E(0) */
+    double peak_surface_strain; /* H/2 x the largest curvature: the bending strain at the skin */
     long steps;
 } run_result;
 
@@ -351,8 +373,8 @@ static void print_trace_line(const beam* b, double t, double energy_error) {
 /* Integrate to o->tend. Without a trace, stop once the first period is known. */
 static run_result simulate(const plate_case* c, const run_options* o) {
     beam b = beam_create(c, o);
-    run_result r = {0, 0, 0, 0, 0};
-    double dt = stable_time_step(&b), t = 0, next_print = 0;
+    run_result r = {0, 0, 0, 0, 0, 0};
+    double dt = stable_time_step(&b), t = 0, next_print = o->print_every;
     double strain_energy, initial_energy, last_up_crossing = 0;
     double previous_tip = 0;
     int tip = b.nodes - 1, down_crossings = 0, periods = 0;
@@ -360,8 +382,10 @@ static run_result simulate(const plate_case* c, const run_options* o) {
     set_initial_velocity(&b, c, o->vf);
     strain_energy = compute_forces(&b);
     initial_energy = kinetic_energy(&b) + strain_energy;
-    if (o->print_every > 0)
+    if (o->print_every > 0) {
         printf("#        t       tip u_x      tip u_y    tip theta   energy err\n");
+        print_trace_line(&b, t, 0);
+    }
     while (t < o->tend) {
         double energy_error;
         half_kick(&b, dt);
@@ -388,11 +412,116 @@ static run_result simulate(const plate_case* c, const run_options* o) {
             next_print += o->print_every;
         }
     }
+    r.peak_surface_strain = 0.5 * c->thickness * b.peak_curvature;
     beam_free(&b);
     return r;
 }
 
+/* ---- independent check 1: the exact first period of the linear Timoshenko cantilever ----
+   The beam equations for a harmonic motion at angular frequency w,
+       kappa G A (v'' - theta') + rho0 A w^2 v = 0,
+       E' I theta'' + kappa G A (v' - theta) + rho0 I w^2 theta = 0,
+   with v = theta = 0 at the clamp and no moment and no shear force at the free end
+   (theta' = 0, v' - theta = 0). For a trial w, integrate from the clamp twice (v'(0) = 1, then
+   theta'(0) = 1; Runge-Kutta 4): w is a natural frequency when a combination of the two meets
+   both free-end conditions, i.e. when the 2x2 determinant of their residuals vanishes. It shares
+   no code with the beam above, so it checks the element, the mass and the clamp. */
+
+typedef struct {
+    double bending, shear, mass, rotary; /* E'I, kappa G A, rho0 A, rho0 I */
+    double omega2;
+} timoshenko_ode;
+
+/* y = (v, v', theta, theta') */
+static void timoshenko_derivative(const timoshenko_ode* p, const double y[4], double dy[4]) {
+    dy[0] = y[1];
+    dy[1] = y[3] - p->mass * p->omega2 * y[0] / p->shear;
+    dy[2] = y[3];
+    dy[3] = -(p->shear * (y[1] - y[2]) + p->rotary * p->omega2 * y[2]) / p->bending;
+}
+
+static void runge_kutta_step(const timoshenko_ode* p, double h, double y[4]) {
+    double k1[4], k2[4], k3[4], k4[4], trial[4];
+    int i;
+    timoshenko_derivative(p, y, k1);
+    for (i = 0; i < 4; i++) trial[i] = y[i] + 0.5 * h * k1[i];
+    timoshenko_derivative(p, trial, k2);
+    for (i = 0; i < 4; i++) trial[i] = y[i] + 0.5 * h * k2[i];
+    timoshenko_derivative(p, trial, k3);
+    for (i = 0; i < 4; i++) trial[i] = y[i] + h * k3[i];
+    timoshenko_derivative(p, trial, k4);
+    for (i = 0; i < 4; i++) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+}
+
+static double free_end_determinant(timoshenko_ode* p, double length, double omega) {
+    enum { STEPS = 2000 };
+    double a[4] = {0, 1, 0, 0}, b[4] = {0, 0, 0, 1};
+    int s;
+    p->omega2 = omega * omega;
+    for (s = 0; s < STEPS; s++) {
+        runge_kutta_step(p, length / STEPS, a);
+        runge_kutta_step(p, length / STEPS, b);
+    }
+    return a[3] * (b[1] - b[2]) - b[3] * (a[1] - a[2]);
+}
+
+/* The first root lies below the thin-beam frequency (shear and rotary inertia only lower it);
+   bisection from 0.8 of it. Returns 0 if the bracket holds no root (a far too soft shear). */
+static double timoshenko_exact_period(const plate_case* c, double shear_factor,
+                                      double rotary_factor) {
+    timoshenko_ode p;
+    double H = c->thickness, hi = 2 * PI / thin_plate_period(c, KL_EXACT_ROOT), lo = 0.8 * hi;
+    double residual_lo;
+    int i;
+    p.bending = plane_strain_modulus(c) * H * H * H / 12;
+    p.shear = c->shear_coefficient * shear_modulus(c) * H * shear_factor;
+    p.mass = c->density * H;
+    p.rotary = c->density * H * H * H / 12 * rotary_factor;
+    residual_lo = free_end_determinant(&p, c->length, lo);
+    if (residual_lo * free_end_determinant(&p, c->length, hi) > 0) return 0;
+    for (i = 0; i < 50; i++) {
+        double mid = 0.5 * (lo + hi), residual_mid = free_end_determinant(&p, c->length, mid);
+        if (residual_lo * residual_mid <= 0) hi = mid;
+        else lo = mid, residual_lo = residual_mid;
+    }
+    return 2 * PI / (0.5 * (lo + hi));
+}
+
+/* ---- independent check 2: the amplitude effect from one mode of an inextensible thin beam ----
+   Put v(s, t) = L q(t) phi(s/L), phi the initial mode with phi(1) = 1, into the energies of an
+   inextensible Euler-Bernoulli beam, kept to fourth order in q (as Crespo da Silva and Glynn,
+   1978): the curvature squared is v''^2 (1 + v'^2), and the tip's pull-in u = -int v'^2 / 2
+   adds kinetic energy:
+       U = E'I/2 int v''^2 (1 + v'^2) ds,   T = rho0 A/2 int (v_t^2 + u_t^2) ds.
+   Lagrange's equation is  M0 q'' + M2 (q^2 q'' + q q'^2) + K0 q + 2 K2 q^3 = 0  with
+       M0 = int phi^2,  M2 = int (int_0^x phi'^2)^2,  K0 = int phi''^2,  K2 = int phi''^2 phi'^2
+   over x in [0, 1], and one harmonic, q = a cos(w t) (harmonic balance), gives
+       (w / w0)^2 = (1 + 3/2 (K2 / K0) a^2) / (1 + 1/2 (M2 / M0) a^2),   a = tip amplitude / L:
+   the curvature stiffens, the axial inertia softens; for the first mode the stiffening wins. */
+static double one_mode_period_ratio(double tip_amplitude_over_length) {
+    enum { POINTS = 4000 };
+    double k = KL_FIRST_MODE, tip = mode_shape(k, 1, 1), dx = 1.0 / POINTS, a2;
+    double m0 = 0, m2 = 0, k0 = 0, k2 = 0, pull_in = 0; /* pull_in = int_0^x phi'^2 */
+    int i;
+    for (i = 0; i < POINTS; i++) {
+        double x = (i + 0.5) * dx, phi = mode_shape(k, 1, x) / tip;
+        double slope = mode_slope(k, 1, x) / tip, curvature = mode_curvature(k, 1, x) / tip;
+        double pull_in_mid = pull_in + 0.5 * dx * slope * slope;
+        m0 += phi * phi * dx;
+        m2 += pull_in_mid * pull_in_mid * dx;
+        k0 += curvature * curvature * dx;
+        k2 += curvature * curvature * slope * slope * dx;
+        pull_in += slope * slope * dx;
+    }
+    a2 = tip_amplitude_over_length * tip_amplitude_over_length;
+    return sqrt((1 + 0.5 * m2 / m0 * a2) / (1 + 1.5 * k2 / k0 * a2)); /* T / T0 */
+}
+
 /* ---- the default table ---- */
+
+static const double TABLE_VF[] = {0.001, 0.01, 0.03, 0.05};
+static const int TABLE_MESHES[] = {20, 40, 80, 160};
+enum { TABLE_N_VF = 4, TABLE_N_MESH = 4, TABLE_FINEST = 160 };
 
 static double seconds_since(clock_t start) {
     return (double)(clock() - start) / CLOCKS_PER_SEC;
@@ -413,58 +542,94 @@ static void print_case(const plate_case* c) {
            plane_strain_modulus(c), shear_modulus(c), c->shear_coefficient,
            plane_strain_modulus(c) / (c->shear_coefficient * shear_modulus(c)), L * sqrt(12.0) / H,
            velocity_scale(c));
-    printf("# thin-plate theory: T = %.6f s (kL = 1.875), %.6f s (kL = 1.8751040687)\n",
-           thin_plate_period(c, KL_FIRST_MODE), thin_plate_period(c, 1.8751040687));
+    printf("# thin-plate theory: T = %.6f s (kL = 1.875), %.6f s (kL = %.10f)\n",
+           thin_plate_period(c, KL_FIRST_MODE), thin_plate_period(c, KL_EXACT_ROOT), KL_EXACT_ROOT);
 }
 
-static void print_table(const plate_case* c) {
-    static const double vfs[] = {0.001, 0.01, 0.03, 0.05};
-    static const int meshes[] = {20, 40, 80, 160};
-    enum { N_VF = 4, N_MESH = 4, FINEST = 160 };
-    double thin = thin_plate_period(c, KL_FIRST_MODE);
-    clock_t start = clock();
-    int i, m;
-    print_case(c);
-    printf("# first period [s]: nonlinear Timoshenko beam at N elements, linear Timoshenko (N = %d),\n"
-           "# thin-plate theory; tip amplitude = largest tip deflection of the first cycle (N = %d)\n",
-           FINEST, FINEST);
-    printf("#   v_f    nonlin N=20   N=40      N=80      N=160   | linear    | theory  | nonlin/linear |"
-           " tip amplitude [m]\n");
-    for (i = 0; i < N_VF; i++) {
-        run_result nonlinear = {0, 0, 0, 0, 0}, linear;
-        run_options o;
-        printf("%7.3f  ", vfs[i]);
-        for (m = 0; m < N_MESH; m++) {
-            o = table_run(meshes[m], NONLINEAR_TIMOSHENKO, vfs[i]);
-            nonlinear = simulate(c, &o);
-            printf(" %.6f", nonlinear.first_period);
-        }
-        o = table_run(FINEST, LINEAR_TIMOSHENKO, vfs[i]);
-        linear = simulate(c, &o);
-        printf(" | %.6f | %.4f  | %+.3f%%       | %.5f\n", linear.first_period, thin,
-               100 * (nonlinear.first_period / linear.first_period - 1), nonlinear.tip_amplitude);
+/* one row: the nonlinear beam on every mesh, the linear beam, the amplitude effect */
+static void print_table_row(const plate_case* c, double vf) {
+    run_result nonlinear = {0, 0, 0, 0, 0, 0}, linear;
+    run_options o;
+    int m;
+    printf("%6.3f ", vf);
+    for (m = 0; m < TABLE_N_MESH; m++) {
+        o = table_run(TABLE_MESHES[m], NONLINEAR_TIMOSHENKO, vf);
+        nonlinear = simulate(c, &o); /* the last one, the finest, is kept */
+        printf(" %.6f", nonlinear.first_period);
     }
-    {
-        run_options o = table_run(FINEST, LINEAR_TIMOSHENKO, 0.001);
-        printf("# linear Timoshenko vs thin-plate theory (N = %d): %+.3f%%\n", FINEST,
-               100 * (simulate(c, &o).first_period / thin - 1));
-    }
-    printf("# time step (safety %.1f): ", SAFETY);
-    for (m = 0; m < N_MESH; m++) {
-        run_options o = table_run(meshes[m], NONLINEAR_TIMOSHENKO, 0.001);
+    o = table_run(TABLE_FINEST, LINEAR_TIMOSHENKO, vf);
+    linear = simulate(c, &o);
+    printf(" | %.6f | %.4f | %+.3f%% %+.3f%% | %.5f  %.4f\n", linear.first_period,
+           thin_plate_period(c, KL_FIRST_MODE),
+           100 * (nonlinear.first_period / linear.first_period - 1),
+           100 * (one_mode_period_ratio(nonlinear.tip_amplitude / c->length) - 1),
+           nonlinear.tip_amplitude, nonlinear.peak_surface_strain);
+}
+
+static void print_period_table(const plate_case* c) {
+    int i;
+    printf("#\n# First period [s]. nonlinear: geometrically exact Timoshenko beam, N elements;\n"
+           "# linear: linear Timoshenko beam (N = %d); theory: thin plate (Euler-Bernoulli).\n"
+           "# amplitude effect: nonlinear / linear - 1 (N = %d), and the one-mode thin-beam estimate\n"
+           "# (check 2) at the same tip amplitude. tip amp.: largest tip deflection in the first\n"
+           "# half cycle [m]; skin strain: largest bending strain H/2 |theta'| (at the root).\n",
+           TABLE_FINEST, TABLE_FINEST);
+    printf("#       nonlinear Timoshenko beam, N elements | linear   |        | amplitude effect\n"
+           "#  v_f    N=20     N=40     N=80     N=160   | N=160    | theory | beam    1-mode  |"
+           " tip amp. skin strain\n");
+    for (i = 0; i < TABLE_N_VF; i++) print_table_row(c, TABLE_VF[i]);
+}
+
+static void print_thickness_check(const plate_case* c) {
+    double thin = thin_plate_period(c, KL_EXACT_ROOT);
+    double exact = timoshenko_exact_period(c, 1, 1);
+    double shear_only = timoshenko_exact_period(c, 1, 0);
+    double rotary_only = timoshenko_exact_period(c, 1e6, 1);
+    run_options o = table_run(TABLE_FINEST, LINEAR_TIMOSHENKO, 0.001);
+    double beam_period = simulate(c, &o).first_period;
+    printf("#\n# Thickness effect (check 1, exact linear Timoshenko cantilever, against the thin\n"
+           "# plate with the exact root kL = %.10f, %.6f s):\n", KL_EXACT_ROOT, thin);
+    printf("#   exact eigenperiod %.6f s (%+.3f%%): shear alone %+.3f%%, rotary inertia alone %+.3f%%\n",
+           exact, 100 * (exact / thin - 1), 100 * (shear_only / thin - 1),
+           100 * (rotary_only / thin - 1));
+    printf("#   linear beam above, N = %d, first zero-crossing period %.6f s (%+.4f%% from exact)\n",
+           TABLE_FINEST, beam_period, 100 * (beam_period / exact - 1));
+}
+
+static void print_time_steps(const plate_case* c) {
+    int m;
+    printf("# time step (safety %.1f x the stable one): ", SAFETY);
+    for (m = 0; m < TABLE_N_MESH; m++) {
+        run_options o = table_run(TABLE_MESHES[m], NONLINEAR_TIMOSHENKO, 0.001);
         beam b = beam_create(c, &o);
-        printf("N=%d %.3e s%s", meshes[m], stable_time_step(&b), m + 1 < N_MESH ? ", " : "\n");
+        printf("N=%d %.3e s%s", TABLE_MESHES[m], stable_time_step(&b),
+               m + 1 < TABLE_N_MESH ? ", " : "\n");
         beam_free(&b);
     }
-    printf("# Euler-Bernoulli check (--euler-bernoulli --linear, v_f 0.001) against %.6f s:\n", thin);
-    for (m = 1; m < N_MESH; m++) {
-        run_options o = table_run(meshes[m], LINEAR_TIMOSHENKO, 0.001);
+}
+
+/* the verification: the same code in its thin-beam limit must give thin-plate theory */
+static void print_euler_bernoulli_check(const plate_case* c) {
+    double thin = thin_plate_period(c, KL_FIRST_MODE);
+    int m;
+    printf("#\n# Euler-Bernoulli check: --euler-bernoulli --linear, v_f 0.001, against %.6f s\n", thin);
+    for (m = 1; m < TABLE_N_MESH; m++) {
+        run_options o = table_run(TABLE_MESHES[m], LINEAR_TIMOSHENKO, 0.001);
         run_result r;
         o.euler_bernoulli = 1;
         r = simulate(c, &o);
-        printf("#   N=%3d dt %.3e s: T = %.6f s (%+.3f%%)\n", meshes[m], r.time_step, r.first_period,
-               100 * (r.first_period / thin - 1));
+        printf("#   N=%3d dt %.3e s: T = %.6f s (%+.3f%%)\n", TABLE_MESHES[m], r.time_step,
+               r.first_period, 100 * (r.first_period / thin - 1));
     }
+}
+
+static void print_table(const plate_case* c) {
+    clock_t start = clock();
+    print_case(c);
+    print_period_table(c);
+    print_time_steps(c);
+    print_thickness_check(c);
+    print_euler_bernoulli_check(c);
     printf("# CPU time %.2f s\n", seconds_since(start));
 }
 
