@@ -153,7 +153,7 @@ static double thin_plate_period(const plate_case* c, double kL) {
     return 2 * PI / sqrt(omega2);
 }
 
-/* the Euler-Bernoulli first mode of a cantilever and its slope, x from the clamp */
+/* the Euler-Bernoulli first mode of a cantilever, its slope and curvature, x from the clamp */
 static double mode_shape(double k, double L, double x) {
     return (sin(k * L) + sinh(k * L)) * (cos(k * x) - cosh(k * x))
            - (cos(k * L) + cosh(k * L)) * (sin(k * x) - sinh(k * x));
