@@ -24,7 +24,7 @@ HEADER   = sphsolid.h
 
 .PHONY: all check examples run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
-all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe
+all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/beam_reference
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -124,6 +124,9 @@ $(BUILD)/torque_probe: bench/torque_probe.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/rotation_probe: bench/rotation_probe.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+# beam-theory reference for the 2D plate's period: plain C99, libm only (no header, no OpenMP)
+$(BUILD)/beam_reference: bench/beam_reference.c | $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
 
 clean:
 	rm -rf $(BUILD) out
