@@ -1,7 +1,7 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
 #   make          header checks (C99 gcc/clang, C++, float, static; the README quick start) and the examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
-#   make test     the randomized API test (10,000 cases), the test runner (optimised, OpenMP),
+#   make test     the README quick start (run), the randomized API test (10,000 cases), the test runner (optimised, OpenMP),
 #                 and both again under ASan + UBSan (quick tests, 1,000 random cases)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~5 min)
 #   make bench    speed tables (bench/results/)
@@ -22,7 +22,7 @@ BUILD    = build
 EXAMPLES = plate2d plate3d spinning_plate spinning_cube
 HEADER   = sphsolid.h
 
-.PHONY: all check examples run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
+.PHONY: all check quickstart-run examples run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
 all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/beam_reference
 
@@ -89,8 +89,12 @@ test-fast: $(BUILD)/test_sphsolid
 	./$(BUILD)/test_sphsolid
 test-sanitize: $(BUILD)/test_sanitize
 	ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/test_sanitize --quick
+# the README's quick start, run as printed: it prints only on error and writes strip.vtk
+quickstart-run: check
+	cd $(BUILD) && rm -f strip.vtk && ./quickstart > quickstart.out && test ! -s quickstart.out && test -s strip.vtk
+	@echo "README quick start: ran to t = 1 s and wrote $(BUILD)/strip.vtk"
 # the fuzz output goes first so that the test runner's "N passed, M failed" closes make test
-test: check fuzz fuzz-sanitize test-fast test-sanitize
+test: check quickstart-run fuzz fuzz-sanitize test-fast test-sanitize
 
 # ---- randomized API test (tests/fuzz_api.c); replay a case: build/fuzz_api --seed S --cases 1 --verbose ----
 FUZZ_CASES ?= 10000
