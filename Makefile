@@ -1,5 +1,5 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
-#   make          header checks (C99 gcc/clang, C++, float, static; the README quick start) and the examples
+#   make          header checks (C99 gcc/clang, C++, float, static), the README quick start, examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
 #   make test     the README quick start (run), the randomized API test (10,000 cases), the test runner
 #                 (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 random cases)
