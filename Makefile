@@ -24,7 +24,8 @@ HEADER   = sphsolid.h
 
 .PHONY: all check quickstart-run examples run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
-all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/beam_reference
+all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/beam_reference \
+     $(BUILD)/clamp_reference
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -130,6 +131,9 @@ $(BUILD)/rotation_probe: bench/rotation_probe.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 # beam-theory reference for the 2D plate's period: plain C99, libm only (no header, no OpenMP)
 $(BUILD)/beam_reference: bench/beam_reference.c | $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
+# plane-strain finite-element reference for the same period and the clamp's effect (libm only)
+$(BUILD)/clamp_reference: bench/clamp_reference.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
 
 clean:
