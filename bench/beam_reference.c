@@ -77,13 +77,14 @@
      bending strain at the skin of the root reaches 10%, where real material laws differ from
      each other by terms of order strain^2 (an estimated 0.1% on the period). The SPH plate is a
      2D continuum whose root is held by a block of fixed particles: it cannot contract sideways
-     at the clamp, which stiffens the root. A plane-strain finite-element check (bilinear
-     elements, refined to 64 across H and extrapolated; see bench/results/beam_reference.txt)
-     puts that effect at about -0.65% on the period (0.2552 s against 0.2569 s for a root free
-     to contract; the Timoshenko beam gives 0.2565 s), as large as the shear correction: at
-     H/L = 0.1 the details of the clamp matter at the 1% level and a beam cannot settle them.
-     The initial rotation rate of the sections barely matters: the same check with v_x = 0
-     (the SPH setup: no section rotation at t = 0) moved the period by 0.006%.
+     at the clamp, which stiffens the root. bench/clamp_reference.c (a plane-strain
+     finite-element eigenvalue program, 9-node elements refined to 32 across H and
+     extrapolated) puts that effect at -0.43% on the period (0.2552 s against 0.2563 s for a
+     root free to contract, which itself is within 0.05% of the Timoshenko beam's 0.2565 s),
+     half the shear correction: at H/L = 0.1 the details of the clamp matter at the 0.5% level
+     and a beam cannot settle them. The initial rotation rate of the sections barely matters:
+     an earlier explicit check with v_x = 0 (the SPH setup: no section rotation at t = 0)
+     moved the period by 0.006%.
 
    Usage
      ./build/beam_reference                  the table below (all runs, a few seconds)
