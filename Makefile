@@ -1,8 +1,8 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
 #   make          header checks (C99 gcc/clang, C++, float, static), the README quick start, examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
-#   make test     the README quick start (run), the randomized API test (10,000 cases), the test runner
-#                 (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 random cases)
+#   make test     the README quick start and every example (brief runs), the randomized API test (10,000 cases),
+#                 the test runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~5 min)
 #   make bench    speed tables (bench/results/)
 #   make bench-knobs  what each setting costs and buys (bench/knobs.sh, about 30 min)
@@ -22,7 +22,7 @@ BUILD    = build
 EXAMPLES = plate2d plate3d spinning_plate spinning_cube
 HEADER   = sphsolid.h
 
-.PHONY: all check quickstart-run examples run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
+.PHONY: all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
 all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/beam_reference \
      $(BUILD)/clamp_reference
@@ -94,8 +94,20 @@ test-sanitize: $(BUILD)/test_sanitize
 quickstart-run: check
 	cd $(BUILD) && rm -f strip.vtk && ./quickstart > quickstart.out && test ! -s quickstart.out && test -s strip.vtk
 	@echo "README quick start: ran to t = 1 s and wrote $(BUILD)/strip.vtk"
+# every example, run briefly: it must print its RESULT line and write its CSV and a VTK snapshot,
+# and a value out of range must end it with exit status 2 (the example contract in the README)
+SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "plate3d --res 2 --tend 0.0002 --full" \
+             "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01"
+examples-smoke: examples
+	@for run in $(SMOKE_RUNS); do \
+	  set -- $$run; out=$(BUILD)/smoke/$$1; rm -rf $$out; \
+	  ./$(BUILD)/$$run --quiet --vtk-every 0.005 --out $$out | grep -q '^RESULT case=' && \
+	  test -s $$out/$$1.csv && test -s $$out/$$1_0000.vtk || { echo "examples-smoke: $$run failed"; exit 1; }; \
+	  ./$(BUILD)/$$1 --cfl 7 >/dev/null 2>&1; status=$$?; \
+	  test $$status -eq 2 || { echo "examples-smoke: $$1 --cfl 7 exited $$status, expected 2"; exit 1; }; \
+	done; echo "examples-smoke: 4 examples ran, wrote CSV and VTK, and refused a bad option"
 # the fuzz output goes first so that the test runner's "N passed, M failed" closes make test
-test: check quickstart-run fuzz fuzz-sanitize test-fast test-sanitize
+test: check quickstart-run examples-smoke fuzz fuzz-sanitize test-fast test-sanitize
 
 # ---- randomized API test (tests/fuzz_api.c); replay a case: build/fuzz_api --seed S --cases 1 --verbose ----
 FUZZ_CASES ?= 10000
