@@ -196,6 +196,7 @@ EX_UNUSED static const char* shear_name(int s) {
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, threads, quiet; /* choice indices and flags */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
+    double zeta, xi; /* ENO and GNO coefficients; 0 = the papers' values (0.7 d + 2.1, and 2) */
     const char* out;
     double jitter; /* lattice jitter in dp */
     int seed;      /* of the jitter */
@@ -212,6 +213,8 @@ typedef struct {
     {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
     {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
     {"rho0", OPT_REAL, &(c).rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},                                 \
+    {"zeta", OPT_REAL, &(c).zeta, "ENO/ENO-A coefficient zeta, 0 = 0.7 d + 2.1 (ENO section 4)", 0, 100, NULL}, \
+    {"xi", OPT_REAL, &(c).xi, "GNO/GNO-A penalty coefficient xi_G, 0 = 2 (ANG section 5)", 0, 100, NULL}, \
     {"tend", OPT_REAL, &(c).t_end, "end time [s]", 0, 1e4, NULL},                                       \
     {"out", OPT_STRING, &(c).out, "output folder", 0, 0, NULL},                                         \
     {"vtk-every", OPT_REAL, &(c).vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},       \
@@ -233,6 +236,8 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->material.youngs_modulus = c->E;
     bd->material.poisson_ratio = c->nu;
     bd->shear = (sps_shear)c->shear;
+    bd->zeta = c->zeta;
+    bd->xi = c->xi;
     bd->rotation = c->rotation ? SPS_ROTATION_PER_PARTICLE : SPS_ROTATION_MEAN;
     bd->track_stress = 1; /* von Mises output and the shear part of the strain energy */
 }
@@ -308,9 +313,11 @@ EX_UNUSED static FILE* open_out(const char* dir, const char* name) {
 
 /* The shared settings as RESULT fields, so that every RESULT line says what produced it. */
 EX_UNUSED static const char* common_result_fields(const common_options* c) {
-    static char fields[160];
-    snprintf(fields, sizeof fields, "kernel=%s cfl=%g geometry=%s threads=%d real=%s", c->kernel ? "spline" : "wendland", c->cfl,
-             c->geometry ? "frozen" : "recomputed", c->threads, sps_is_double() ? "double" : "float");
+    static char fields[200];
+    int n = snprintf(fields, sizeof fields, "kernel=%s cfl=%g geometry=%s threads=%d real=%s", c->kernel ? "spline" : "wendland",
+                     c->cfl, c->geometry ? "frozen" : "recomputed", c->threads, sps_is_double() ? "double" : "float");
+    if (c->zeta > 0) n += snprintf(fields + n, sizeof fields - (size_t)n, " zeta=%g", c->zeta); /* only when not the papers' */
+    if (c->xi > 0) snprintf(fields + n, sizeof fields - (size_t)n, " xi=%g", c->xi);
     return fields;
 }
 
