@@ -142,10 +142,10 @@ $(BUILD)/torque_probe: bench/torque_probe.c $(HEADER) | $(BUILD)
 $(BUILD)/rotation_probe: bench/rotation_probe.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 # beam-theory reference for the 2D plate's period: plain C99, libm only (no header, no OpenMP)
-$(BUILD)/beam_reference: bench/beam_reference.c | $(BUILD)
+$(BUILD)/beam_reference: bench/beam_reference.c bench/cantilever.h | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
 # plane-strain finite-element reference for the same period and the clamp's effect (libm only)
-$(BUILD)/clamp_reference: bench/clamp_reference.c | $(BUILD)
+$(BUILD)/clamp_reference: bench/clamp_reference.c bench/cantilever.h | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
 
 clean:

@@ -101,34 +101,14 @@
 #include <string.h>
 #include <time.h>
 
-static const double PI = 3.14159265358979323846;
-static const double KL_EXACT_ROOT = 1.8751040687; /* root of 1 + cos kL cosh kL = 0 */
-static const double SHEAR_COEFFICIENT = 5.0 / 6.0; /* Timoshenko kappa, rectangular section */
+#include "cantilever.h"
+
 
 enum { NODES = 9, ELEMENT_DOFS = 18, GAUSS = 3 };
 
 typedef enum { ROOT_HELD, ROOT_MID_HEIGHT } root_condition;
 
-/* ---- the case ---- */
-
-typedef struct {
-    double length, thickness, density, youngs, poisson;
-} plate_case;
-
-static double plane_strain_modulus(const plate_case* c) {
-    return c->youngs / (1 - c->poisson * c->poisson);
-}
-
-static double shear_modulus(const plate_case* c) {
-    return c->youngs / (2 * (1 + c->poisson));
-}
-
-static double thin_plate_period(const plate_case* c) {
-    double k = KL_EXACT_ROOT / c->length;
-    double omega2 = plane_strain_modulus(c) * c->thickness * c->thickness * pow(k, 4)
-                    / (12 * c->density);
-    return 2 * PI / sqrt(omega2);
-}
+/* ---- the case: plate_case, its moduli and thin_plate_period are in cantilever.h ---- */
 
 /* ---- the 9-node element: one stiffness and one mass matrix for every element ----
    Local node (a, b), a along x and b along y, each 0, 1, 2 (left/middle/right); local number
@@ -498,71 +478,7 @@ static mesh_result first_period(const plate_case* c, int ny, root_condition root
     return r;
 }
 
-/* ---- the exact linear Timoshenko cantilever (the check for root condition b) ----
-   The same shooting as bench/beam_reference.c: for a harmonic motion at omega,
-       kappa G A (v'' - theta') + rho0 A w^2 v = 0,
-       E' I theta'' + kappa G A (v' - theta) + rho0 I w^2 theta = 0,
-   v = theta = 0 at the root, theta' = 0 and v' - theta = 0 at the free end. Two integrations
-   from the root (v'(0) = 1, then theta'(0) = 1, Runge-Kutta 4); omega is a natural frequency
-   when the 2x2 determinant of their free-end residuals vanishes. */
-
-typedef struct {
-    double bending, shear, mass, rotary; /* E'I, kappa G A, rho0 A, rho0 I */
-    double omega2;
-} timoshenko_ode;
-
-/* y = (v, v', theta, theta') */
-static void timoshenko_derivative(const timoshenko_ode* p, const double y[4], double dy[4]) {
-    dy[0] = y[1];
-    dy[1] = y[3] - p->mass * p->omega2 * y[0] / p->shear;
-    dy[2] = y[3];
-    dy[3] = -(p->shear * (y[1] - y[2]) + p->rotary * p->omega2 * y[2]) / p->bending;
-}
-
-static void runge_kutta_step(const timoshenko_ode* p, double h, double y[4]) {
-    double k1[4], k2[4], k3[4], k4[4], trial[4];
-    int i;
-    timoshenko_derivative(p, y, k1);
-    for (i = 0; i < 4; i++) trial[i] = y[i] + 0.5 * h * k1[i];
-    timoshenko_derivative(p, trial, k2);
-    for (i = 0; i < 4; i++) trial[i] = y[i] + 0.5 * h * k2[i];
-    timoshenko_derivative(p, trial, k3);
-    for (i = 0; i < 4; i++) trial[i] = y[i] + h * k3[i];
-    timoshenko_derivative(p, trial, k4);
-    for (i = 0; i < 4; i++) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-}
-
-static double free_end_determinant(timoshenko_ode* p, double length, double omega) {
-    enum { STEPS = 2000 };
-    double a[4] = {0, 1, 0, 0}, b[4] = {0, 0, 0, 1};
-    int s;
-    p->omega2 = omega * omega;
-    for (s = 0; s < STEPS; s++) {
-        runge_kutta_step(p, length / STEPS, a);
-        runge_kutta_step(p, length / STEPS, b);
-    }
-    return a[3] * (b[1] - b[2]) - b[3] * (a[1] - a[2]);
-}
-
-/* bisection between 0.8 and 1 times the thin-plate frequency (shear and rotary inertia only
-   lower it); 0 if that bracket holds no root */
-static double timoshenko_period(const plate_case* c) {
-    timoshenko_ode p;
-    double H = c->thickness, hi = 2 * PI / thin_plate_period(c), lo = 0.8 * hi, residual_lo;
-    int i;
-    p.bending = plane_strain_modulus(c) * H * H * H / 12;
-    p.shear = SHEAR_COEFFICIENT * shear_modulus(c) * H;
-    p.mass = c->density * H;
-    p.rotary = c->density * H * H * H / 12;
-    residual_lo = free_end_determinant(&p, c->length, lo);
-    if (residual_lo * free_end_determinant(&p, c->length, hi) > 0) return 0;
-    for (i = 0; i < 50; i++) {
-        double mid = 0.5 * (lo + hi), residual_mid = free_end_determinant(&p, c->length, mid);
-        if (residual_lo * residual_mid <= 0) hi = mid;
-        else lo = mid, residual_lo = residual_mid;
-    }
-    return 2 * PI / (0.5 * (lo + hi));
-}
+/* ---- the exact linear Timoshenko cantilever (the check for root condition b): cantilever.h ---- */
 
 /* ---- the table ---- */
 
@@ -655,7 +571,7 @@ static void print_summary(const double* held, const double* mean, const double* 
 
 static void print_table(const plate_case* c, int max_ny) {
     double held[MAX_MESHES], mean[MAX_MESHES], point[MAX_MESHES];
-    double thin = thin_plate_period(c), timoshenko = timoshenko_period(c);
+    double thin = thin_plate_period(c, KL_EXACT_ROOT), timoshenko = timoshenko_exact_period(c, 1, 1);
     clock_t start = clock();
     int ny, count = 0;
     print_header(c, thin, timoshenko);
@@ -686,7 +602,7 @@ static double number_argument(int argc, char** argv, int* i) {
 }
 
 int main(int argc, char** argv) {
-    plate_case c = {0.2, 0.02, 1000.0, 2e6, 0.3975};
+    plate_case c = {0.2, 0.02, 1000.0, 2e6, 0.3975, 5.0 / 6.0}; /* kappa: rectangular section */
     int max_ny = 32, i;
     for (i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--thickness")) c.thickness = number_argument(argc, argv, &i);
