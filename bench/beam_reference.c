@@ -122,12 +122,7 @@ static const double SAFETY = 0.8;          /* fraction of the stable time step u
 static const double EB_SHEAR_FACTOR = 1e3;   /* --euler-bernoulli: shear rigidity x this */
 static const double EB_INERTIA_FACTOR = 1e-3; /* --euler-bernoulli: rotary inertia x this */
 
-/* ---- the case (its struct and moduli: cantilever.h) ---- */
-
-static plate_case benchmark_case(void) {
-    plate_case c = {0.2, 0.02, 1000.0, 2e6, 0.3975, 5.0 / 6.0};
-    return c;
-}
+/* ---- the case (its struct, values and moduli: cantilever.h) ---- */
 
 /* the benchmark's velocity scale (a bulk-like wave speed of the SPH setup) */
 static double velocity_scale(const plate_case* c) {

@@ -15,6 +15,12 @@ typedef struct {
     double length, thickness, density, youngs, poisson, shear_coefficient;
 } plate_case;
 
+/* L = 0.2, H = 0.02, rho0 = 1000, E = 2e6, nu = 0.3975; kappa 5/6 (rectangular section) */
+static plate_case benchmark_case(void) {
+    plate_case c = {0.2, 0.02, 1000.0, 2e6, 0.3975, 5.0 / 6.0};
+    return c;
+}
+
 static double plane_strain_modulus(const plate_case* c) {
     return c->youngs / (1 - c->poisson * c->poisson);
 }

@@ -602,7 +602,7 @@ static double number_argument(int argc, char** argv, int* i) {
 }
 
 int main(int argc, char** argv) {
-    plate_case c = {0.2, 0.02, 1000.0, 2e6, 0.3975, 5.0 / 6.0}; /* kappa: rectangular section */
+    plate_case c = benchmark_case();
     int max_ny = 32, i;
     for (i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--thickness")) c.thickness = number_argument(argc, argv, &i);
