@@ -566,29 +566,20 @@ static void usage(void) {
     exit(2);
 }
 
-static double number_argument(int argc, char** argv, int* i) {
-    char* end;
-    double value;
-    if (*i + 1 >= argc) usage();
-    value = strtod(argv[++*i], &end);
-    if (*end != '\0') usage();
-    return value;
-}
-
 int main(int argc, char** argv) {
     plate_case c = benchmark_case();
     run_options o = {80, NONLINEAR_TIMOSHENKO, 0, 0.05, 1.0, 0.01};
     int single_run = 0, i;
     for (i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--kappa")) {
-            c.shear_coefficient = number_argument(argc, argv, &i);
+            c.shear_coefficient = number_argument(argc, argv, &i, usage);
             continue;
         }
         single_run = 1;
-        if (!strcmp(argv[i], "--vf")) o.vf = number_argument(argc, argv, &i);
-        else if (!strcmp(argv[i], "--elements")) o.elements = (int)number_argument(argc, argv, &i);
-        else if (!strcmp(argv[i], "--tend")) o.tend = number_argument(argc, argv, &i);
-        else if (!strcmp(argv[i], "--every")) o.print_every = number_argument(argc, argv, &i);
+        if (!strcmp(argv[i], "--vf")) o.vf = number_argument(argc, argv, &i, usage);
+        else if (!strcmp(argv[i], "--elements")) o.elements = (int)number_argument(argc, argv, &i, usage);
+        else if (!strcmp(argv[i], "--tend")) o.tend = number_argument(argc, argv, &i, usage);
+        else if (!strcmp(argv[i], "--every")) o.print_every = number_argument(argc, argv, &i, usage);
         else if (!strcmp(argv[i], "--linear")) o.kind = LINEAR_TIMOSHENKO;
         else if (!strcmp(argv[i], "--euler-bernoulli")) o.euler_bernoulli = 1;
         else usage();

@@ -1,10 +1,11 @@
 /* cantilever.h - what bench/beam_reference.c and bench/clamp_reference.c share: the 2D
    oscillating plate's case (benchmark A1, plane strain), its moduli, the thin-plate period and
-   the exact first period of the linear Timoshenko cantilever (an independent check for both).
-   Static functions, included once by each program. */
+   the exact first period of the linear Timoshenko cantilever (an independent check for both),
+   and the parsing of a numeric option. Static functions, included once by each program. */
 #ifndef SPS_BENCH_CANTILEVER_H
 #define SPS_BENCH_CANTILEVER_H
 #include <math.h>
+#include <stdlib.h>
 
 static const double PI = 3.14159265358979323846;
 static const double KL_EXACT_ROOT = 1.8751040687; /* root of 1 + cos kL cosh kL = 0 */
@@ -105,6 +106,17 @@ static double timoshenko_exact_period(const plate_case* c, double shear_factor,
         else lo = mid, residual_lo = residual_mid;
     }
     return 2 * PI / (0.5 * (lo + hi));
+}
+
+/* The number after option argv[*i] (advancing *i); calls usage (which exits) when it is missing or
+   not a number. */
+static double number_argument(int argc, char** argv, int* i, void (*usage)(void)) {
+    char* end;
+    double value;
+    if (*i + 1 >= argc) usage();
+    value = strtod(argv[++*i], &end);
+    if (*end != '\0') usage();
+    return value;
 }
 
 #endif

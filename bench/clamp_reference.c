@@ -592,21 +592,12 @@ static void usage(void) {
     exit(2);
 }
 
-static double number_argument(int argc, char** argv, int* i) {
-    char* end;
-    double value;
-    if (*i + 1 >= argc) usage();
-    value = strtod(argv[++*i], &end);
-    if (*end != '\0') usage();
-    return value;
-}
-
 int main(int argc, char** argv) {
     plate_case c = benchmark_case();
     int max_ny = 32, i;
     for (i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--thickness")) c.thickness = number_argument(argc, argv, &i);
-        else if (!strcmp(argv[i], "--max-ny")) max_ny = (int)number_argument(argc, argv, &i);
+        if (!strcmp(argv[i], "--thickness")) c.thickness = number_argument(argc, argv, &i, usage);
+        else if (!strcmp(argv[i], "--max-ny")) max_ny = (int)number_argument(argc, argv, &i, usage);
         else usage();
     }
     if (c.thickness <= 0 || c.thickness > c.length || max_ny < 2) usage();
