@@ -30,9 +30,10 @@ static void initial_velocity(const sps_real x[3], sps_real v[3], void* user) {
 /* The period of mode (m, n) by Mindlin's thick-plate theory (shear deformation and rotary
    inertia, shear coefficient pi^2/12), the continuum answer thin-plate theory leaves out for
    H/L = 0.025. With w = W s, div psi = P s and laplacian(s) = -k^2 s, Mindlin's equations give
-   (kGH k^2 - rho H w^2)(D k^2 + kGH - rho I w^2) = (kGH)^2 k^2, I = H^3/12: the lower root. */
-static double mindlin_period(double E, double nu, double rho, mode md) {
-    const double kappa = PI * PI / 12, G = E / (2 * (1 + nu)), D = E * pow(PLATE_H, 3) / (12 * (1 - nu * nu));
+   (kGH k^2 - rho H w^2)(D k^2 + kGH - rho I w^2) = (kGH)^2 k^2, I = H^3/12 (D: the flexural
+   rigidity of ANG eq. 55): the lower root. */
+static double mindlin_period(double E, double nu, double D, double rho, mode md) {
+    const double kappa = PI * PI / 12, G = E / (2 * (1 + nu));
     const double I = pow(PLATE_H, 3) / 12, k2 = PI * PI * (pow(md.m / PLATE_L, 2) + pow(md.n / PLATE_W, 2));
     const double kgh = kappa * G * PLATE_H, a = kgh * k2, b = D * k2 + kgh;
     const double qa = rho * PLATE_H * rho * I, qb = -(a * rho * I + b * rho * PLATE_H), qc = a * b - kgh * kgh * k2;
@@ -130,7 +131,7 @@ int main(int argc, char** argv) {
     antinode[2] = 0;
     D = c.E * pow(PLATE_H, 3) / (12 * (1 - c.nu * c.nu));                                                 /* ANG eq. 55 */
     analytical = 2 / PI / (pow(md.m / PLATE_L, 2) + pow(md.n / PLATE_W, 2)) * sqrt(c.rho0 * PLATE_H / D); /* ANG eq. 54 */
-    mindlin = mindlin_period(c.E, c.nu, c.rho0, md);
+    mindlin = mindlin_period(c.E, c.nu, D, c.rho0, md);
     if (c.t_end == 0) c.t_end = 1.6 * analytical; /* stops earlier, at the second zero crossing */
     dp = PLATE_H / res;
     wd.dim = 3;
