@@ -137,9 +137,9 @@ memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 # ---- bench ----
 bench: examples
 	sh bench/run_bench.sh
-$(BUILD)/torque_probe: bench/torque_probe.c $(HEADER) | $(BUILD)
+$(BUILD)/torque_probe: bench/torque_probe.c bench/kick_shear.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-$(BUILD)/rotation_probe: bench/rotation_probe.c $(HEADER) | $(BUILD)
+$(BUILD)/rotation_probe: bench/rotation_probe.c bench/kick_shear.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 # beam-theory reference for the 2D plate's period: plain C99, libm only (no header, no OpenMP)
 $(BUILD)/beam_reference: bench/beam_reference.c bench/cantilever.h | $(BUILD)

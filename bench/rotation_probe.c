@@ -44,6 +44,8 @@ static void probe_finish(sps_world* w, sps_real dt);
 #include <stdlib.h>
 #include <string.h>
 
+#include "kick_shear.h"
+
 static const double PI = 3.14159265358979323846;
 static int variant = 0;
 static double *X0, th_mean, th_fit, th_fit_prev, th_L, R_prev[9];
@@ -112,18 +114,15 @@ static void probe_finish(sps_world* w, sps_real dt) {
 
 /* z-torque and xy virial of m H a_s at x + dt/2 v (as the next kick applies it) */
 static void shear_moments(const sps_world* w, double* torque, double* virial) {
-    const double dt = w->dt;
     sps_real H[9];
+    double x[2], a[2];
     int i;
-    sps__rodrigues(w->bodies[0].mean_spin, SPS_R(0.5) * (sps_real)dt, w->dim, H);
+    kick_half_rotation(w, H);
     *torque = *virial = 0;
     for (i = 0; i < w->n; ++i) {
-        double m = w->mass[i], x = w->pos[0][i] + 0.5 * dt * w->vel[0][i], y = w->pos[1][i] + 0.5 * dt * w->vel[1][i];
-        double az = w->dim == 3 ? w->acc_s[2][i] : 0;
-        double ax = H[0] * w->acc_s[0][i] + H[1] * w->acc_s[1][i] + H[2] * az;
-        double ay = H[3] * w->acc_s[0][i] + H[4] * w->acc_s[1][i] + H[5] * az;
-        *torque += m * (x * ay - y * ax);
-        *virial += m * (x * ax + y * ay);
+        kick_shear_xy(w, H, i, x, a);
+        *torque += w->mass[i] * (x[0] * a[1] - x[1] * a[0]);
+        *virial += w->mass[i] * (x[0] * a[0] + x[1] * a[1]);
     }
 }
 

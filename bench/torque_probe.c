@@ -14,6 +14,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "kick_shear.h"
+
 static void rigid_rotation(const sps_real x[3], sps_real v[3], void* user) {
     double omega = *(const double*)user;
     v[0] = -omega * x[1];
@@ -21,19 +23,20 @@ static void rigid_rotation(const sps_real x[3], sps_real v[3], void* user) {
     v[2] = 0;
 }
 
-/* z-torques of m acc_p at x - dt/2 v and of m H a_s at x + dt/2 v (H: half-step mean rotation) */
+/* z-torques of m acc_p at x - dt/2 v (the half-step positions it was computed at) and of m a_s as
+   the next kick applies it (kick_shear.h) */
 static void torques(const sps_world* w, double* pressure, double* shear) {
     const double dt = w->dt;
     sps_real H[9];
+    double xs[2], as[2];
     int i;
-    sps__rodrigues(w->bodies[0].mean_spin, SPS_R(0.5) * (sps_real)dt, w->dim, H);
+    kick_half_rotation(w, H);
     *pressure = *shear = 0;
     for (i = 0; i < w->n; ++i) {
-        double m = w->mass[i], x = w->pos[0][i], y = w->pos[1][i], vx = w->vel[0][i], vy = w->vel[1][i];
-        double ax = H[0] * w->acc_s[0][i] + H[1] * w->acc_s[1][i] + H[2] * w->acc_s[2][i];
-        double ay = H[3] * w->acc_s[0][i] + H[4] * w->acc_s[1][i] + H[5] * w->acc_s[2][i];
-        *pressure += m * ((x - 0.5 * dt * vx) * w->acc_p[1][i] - (y - 0.5 * dt * vy) * w->acc_p[0][i]);
-        *shear += m * ((x + 0.5 * dt * vx) * ay - (y + 0.5 * dt * vy) * ax);
+        const double m = w->mass[i], x = w->pos[0][i] - 0.5 * dt * w->vel[0][i], y = w->pos[1][i] - 0.5 * dt * w->vel[1][i];
+        *pressure += m * (x * w->acc_p[1][i] - y * w->acc_p[0][i]);
+        kick_shear_xy(w, H, i, xs, as);
+        *shear += m * (xs[0] * as[1] - xs[1] * as[0]);
     }
 }
 
