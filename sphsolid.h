@@ -111,6 +111,16 @@
                        (ANG Algorithm 2). xi_G = 2.
       -A variants: rotation = SPS_ROTATION_MEAN (default) uses the body's mean Rodrigues matrix
       (linear momentum exact, ANG eq. 41); SPS_ROTATION_PER_PARTICLE each particle's own (eq. 34).
+      SPS_ROTATION_PAIR (our extension, not in the papers) does what eq. 32 asks of the rotation,
+      that every stored increment stay aligned with its pair, exactly: each ENO increment (or
+      GNO-A penalty increment, eq. 46) is a force along e_ij, so the library stores one scalar
+      per neighbour pair, g_ij = sum over sub-steps of the increment's magnitude (symmetric in
+      i, j), and applies a_s_i = (1/m_i) sum_j g_ij e_ij with the current e_ij. The shear forces
+      are then central pair forces: linear and angular momentum are exact for any motion
+      (spinning cube: 1e-12 % instead of 19.8 %), no rotation matrices or velocity gradient are
+      needed (ENO-A without track_stress skips B and L), and g_ij is carried over neighbour-list
+      rebuilds by particle id (a pair that enters the support starts at 0, one that leaves takes
+      its g_ij, accumulated where dW is near 0, with it). Memory: 2 reals + 1 int per pair slot.
       The shear stress tau (Jaumann rate, ENO eqs. 6-8) is integrated for the OG family always,
       for ENO bodies only with track_stress = 1 (von Mises output, strain energy).
 
@@ -139,7 +149,7 @@
       threads [0, 1024], escape_distance >= 0 (INFINITY allowed), keep_last_good_state 0/1,
       allocator (both or neither). Body def: cookie, material.density and .youngs_modulus
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
-      c0 > 0), shear (0..5; OAS only in 2D), rotation, zeta [0, 100], xi [0, 100], oas_epsilon
+      c0 > 0), shear (0..5; OAS only in 2D), rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon
       [0, 1], oas_exponent [1, 12], track_stress 0/1. Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
@@ -275,8 +285,9 @@ typedef enum sps_shear {
 } sps_shear;
 
 typedef enum sps_rotation {
-    SPS_ROTATION_MEAN = 0,        /* the body's mean Rodrigues matrix (ANG eq. 41-42) */
-    SPS_ROTATION_PER_PARTICLE = 1 /* each particle's own matrix (ANG eq. 34) */
+    SPS_ROTATION_MEAN = 0,         /* the body's mean Rodrigues matrix (ANG eq. 41-42) */
+    SPS_ROTATION_PER_PARTICLE = 1, /* each particle's own matrix (ANG eq. 34) */
+    SPS_ROTATION_PAIR = 2          /* each increment turned with its own pair (see SHEAR FORMULATIONS) */
 } sps_rotation;
 
 /* Axis masks for velocity constraints. */
@@ -613,6 +624,7 @@ typedef struct sps__body {
     int penalty;          /* accumulated hourglass penalty (GNO, GNO-A) */
     int rotated;          /* a_s rotated by Rodrigues matrices (ENO-A, GNO-A) */
     int mean;             /* ... by the body's mean matrix */
+    int paired;           /* -A variant with SPS_ROTATION_PAIR: increments stored per pair (pair_force) */
     sps_real xi, oas_eps, oas_n, oas_w_dp;
     sps_real mean_rotation[9];
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
@@ -678,6 +690,13 @@ struct sps_world {
     int ell_width, group_cap;
     long pair_cap; /* slots */
     sps_real *nb_dw, *nb_dw_r, *nb_e[3]; /* frozen geometry per slot: dW/dr, dW/dr / r, e_ij (0 in padding) */
+    /* SPS_ROTATION_PAIR: the accumulated shear force g_ij per slot [N] (0 in padding), and its
+       copy kept at the end of each step for the next list rebuild: the kept slots with the id
+       of their neighbour, and per particle id its first kept slot and count (ids < kept_ids) */
+    sps_real *pair_force, *kept_force;
+    int *kept_neighbor_id, *kept_first, *kept_count;
+    long pair_force_cap; /* slots of pair_force and kept_force */
+    int kept_cap, kept_ids;
     int *cell_of, *cell_start, *perm;
     int cell_cap;
     void* scratch; /* permutation buffer: cap reals */
@@ -880,7 +899,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
     SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= 12, "oas_exponent = %g, allowed [1, 12]", (double)def->oas_exponent);
-    SPS__CHECK(def->rotation == SPS_ROTATION_MEAN || def->rotation == SPS_ROTATION_PER_PARTICLE, "rotation = %d, allowed 0 (mean) or 1 (per particle)", (int)def->rotation);
+    SPS__CHECK(def->rotation == SPS_ROTATION_MEAN || def->rotation == SPS_ROTATION_PER_PARTICLE || def->rotation == SPS_ROTATION_PAIR,
+               "rotation = %d, allowed 0 (mean), 1 (per particle) or 2 (pair)", (int)def->rotation);
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
     SPS__CHECK(def->track_stress == 0 || def->track_stress == 1, "track_stress = %d, allowed 0 or 1", def->track_stress);
     if (!broken) { /* each field in range, yet the derived constants may over- or underflow */
@@ -1033,6 +1053,8 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_j); sps__free(w, w->nb_count);
     sps__free(w, w->nb_ell);
     sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r);
+    sps__free(w, w->pair_force); sps__free(w, w->kept_force); sps__free(w, w->kept_neighbor_id);
+    sps__free(w, w->kept_first); sps__free(w, w->kept_count);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm);
     sps__free(w, w->scratch); sps__free(w, w->group_sum); sps__free(w, w->diag_scratch);
     sps__free(w, w->good); sps__free(w, w->good_id);
@@ -1102,7 +1124,8 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->eno = def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A;
     b->stress_force = !b->eno;
     b->penalty = def->shear == SPS_SHEAR_GNO || def->shear == SPS_SHEAR_GNO_A;
-    b->rotated = def->shear == SPS_SHEAR_ENO_A || def->shear == SPS_SHEAR_GNO_A;
+    b->paired = (def->shear == SPS_SHEAR_ENO_A || def->shear == SPS_SHEAR_GNO_A) && def->rotation == SPS_ROTATION_PAIR;
+    b->rotated = (def->shear == SPS_SHEAR_ENO_A || def->shear == SPS_SHEAR_GNO_A) && !b->paired;
     b->mean = b->rotated && def->rotation == SPS_ROTATION_MEAN;
     b->needs_stress = b->stress_force || def->track_stress;
     b->needs_gradient = b->rotated || b->needs_stress;
@@ -1396,6 +1419,7 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w);
 static void sps__regularized_inverse(int dim, const sps_real* A, sps_real* B);
 static sps_result sps__fill_lane_slots(sps_world* w);
 static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, int s, int len);
+static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int s, int len);
 
 /* The k-th neighbour of particle i (k < nb_count[i]). */
 SPS__INLINE int sps__neighbor(const sps_world* w, int i, int k) { return w->nb_j[w->nb_first[i] + k * SPS__LANES]; }
@@ -1518,8 +1542,10 @@ static sps_result sps__fill_lane_slots(sps_world* w) {
         SPS__PARALLEL_FOR(w, b->end - b->begin)
         for (g = 0; g < b->ngroups; ++g) {
             int l, s0 = w->nb_group_start[b->group0 + g], len = (w->nb_group_start[b->group0 + g + 1] - s0) / SPS__LANES;
-            for (l = 0; l < SPS__LANES; ++l)
+            for (l = 0; l < SPS__LANES; ++l) {
                 sps__fill_particle_slots(w, b, b->begin + g * SPS__LANES + l, s0 + l, len);
+                if (b->paired) sps__carry_pair_forces(w, b, b->begin + g * SPS__LANES + l, s0 + l, len);
+            }
         }
     }
     return SPS_OK;
@@ -1556,6 +1582,54 @@ static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, in
                 for (c = 0; c < w->dim; ++c) A[3 * a + c] -= dw / r * w->vol[j] * d[a] * d[c];
     }
     if (frozen && i < b->end && b->needs_gradient) sps__regularized_inverse(w->dim, A, w->bmat + (size_t)9 * i);
+}
+
+/* SPS_ROTATION_PAIR: the len slots of particle i (a lane of its group, first slot s) take the
+   force of the same pair from the copy kept at the end of the last step, found by the
+   neighbour's id (the lists keep their order from one rebuild to the next, so the search
+   resumes after the last hit); a new pair and the padding get 0. */
+static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int s, int len) {
+    const int count = i < b->end ? w->nb_count[i] : 0, id = i < b->end ? w->id[i] : -1;
+    const int kept = id >= 0 && id < w->kept_ids ? w->kept_count[id] : 0;
+    const long first = kept ? w->kept_first[id] : 0;
+    int k, m, next = 0;
+    for (k = 0; k < len; ++k, s += SPS__LANES) {
+        sps_real g = 0;
+        if (k < count) {
+            const int neighbor_id = w->id[w->nb_j[s]];
+            for (m = 0; m < kept; ++m, ++next) {
+                const long slot = first + (long)(next % kept) * SPS__LANES;
+                if (w->kept_neighbor_id[slot] == neighbor_id) {
+                    g = w->kept_force[slot];
+                    ++next;
+                    break;
+                }
+            }
+        }
+        w->pair_force[s] = g;
+    }
+}
+
+/* SPS_ROTATION_PAIR: keeps the pair forces, with the ids of both particles, for the next list
+   rebuild (which may re-sort the particles and moves every slot). The kept copy swaps places
+   with pair_force, whose every slot the rebuild writes anew. */
+static void sps__keep_pair_forces(sps_world* w) {
+    sps_real* swap = w->kept_force;
+    int i;
+    w->kept_force = w->pair_force;
+    w->pair_force = swap;
+    SPS__PARALLEL_FOR(w, w->n)
+    for (i = 0; i < w->n; ++i) {
+        const int id = w->id[i], count = w->bodies[w->body[i]].paired ? w->nb_count[i] : 0;
+        int k;
+        w->kept_first[id] = w->nb_first[i];
+        w->kept_count[id] = count;
+        for (k = 0; k < count; ++k) {
+            const int s = w->nb_first[i] + k * SPS__LANES;
+            w->kept_neighbor_id[s] = w->id[w->nb_j[s]];
+        }
+    }
+    w->kept_ids = w->n;
 }
 
 /* >>linalg */
@@ -1634,8 +1708,30 @@ static void sps__set_escape_box(sps_world* w) {
 
 /* Sorts particles by body (after adds), sets body ranges and allocates what the scene needs:
    neighbour lists, scratch and the optional fields (velocity gradient, B, stress, rotation). */
+/* SPS_ROTATION_PAIR storage: pair_force is refilled at every list rebuild, so it is simply
+   reallocated; the kept copy is grown with its contents, because it holds the forces of the
+   last step until the rebuild after this allocation reads them. */
+static sps_result sps__ensure_pair_storage(sps_world* w) {
+    if (w->pair_force_cap < w->pair_cap) {
+        sps__free(w, w->pair_force);
+        w->pair_force = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)w->pair_cap);
+        if (!w->pair_force || !sps__grow(w, &w->kept_force, sizeof(sps_real), (size_t)w->pair_force_cap, (size_t)w->pair_cap) ||
+            !sps__grow(w, &w->kept_neighbor_id, sizeof(int), (size_t)w->pair_force_cap, (size_t)w->pair_cap))
+            return SPS_ERR_OUT_OF_MEMORY;
+        memset(w->pair_force, 0, sizeof(sps_real) * (size_t)w->pair_cap);
+        w->pair_force_cap = w->pair_cap;
+    }
+    if (w->kept_cap < w->cap) {
+        if (!sps__grow(w, &w->kept_first, sizeof(int), (size_t)w->kept_cap, (size_t)w->cap) ||
+            !sps__grow(w, &w->kept_count, sizeof(int), (size_t)w->kept_cap, (size_t)w->cap))
+            return SPS_ERR_OUT_OF_MEMORY;
+        w->kept_cap = w->cap;
+    }
+    return SPS_OK;
+}
+
 static sps_result sps__commit(sps_world* w) {
-    int i, bi, need_gradient = 0, need_stress = 0, need_mean = 0, need_art = 0;
+    int i, bi, need_gradient = 0, need_stress = 0, need_mean = 0, need_art = 0, need_pair = 0;
     const size_t slots = (size_t)w->cap + SPS__LANES; /* with the lane padding */
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
@@ -1643,11 +1739,13 @@ static sps_result sps__commit(sps_world* w) {
         need_stress |= b->needs_stress;
         need_mean |= b->mean;
         need_art |= b->def.shear == SPS_SHEAR_OAS;
+        need_pair |= b->paired;
     }
     if (sps__ensure_neighbor_storage(w) != SPS_OK) {
         w->pair_cap = 0; /* some lists may be NULL: the next call must allocate them again */
         return SPS_ERR_OUT_OF_MEMORY;
     }
+    if (need_pair && sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
     if (need_gradient && (!w->grad || !w->bmat || w->allocated_for < w->cap)) {
         sps__free(w, w->grad); sps__free(w, w->bmat);
         w->grad = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * slots);
@@ -1823,18 +1921,21 @@ SPS__INLINE sps__group sps__group_of(const sps_world* w, const sps__body* b, int
 /* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with
    beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of the shear stress
    (ENO eq. 17); with art (OAS) Gray et al.'s artificial stress
-   sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp). stress and art are literals at
-   every call so each variant's loop is branch-free. Each lane sums its own particle's
-   neighbours in list order, so the result does not depend on the vector width. */
+   sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp); with paired (SPS_ROTATION_PAIR)
+   the accumulated shear forces (1/m_i) sum_j g_ij e_ij along the current e_ij. stress, art and
+   paired are literals at every call so each variant's loop is branch-free. Each lane sums its
+   own particle's neighbours in list order, so the result does not depend on the vector width. */
 SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, const int dim, const int geo,
-                                       const int stress, const int art) {
+                                       const int stress, const int art, const int paired) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->z_riemann;
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = w->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
-    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES];
+    const sps_real* SPS__RESTRICT pair_force = w->pair_force;
+    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES];
     int k, l;
-    for (l = 0; l < SPS__LANES; ++l) acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = 0;
+    for (l = 0; l < SPS__LANES; ++l)
+        acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
     for (k = 0; k < q.len; ++k) {
         const int* SPS__RESTRICT js = w->nb_j + q.s0 + k * SPS__LANES;
         SPS__PRAGMA(omp simd)
@@ -1848,6 +1949,12 @@ SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, 
             acc[0][l] -= s * ex;
             acc[1][l] -= s * ey;
             if (dim == 3) acc[2][l] -= s * ez;
+            if (paired) {
+                const sps_real f = pair_force[q.s0 + k * SPS__LANES + l];
+                shear[0][l] += f * ex;
+                shear[1][l] += f * ey;
+                if (dim == 3) shear[2][l] += f * ez;
+            }
             if (stress) { /* (tau_i + tau_j) . e_ij dW V_j */
                 const sps_real *ti = tau + (size_t)6 * i, *tj = tau + (size_t)6 * j;
                 sps_real dwv = dw * vol[j];
@@ -1879,14 +1986,18 @@ SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, 
         w->acc_p[0][i] = acc[0][l] / w->rho[i] + gray[0][l];
         w->acc_p[1][i] = acc[1][l] / w->rho[i] + gray[1][l];
         if (dim == 3) w->acc_p[2][i] = acc[2][l] / w->rho[i];
+        if (paired)
+            for (k = 0; k < dim; ++k) w->acc_p[k][i] += shear[k][l] / w->mass[i];
     }
 }
 
 SPS__INLINE void sps__pressure_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, int unused) {
     (void)unused;
-    if (b->def.shear == SPS_SHEAR_OAS) sps__pressure_variant(w, b, g, dim, geo, 1, 1);
-    else if (b->stress_force) sps__pressure_variant(w, b, g, dim, geo, 1, 0);
-    else sps__pressure_variant(w, b, g, dim, geo, 0, 0);
+    if (b->def.shear == SPS_SHEAR_OAS) sps__pressure_variant(w, b, g, dim, geo, 1, 1, 0);
+    else if (b->stress_force && b->paired) sps__pressure_variant(w, b, g, dim, geo, 1, 0, 1);
+    else if (b->stress_force) sps__pressure_variant(w, b, g, dim, geo, 1, 0, 0);
+    else if (b->paired) sps__pressure_variant(w, b, g, dim, geo, 0, 0, 1);
+    else sps__pressure_variant(w, b, g, dim, geo, 0, 0, 0);
 }
 
 /* Gray et al.'s artificial stress R_i (2D): in the principal frame of sigma = -p I + tau each
@@ -2091,46 +2202,38 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, cons
     }
 }
 
-/* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
-   eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
-   before correction); A -= r_ij (x) e_ij dW V_j (B^-1, recomputed geometry). The gradient test
-   sits outside the pair loop so the loop without it carries no branch. Then the lanes' ends
-   (sps__continuity_lanes), the Jaumann stress when tracked, the Rodrigues matrices, this group's
-   share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass) and the
-   ENO increments. */
-SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
-    const sps__group q = sps__group_of(w, b, g);
-    const int gradient = b->needs_gradient, end = b->end;
+/* The pair loop of the continuity pass for lane group q (terms: see sps__continuity_group).
+   gradient adds the sums of M and A; paired (SPS_ROTATION_PAIR) adds each ENO increment to its
+   pair's force g_ij += 2 zeta G dt (v_ij . e_ij) dW/r V_i V_j instead of the particle's
+   Laplacian: every factor is symmetric in i, j bit for bit, so g_ij = g_ji and the shear
+   forces stay exactly antisymmetric. Both are literals at every call (branch-free loops). */
+SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim, const int geo, const int gradient,
+                                       const int paired, sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES]) {
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
-    const sps_real shear_rate = 2 * b->zeta * b->G * dt; /* ENO eq. 24 without 1/rho_i */
-    sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
-    sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    int k, l, t, a;
-    for (t = 0; t < SPS__NSUM; ++t)
-        for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
-#define SPS__CONTINUITY_PAIR                                                               \
-    const int i = q.i0 + l, j = js[l];                                                     \
-    const sps__pair_geometry e = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo);  \
-    const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;              \
-    sps_real dvx, dvy, dvz, u, dwv, lv;                                                    \
-    dvx = vx[i] - vx[j];                                                                   \
-    dvy = vy[i] - vy[j];                                                                   \
-    dvz = dim == 3 ? vz[i] - vz[j] : 0;                                                    \
-    u = dvx * ex + dvy * ey + dvz * ez;                                                    \
-    dwv = dw * vol[j];                                                                     \
-    sum[SPS__DRHO][l] += u * dwv;                                                          \
-    lv = u * dw_r * vol[j];                                                                \
-    sum[SPS__LX][l] += lv * ex;                                                            \
-    sum[SPS__LY][l] += lv * ey;                                                            \
-    if (dim == 3) sum[SPS__LZ][l] += lv * ez;
+    sps_real* SPS__RESTRICT pair_force = w->pair_force;
+    int k, l;
     for (k = 0; k < q.len; ++k) {
-        const int* SPS__RESTRICT js = w->nb_j + q.s0 + k * SPS__LANES;
-        if (gradient) {
-            SPS__PRAGMA(omp simd)
-            for (l = 0; l < SPS__LANES; ++l) {
-                SPS__CONTINUITY_PAIR
-                sps_real gx = dvx * dwv, gy = dvy * dwv, gz = dvz * dwv;
+        const int s = q.s0 + k * SPS__LANES;
+        const int* SPS__RESTRICT js = w->nb_j + s;
+        SPS__PRAGMA(omp simd)
+        for (l = 0; l < SPS__LANES; ++l) {
+            const int i = q.i0 + l, j = js[l];
+            const sps__pair_geometry e = sps__pair(w, i, s + l, j, dim, geo);
+            const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;
+            const sps_real dvx = vx[i] - vx[j], dvy = vy[i] - vy[j], dvz = dim == 3 ? vz[i] - vz[j] : 0;
+            const sps_real u = dvx * ex + dvy * ey + dvz * ez, dwv = dw * vol[j];
+            sum[SPS__DRHO][l] += u * dwv;
+            if (paired) {
+                pair_force[s + l] += shear_rate * (u * dw_r) * (vol[i] * vol[j]);
+            } else {
+                const sps_real lv = u * dw_r * vol[j];
+                sum[SPS__LX][l] += lv * ex;
+                sum[SPS__LY][l] += lv * ey;
+                if (dim == 3) sum[SPS__LZ][l] += lv * ez;
+            }
+            if (gradient) {
+                const sps_real gx = dvx * dwv, gy = dvy * dwv, gz = dvz * dwv;
                 sum[SPS__M00][l] -= gx * ex; sum[SPS__M01][l] -= gx * ey;
                 sum[SPS__M10][l] -= gy * ex; sum[SPS__M11][l] -= gy * ey;
                 if (dim == 3) {
@@ -2138,7 +2241,7 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
                     sum[SPS__M20][l] -= gz * ex; sum[SPS__M21][l] -= gz * ey; sum[SPS__M22][l] -= gz * ez;
                 }
                 if (geo != SPS__GEO_FROZEN) {
-                    sps_real rdwv = e.r * dwv;
+                    const sps_real rdwv = e.r * dwv;
                     sum[SPS__A00][l] -= rdwv * ex * ex;
                     sum[SPS__A01][l] -= rdwv * ex * ey;
                     sum[SPS__A11][l] -= rdwv * ey * ey;
@@ -2149,14 +2252,30 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
                     }
                 }
             }
-        } else {
-            SPS__PRAGMA(omp simd)
-            for (l = 0; l < SPS__LANES; ++l) {
-                SPS__CONTINUITY_PAIR
-            }
         }
     }
-#undef SPS__CONTINUITY_PAIR
+}
+
+/* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
+   eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
+   before correction); A -= r_ij (x) e_ij dW V_j (B^-1, recomputed geometry). The gradient test
+   sits outside the pair loop so the loop without it carries no branch. Then the lanes' ends
+   (sps__continuity_lanes), the Jaumann stress when tracked, the Rodrigues matrices, this group's
+   share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass) and the
+   ENO increments. */
+SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
+    const sps__group q = sps__group_of(w, b, g);
+    const int gradient = b->needs_gradient, end = b->end, eno_pairs = b->eno && b->paired;
+    const sps_real shear_rate = 2 * b->zeta * b->G * dt; /* ENO eq. 24 without 1/rho_i */
+    sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
+    sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    int l, t, a;
+    for (t = 0; t < SPS__NSUM; ++t)
+        for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
+    if (gradient && eno_pairs) sps__continuity_pairs(w, q, dim, geo, 1, 1, shear_rate, sum);
+    else if (gradient) sps__continuity_pairs(w, q, dim, geo, 1, 0, shear_rate, sum);
+    else if (eno_pairs) sps__continuity_pairs(w, q, dim, geo, 0, 1, shear_rate, sum);
+    else sps__continuity_pairs(w, q, dim, geo, 0, 0, shear_rate, sum);
     if (gradient) sps__continuity_lanes(w, q, end, dim, geo, 1, shear_rate, sum, da, L);
     else sps__continuity_lanes(w, q, end, dim, geo, 0, shear_rate, sum, da, L);
     if (b->needs_stress)
@@ -2168,7 +2287,7 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
             for (a = 0; a < 9; ++a) rsum[a] += R[a][l];
         memcpy(w->group_sum + (size_t)9 * (b->group0 + g), rsum, sizeof rsum);
     }
-    if (b->eno) sps__add_increments(w, b, q, dim, da, R);
+    if (b->eno && !eno_pairs) sps__add_increments(w, b, q, dim, da, R);
 }
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
@@ -2190,8 +2309,11 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
    the velocity difference the linear field does not explain (ANG eq. 44):
    GNO   (ANG eq. 43): da = xi G/rho_i dt sum_j v^_ij / r_ij dW_ij V_j
    GNO-A (ANG eq. 46): da = xi G/rho_i dt sum_j (v^_ij . e_ij) / r_ij dW_ij e_ij V_j, then rotated.
-   With r_ij = r e_ij: v^_ij / r_ij dW = v_ij dW/r - 1/2 (L_i + L_j) e_ij dW. */
-SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
+   With r_ij = r e_ij: v^_ij / r_ij dW = v_ij dW/r - 1/2 (L_i + L_j) e_ij dW.
+   paired (SPS_ROTATION_PAIR, a literal): GNO-A's increment goes to the pair's force,
+   g_ij += xi G dt (v^_ij . e_ij) / r_ij dW V_i V_j (symmetric in i, j bit for bit). */
+SPS__INLINE void sps__penalty_variant(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt,
+                                      const int paired) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real* SPS__RESTRICT L = w->grad;
@@ -2208,19 +2330,26 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
             const int i = q.i0 + l, j = js[l];
             const sps__pair_geometry pg = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo);
             const sps_real e[3] = {pg.ex, pg.ey, pg.ez}, dw = pg.dw, dw_r = pg.dw_r;
-            sps_real vhat[3], u = 0;
+            sps_real vhat[3], u = 0, u_pair = 0;
             SPS__UNROLL
             for (a = 0; a < dim; ++a) {
-                sps_real le = 0;
+                sps_real le = 0, v_r;
                 SPS__UNROLL
                 for (c = 0; c < dim; ++c) le += (L[(size_t)9 * i + 3 * a + c] + L[(size_t)9 * j + 3 * a + c]) * e[c];
-                vhat[a] = ((w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw) * vol[j];
+                v_r = (w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
+                vhat[a] = v_r * vol[j];
                 u += vhat[a] * e[a];
+                if (paired) u_pair += v_r * e[a];
             }
-            SPS__UNROLL
-            for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * e[a] : vhat[a];
+            if (paired) {
+                w->pair_force[q.s0 + k * SPS__LANES + l] += penalty_rate * u_pair * (vol[i] * vol[j]);
+            } else {
+                SPS__UNROLL
+                for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * e[a] : vhat[a];
+            }
         }
     }
+    if (paired) return;
     SPS__PRAGMA(omp simd)
     for (l = 0; l < SPS__LANES; ++l) {
         const sps_real rho = q.i0 + l < b->end ? w->rho[q.i0 + l] : 1;
@@ -2229,6 +2358,11 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
     }
     if (b->rotated && !b->mean) sps__rotation_lanes(w, q, dt, dim, NULL, R);
     sps__add_increments(w, b, q, dim, da, R);
+}
+
+SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
+    if (b->paired) sps__penalty_variant(w, b, g, dim, geo, dt, 1);
+    else sps__penalty_variant(w, b, g, dim, geo, dt, 0);
 }
 
 /* >>integrate */
@@ -2570,6 +2704,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
                        (double)w->time, (double)w->c0_max, (double)w->vmax, (double)w->h);
         return SPS_ERR_UNSTABLE;
     }
+    if (w->pair_force) sps__keep_pair_forces(w);
     return SPS_OK;
 }
 

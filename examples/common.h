@@ -192,6 +192,12 @@ EX_UNUSED static const char* shear_name(int s) {
     return s >= 0 && s < 6 ? names[s] : "?";
 }
 
+/* Rotation names of the -A variants in the order of the sps_rotation enum. */
+EX_UNUSED static const char* rotation_name(int r) {
+    static const char* names[] = {"mean", "particle", "pair"};
+    return r >= 0 && r < 3 ? names[r] : "?";
+}
+
 /* ---- the options every example shares ---- */
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, threads, quiet; /* choice indices and flags */
@@ -205,7 +211,7 @@ typedef struct {
 /* The opt_spec entries of common_options c, for an example's option table. */
 #define COMMON_OPTION_SPECS(c)                                                                          \
     {"shear", OPT_CHOICE, &(c).shear, "shear formulation", 0, 0, SHEAR_CHOICES},                        \
-    {"rotation", OPT_CHOICE, &(c).rotation, "-A variants: rotation", 0, 0, "mean|particle"},            \
+    {"rotation", OPT_CHOICE, &(c).rotation, "-A variants: rotation of the stored increments (pair: per neighbour pair, exact angular momentum)", 0, 0, "mean|particle|pair"},            \
     {"stepping", OPT_CHOICE, &(c).stepping, "time stepping", 0, 0, "dual|single"},                      \
     {"geometry", OPT_CHOICE, &(c).geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},   \
     {"kernel", OPT_CHOICE, &(c).kernel, "smoothing kernel", 0, 0, "wendland|spline"},                    \
@@ -238,7 +244,7 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->shear = (sps_shear)c->shear;
     bd->zeta = c->zeta;
     bd->xi = c->xi;
-    bd->rotation = c->rotation ? SPS_ROTATION_PER_PARTICLE : SPS_ROTATION_MEAN;
+    bd->rotation = (sps_rotation)c->rotation; /* choices in enum order */
     bd->track_stress = 1; /* von Mises output and the shear part of the strain energy */
 }
 

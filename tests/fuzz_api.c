@@ -238,7 +238,7 @@ static sps_body_def random_body_def(void) {
     d.material.youngs_modulus = maybe_hostile(exp(uniform(log(1e4), log(1e8))), p);
     d.material.poisson_ratio = chance(p) ? (chance(0.5) ? 0.5 : hostile_real()) : uniform(-0.5, 0.4999);
     d.shear = (sps_shear)(chance(p) ? hostile_int() : below(6));
-    d.rotation = (sps_rotation)(chance(p) ? hostile_int() : below(2));
+    d.rotation = (sps_rotation)(chance(p) ? hostile_int() : below(3));
     d.zeta = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);
     d.xi = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);
     d.oas_epsilon = maybe_hostile(uniform(0, 1), p);
