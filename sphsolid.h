@@ -203,6 +203,9 @@
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
+      0.4.0 (2026-11-22) SPS_ROTATION_PAIR for ENO-A and GNO-A: the stored shear forces kept per
+                         neighbour pair along the current e_ij (exact angular momentum; ENO-A
+                         needs no velocity gradient unless it tracks stress).
       0.3.0 (2026-11-22) continuity pass balanced over threads (per-group mean-rotation sums)
                          and lane-parallel at its end; Rodrigues series; faster neighbour
                          search. 2D plate, 2 threads: 1.24x.
@@ -220,9 +223,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 3
+#define SPHSOLID_VERSION_MINOR 4
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.3.0"
+#define SPHSOLID_VERSION_STRING "0.4.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
@@ -1592,16 +1595,19 @@ static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int 
     const int count = i < b->end ? w->nb_count[i] : 0, id = i < b->end ? w->id[i] : -1;
     const int kept = id >= 0 && id < w->kept_ids ? w->kept_count[id] : 0;
     const long first = kept ? w->kept_first[id] : 0;
-    int k, m, next = 0;
+    int k, m, next = 0; /* the kept rank where the search starts */
     for (k = 0; k < len; ++k, s += SPS__LANES) {
         sps_real g = 0;
         if (k < count) {
             const int neighbor_id = w->id[w->nb_j[s]];
-            for (m = 0; m < kept; ++m, ++next) {
-                const long slot = first + (long)(next % kept) * SPS__LANES;
+            int t = next;
+            for (m = 0; m < kept; ++m, ++t) {
+                long slot;
+                if (t == kept) t = 0;
+                slot = first + (long)t * SPS__LANES;
                 if (w->kept_neighbor_id[slot] == neighbor_id) {
                     g = w->kept_force[slot];
-                    ++next;
+                    next = t + 1;
                     break;
                 }
             }

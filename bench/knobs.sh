@@ -20,7 +20,7 @@
 # acoustic sub-steps) for 1-thread runs. Energy drift: last vs first total energy in the run's CSV.
 set -eu
 cd "$(dirname "$0")/.."
-MACHINE=${MACHINE:-$(uname -m)-$(nproc)core}
+MACHINE=${MACHINE:-c-2core-xeon} # the results folder of the machine the README reports; set MACHINE on another
 OUT=bench/results/$MACHINE
 CSV=$OUT/knobs.csv
 TIMER=${TIMER:-/usr/bin/time} # any POSIX time utility with -p

@@ -7,7 +7,7 @@
 # Run on an otherwise idle machine: the numbers are wall-clock times (minimum of REPEAT runs).
 set -eu
 cd "$(dirname "$0")/.."
-MACHINE=${MACHINE:-$(uname -m)-$(nproc)core}
+MACHINE=${MACHINE:-c-2core-xeon} # the results folder of the machine the README reports; set MACHINE on another
 REPEAT=${REPEAT:-1}
 OUT=bench/results/$MACHINE
 mkdir -p "$OUT"

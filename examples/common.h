@@ -200,7 +200,7 @@ EX_UNUSED static const char* rotation_name(int r) {
 
 /* ---- the options every example shares ---- */
 typedef struct {
-    int shear, rotation, stepping, geometry, kernel, threads, quiet; /* choice indices and flags */
+    int shear, rotation, stepping, geometry, kernel, stress, threads, quiet; /* choice indices and flags */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
     double zeta, xi; /* ENO and GNO coefficients; 0 = the papers' values (0.7 d + 2.1, and 2) */
     const char* out;
@@ -211,10 +211,11 @@ typedef struct {
 /* The opt_spec entries of common_options c, for an example's option table. */
 #define COMMON_OPTION_SPECS(c)                                                                          \
     {"shear", OPT_CHOICE, &(c).shear, "shear formulation", 0, 0, SHEAR_CHOICES},                        \
-    {"rotation", OPT_CHOICE, &(c).rotation, "-A variants: rotation of the stored increments (pair: per neighbour pair, exact angular momentum)", 0, 0, "mean|particle|pair"},            \
+    {"rotation", OPT_CHOICE, &(c).rotation, "-A variants: how the stored increments turn (pair: with their own pair)", 0, 0, "mean|particle|pair"}, \
     {"stepping", OPT_CHOICE, &(c).stepping, "time stepping", 0, 0, "dual|single"},                      \
     {"geometry", OPT_CHOICE, &(c).geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},   \
     {"kernel", OPT_CHOICE, &(c).kernel, "smoothing kernel", 0, 0, "wendland|spline"},                    \
+    {"stress", OPT_CHOICE, &(c).stress, "ENO bodies: integrate the shear stress (von Mises, strain energy)", 0, 0, "on|off"}, \
     {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number CFL_ac", 0.01, 1, NULL},                            \
     {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
     {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
@@ -245,7 +246,7 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->zeta = c->zeta;
     bd->xi = c->xi;
     bd->rotation = (sps_rotation)c->rotation; /* choices in enum order */
-    bd->track_stress = 1; /* von Mises output and the shear part of the strain energy */
+    bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
 /* Fills [lo, hi) of body b like sps_body_add_box (points lo + (i + 1/2) dp), each coordinate
@@ -320,8 +321,10 @@ EX_UNUSED static FILE* open_out(const char* dir, const char* name) {
 /* The shared settings as RESULT fields, so that every RESULT line says what produced it. */
 EX_UNUSED static const char* common_result_fields(const common_options* c) {
     static char fields[200];
-    int n = snprintf(fields, sizeof fields, "kernel=%s cfl=%g geometry=%s threads=%d real=%s", c->kernel ? "spline" : "wendland",
-                     c->cfl, c->geometry ? "frozen" : "recomputed", c->threads, sps_is_double() ? "double" : "float");
+    int n = snprintf(fields, sizeof fields, "rotation=%s kernel=%s cfl=%g geometry=%s threads=%d real=%s", rotation_name(c->rotation),
+                     c->kernel ? "spline" : "wendland", c->cfl, c->geometry ? "frozen" : "recomputed", c->threads,
+                     sps_is_double() ? "double" : "float");
+    if (c->stress) n += snprintf(fields + n, sizeof fields - (size_t)n, " stress=off");
     if (c->zeta > 0) n += snprintf(fields + n, sizeof fields - (size_t)n, " zeta=%g", c->zeta); /* only when not the papers' */
     if (c->xi > 0) snprintf(fields + n, sizeof fields - (size_t)n, " xi=%g", c->xi);
     return fields;

@@ -72,10 +72,10 @@ int main(int argc, char** argv) {
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
     fclose(output.csv);
-    printf("RESULT case=%s shear=%s rotation=%s dp=%g omega=%g stepping=%s nu=%g jitter=%g max_angmom_err=%.4g%% paper=%.2f%% "
+    printf("RESULT case=%s shear=%s dp=%g omega=%g stepping=%s nu=%g jitter=%g max_angmom_err=%.4g%% paper=%.2f%% "
            "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g %s particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n",
-           CASE, shear_name(c.shear), rotation_name(c.rotation), dp, omega, c.stepping ? "single" : "dual", c.nu, c.jitter, 100 * max_err,
+           CASE, shear_name(c.shear), dp, omega, c.stepping ? "single" : "dual", c.nu, c.jitter, 100 * max_err,
            paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy,
            common_result_fields(&c), n,
            d.acoustic_steps, wall_seconds() - wall0, c.out);
