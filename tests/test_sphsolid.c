@@ -931,9 +931,9 @@ static void swirl_velocity(const sps_real x[3], sps_real v[3], void* user) {
 
 /* 2D ENO-A blocks A (23 x 25 = 575 particles) and, with two_bodies, B (17 x 31 = 527) one dp to
    the right of A, well inside the kernel support of A's edge, and slower, so the global time
-   step stays A's. Neither count is a multiple of the 8 lanes. 12 advection steps; returns A's
-   state (ids 0 .. 574). */
-static double* run_two_blocks(int threads, int two_bodies, double speed_b) {
+   step stays A's. Neither count is a multiple of the 8 lanes. 12 advection steps, B added
+   before step add_step; returns A's state (ids 0 .. 574). */
+static double* run_two_blocks(int threads, int two_bodies, double speed_b, sps_rotation rotation, int add_step) {
     static const double lo_a[3] = {0, 0, 0}, hi_a[3] = {0.23, 0.25, 0}, lo_b[3] = {0.24, 0, 0}, hi_b[3] = {0.41, 0.31, 0};
     const double speed_a = 1;
     sps_world* w = new_world(2, 0.01);
@@ -942,14 +942,15 @@ static double* run_two_blocks(int threads, int two_bodies, double speed_b) {
     int k, n;
     if (!w) return NULL;
     w->threads = threads;
-    a = add_block(w, SPS_SHEAR_ENO_A, lo_a, hi_a, &n);
+    a = add_block_rotation(w, SPS_SHEAR_ENO_A, rotation, lo_a, hi_a, &n);
     if (!a.id || n != 575 || sps_body_set_velocity(w, a, swirl_velocity, (void*)&speed_a) != SPS_OK) goto done;
-    if (two_bodies) {
-        b = add_block(w, SPS_SHEAR_ENO_A, lo_b, hi_b, &n);
-        if (!b.id || n != 527 || sps_body_set_velocity(w, b, swirl_velocity, (void*)&speed_b) != SPS_OK) goto done;
-    }
-    for (k = 0; k < 12; ++k)
+    for (k = 0; k < 12; ++k) {
+        if (two_bodies && k == add_step) {
+            b = add_block_rotation(w, SPS_SHEAR_ENO_A, rotation, lo_b, hi_b, &n);
+            if (!b.id || n != 527 || sps_body_set_velocity(w, b, swirl_velocity, (void*)&speed_b) != SPS_OK) goto done;
+        }
         if (sps_world_step(w) != SPS_OK) goto done;
+    }
     s = snapshot(w);
 done:
     sps_world_destroy(w);
@@ -961,8 +962,8 @@ done:
    same alone and beside body B one dp away, and the two-body world is the same with 1 and 2
    threads. The comparison is sharp: a faster B (a smaller global time step) changes A. */
 static int test_bodies_independent(void) {
-    double *alone = run_two_blocks(1, 0, 0), *pair1 = run_two_blocks(1, 1, 0.3), *pair2 = run_two_blocks(2, 1, 0.3);
-    double* fast_b = run_two_blocks(1, 1, 3);
+    double *alone = run_two_blocks(1, 0, 0, SPS_ROTATION_MEAN, 0), *pair1 = run_two_blocks(1, 1, 0.3, SPS_ROTATION_MEAN, 0);
+    double *pair2 = run_two_blocks(2, 1, 0.3, SPS_ROTATION_MEAN, 0), *fast_b = run_two_blocks(1, 1, 3, SPS_ROTATION_MEAN, 0);
     int same_alone, same_threads, fast_differs;
     ENSURE(alone && pair1 && pair2 && fast_b);
     same_alone = memcmp(alone, pair1, sizeof(double) * 6 * 575) == 0;
@@ -979,31 +980,8 @@ static int test_bodies_independent(void) {
    neighbour storage, and the pair forces of the bodies already there must come through that
    unchanged: a swirling ENO-A block evolves bit for bit the same whether a second block (at
    rest, so the time steps stay the same) is added after 4 of its 12 steps or never. */
-static double* run_block_then_add(int add) {
-    static const double lo_a[3] = {0, 0, 0}, hi_a[3] = {0.23, 0.25, 0}, lo_b[3] = {0.5, 0, 0}, hi_b[3] = {0.9, 0.4, 0};
-    const double speed_a = 1;
-    sps_world* w = new_world(2, 0.01);
-    sps_body a, b;
-    double* s = NULL;
-    int k, n;
-    if (!w) return NULL;
-    a = add_block_rotation(w, SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, lo_a, hi_a, &n);
-    if (!a.id || n != 575 || sps_body_set_velocity(w, a, swirl_velocity, (void*)&speed_a) != SPS_OK) goto done;
-    for (k = 0; k < 12; ++k) {
-        if (add && k == 4) {
-            b = add_block_rotation(w, SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, lo_b, hi_b, &n);
-            if (!b.id || n != 1600) goto done;
-        }
-        if (sps_world_step(w) != SPS_OK) goto done;
-    }
-    s = snapshot(w);
-done:
-    sps_world_destroy(w);
-    return s;
-}
-
 static int test_pair_forces_survive_adds(void) {
-    double *alone = run_block_then_add(0), *added = run_block_then_add(1);
+    double *alone = run_two_blocks(1, 0, 0, SPS_ROTATION_PAIR, 0), *added = run_two_blocks(1, 1, 0, SPS_ROTATION_PAIR, 4);
     int same;
     ENSURE(alone && added);
     same = memcmp(alone, added, sizeof(double) * 6 * 575) == 0; /* body A: ids 0..574 */
