@@ -1594,7 +1594,7 @@ static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, in
 static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int s, int len) {
     const int count = i < b->end ? w->nb_count[i] : 0, id = i < b->end ? w->id[i] : -1;
     const int kept = id >= 0 && id < w->kept_ids ? w->kept_count[id] : 0;
-    const long first = kept ? w->kept_first[id] : 0;
+    const int first = kept ? w->kept_first[id] : 0;
     int k, m, next = 0; /* the kept rank where the search starts */
     for (k = 0; k < len; ++k, s += SPS__LANES) {
         sps_real g = 0;
@@ -1602,11 +1602,9 @@ static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int 
             const int neighbor_id = w->id[w->nb_j[s]];
             int t = next;
             for (m = 0; m < kept; ++m, ++t) {
-                long slot;
                 if (t == kept) t = 0;
-                slot = first + (long)t * SPS__LANES;
-                if (w->kept_neighbor_id[slot] == neighbor_id) {
-                    g = w->kept_force[slot];
+                if (w->kept_neighbor_id[first + t] == neighbor_id) {
+                    g = w->kept_force[first + t];
                     next = t + 1;
                     break;
                 }
@@ -1617,22 +1615,24 @@ static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int 
 }
 
 /* SPS_ROTATION_PAIR: keeps the pair forces, with the ids of both particles, for the next list
-   rebuild (which may re-sort the particles and moves every slot). The kept copy swaps places
-   with pair_force, whose every slot the rebuild writes anew. */
+   rebuild (which may re-sort the particles and moves every slot): each particle's pairs
+   contiguous from kept_first[its id], so the search in sps__carry_pair_forces reads one run. */
 static void sps__keep_pair_forces(sps_world* w) {
-    sps_real* swap = w->kept_force;
-    int i;
-    w->kept_force = w->pair_force;
-    w->pair_force = swap;
+    int i, first = 0;
+    for (i = 0; i < w->n; ++i) { /* offsets: a prefix sum in particle order */
+        const int count = w->bodies[w->body[i]].paired ? w->nb_count[i] : 0;
+        w->kept_first[w->id[i]] = first;
+        w->kept_count[w->id[i]] = count;
+        first += count;
+    }
     SPS__PARALLEL_FOR(w, w->n)
     for (i = 0; i < w->n; ++i) {
-        const int id = w->id[i], count = w->bodies[w->body[i]].paired ? w->nb_count[i] : 0;
+        const int id = w->id[i];
         int k;
-        w->kept_first[id] = w->nb_first[i];
-        w->kept_count[id] = count;
-        for (k = 0; k < count; ++k) {
+        for (k = 0; k < w->kept_count[id]; ++k) {
             const int s = w->nb_first[i] + k * SPS__LANES;
-            w->kept_neighbor_id[s] = w->id[w->nb_j[s]];
+            w->kept_neighbor_id[w->kept_first[id] + k] = w->id[w->nb_j[s]];
+            w->kept_force[w->kept_first[id] + k] = w->pair_force[s];
         }
     }
     w->kept_ids = w->n;
