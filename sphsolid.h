@@ -115,10 +115,11 @@
       that every stored increment stay aligned with its pair, exactly: each ENO increment (or
       GNO-A penalty increment, eq. 46) is a force along e_ij, so the library stores one scalar
       per neighbour pair, g_ij = sum over sub-steps of the increment's magnitude (symmetric in
-      i, j), and applies a_s_i = (1/m_i) sum_j g_ij e_ij with the current e_ij. The shear forces
-      are then central pair forces: linear and angular momentum are exact for any motion
-      (spinning cube: 1e-12 % instead of 19.8 %), no rotation matrices or velocity gradient are
-      needed (ENO-A without track_stress skips B and L), and g_ij is carried over neighbour-list
+      i, j), and applies a_s_i = (1/m_i) sum_j g_ij e_ij with the current e_ij. ENO-A's forces
+      are then all central pair forces: linear and angular momentum are exact for any motion
+      (spinning cube: 1e-12 % instead of 19.8 %; GNO-A keeps its stress divergence, which is not
+      central, and gains nothing: 0.15 % against 0.05 %). No rotation matrices or velocity
+      gradient are needed (ENO-A without track_stress skips B and L), and g_ij is carried over neighbour-list
       rebuilds by particle id (a pair that enters the support starts at 0, one that leaves takes
       its g_ij, accumulated where dW is near 0, with it). Memory: 2 reals + 1 int per pair slot.
       The shear stress tau (Jaumann rate, ENO eqs. 6-8) is integrated for the OG family always,
