@@ -119,9 +119,10 @@
       are then all central pair forces: linear and angular momentum are exact for any motion
       (spinning cube: 1e-12 % instead of 19.8 %; GNO-A keeps its stress divergence, which is not
       central, and gains nothing: 0.15 % against 0.05 %). No rotation matrices or velocity
-      gradient are needed (ENO-A without track_stress skips B and L), and g_ij is carried over neighbour-list
-      rebuilds by particle id (a pair that enters the support starts at 0, one that leaves takes
-      its g_ij, accumulated where dW is near 0, with it). Memory: 2 reals + 1 int per pair slot.
+      gradient are needed (ENO-A without track_stress skips B and L), and g_ij is carried over
+      neighbour-list rebuilds by particle id (a pair that enters the support starts at 0, one
+      that leaves takes its g_ij, accumulated where dW is near 0, with it). Memory: 2 reals + 1
+      int per pair slot.
       The shear stress tau (Jaumann rate, ENO eqs. 6-8) is integrated for the OG family always,
       for ENO bodies only with track_stress = 1 (von Mises output, strain energy).
 
