@@ -110,6 +110,9 @@ sweep() {
     for res in 5 10 20; do plate2d real "float H/dp $res" float "$res" eno-a dual 0.4 recomputed wendland 1; done
     plate2d kernel spline double 10 eno-a dual 0.4 recomputed spline 1
     plate2d threads "2 threads" double 10 eno-a dual 0.4 recomputed wendland 2
+    # the -A variants' stored increments kept per pair (0.4.0), with and without stress output
+    run plate2d rotation pair double 10 eno-a dual 0.4 recomputed wendland 1 0.3 --csv-every 0.002 --rotation pair
+    run plate2d rotation "pair+stress off" double 10 eno-a dual 0.4 recomputed wendland 1 0.3 --csv-every 0.002 --rotation pair --stress off
     # combinations: what the cheap knobs give together (candidates for the presets)
     plate2d combined "frozen+float" float 10 eno-a dual 0.4 frozen wendland 1
     plate2d combined "frozen+float+CFL 0.6" float 10 eno-a dual 0.6 frozen wendland 1
@@ -133,6 +136,8 @@ sweep() {
     for shear in gno-a eno-a; do spinning real "float $shear" float 0.05 "$shear" dual 0.4 recomputed wendland 1; done
     spinning kernel spline double 0.05 gno-a dual 0.4 recomputed spline 1
     spinning threads "2 threads" double 0.05 gno-a dual 0.4 recomputed wendland 2
+    run spinning_plate rotation "eno-a pair" double 0.05 eno-a dual 0.4 recomputed wendland 1 0.5 --rotation pair
+    run spinning_plate rotation "eno-a pair+stress off" double 0.05 eno-a dual 0.4 recomputed wendland 1 0.5 --rotation pair --stress off
     spinning combined "frozen+float+CFL 0.6" float 0.05 gno-a dual 0.6 frozen wendland 1
 
     plate3d_short default default double dual 0.4 recomputed wendland 1
