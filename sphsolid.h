@@ -627,7 +627,7 @@ typedef struct sps__body {
     int stress_force;     /* divergence of tau in the momentum equation (OG, OAS, GNO, GNO-A) */
     int eno;              /* accumulated Laplacian shear acceleration (ENO, ENO-A) */
     int penalty;          /* accumulated hourglass penalty (GNO, GNO-A) */
-    int rotated;          /* a_s rotated by Rodrigues matrices (ENO-A, GNO-A) */
+    int rotated;          /* a_s rotated by Rodrigues matrices (ENO-A, GNO-A, unless paired) */
     int mean;             /* ... by the body's mean matrix */
     int paired;           /* -A variant with SPS_ROTATION_PAIR: increments stored per pair (pair_force) */
     sps_real xi, oas_eps, oas_n, oas_w_dp;
@@ -696,8 +696,9 @@ struct sps_world {
     long pair_cap; /* slots */
     sps_real *nb_dw, *nb_dw_r, *nb_e[3]; /* frozen geometry per slot: dW/dr, dW/dr / r, e_ij (0 in padding) */
     /* SPS_ROTATION_PAIR: the accumulated shear force g_ij per slot [N] (0 in padding), and its
-       copy kept at the end of each step for the next list rebuild: the kept slots with the id
-       of their neighbour, and per particle id its first kept slot and count (ids < kept_ids) */
+       copy kept at the end of each step for the next list rebuild: each particle's pairs
+       contiguous, with the id of the neighbour, from kept_first[its id] (kept_count of them;
+       ids < kept_ids) */
     sps_real *pair_force, *kept_force;
     int *kept_neighbor_id, *kept_first, *kept_count;
     long pair_force_cap; /* slots of pair_force and kept_force */
@@ -2266,11 +2267,12 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
 
 /* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
    eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
-   before correction); A -= r_ij (x) e_ij dW V_j (B^-1, recomputed geometry). The gradient test
-   sits outside the pair loop so the loop without it carries no branch. Then the lanes' ends
-   (sps__continuity_lanes), the Jaumann stress when tracked, the Rodrigues matrices, this group's
-   share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass) and the
-   ENO increments. */
+   before correction); A -= r_ij (x) e_ij dW V_j (B^-1, recomputed geometry); with the pair
+   rotation the ENO increment goes to the pair's force instead of lap. The loop
+   (sps__continuity_pairs) gets both choices as literals, so it carries no branch. Then the lanes'
+   ends (sps__continuity_lanes), the Jaumann stress when tracked, the Rodrigues matrices, this
+   group's share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass)
+   and the ENO increments. */
 SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
     const sps__group q = sps__group_of(w, b, g);
     const int gradient = b->needs_gradient, end = b->end, eno_pairs = b->eno && b->paired;
