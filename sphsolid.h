@@ -2445,24 +2445,52 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
 
 /* >>integrate */
 
+/* The contiguous share [i0, i1) of body b that the calling thread updates in the per-particle
+   steps (drift, kick, finish). All three use the same share, so between two barriers a thread
+   touches only particles it updated itself. */
+static void sps__thread_share(const sps__body* b, int* i0, int* i1) {
+    const long count = b->end - b->begin;
+    int nt = 1, me = 0;
+#ifdef _OPENMP
+    nt = omp_get_num_threads();
+    me = omp_get_thread_num();
+#endif
+    *i0 = b->begin + (int)(count * me / nt);
+    *i1 = b->begin + (int)(count * (me + 1) / nt);
+}
+
+/* Step 1 for particles i0 .. i1-1, dim a literal: half-step density, pressure (ENO eq. 4),
+   volume and position. restrict and no branch, so the loop vectorises. */
+SPS__INLINE void sps__drift_range(sps_world* w, int i0, int i1, sps_real h, sps_real c2, sps_real rho0, const int dim) {
+    sps_real *SPS__RESTRICT rho = w->rho, *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol;
+    sps_real *SPS__RESTRICT px = w->pos[0], *SPS__RESTRICT py = w->pos[1], *SPS__RESTRICT pz = w->pos[2];
+    const sps_real *SPS__RESTRICT drho = w->drho, *SPS__RESTRICT mass = w->mass;
+    const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
+    int i;
+    for (i = i0; i < i1; ++i) {
+        rho[i] += h * drho[i];
+        p[i] = c2 * (rho[i] - rho0);
+        vol[i] = mass[i] / rho[i];
+        px[i] += h * vx[i];
+        py[i] += h * vy[i];
+        if (dim == 3) pz[i] += h * vz[i];
+    }
+}
+
 /* Step 1: half-step density, pressure, volume and position (and OAS artificial stress). */
 static void sps__half_drift(sps_world* w, sps_real dt) {
     int bi;
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
         const sps_real c2 = b->c0 * b->c0, rho0 = b->rho0, h = SPS_R(0.5) * dt;
-        const int dim = w->dim, art = b->def.shear == SPS_SHEAR_OAS;
-        int i;
-        SPS__OMP_FOR
-        for (i = b->begin; i < b->end; ++i) {
-            int a;
-            w->rho[i] += h * w->drho[i];
-            w->p[i] = c2 * (w->rho[i] - rho0); /* ENO eq. 4 */
-            w->vol[i] = w->mass[i] / w->rho[i];
-            for (a = 0; a < dim; ++a) w->pos[a][i] += h * w->vel[a][i];
-            if (art) sps__artificial_stress(w, b, i);
-        }
+        int i, i0, i1;
+        sps__thread_share(b, &i0, &i1);
+        if (w->dim == 2) sps__drift_range(w, i0, i1, h, c2, rho0, 2);
+        else sps__drift_range(w, i0, i1, h, c2, rho0, 3);
+        if (b->def.shear == SPS_SHEAR_OAS) /* after its own particles' pressure */
+            for (i = i0; i < i1; ++i) sps__artificial_stress(w, b, i);
     }
+    SPS__PRAGMA(omp barrier) /* the pressure pass reads the neighbours' drifted state */
 }
 
 /* Step 3 for particles i0 .. i1-1 of body b, dim a literal (the loops unroll: measured 14 ns a
@@ -2515,8 +2543,7 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
    For the -A variants the accumulated a_s is aligned with the body at the end of the last
    sub-step, while this kick acts half a step (dt/2 of this sub-step) later: it is applied
    rotated by that half step's rotation H, which removes a spurious torque of order
-   omega^2 dt (spinning plate, ENO-A: 2.1 % -> 1.1 % angular-momentum error; README). Each
-   thread kicks one contiguous share of each body. */
+   omega^2 dt (spinning plate, ENO-A: 2.1 % -> 1.1 % angular-momentum error; README). */
 static sps_real sps__kick(sps_world* w, sps_real dt) {
     sps_real vmax2 = 0;
     int t, bi, nt = 1, me = 0;
@@ -2527,9 +2554,9 @@ static sps_real sps__kick(sps_world* w, sps_real dt) {
 #endif
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
-        const int count = b->end - b->begin;
-        const int i0 = b->begin + (int)((long)count * me / nt), i1 = b->begin + (int)((long)count * (me + 1) / nt);
         sps_real Hmean[9];
+        int i0, i1;
+        sps__thread_share(b, &i0, &i1);
         sps__rodrigues(b->mean_spin, SPS_R(0.5) * dt, dim, Hmean); /* half of this kick's turn */
         vmax2 = dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3);
     }
@@ -2540,19 +2567,18 @@ static sps_real sps__kick(sps_world* w, sps_real dt) {
     return vmax2;
 }
 
-/* Step 5: second half of the density update; mean rotation of the accumulated a_s (ENO-A). */
+/* Step 5: second half of the density update; mean rotation of the accumulated a_s (ENO-A).
+   No barrier: the next pass that reads other particles' fields (the pressure pass) comes after
+   the half drift's barrier, and each thread drifts the share it finishes here. */
 static void sps__finish(sps_world* w, sps_real dt) {
     int bi;
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
         const int dim = w->dim, mean = b->mean;
         const sps_real* R = b->mean_rotation;
-        int i;
-        /* no barrier: the next pass to read other particles' fields (the pressure pass) comes
-           after the half drift's barrier, and the half drift touches the same particles per
-           thread (same static schedule) */
-        SPS__PRAGMA(omp for schedule(static) nowait)
-        for (i = b->begin; i < b->end; ++i) {
+        int i, i0, i1;
+        sps__thread_share(b, &i0, &i1);
+        for (i = i0; i < i1; ++i) {
             int a, c;
             w->rho[i] += SPS_R(0.5) * dt * w->drho[i];
             if (mean) { /* ANG eq. 42: a_s = mean(R) a_s + da */
