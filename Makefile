@@ -12,7 +12,9 @@ CXX     ?= c++
 # -fno-math-errno lets sqrt vectorise (the library never reads errno). On x86-64, GCC's generic
 # tuning (what -march=native picks on CPUs it does not name) emits no gather instructions, and
 # the neighbour loops need them: -mtune=icelake-server measured 1.6x faster on the 2D plate.
-TUNE    ?= $(if $(filter x86_64,$(shell uname -m)),-mtune=icelake-server,)
+# With AVX-512, GCC still prefers 256-bit vectors; 512-bit ones run the 16-double lane groups
+# 1.2x faster (2D plate; without AVX-512 the preference changes nothing).
+TUNE    ?= $(if $(filter x86_64,$(shell uname -m)),-mtune=icelake-server -mprefer-vector-width=512,)
 OPT     ?= -O2 -march=native $(TUNE) -fno-math-errno
 WARN     = -Wall -Wextra -Wpedantic
 CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
