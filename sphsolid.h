@@ -207,6 +207,11 @@
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
+      0.4.1 (2026-11-22) speed: lane groups of 16 doubles (32 floats) in 512-bit vectors,
+                         branch-free neighbour collection, lane-parallel Jaumann update and
+                         frozen-geometry fill, literal-dimension kick and drift. Same results
+                         (bit for bit, except ENO-A's mean rotation summed in the larger
+                         groups). 2D plate, 2 threads: 1.29x.
       0.4.0 (2026-11-22) SPS_ROTATION_PAIR for ENO-A and GNO-A: the stored shear forces kept per
                          neighbour pair along the current e_ij (exact angular momentum; ENO-A
                          needs no velocity gradient unless it tracks stress).
@@ -228,8 +233,8 @@
 
 #define SPHSOLID_VERSION_MAJOR 0
 #define SPHSOLID_VERSION_MINOR 4
-#define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.4.0"
+#define SPHSOLID_VERSION_PATCH 1
+#define SPHSOLID_VERSION_STRING "0.4.1"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
