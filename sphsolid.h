@@ -611,8 +611,8 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #define SPS__COOKIE 0x5350531
 /* Particles per lane group: the neighbour passes work on SPS__LANES consecutive particles at
    once, one per SIMD lane (two 512-bit vectors of sps_real: 16 doubles or 32 floats). Measured
-   on the 2D plate, H/dp 10, 2 threads: 16 doubles in 512-bit vectors 16% faster than 8 doubles
-   in 256-bit ones, 4 doubles 1.6x slower; 32 doubles no faster than 16 (README, speed).
+   on the 2D plate (README, design notes): 16 doubles in 512-bit vectors 1.2x faster than 8 in
+   256-bit ones, 4 doubles 1.6x slower, 32 barely faster than 16.
    Per-particle arrays carry SPS__LANES zeroed slots beyond the capacity so a group that runs
    past the last particle reads valid memory. */
 #define SPS__LANES (128 / (int)sizeof(sps_real))
