@@ -590,9 +590,6 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 /* Parallel loop with its own thread team (configuration updates, diagnostics): static schedule
    so each thread's share is fixed; serial when the loop is too small to pay for the fork. */
 #define SPS__PARALLEL_FOR(w, n) SPS__PRAGMA(omp parallel for schedule(static) num_threads((w)->threads) if ((n) > 256))
-/* Work-shared loop inside the one parallel region of an advection step (see sps__step_until):
-   forking a team per loop would cost more than the loop itself for small scenes. */
-#define SPS__OMP_FOR SPS__PRAGMA(omp for schedule(static))
 
 #ifdef SPHSOLID_FLOAT
 #define SPS__SQRT sqrtf
@@ -1953,22 +1950,50 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
     return q;
 }
 
-/* Runs body(w, b, k, DIM, GEO, ...) for k = 0 .. count-1 (the lane groups of
-   body b), work-shared, with literal DIM and GEO (see sps__mode). The literals must appear
-   inside the loop: OpenMP outlines the loop into its own function, where a constant passed from
-   outside would arrive as a variable and the dimension loops would not be unrolled (measured:
-   3x slower). */
-#define SPS__FOR_EACH(w, b, count, body, ...)                                                             \
+/* The first of body b's lane groups (of the group starts `start`, ngroups + 1 of them) whose
+   first slot is at or after slot `target`. */
+static int sps__group_at_slot(const int* start, int ngroups, long target) {
+    int lo = 0, hi = ngroups;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (start[mid] < target) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+
+/* The lane groups [g0, g1) of body b that the calling thread runs in a neighbour pass: the
+   body's slots split evenly, since a group costs about its slots (an even split of the groups
+   left one of two threads 6% more slots on the 2D plate). Every group has exactly one owner:
+   neighbouring threads compute their common bound the same way. */
+static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, int* g1) {
+    const int* start = w->nb_group_start + b->group0;
+    const long first = start[0], total = start[b->ngroups] - first;
+    int nt = 1, me = 0;
+#ifdef _OPENMP
+    nt = omp_get_num_threads();
+    me = omp_get_thread_num();
+#endif
+    *g0 = me == 0 ? 0 : sps__group_at_slot(start, b->ngroups, first + total * me / nt);
+    *g1 = me == nt - 1 ? b->ngroups : sps__group_at_slot(start, b->ngroups, first + total * (me + 1) / nt);
+}
+
+/* Runs body(w, b, k, DIM, GEO, ...) for the lane groups k of body b this thread owns
+   (sps__group_share), then waits for the other threads, with literal DIM and GEO (see
+   sps__mode) so the dimension loops unroll. */
+#define SPS__FOR_EACH(w, b, body, ...)                                                                   \
     do {                                                                                                 \
-        int k_, n_ = (count);                                                                            \
+        int k_, g0_, g1_;                                                                                \
+        sps__group_share(w, b, &g0_, &g1_);                                                              \
         switch (sps__mode(w)) {                                                                          \
-        case 0: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 2, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
-        case 1: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 2, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
-        case 2: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 2, SPS__GEO_FROZEN, __VA_ARGS__); break;   \
-        case 3: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 3, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
-        case 4: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 3, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
-        default: SPS__OMP_FOR for (k_ = 0; k_ < n_; ++k_) body(w, b, k_, 3, SPS__GEO_FROZEN, __VA_ARGS__); break;  \
+        case 0: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 2, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
+        case 1: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 2, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
+        case 2: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 2, SPS__GEO_FROZEN, __VA_ARGS__); break;   \
+        case 3: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 3, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
+        case 4: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 3, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
+        default: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 3, SPS__GEO_FROZEN, __VA_ARGS__); break;  \
         }                                                                                                \
+        SPS__PRAGMA(omp barrier)                                                                         \
     } while (0)
 
 /* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with
@@ -2381,7 +2406,7 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
     int g, a;
     sps_real acc[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (b->end == b->begin) return;
-    SPS__FOR_EACH(w, b, b->ngroups, sps__continuity_group, dt);
+    SPS__FOR_EACH(w, b, sps__continuity_group, dt);
     if (!b->mean) return;
     SPS__PRAGMA(omp single)
     {
@@ -2678,11 +2703,11 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
     int bi;
     sps_real vmax2;
     sps__half_drift(w, dt);
-    for (bi = 0; bi < w->nbodies; ++bi) SPS__FOR_EACH(w, &w->bodies[bi], w->bodies[bi].ngroups, sps__pressure_group, 0);
+    for (bi = 0; bi < w->nbodies; ++bi) SPS__FOR_EACH(w, &w->bodies[bi], sps__pressure_group, 0);
     vmax2 = sps__kick(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
-        if (w->bodies[bi].penalty) SPS__FOR_EACH(w, &w->bodies[bi], w->bodies[bi].ngroups, sps__penalty_group, dt);
+        if (w->bodies[bi].penalty) SPS__FOR_EACH(w, &w->bodies[bi], sps__penalty_group, dt);
     sps__finish(w, dt);
     return vmax2;
 }
