@@ -211,7 +211,7 @@
                          branch-free neighbour collection, lane-parallel Jaumann update and
                          frozen-geometry fill, literal-dimension kick and drift. Same results
                          (bit for bit, except ENO-A's mean rotation summed in the larger
-                         groups). 2D plate, 2 threads: 1.29x.
+                         groups). 2D plate, 2 threads: 1.33x.
       0.4.0 (2026-11-22) SPS_ROTATION_PAIR for ENO-A and GNO-A: the stored shear forces kept per
                          neighbour pair along the current e_ij (exact angular momentum; ENO-A
                          needs no velocity gradient unless it tracks stress).
