@@ -3,7 +3,7 @@
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
 #   make test     the README quick start and every example (brief runs), the randomized API test (10,000 cases),
 #                 the test runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases)
-#   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~5 min)
+#   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~8 min)
 #   make bench    speed tables (bench/results/)
 #   make bench-knobs  what each setting costs and buys (bench/knobs.sh, about 30 min)
 #   make clean
