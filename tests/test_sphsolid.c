@@ -900,6 +900,18 @@ static double* run_plate2d_small(int threads, int* n) { return run_plate2d_rotat
 /* ... with the pair forces of SPS_ROTATION_PAIR (carried over the list rebuilds by id) */
 static double* run_plate2d_pair_small(int threads, int* n) { return run_plate2d_rotation(threads, n, SPS_ROTATION_PAIR); }
 
+/* Takes `steps` advection steps of w, then returns its state (snapshot) and destroys it; NULL if
+   a step failed. */
+static double* steps_then_snapshot(sps_world* w, int steps) {
+    double* s = NULL;
+    int k;
+    for (k = 0; k < steps; ++k)
+        if (sps_world_step(w) != SPS_OK) { sps_world_destroy(w); return NULL; }
+    s = snapshot(w);
+    sps_world_destroy(w);
+    return s;
+}
+
 /* 3D: a free 9^3 block (729 particles) with random velocities, ENO-A mean rotation (lane-group
    sums), the default pair geometry (recomputed in every sub-step). */
 static double* run_block3d_small(int threads, int* n) {
@@ -908,17 +920,11 @@ static double* run_block3d_small(int threads, int* n) {
     sps_body b;
     unsigned long long seed = 99;
     static const double lo[3] = {0, 0, 0}, hi[3] = {0.09, 0.09, 0.09};
-    double* s = NULL;
-    int k;
     wd.dim = 3; wd.threads = threads; wd.log = quiet_log;
     if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
     b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, n);
     if (!b.id || sps_body_set_velocity(w, b, random_velocity, &seed) != SPS_OK) { sps_world_destroy(w); return NULL; }
-    for (k = 0; k < 10; ++k)
-        if (sps_world_step(w) != SPS_OK) { sps_world_destroy(w); return NULL; }
-    s = snapshot(w);
-    sps_world_destroy(w);
-    return s;
+    return steps_then_snapshot(w, 10);
 }
 
 /* 2D: a free ENO-A block (40 x 20 particles, mean rotation) with random velocities and a row of
@@ -932,7 +938,6 @@ static double* run_block_with_strays(int threads, int* n) {
     unsigned long long seed = 7;
     static const double lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.1, 0};
     sps_real strays[3 * 40];
-    double* s = NULL;
     int k, added = 0;
     for (k = 0; k < 40; ++k) {
         strays[3 * k] = (sps_real)(0.0025 + 0.02 * k);
@@ -948,11 +953,7 @@ static double* run_block_with_strays(int threads, int* n) {
         return NULL;
     }
     *n = added + 40;
-    for (k = 0; k < 10; ++k)
-        if (sps_world_step(w) != SPS_OK) { sps_world_destroy(w); return NULL; }
-    s = snapshot(w);
-    sps_world_destroy(w);
-    return s;
+    return steps_then_snapshot(w, 10);
 }
 
 /* A smooth velocity field scaled by *(const double*)user. */
