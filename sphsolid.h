@@ -1428,7 +1428,7 @@ SPS__INLINE int sps__cell_coord(const sps_world* w, int a, sps_real x) {
 }
 
 static sps_result sps__ensure_neighbor_storage(sps_world* w);
-static void sps__regularized_inverse(int dim, const sps_real* A, sps_real* B);
+SPS__INLINE void sps__blended_inverse(const sps_real* a, int as, sps_real* b, int bs, const int dim);
 static sps_result sps__fill_lane_slots(sps_world* w);
 static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, int s, int len);
 static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int s, int len);
@@ -1553,7 +1553,7 @@ SPS__INLINE void sps__freeze_lanes(sps_world* w, const sps__body* b, sps__group 
     sps_real *SPS__RESTRICT ex = w->nb_e[0], *SPS__RESTRICT ey = w->nb_e[1], *SPS__RESTRICT ez = w->nb_e[2];
     sps_real *SPS__RESTRICT nb_dw = w->nb_dw, *SPS__RESTRICT nb_dw_r = w->nb_dw_r;
     const sps_real dw_scale = w->dw_scale, inv_h = w->inv_h;
-    sps_real A[6][SPS__LANES], Ai[9];
+    sps_real A[6][SPS__LANES];
     int k, l, t;
     for (t = 0; t < 6; ++t)
         for (l = 0; l < SPS__LANES; ++l) A[t][l] = 0;
@@ -1583,10 +1583,10 @@ SPS__INLINE void sps__freeze_lanes(sps_world* w, const sps__body* b, sps__group 
         }
     }
     if (!b->needs_gradient) return;
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        Ai[0] = A[0][l]; Ai[1] = Ai[3] = A[1][l]; Ai[2] = Ai[6] = A[2][l];
-        Ai[4] = A[3][l]; Ai[5] = Ai[7] = A[4][l]; Ai[8] = A[5][l];
-        sps__regularized_inverse(dim, Ai, w->bmat + (size_t)9 * (q.i0 + l));
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) { /* A's entries are per lane, in blended_inverse's order */
+        sps_real* B = w->bmat + (size_t)9 * (q.i0 + l);
+        for (t = 0; t < 9; ++t) B[t] = 0;
+        sps__blended_inverse(&A[0][l], SPS__LANES, B, 1, dim);
     }
 }
 
@@ -1962,6 +1962,16 @@ static int sps__group_at_slot(const int* start, int ngroups, long target) {
     return lo;
 }
 
+/* The calling thread's number *me in a team of *nt (0 of 1 outside a parallel region). */
+static void sps__team_rank(int* nt, int* me) {
+    *nt = 1;
+    *me = 0;
+#ifdef _OPENMP
+    *nt = omp_get_num_threads();
+    *me = omp_get_thread_num();
+#endif
+}
+
 /* The lane groups [g0, g1) of body b that the calling thread runs in a neighbour pass: the
    body's slots split evenly, since a group costs about its slots (an even split of the groups
    left one of two threads 6% more slots on the 2D plate). Every group has exactly one owner:
@@ -1969,11 +1979,8 @@ static int sps__group_at_slot(const int* start, int ngroups, long target) {
 static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, int* g1) {
     const int* start = w->nb_group_start + b->group0;
     const long first = start[0], total = start[b->ngroups] - first;
-    int nt = 1, me = 0;
-#ifdef _OPENMP
-    nt = omp_get_num_threads();
-    me = omp_get_thread_num();
-#endif
+    int nt, me;
+    sps__team_rank(&nt, &me);
     *g0 = me == 0 ? 0 : sps__group_at_slot(start, b->ngroups, first + total * me / nt);
     *g1 = me == nt - 1 ? b->ngroups : sps__group_at_slot(start, b->ngroups, first + total * (me + 1) / nt);
 }
@@ -2484,11 +2491,8 @@ SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, con
    touches only particles it updated itself. */
 static void sps__thread_share(const sps__body* b, int* i0, int* i1) {
     const long count = b->end - b->begin;
-    int nt = 1, me = 0;
-#ifdef _OPENMP
-    nt = omp_get_num_threads();
-    me = omp_get_thread_num();
-#endif
+    int nt, me;
+    sps__team_rank(&nt, &me);
     *i0 = b->begin + (int)(count * me / nt);
     *i1 = b->begin + (int)(count * (me + 1) / nt);
 }
@@ -2580,12 +2584,9 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
    omega^2 dt (spinning plate, ENO-A: 2.1 % -> 1.1 % angular-momentum error; README). */
 static sps_real sps__kick(sps_world* w, sps_real dt) {
     sps_real vmax2 = 0;
-    int t, bi, nt = 1, me = 0;
+    int t, bi, nt, me;
     const int dim = w->dim;
-#ifdef _OPENMP
-    nt = omp_get_num_threads();
-    me = omp_get_thread_num();
-#endif
+    sps__team_rank(&nt, &me);
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
         sps_real Hmean[9];
