@@ -78,9 +78,11 @@
       The configuration update (every advection step) sorts particles by cell and rebuilds the
       CSR neighbour lists. The pair geometry e_ij, dW/dr and the correction matrix
       B_i = (-sum_j r_ij (x) grad W_ij V_j)^-1 (ANG eq. 21) come from the current positions in
-      each pass (frozen_geometry = 0, default) or are stored at the configuration update
-      (frozen_geometry = 1, the reference code's way; 2x faster, but in a spinning plate the
-      stored directions lag the rotation and the angular-momentum error grows tenfold).
+      each pass (frozen_geometry = 0, default). With frozen_geometry = 1, dW/dr and 1/r_ij are
+      stored at the configuration update, and e_ij and B_i still follow the current positions
+      (1.2x faster). The reference code stores e_ij too; a stored direction lags a rotating
+      pair and makes it look shorter, which drifts the plate's period by 0.55% per cycle and
+      gives the spinning plate 33% angular-momentum error (0.4.1 did that; see sps__pair).
 
    REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
       A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
@@ -207,6 +209,11 @@
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
+      0.4.2 (2026-11-22) frozen geometry keeps dW/dr and 1/r_ij but takes e_ij and B_i from the
+                         current positions: the stored directions of 0.4.1 made rotating pairs
+                         look shorter (2D plate: period +0.55% per cycle; spinning plate ENO-A
+                         32.9% -> 1.02%, GNO-A 18.2% -> 0.011%). The default is unchanged, bit
+                         for bit.
       0.4.1 (2026-11-22) speed: lane groups of 16 doubles (32 floats) in 512-bit vectors,
                          branch-free neighbour collection, lane-parallel Jaumann update and
                          frozen-geometry fill, literal-dimension kick and drift. Same results
@@ -233,8 +240,8 @@
 
 #define SPHSOLID_VERSION_MAJOR 0
 #define SPHSOLID_VERSION_MINOR 4
-#define SPHSOLID_VERSION_PATCH 1
-#define SPHSOLID_VERSION_STRING "0.4.1"
+#define SPHSOLID_VERSION_PATCH 2
+#define SPHSOLID_VERSION_STRING "0.4.2"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
@@ -327,10 +334,10 @@ typedef struct sps_world_def {
     int max_substeps;                 /* acoustic sub-steps per advection step, [1, 10000]. Default 100. */
     sps_real gravity[3];              /* uniform body force [m/s^2]. Default 0. */
     int frozen_geometry;              /* 0: pair geometry (e_ij, dW, B_i) from the current positions
-                                         in every sub-step: exact, needed for rotating bodies.
-                                         1: stored at each configuration update (reference code):
-                                         about 2x faster, lags rotations within an advection step.
-                                         Default 0 (see README, "Design notes"). */
+                                         in every sub-step. 1: dW and 1/r_ij stored at each
+                                         configuration update, e_ij and B_i from the current
+                                         positions: about 1.2x faster, dW lags the stretch within
+                                         an advection step. Default 0 (see README, "Design notes"). */
     sps_real neighbor_capacity;       /* neighbour slots per particle relative to a full lattice
                                          support, >= 1. Default 2 (compression to rho/rho0 = 2). */
     int threads;                      /* OpenMP threads for this world; 0 = OpenMP default. */
@@ -665,7 +672,6 @@ struct sps_world {
     sps_real *tau;  /* 6 per particle (xx xy xz yy yz zz) when any body tracks stress */
     sps_real *art;  /* Gray's artificial stress R, 3 per particle (xx xy yy), OAS bodies only */
     sps_real *grad; /* velocity gradient, 9 per particle, when needed */
-    sps_real *bmat; /* correction matrix B, 9 per particle, when needed with frozen geometry */
     int *id, *body, *slot_of_id, *cons;
     int needs_sort_by_body; /* particles were added since the last step */
 
@@ -700,7 +706,7 @@ struct sps_world {
     int *nb_group_start, *nb_first, *nb_j, *nb_count, *nb_ell;
     int ell_width, group_cap;
     long pair_cap; /* slots */
-    sps_real *nb_dw, *nb_dw_r, *nb_e[3]; /* frozen geometry per slot: dW/dr, dW/dr / r, e_ij (0 in padding) */
+    sps_real *nb_dw, *nb_dw_r, *nb_inv_r; /* frozen geometry per slot: dW/dr, dW/dr / r, 1/r (0 in padding) */
     /* SPS_ROTATION_PAIR: the accumulated shear force g_ij per slot [N] (0 in padding), and its
        copy kept at the end of each step for the next list rebuild: each particle's pairs
        contiguous, with the id of the neighbour, from kept_first[its id] (kept_count of them;
@@ -1057,14 +1063,13 @@ static void sps__free_particle_fields(sps_world* w) {
     for (a = 0; a < 3; ++a) {
         sps__free(w, w->pos[a]); sps__free(w, w->vel[a]); sps__free(w, w->ref[a]);
         sps__free(w, w->acc_p[a]); sps__free(w, w->acc_s[a]); sps__free(w, w->acc_d[a]);
-        sps__free(w, w->nb_e[a]);
     }
     sps__free(w, w->rho); sps__free(w, w->drho); sps__free(w, w->p); sps__free(w, w->vol);
-    sps__free(w, w->mass); sps__free(w, w->tau); sps__free(w, w->art); sps__free(w, w->grad); sps__free(w, w->bmat);
+    sps__free(w, w->mass); sps__free(w, w->tau); sps__free(w, w->art); sps__free(w, w->grad);
     sps__free(w, w->id); sps__free(w, w->body); sps__free(w, w->slot_of_id); sps__free(w, w->cons);
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_j); sps__free(w, w->nb_count);
     sps__free(w, w->nb_ell);
-    sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r);
+    sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r); sps__free(w, w->nb_inv_r);
     sps__free(w, w->pair_force); sps__free(w, w->kept_force); sps__free(w, w->kept_neighbor_id);
     sps__free(w, w->kept_first); sps__free(w, w->kept_count);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm);
@@ -1360,7 +1365,7 @@ static void sps__permute_int(sps_world* w, int* f, int begin, int count) {
     memcpy(f + begin, tmp, sizeof(int) * (size_t)count);
 }
 
-/* Fields rebuilt within every sub-step before they are read (acc_p, acc_d, bmat, art) are not
+/* Fields rebuilt within every sub-step before they are read (acc_p, acc_d, art) are not
    carried along; grad is, because the next kick reads it (per-particle half-step rotation). */
 static void sps__sort_range(sps_world* w, int begin, int count, const int* key, int nkeys) {
     int i, a, *start = w->cell_start;
@@ -1541,52 +1546,27 @@ SPS__INLINE sps__group sps__group_of(const sps_world* w, const sps__body* b, int
     return q;
 }
 
-/* Frozen geometry: the pair geometry of lane group q's slots (e_ij, dW/dr, dW/dr / r; zeros in
-   padding) and, when the body needs the velocity gradient, B_i from
-   A_i = -sum_j r_ij (x) grad W_ij V_j = -sum_j d d^T dW/r V_j (ANG eq. 21). One lane per particle
-   with literal dim and kernel, so the loop vectorises (measured: the scalar version of this was a
-   third of the list rebuild). */
-SPS__INLINE void sps__freeze_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, const int kernel) {
+/* Frozen geometry: dW/dr, dW/dr / r and 1/r of lane group q's slots (zeros in padding), with
+   literal dim and kernel so the lane loop vectorises. The direction e_ij is not stored: see
+   sps__pair. */
+SPS__INLINE void sps__freeze_lanes(sps_world* w, sps__group q, const int dim, const int kernel) {
     const sps_real *SPS__RESTRICT px = w->pos[0], *SPS__RESTRICT py = w->pos[1], *SPS__RESTRICT pz = w->pos[2];
-    const sps_real* SPS__RESTRICT vol = w->vol;
     const int* SPS__RESTRICT nb_j = w->nb_j;
-    sps_real *SPS__RESTRICT ex = w->nb_e[0], *SPS__RESTRICT ey = w->nb_e[1], *SPS__RESTRICT ez = w->nb_e[2];
-    sps_real *SPS__RESTRICT nb_dw = w->nb_dw, *SPS__RESTRICT nb_dw_r = w->nb_dw_r;
+    sps_real *SPS__RESTRICT nb_dw = w->nb_dw, *SPS__RESTRICT nb_dw_r = w->nb_dw_r, *SPS__RESTRICT nb_inv_r = w->nb_inv_r;
     const sps_real dw_scale = w->dw_scale, inv_h = w->inv_h;
-    sps_real A[6][SPS__LANES];
-    int k, l, t;
-    for (t = 0; t < 6; ++t)
-        for (l = 0; l < SPS__LANES; ++l) A[t][l] = 0;
+    int k, l;
     for (k = 0; k < q.len; ++k) {
         SPS__PRAGMA(omp simd)
         for (l = 0; l < SPS__LANES; ++l) {
             const int i = q.i0 + l, s = q.s0 + k * SPS__LANES + l, j = nb_j[s];
             const int real = j != i; /* padding slots point at the particle itself */
             const sps_real dx = px[i] - px[j], dy = py[i] - py[j], dz = dim == 3 ? pz[i] - pz[j] : 0;
-            const sps_real r2 = dx * dx + dy * dy + (dim == 3 ? dz * dz : 0);
-            const sps_real r = SPS__SQRT(real ? r2 : 1);
-            const sps_real dw = real ? dw_scale * sps__kernel_df(kernel, r * inv_h) : 0, dw_r = dw / r, f = dw_r * vol[j];
+            const sps_real r = SPS__SQRT(real ? dx * dx + dy * dy + dz * dz : 1), inv_r = real ? 1 / r : 0;
+            const sps_real dw = real ? dw_scale * sps__kernel_df(kernel, r * inv_h) : 0;
             nb_dw[s] = dw;
-            nb_dw_r[s] = dw_r;
-            ex[s] = dx / r;
-            ey[s] = dy / r;
-            if (dim == 3) ez[s] = dz / r;
-            /* -d d^T dW/r V_j, entries xx xy xz yy yz zz */
-            A[0][l] -= f * dx * dx;
-            A[1][l] -= f * dx * dy;
-            A[3][l] -= f * dy * dy;
-            if (dim == 3) {
-                A[2][l] -= f * dx * dz;
-                A[4][l] -= f * dy * dz;
-                A[5][l] -= f * dz * dz;
-            }
+            nb_dw_r[s] = dw * inv_r;
+            nb_inv_r[s] = inv_r;
         }
-    }
-    if (!b->needs_gradient) return;
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) { /* A's entries are per lane, in blended_inverse's order */
-        sps_real* B = w->bmat + (size_t)9 * (q.i0 + l);
-        for (t = 0; t < 9; ++t) B[t] = 0;
-        sps__blended_inverse(&A[0][l], SPS__LANES, B, 1, dim);
     }
 }
 
@@ -1624,10 +1604,10 @@ static sps_result sps__fill_lane_slots(sps_world* w) {
             }
             if (frozen) {
                 const sps__group q = sps__group_of(w, b, g);
-                if (dim == 2 && spline) sps__freeze_lanes(w, b, q, 2, SPS_KERNEL_CUBIC_SPLINE);
-                else if (dim == 2) sps__freeze_lanes(w, b, q, 2, SPS_KERNEL_WENDLAND_C2);
-                else if (spline) sps__freeze_lanes(w, b, q, 3, SPS_KERNEL_CUBIC_SPLINE);
-                else sps__freeze_lanes(w, b, q, 3, SPS_KERNEL_WENDLAND_C2);
+                if (dim == 2 && spline) sps__freeze_lanes(w, q, 2, SPS_KERNEL_CUBIC_SPLINE);
+                else if (dim == 2) sps__freeze_lanes(w, q, 2, SPS_KERNEL_WENDLAND_C2);
+                else if (spline) sps__freeze_lanes(w, q, 3, SPS_KERNEL_CUBIC_SPLINE);
+                else sps__freeze_lanes(w, q, 3, SPS_KERNEL_WENDLAND_C2);
             }
         }
     }
@@ -1809,13 +1789,11 @@ static sps_result sps__commit(sps_world* w) {
         return SPS_ERR_OUT_OF_MEMORY;
     }
     if (need_pair && sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
-    if (need_gradient && (!w->grad || !w->bmat || w->allocated_for < w->cap)) {
-        sps__free(w, w->grad); sps__free(w, w->bmat);
+    if (need_gradient && (!w->grad || w->allocated_for < w->cap)) {
+        sps__free(w, w->grad);
         w->grad = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * slots);
-        w->bmat = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * slots);
-        if (!w->grad || !w->bmat) return SPS_ERR_OUT_OF_MEMORY;
+        if (!w->grad) return SPS_ERR_OUT_OF_MEMORY;
         memset(w->grad, 0, sizeof(sps_real) * 9 * slots);
-        memset(w->bmat, 0, sizeof(sps_real) * 9 * slots);
     }
     if (need_stress && (!w->tau || w->allocated_for < w->cap)) {
         sps_real* t = (sps_real*)sps__alloc(w, sizeof(sps_real) * 6 * slots);
@@ -1858,7 +1836,7 @@ static sps_result sps__commit(sps_world* w) {
 /* Neighbour slots per particle: a full lattice support (counted once for this dim, kernel and
    h/dp) times neighbor_capacity. */
 static sps_result sps__ensure_neighbor_storage(sps_world* w) {
-    int lattice = 0, reach = (int)(w->support / w->def.dp) + 1, i, j, k, width, a;
+    int lattice = 0, reach = (int)(w->support / w->def.dp) + 1, i, j, k, width;
     size_t cap = (size_t)w->cap;
     long pairs;
     for (i = -reach; i <= reach; ++i)
@@ -1876,11 +1854,10 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     if (pairs > (long)width * (w->n + SPS__LANES * w->nbodies)) pairs = (long)width * (w->n + SPS__LANES * w->nbodies);
     if (w->allocated_for >= w->cap && w->ell_width == width && w->pair_cap >= pairs) return SPS_OK;
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_count); sps__free(w, w->nb_ell);
-    sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r);
-    for (a = 0; a < 3; ++a) { sps__free(w, w->nb_e[a]); w->nb_e[a] = NULL; }
+    sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r); sps__free(w, w->nb_inv_r);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm); sps__free(w, w->scratch);
     sps__free(w, w->group_sum);
-    w->nb_dw = w->nb_dw_r = NULL;
+    w->nb_dw = w->nb_dw_r = w->nb_inv_r = NULL;
     w->ell_width = width;
     w->pair_cap = pairs;
     w->cell_cap = 4 * w->cap + 64 + 1;
@@ -1901,9 +1878,8 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     if (w->def.frozen_geometry) {
         w->nb_dw = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
         w->nb_dw_r = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
-        if (!w->nb_dw || !w->nb_dw_r) return SPS_ERR_OUT_OF_MEMORY;
-        for (a = 0; a < w->dim; ++a)
-            if (!(w->nb_e[a] = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs))) return SPS_ERR_OUT_OF_MEMORY;
+        w->nb_inv_r = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
+        if (!w->nb_dw || !w->nb_dw_r || !w->nb_inv_r) return SPS_ERR_OUT_OF_MEMORY;
     }
     return SPS_OK;
 }
@@ -1918,23 +1894,35 @@ static int sps__mode(const sps_world* w) {
     return (w->dim == 3) * 3 + geo;
 }
 
-/* Pair geometry of slot s = (i, j): e_ij, dW/dr and dW/dr / r_ij, either stored at the
-   configuration update (frozen) or from the current positions. A padding slot (j = i) gives
-   zeros: stored zeros when frozen, and here r = 1 with dW = 0 (no division by zero). Returned
+/* Pair geometry of slot s = (i, j): e_ij, dW/dr, dW/dr / r_ij and r_ij from the current
+   positions, dW/dr and 1/r taken from the configuration update when frozen. A padding slot
+   (j = i) gives zeros: stored zeros when frozen, and here r = 1 with dW = 0 (no division by
+   zero). Returned
    by value (no addressable locals) so the neighbour loops that call it vectorise. */
 typedef struct sps__pair_geometry {
-    sps_real ex, ey, ez, dw, dw_r, r; /* r is 0 when frozen: frozen mode takes B from the configuration update */
+    sps_real ex, ey, ez, dw, dw_r, r;
 } sps__pair_geometry;
 
 SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j, const int dim, const int geo) {
     sps__pair_geometry q;
     if (geo == SPS__GEO_FROZEN) {
-        q.ex = w->nb_e[0][s];
-        q.ey = w->nb_e[1][s];
-        q.ez = dim == 3 ? w->nb_e[2][s] : 0;
+        /* dW and 1/r as stored, but e_ij from the current positions: a stored direction lags a
+           rotating pair, and e_0.v_ij = -r w sin(w t) < 0 whatever the sense of rotation, so
+           every rotating pair would look as if it were shortening, and ENO-A's accumulated
+           shear and the density would drift (measured: the 2D plate's period grew 0.55% per
+           cycle). 1/|x_ij| is the stored 1/r_0 after one Newton step (relative error 1.5 x the
+           square of the strain since the update; the factor is kept >= 1/2, so e_ij never
+           turns round however far the pair stretches). */
+        const sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
+        const sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] : 0;
+        const sps_real r2 = dx * dx + dy * dy + dz * dz, inv_r0 = w->nb_inv_r[s], t = r2 * inv_r0 * inv_r0;
+        const sps_real inv_r = inv_r0 * (SPS_R(1.5) - SPS_R(0.5) * (t < 2 ? t : 2));
+        q.ex = dx * inv_r;
+        q.ey = dy * inv_r;
+        q.ez = dz * inv_r;
         q.dw = w->nb_dw[s];
         q.dw_r = w->nb_dw_r[s];
-        q.r = 0;
+        q.r = r2 * inv_r;
     } else {
         const sps_real pad = (sps_real)(j == i);
         sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
@@ -2027,7 +2015,7 @@ SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, 
         for (l = 0; l < SPS__LANES; ++l) {
             const int i = q.i0 + l, j = js[l];
             const sps__pair_geometry e = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo);
-            const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r, rij = e.r;
+            const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
             sps_real u, s;
             u = (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
             s = (p[i] + p[j] - z * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
@@ -2056,8 +2044,7 @@ SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, 
             }
             if (art) {
                 const sps_real *ri = w->art + (size_t)3 * i, *rj = w->art + (size_t)3 * j;
-                sps_real r = geo == SPS__GEO_FROZEN ? (dw_r != 0 ? dw / dw_r : 0) : rij;
-                sps_real f = w->kernel_norm * sps__kernel_f(w->def.kernel, r * w->inv_h) / b->oas_w_dp, fn = 1, mf;
+                sps_real f = w->kernel_norm * sps__kernel_f(w->def.kernel, rij * w->inv_h) / b->oas_w_dp, fn = 1, mf;
                 int m;
                 for (m = 0; m < (int)b->oas_n; ++m) fn *= f;
                 mf = w->mass[j] * fn * dw;
@@ -2283,13 +2270,12 @@ enum {
 
 /* The lane-parallel end of the continuity pass for lane group q: density rate, the ENO
    increment without rotation (ENO eq. 24) into da, and, with gradient (a literal), the velocity
-   gradient L = M B^T (ANG eq. 20; B from A when the geometry is recomputed: a frozen B would
-   lag a rotating body). */
-SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, const int dim, const int geo, const int gradient,
+   gradient L = M B^T (ANG eq. 20; B from this pass's A, also with frozen geometry: a B kept
+   from the configuration update would lag a rotating body). */
+SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, const int dim, const int gradient,
                                        sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES], sps_real da[3][SPS__LANES],
                                        sps_real L[9][SPS__LANES]) {
     const sps_real* SPS__RESTRICT rho = w->rho + q.i0;
-    const sps_real* SPS__RESTRICT bmat = w->bmat + (size_t)9 * q.i0;
     sps_real* SPS__RESTRICT drho = w->drho + q.i0;
     sps_real* SPS__RESTRICT grad = w->grad + (size_t)9 * q.i0;
     sps_real B[9][SPS__LANES];
@@ -2302,12 +2288,7 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, cons
         for (a = 0; a < dim; ++a) da[a][l] = shear_rate / rho_l * sum[SPS__LX + a][l];
         if (mine) drho[l] = rho_l * sum[SPS__DRHO][l];
         if (gradient) { /* L = M B^T, i.e. -sum v_ij (x) (B grad W) V_j */
-            if (geo == SPS__GEO_FROZEN) {
-                SPS__UNROLL
-                for (a = 0; a < 9; ++a) B[a][l] = bmat[9 * l + a];
-            } else {
-                sps__blended_inverse(&sum[SPS__A00][l], SPS__LANES, &B[0][l], SPS__LANES, dim);
-            }
+            sps__blended_inverse(&sum[SPS__A00][l], SPS__LANES, &B[0][l], SPS__LANES, dim);
             SPS__UNROLL
             for (a = 0; a < dim; ++a)
                 SPS__UNROLL
@@ -2353,23 +2334,20 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
                 if (dim == 3) sum[SPS__LZ][l] += lv * ez;
             }
             if (gradient) {
-                const sps_real gx = dvx * dwv, gy = dvy * dwv, gz = dvz * dwv;
+                const sps_real gx = dvx * dwv, gy = dvy * dwv, gz = dvz * dwv, rdwv = e.r * dwv;
                 sum[SPS__M00][l] -= gx * ex; sum[SPS__M01][l] -= gx * ey;
                 sum[SPS__M10][l] -= gy * ex; sum[SPS__M11][l] -= gy * ey;
                 if (dim == 3) {
                     sum[SPS__M02][l] -= gx * ez; sum[SPS__M12][l] -= gy * ez;
                     sum[SPS__M20][l] -= gz * ex; sum[SPS__M21][l] -= gz * ey; sum[SPS__M22][l] -= gz * ez;
                 }
-                if (geo != SPS__GEO_FROZEN) {
-                    const sps_real rdwv = e.r * dwv;
-                    sum[SPS__A00][l] -= rdwv * ex * ex;
-                    sum[SPS__A01][l] -= rdwv * ex * ey;
-                    sum[SPS__A11][l] -= rdwv * ey * ey;
-                    if (dim == 3) {
-                        sum[SPS__A02][l] -= rdwv * ex * ez;
-                        sum[SPS__A12][l] -= rdwv * ey * ez;
-                        sum[SPS__A22][l] -= rdwv * ez * ez;
-                    }
+                sum[SPS__A00][l] -= rdwv * ex * ex;
+                sum[SPS__A01][l] -= rdwv * ex * ey;
+                sum[SPS__A11][l] -= rdwv * ey * ey;
+                if (dim == 3) {
+                    sum[SPS__A02][l] -= rdwv * ex * ez;
+                    sum[SPS__A12][l] -= rdwv * ey * ez;
+                    sum[SPS__A22][l] -= rdwv * ez * ez;
                 }
             }
         }
@@ -2378,7 +2356,7 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
 
 /* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
    eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
-   before correction); A -= r_ij (x) e_ij dW V_j (B^-1, recomputed geometry); with the pair
+   before correction); A -= r_ij (x) e_ij dW V_j (B^-1); with the pair
    rotation the ENO increment goes to the pair's force instead of lap. The loop
    (sps__continuity_pairs) gets both choices as literals, so it carries no branch. Then the lanes'
    ends (sps__continuity_lanes), the Jaumann stress when tracked, the Rodrigues matrices, this
@@ -2397,8 +2375,8 @@ SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, 
     else if (gradient) sps__continuity_pairs(w, q, dim, geo, 1, 0, shear_rate, sum);
     else if (eno_pairs) sps__continuity_pairs(w, q, dim, geo, 0, 1, shear_rate, sum);
     else sps__continuity_pairs(w, q, dim, geo, 0, 0, shear_rate, sum);
-    if (gradient) sps__continuity_lanes(w, q, end, dim, geo, 1, shear_rate, sum, da, L);
-    else sps__continuity_lanes(w, q, end, dim, geo, 0, shear_rate, sum, da, L);
+    if (gradient) sps__continuity_lanes(w, q, end, dim, 1, shear_rate, sum, da, L);
+    else sps__continuity_lanes(w, q, end, dim, 0, shear_rate, sum, da, L);
     if (b->needs_stress) sps__stress_lanes(w, q, end, dim, b->G, dt, L);
     if (b->rotated) sps__rotation_lanes(w, q, dt, dim, L, R);
     if (b->mean) {
