@@ -80,7 +80,7 @@
       B_i = (-sum_j r_ij (x) grad W_ij V_j)^-1 (ANG eq. 21) come from the current positions in
       each pass (frozen_geometry = 0, default). With frozen_geometry = 1, dW/dr and 1/r_ij are
       stored at the configuration update, and e_ij and B_i still follow the current positions
-      (1.2x faster). The reference code stores e_ij too; a stored direction lags a rotating
+      (1.2-1.3x faster in double, no faster in float). The reference code stores e_ij too; a stored direction lags a rotating
       pair and makes it look shorter, which drifts the plate's period by 0.55% per cycle and
       gives the spinning plate 33% angular-momentum error (0.4.1 did that; see sps__pair).
 
@@ -336,8 +336,9 @@ typedef struct sps_world_def {
     int frozen_geometry;              /* 0: pair geometry (e_ij, dW, B_i) from the current positions
                                          in every sub-step. 1: dW and 1/r_ij stored at each
                                          configuration update, e_ij and B_i from the current
-                                         positions: about 1.2x faster, dW lags the stretch within
-                                         an advection step. Default 0 (see README, "Design notes"). */
+                                         positions: 1.2-1.3x faster in double (not in float);
+                                         dW lags the stretch within an advection step.
+                                         Default 0 (see README, "Design notes"). */
     sps_real neighbor_capacity;       /* neighbour slots per particle relative to a full lattice
                                          support, >= 1. Default 2 (compression to rho/rho0 = 2). */
     int threads;                      /* OpenMP threads for this world; 0 = OpenMP default. */

@@ -4,6 +4,7 @@
 #   sh bench/run_bench.sh            full table (about 40 min on 2 idle cores)
 #   QUICK=1 sh bench/run_bench.sh    H/dp = 10 and 3D H/dp = 3 only (about 8 min)
 #   RES2="20 30" RES3="5" APPEND=1 sh bench/run_bench.sh   add resolutions to the table
+#   GEOS=frozen APPEND=1 sh bench/run_bench.sh              add one pair geometry's rows
 # Run on an otherwise idle machine: the numbers are wall-clock times (minimum of REPEAT runs).
 set -eu
 cd "$(dirname "$0")/.."
@@ -40,7 +41,7 @@ run() { # scene res t_end threads stepping extra-args...
 if [ "${QUICK:-0}" = 1 ]; then RES2=${RES2-10}; RES3=${RES3-3}; else RES2=${RES2-"10 20 30"}; RES3=${RES3-"3 5"}; fi
 # Horizons: t = 1 s at H/dp = 10 (the paper's Table 2 horizon, and the speed target); shorter at
 # finer resolution, where ns per particle-step is the figure (wall time scales with t_end).
-for geo in recomputed frozen; do
+for geo in ${GEOS-recomputed frozen}; do
     for res in $RES2; do
         case $res in 10) tend=1 ;; 20) tend=0.05 ;; *) tend=0.02 ;; esac
         for thr in 1 2; do for st in dual single; do run plate2d "$res" "$tend" "$thr" "$st" --shear eno-a --geometry "$geo"; done; done
