@@ -78,11 +78,12 @@
       The configuration update (every advection step) sorts particles by cell and rebuilds the
       CSR neighbour lists. The pair geometry e_ij, dW/dr and the correction matrix
       B_i = (-sum_j r_ij (x) grad W_ij V_j)^-1 (ANG eq. 21) come from the current positions in
-      each pass (frozen_geometry = 0, default). With frozen_geometry = 1, dW/dr and 1/r_ij are
-      stored at the configuration update, and e_ij and B_i still follow the current positions
-      (1.2-1.3x faster in double, no faster in float). The reference code stores e_ij too; a stored direction lags a rotating
-      pair and makes it look shorter, which drifts the plate's period by 0.55% per cycle and
-      gives the spinning plate 33% angular-momentum error (0.4.1 did that; see sps__pair).
+      each pass (frozen_geometry = 0, default). With frozen_geometry = 1, dW/dr is stored at the
+      configuration update, and e_ij, 1/r_ij (a Newton step from the stored 1/r_0) and B_i still
+      follow the current positions (1.2-1.3x faster in double, no faster in float). The
+      reference code stores e_ij too; a stored direction lags a rotating pair and makes it look
+      shorter, which drifts the plate's period by 0.55% per cycle and gives the spinning plate
+      33% angular-momentum error (0.4.1 did that; see sps__pair).
 
    REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
       A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
@@ -209,7 +210,7 @@
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
-      0.4.2 (2026-11-22) frozen geometry keeps dW/dr and 1/r_ij but takes e_ij and B_i from the
+      0.4.2 (2026-11-22) frozen geometry keeps dW/dr but takes e_ij, 1/r_ij and B_i from the
                          current positions: the stored directions of 0.4.1 made rotating pairs
                          look shorter (2D plate: period +0.55% per cycle; spinning plate ENO-A
                          32.9% -> 1.02%, GNO-A 18.2% -> 0.011%). The default is unchanged, bit
@@ -334,8 +335,8 @@ typedef struct sps_world_def {
     int max_substeps;                 /* acoustic sub-steps per advection step, [1, 10000]. Default 100. */
     sps_real gravity[3];              /* uniform body force [m/s^2]. Default 0. */
     int frozen_geometry;              /* 0: pair geometry (e_ij, dW, B_i) from the current positions
-                                         in every sub-step. 1: dW and 1/r_ij stored at each
-                                         configuration update, e_ij and B_i from the current
+                                         in every sub-step. 1: dW stored at each configuration
+                                         update, e_ij, 1/r_ij and B_i from the current
                                          positions: 1.2-1.3x faster in double (not in float);
                                          dW lags the stretch within an advection step.
                                          Default 0 (see README, "Design notes"). */
@@ -707,7 +708,7 @@ struct sps_world {
     int *nb_group_start, *nb_first, *nb_j, *nb_count, *nb_ell;
     int ell_width, group_cap;
     long pair_cap; /* slots */
-    sps_real *nb_dw, *nb_dw_r, *nb_inv_r; /* frozen geometry per slot: dW/dr, dW/dr / r, 1/r (0 in padding) */
+    sps_real *nb_dw, *nb_inv_r; /* frozen geometry per slot: dW/dr and 1/r (0 in padding) */
     /* SPS_ROTATION_PAIR: the accumulated shear force g_ij per slot [N] (0 in padding), and its
        copy kept at the end of each step for the next list rebuild: each particle's pairs
        contiguous, with the id of the neighbour, from kept_first[its id] (kept_count of them;
@@ -1070,7 +1071,7 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->id); sps__free(w, w->body); sps__free(w, w->slot_of_id); sps__free(w, w->cons);
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_j); sps__free(w, w->nb_count);
     sps__free(w, w->nb_ell);
-    sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r); sps__free(w, w->nb_inv_r);
+    sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
     sps__free(w, w->pair_force); sps__free(w, w->kept_force); sps__free(w, w->kept_neighbor_id);
     sps__free(w, w->kept_first); sps__free(w, w->kept_count);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm);
@@ -1547,13 +1548,13 @@ SPS__INLINE sps__group sps__group_of(const sps_world* w, const sps__body* b, int
     return q;
 }
 
-/* Frozen geometry: dW/dr, dW/dr / r and 1/r of lane group q's slots (zeros in padding), with
+/* Frozen geometry: dW/dr and 1/r of lane group q's slots (zeros in padding), with
    literal dim and kernel so the lane loop vectorises. The direction e_ij is not stored: see
    sps__pair. */
 SPS__INLINE void sps__freeze_lanes(sps_world* w, sps__group q, const int dim, const int kernel) {
     const sps_real *SPS__RESTRICT px = w->pos[0], *SPS__RESTRICT py = w->pos[1], *SPS__RESTRICT pz = w->pos[2];
     const int* SPS__RESTRICT nb_j = w->nb_j;
-    sps_real *SPS__RESTRICT nb_dw = w->nb_dw, *SPS__RESTRICT nb_dw_r = w->nb_dw_r, *SPS__RESTRICT nb_inv_r = w->nb_inv_r;
+    sps_real *SPS__RESTRICT nb_dw = w->nb_dw, *SPS__RESTRICT nb_inv_r = w->nb_inv_r;
     const sps_real dw_scale = w->dw_scale, inv_h = w->inv_h;
     int k, l;
     for (k = 0; k < q.len; ++k) {
@@ -1565,7 +1566,6 @@ SPS__INLINE void sps__freeze_lanes(sps_world* w, sps__group q, const int dim, co
             const sps_real r = SPS__SQRT(real ? dx * dx + dy * dy + dz * dz : 1), inv_r = real ? 1 / r : 0;
             const sps_real dw = real ? dw_scale * sps__kernel_df(kernel, r * inv_h) : 0;
             nb_dw[s] = dw;
-            nb_dw_r[s] = dw * inv_r;
             nb_inv_r[s] = inv_r;
         }
     }
@@ -1855,10 +1855,10 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     if (pairs > (long)width * (w->n + SPS__LANES * w->nbodies)) pairs = (long)width * (w->n + SPS__LANES * w->nbodies);
     if (w->allocated_for >= w->cap && w->ell_width == width && w->pair_cap >= pairs) return SPS_OK;
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_count); sps__free(w, w->nb_ell);
-    sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_dw_r); sps__free(w, w->nb_inv_r);
+    sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm); sps__free(w, w->scratch);
     sps__free(w, w->group_sum);
-    w->nb_dw = w->nb_dw_r = w->nb_inv_r = NULL;
+    w->nb_dw = w->nb_inv_r = NULL;
     w->ell_width = width;
     w->pair_cap = pairs;
     w->cell_cap = 4 * w->cap + 64 + 1;
@@ -1878,9 +1878,8 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
         return SPS_ERR_OUT_OF_MEMORY;
     if (w->def.frozen_geometry) {
         w->nb_dw = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
-        w->nb_dw_r = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
         w->nb_inv_r = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
-        if (!w->nb_dw || !w->nb_dw_r || !w->nb_inv_r) return SPS_ERR_OUT_OF_MEMORY;
+        if (!w->nb_dw || !w->nb_inv_r) return SPS_ERR_OUT_OF_MEMORY;
     }
     return SPS_OK;
 }
@@ -1896,9 +1895,8 @@ static int sps__mode(const sps_world* w) {
 }
 
 /* Pair geometry of slot s = (i, j): e_ij, dW/dr, dW/dr / r_ij and r_ij from the current
-   positions, dW/dr and 1/r taken from the configuration update when frozen. A padding slot
-   (j = i) gives zeros: stored zeros when frozen, and here r = 1 with dW = 0 (no division by
-   zero). Returned
+   positions; when frozen, dW/dr is the configuration update's. A padding slot (j = i) gives
+   zeros: stored zeros when frozen, and here r = 1 with dW = 0 (no division by zero). Returned
    by value (no addressable locals) so the neighbour loops that call it vectorise. */
 typedef struct sps__pair_geometry {
     sps_real ex, ey, ez, dw, dw_r, r;
@@ -1907,11 +1905,13 @@ typedef struct sps__pair_geometry {
 SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j, const int dim, const int geo) {
     sps__pair_geometry q;
     if (geo == SPS__GEO_FROZEN) {
-        /* dW and 1/r as stored, but e_ij from the current positions: a stored direction lags a
+        /* dW as stored, but e_ij and 1/r from the current positions: a stored direction lags a
            rotating pair, and e_0.v_ij = -r w sin(w t) < 0 whatever the sense of rotation, so
            every rotating pair would look as if it were shortening, and ENO-A's accumulated
            shear and the density would drift (measured: the 2D plate's period grew 0.55% per
-           cycle). 1/|x_ij| is the stored 1/r_0 after one Newton step (relative error 1.5 x the
+           cycle). A stored 1/r would misjudge v_ij / r_ij against L e_ij by the strain since
+           the update, which GNO's penalty (ANG eq. 43) amplifies (GNO-A at H/dp 30: period
+           -1.6%). 1/|x_ij| is the stored 1/r_0 after one Newton step (relative error 1.5 x the
            square of the strain since the update; the factor is kept >= 1/2, so e_ij never
            turns round however far the pair stretches). */
         const sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
@@ -1922,7 +1922,7 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
         q.ey = dy * inv_r;
         q.ez = dz * inv_r;
         q.dw = w->nb_dw[s];
-        q.dw_r = w->nb_dw_r[s];
+        q.dw_r = q.dw * inv_r;
         q.r = r2 * inv_r;
     } else {
         const sps_real pad = (sps_real)(j == i);
