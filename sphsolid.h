@@ -210,7 +210,7 @@
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
-      0.4.2 (2026-11-22) frozen geometry keeps dW/dr but takes e_ij, 1/r_ij and B_i from the
+      0.4.2 (2026-11-22) frozen geometry keeps dW/dr and 1/r_0 but takes e_ij, 1/r_ij and B_i from the
                          current positions: the stored directions of 0.4.1 made rotating pairs
                          look shorter (2D plate: period +0.55% per cycle; spinning plate ENO-A
                          32.9% -> 1.02%, GNO-A 18.2% -> 0.011%). The default is unchanged, bit
@@ -335,8 +335,9 @@ typedef struct sps_world_def {
     int max_substeps;                 /* acoustic sub-steps per advection step, [1, 10000]. Default 100. */
     sps_real gravity[3];              /* uniform body force [m/s^2]. Default 0. */
     int frozen_geometry;              /* 0: pair geometry (e_ij, dW, B_i) from the current positions
-                                         in every sub-step. 1: dW stored at each configuration
-                                         update, e_ij, 1/r_ij and B_i from the current
+                                         in every sub-step. 1: dW and 1/r_0 stored at each
+                                         configuration update; e_ij, 1/r_ij (one Newton step
+                                         from 1/r_0) and B_i from the current
                                          positions: 1.2-1.3x faster in double (not in float);
                                          dW lags the stretch within an advection step.
                                          Default 0 (see README, "Design notes"). */
