@@ -709,7 +709,7 @@ struct sps_world {
     int *nb_group_start, *nb_first, *nb_j, *nb_count, *nb_ell;
     int ell_width, group_cap;
     long pair_cap; /* slots */
-    sps_real *nb_dw, *nb_inv_r; /* frozen geometry per slot: dW/dr and 1/r (0 in padding) */
+    sps_real *nb_dw, *nb_inv_r; /* frozen geometry per slot: dW/dr and 1/r_0 at the update (0 in padding) */
     /* SPS_ROTATION_PAIR: the accumulated shear force g_ij per slot [N] (0 in padding), and its
        copy kept at the end of each step for the next list rebuild: each particle's pairs
        contiguous, with the id of the neighbour, from kept_first[its id] (kept_count of them;
@@ -1897,8 +1897,8 @@ static int sps__mode(const sps_world* w) {
 
 /* Pair geometry of slot s = (i, j): e_ij, dW/dr, dW/dr / r_ij and r_ij from the current
    positions; when frozen, dW/dr is the configuration update's. A padding slot (j = i) gives
-   zeros: stored zeros when frozen, and here r = 1 with dW = 0 (no division by zero). Returned
-   by value (no addressable locals) so the neighbour loops that call it vectorise. */
+   zeros: stored zeros when frozen, and here r = 1 with dW = 0 (no division by zero). Returned by
+   value (no addressable locals) so the neighbour loops that call it vectorise. */
 typedef struct sps__pair_geometry {
     sps_real ex, ey, ez, dw, dw_r, r;
 } sps__pair_geometry;
