@@ -1,7 +1,8 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
 #   make          header checks (C99 gcc/clang, C++, float, static), the README quick start, examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
-#   make test     the README quick start and every example (brief runs), the randomized API test (10,000 cases),
+#   make test     the README quick start and every example (brief runs), the pinned results (tests/pinned.c),
+#                 the randomized API test (10,000 cases),
 #                 the test runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~8 min)
 #   make bench    speed tables (bench/results/)
@@ -108,8 +109,22 @@ examples-smoke: examples
 	  ./$(BUILD)/$$1 --cfl 7 >/dev/null 2>&1; status=$$?; \
 	  test $$status -eq 2 || { echo "examples-smoke: $$1 --cfl 7 exited $$status, expected 2"; exit 1; }; \
 	done; echo "examples-smoke: 4 examples ran, wrote CSV and VTK, and refused a bad option"
+# ---- pinned results: hashes of short runs over every formulation, bit for bit (tests/pinned.c) ----
+$(BUILD)/pinned: tests/pinned.c tests/pinned_double.inc $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/pinned_float: tests/pinned.c tests/pinned_float.inc $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
+test-pinned: $(BUILD)/pinned $(BUILD)/pinned_float
+	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned
+	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned_float
+# a commit that changes results on purpose regenerates the tables and says why
+pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
+	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned --print > tests/pinned_double.inc
+	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned_float --print > tests/pinned_float.inc
+.PHONY: test-pinned pinned-update
+
 # the fuzz output goes first so that the test runner's "N passed, M failed" closes make test
-test: check quickstart-run examples-smoke fuzz fuzz-sanitize test-fast test-sanitize
+test: check quickstart-run examples-smoke test-pinned fuzz fuzz-sanitize test-fast test-sanitize
 
 # ---- randomized API test (tests/fuzz_api.c); replay a case: build/fuzz_api --seed S --cases 1 --verbose ----
 FUZZ_CASES ?= 10000

@@ -1,0 +1,213 @@
+/* pinned.c - pinned results: the library's answers, bit for bit, across commits.
+
+   Runs short cases over dimension x shear formulation x rotation x pair geometry x kernel (and
+   single stepping, tracked stress, several bodies in one world), each at 1 and 2 threads, and
+   compares a 64-bit FNV-1a hash of every particle's position, velocity, density, pressure and
+   von Mises stress (in id order) after a few advection steps with the value stored below.
+   A change that moves any result by one bit fails here: a commit that changes results on
+   purpose regenerates the table (--print) and says why in its message.
+
+   The stored values are for the Makefile's flags (-std=c99 -O2, which keeps floating-point
+   contraction off, so every operation is rounded as written and the vector width does not
+   matter) with double sps_real; build with -DSPHSOLID_FLOAT for the float table.
+
+   Usage: pinned [--print] [name-filter]
+     --print   print the table of current hashes (C initialisers) instead of checking
+   The last line is "N passed, M failed"; exit status 0 iff M == 0. */
+#define SPHSOLID_IMPLEMENTATION
+#include "../sphsolid.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct pinned_case {
+    const char* name;
+    int dim;
+    sps_shear shear;
+    sps_rotation rotation;
+    int frozen;            /* world def frozen_geometry */
+    sps_kernel_type kernel;
+    int single;            /* single stepping */
+    int track_stress;
+    int all_shears;        /* one body of every formulation the dimension allows, side by side */
+} pinned_case;
+
+#define W SPS_KERNEL_WENDLAND_C2
+#define S SPS_KERNEL_CUBIC_SPLINE
+#define MEAN SPS_ROTATION_MEAN
+#define PART SPS_ROTATION_PER_PARTICLE
+#define PAIR SPS_ROTATION_PAIR
+
+/* The case list. Every formulation and rotation in 2D and 3D with both pair geometries and
+   both kernels; the -A rotations where they apply (the others ignore the rotation). */
+static const pinned_case g_cases[] = {
+#define GEOMETRIES(nm, d, sh, rot)                              \
+    {nm "/wendland", d, sh, rot, 0, W, 0, 0, 0},                \
+    {nm "/spline", d, sh, rot, 0, S, 0, 0, 0},                  \
+    {nm "/frozen", d, sh, rot, 1, W, 0, 0, 0},                  \
+    {nm "/frozen-spline", d, sh, rot, 1, S, 0, 0, 0}
+    GEOMETRIES("2d/eno", 2, SPS_SHEAR_ENO, MEAN),
+    GEOMETRIES("2d/eno-a-mean", 2, SPS_SHEAR_ENO_A, MEAN),
+    GEOMETRIES("2d/eno-a-particle", 2, SPS_SHEAR_ENO_A, PART),
+    GEOMETRIES("2d/eno-a-pair", 2, SPS_SHEAR_ENO_A, PAIR),
+    GEOMETRIES("2d/og", 2, SPS_SHEAR_OG, MEAN),
+    GEOMETRIES("2d/oas", 2, SPS_SHEAR_OAS, MEAN),
+    GEOMETRIES("2d/gno", 2, SPS_SHEAR_GNO, MEAN),
+    GEOMETRIES("2d/gno-a-mean", 2, SPS_SHEAR_GNO_A, MEAN),
+    GEOMETRIES("2d/gno-a-particle", 2, SPS_SHEAR_GNO_A, PART),
+    GEOMETRIES("2d/gno-a-pair", 2, SPS_SHEAR_GNO_A, PAIR),
+    GEOMETRIES("3d/eno", 3, SPS_SHEAR_ENO, MEAN),
+    GEOMETRIES("3d/eno-a-mean", 3, SPS_SHEAR_ENO_A, MEAN),
+    GEOMETRIES("3d/eno-a-particle", 3, SPS_SHEAR_ENO_A, PART),
+    GEOMETRIES("3d/eno-a-pair", 3, SPS_SHEAR_ENO_A, PAIR),
+    GEOMETRIES("3d/og", 3, SPS_SHEAR_OG, MEAN),
+    GEOMETRIES("3d/gno", 3, SPS_SHEAR_GNO, MEAN),
+    GEOMETRIES("3d/gno-a-mean", 3, SPS_SHEAR_GNO_A, MEAN),
+    GEOMETRIES("3d/gno-a-particle", 3, SPS_SHEAR_GNO_A, PART),
+    GEOMETRIES("3d/gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR),
+#undef GEOMETRIES
+    {"2d/eno-a-mean/single", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 1, 0, 0},
+    {"2d/eno/stress", 2, SPS_SHEAR_ENO, MEAN, 0, W, 0, 1, 0},
+    {"2d/eno-a-pair/stress", 2, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 1, 0},
+    {"3d/eno-a-mean/stress", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 1, 0},
+    {"2d/all-shears", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1},
+    {"3d/all-shears", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1},
+};
+#define NCASES ((int)(sizeof g_cases / sizeof g_cases[0]))
+
+/* The stored hashes, in case order: made with --print. */
+static const uint64_t g_pinned[] = {
+#ifdef SPHSOLID_FLOAT
+#include "pinned_float.inc"
+#else
+#include "pinned_double.inc"
+#endif
+};
+
+/* A deterministic velocity field: a rigid spin (omega 4 rad/s about the body's centre, so the
+   -A rotations matter), a bending wave, and a small pseudo-random part (so zigzag modes and
+   the hourglass controls are exercised). */
+typedef struct { double centre[3]; } field_ctx;
+static void case_velocity(const sps_real x[3], sps_real v[3], void* user) {
+    const field_ctx* c = (const field_ctx*)user;
+    const double dx = x[0] - c->centre[0], dy = x[1] - c->centre[1], dz = x[2] - c->centre[2];
+    uint64_t h = 1469598103934665603ull;
+    const double q[3] = {x[0], x[1], x[2]};
+    unsigned char bytes[sizeof q];
+    size_t k;
+    memcpy(bytes, q, sizeof q);
+    for (k = 0; k < sizeof bytes; ++k) h = (h ^ bytes[k]) * 1099511628211ull;
+    v[0] = (sps_real)(-4 * dy + 0.02 * ((double)(h & 1023) / 1023 - 0.5));
+    v[1] = (sps_real)(4 * dx + 0.3 * sin(10 * x[0]) + 0.02 * ((double)((h >> 10) & 1023) / 1023 - 0.5));
+    v[2] = (sps_real)(0.5 * dz + 0.02 * ((double)((h >> 20) & 1023) / 1023 - 0.5));
+}
+
+static uint64_t fnv_bytes(uint64_t h, const void* p, size_t n) {
+    const unsigned char* b = (const unsigned char*)p;
+    size_t k;
+    for (k = 0; k < n; ++k) h = (h ^ b[k]) * 1099511628211ull;
+    return h;
+}
+
+/* Adds one block body with its velocity field; one end of it clamped (constraints). */
+static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, double x0, int index) {
+    sps_body_def bd = sps_default_body_def();
+    sps_body b;
+    field_ctx ctx;
+    const double len = c->dim == 2 ? 0.30 : 0.10, hgt = c->dim == 2 ? 0.20 : 0.09, dep = 0.08;
+    sps_real lo[3], hi[3], clo[3], chi[3];
+    int added = 0;
+    bd.shear = shear;
+    bd.rotation = c->rotation;
+    bd.track_stress = c->track_stress;
+    bd.material.youngs_modulus = (sps_real)(1e6 * (1 + 0.25 * index)); /* bodies differ */
+    if (sps_world_add_body(w, &bd, &b) != SPS_OK) return -1;
+    lo[0] = (sps_real)x0; lo[1] = 0; lo[2] = 0;
+    hi[0] = (sps_real)(x0 + len); hi[1] = (sps_real)hgt; hi[2] = (sps_real)dep;
+    if (sps_body_add_box(w, b, lo, hi, &added) != SPS_OK || added == 0) return -1;
+    ctx.centre[0] = x0 + 0.5 * len; ctx.centre[1] = 0.5 * hgt; ctx.centre[2] = 0.5 * dep;
+    if (sps_body_set_velocity(w, b, case_velocity, &ctx) != SPS_OK) return -1;
+    clo[0] = lo[0] - 1; clo[1] = -1; clo[2] = -1;
+    chi[0] = (sps_real)(x0 + 0.021); chi[1] = 1; chi[2] = 1;
+    if (sps_body_constrain_box(w, b, clo, chi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK) return -1;
+    return added;
+}
+
+/* Runs case c with the given threads; its hash, or 0 if a call failed (message printed). */
+static uint64_t run_case(const pinned_case* c, int threads) {
+    sps_world_def wd = sps_default_world_def();
+    sps_world* w = NULL;
+    uint64_t h = 1469598103934665603ull;
+    int n, id, k, step;
+    wd.dim = c->dim;
+    wd.dp = (sps_real)0.01;
+    wd.kernel = c->kernel;
+    wd.frozen_geometry = c->frozen;
+    wd.stepping = c->single ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
+    wd.gravity[1] = (sps_real)-9.81;
+    wd.threads = threads;
+    if (sps_world_create(&wd, &w) != SPS_OK) return 0;
+    if (c->all_shears) {
+        const sps_shear all[6] = {SPS_SHEAR_ENO, SPS_SHEAR_ENO_A, SPS_SHEAR_OG, SPS_SHEAR_OAS, SPS_SHEAR_GNO, SPS_SHEAR_GNO_A};
+        for (k = 0; k < 6; ++k) {
+            if (all[k] == SPS_SHEAR_OAS && c->dim == 3) continue;
+            if (add_case_body(w, c, all[k], 0.35 * k, k) < 0) goto fail;
+        }
+    } else if (add_case_body(w, c, c->shear, 0, 0) < 0) goto fail;
+    for (step = 0; step < 4; ++step)
+        if (sps_world_step(w) != SPS_OK) goto fail;
+    n = sps_world_particle_count(w);
+    for (id = 0; id < n; ++id) {
+        sps_particle_state ps;
+        double v[3 + 3 + 3];
+        if (sps_world_particle(w, id, &ps) != SPS_OK) goto fail;
+        for (k = 0; k < 3; ++k) { v[k] = (double)ps.position[k]; v[3 + k] = (double)ps.velocity[k]; }
+        v[6] = (double)ps.density; v[7] = (double)ps.pressure; v[8] = (double)ps.von_mises;
+        h = fnv_bytes(h, v, sizeof v);
+    }
+    h = fnv_bytes(h, &n, sizeof n);
+    sps_world_destroy(w);
+    return h;
+fail:
+    printf("    %s (%d threads): %s\n", c->name, threads, sps_world_last_error(w));
+    sps_world_destroy(w);
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    int print = 0, k, passed = 0, failed = 0;
+    const char* filter = NULL;
+    for (k = 1; k < argc; ++k) {
+        if (strcmp(argv[k], "--print") == 0) print = 1;
+        else filter = argv[k];
+    }
+    if (!print && (int)(sizeof g_pinned / sizeof g_pinned[0]) != NCASES) {
+        printf("pinned: the table holds %d hashes for %d cases: regenerate it with --print\n",
+               (int)(sizeof g_pinned / sizeof g_pinned[0]), NCASES);
+        printf("0 passed, 1 failed\n");
+        return 1;
+    }
+    for (k = 0; k < NCASES; ++k) {
+        const pinned_case* c = &g_cases[k];
+        uint64_t h1, h2;
+        if (filter && !strstr(c->name, filter)) continue;
+        h1 = run_case(c, 1);
+        h2 = run_case(c, 2);
+        if (print) {
+            printf("    0x%016llxull, /* %s%s */\n", (unsigned long long)h1, c->name, h1 == h2 ? "" : " (THREADS DIFFER)");
+            continue;
+        }
+        if (h1 && h1 == h2 && h1 == g_pinned[k]) ++passed;
+        else {
+            ++failed;
+            printf("pinned %-28s 1 thread 0x%016llx, 2 threads 0x%016llx, stored 0x%016llx\n", c->name,
+                   (unsigned long long)h1, (unsigned long long)h2, (unsigned long long)g_pinned[k]);
+        }
+    }
+    if (print) return 0;
+    printf("pinned results (%s): %d passed, %d failed\n", sps_is_double() ? "double" : "float", passed, failed);
+    return failed == 0 ? 0 : 1;
+}
