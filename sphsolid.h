@@ -360,11 +360,27 @@ typedef struct sps_world_def {
     int internal_cookie;              /* set by sps_default_world_def(); do not touch. */
 } sps_world_def;
 
-/* Linear elastic material. */
+/* The constitutive model of a body (MATERIALS). */
+typedef enum sps_material_kind {
+    SPS_MATERIAL_ELASTIC = 0 /* linear elastic: p = c0^2 (rho - rho0), Jaumann-rate shear stress */
+} sps_material_kind;
+
+/* The solver of a body. */
+typedef enum sps_solver {
+    SPS_SOLVER_UPDATED_LAGRANGIAN = 0 /* neighbours and kernel gradients from the current positions */
+} sps_solver;
+
+/* The transport-velocity correction of a body (particles advected by a shifted velocity). */
+typedef enum sps_transport {
+    SPS_TRANSPORT_NONE = 0 /* particles move with their own velocity */
+} sps_transport;
+
+/* Material: its kind and constants. */
 typedef struct sps_material_def {
     sps_real density;        /* reference density rho0 [kg/m^3], > 0. Default 1000. */
     sps_real youngs_modulus; /* E [Pa], > 0. Default 1e6. */
     sps_real poisson_ratio;  /* nu, in (-1, 0.5). Default 0.3. */
+    sps_material_kind kind;  /* Default SPS_MATERIAL_ELASTIC. */
 } sps_material_def;
 
 /* Body definition: a material, a shear formulation and which outputs the body needs. */
@@ -378,6 +394,8 @@ typedef struct sps_body_def {
     sps_real oas_epsilon;      /* OAS artificial-stress factor, [0, 1]. Default 0.3 (Gray et al.). */
     sps_real oas_exponent;     /* OAS exponent n of f = (W(r)/W(dp))^n, [1, 12]. Default 4. */
     int track_stress;          /* 1: integrate the shear stress (von Mises, strain energy). Default 0. */
+    sps_solver solver;         /* Default SPS_SOLVER_UPDATED_LAGRANGIAN. */
+    sps_transport transport;   /* Default SPS_TRANSPORT_NONE. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -631,21 +649,74 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 
 /* >>state */
 
+/* The model of a body as data (the tables and their use: chapter >>model). */
+/* ---- materials ---- */
+typedef struct sps__material_constants {
+    sps_real c0; /* signal speed [m/s]: the time step and the Riemann impedance rho0 c0 */
+    sps_real G;  /* shear modulus [Pa] */
+    sps_real K;  /* bulk modulus [Pa]: the equation of state p = K (rho/rho0 - 1) = c0^2 (rho - rho0) */
+} sps__material_constants;
+
+typedef struct sps__material_model {
+    sps_material_kind kind;
+    const char* name;
+    /* appends every broken rule of the material's fields */
+    void (*check)(const sps_material_def* m, char* msg, size_t msg_size, int* broken);
+    sps__material_constants (*constants)(const sps_material_def* m);
+    /* stored-energy density [J/m^3] from tau:tau of the shear stress (0 when not tracked) and p */
+    sps_real (*energy_density)(const sps__material_constants* c, sps_real tau_tau, sps_real p);
+} sps__material_model;
+
+/* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
+typedef struct sps__stabilisation {
+    sps_shear shear;
+    const char* name;
+    int stress_force;      /* divergence of tau in the momentum equation (ENO eq. 17) */
+    int eno;               /* accumulated Laplacian of velocity (ENO eq. 24) */
+    int penalty;           /* accumulated hourglass penalty, a pass of its own (ANG eqs. 43-46) */
+    int projected;         /* the penalty projected on e_ij (ANG eq. 46) */
+    int artificial_stress; /* Gray et al.'s artificial stress */
+    int rotated;           /* the -A variants: increments turned with the body (def rotation) */
+} sps__stabilisation;
+
+/* How the stored shear increments of a body turn with it (ANG Algorithms 1-2). */
+typedef enum {
+    SPS__TURN_NONE,     /* not turned (ENO, GNO, OG) or kept per pair (SPS_ROTATION_PAIR) */
+    SPS__TURN_MEAN,     /* by the body's mean Rodrigues matrix (ANG eqs. 41-42) */
+    SPS__TURN_PARTICLE  /* by each particle's own (ANG eq. 34) */
+} sps__turn;
+
+/* A pass kernel: one lane group g of body b (see sps__run_groups). */
+struct sps__body;
+typedef void (*sps__group_kernel)(sps_world* w, const struct sps__body* b, int g, sps_real dt);
+
+/* The pass kernels of a body, fully specialised (dimension, pair geometry, terms); penalty is
+   NULL when the body has no penalty pass. */
+typedef struct sps__passes {
+    sps__group_kernel pressure, continuity, penalty;
+} sps__passes;
+
+/* What the step runs for a body, resolved once from its def. */
+typedef struct sps__model {
+    const sps__material_model* material;
+    const sps__stabilisation* stabilisation;
+    sps__turn turn;
+    int paired;   /* increments kept per neighbour pair (SPS_ROTATION_PAIR on a -A variant) */
+    int stress;   /* the shear stress tau is integrated (stress force, or track_stress) */
+    int gradient; /* the velocity gradient L is needed (stress, or a turned rotation) */
+    sps__passes pass;
+} sps__model;
+
+
 typedef struct sps__body {
     sps_body_def def;
     char name[32];
     int begin, end;       /* particle range in the current (sorted) order */
     int group0, ngroups;  /* its lane groups: SPS__LANES particles each from begin, the last partial */
-    sps_real rho0, c0, G, K, zeta;
+    sps__model model;     /* what the step runs for it (sps__resolve_model, sps__choose_passes) */
+    sps__material_constants mat; /* its material's c0, G and K */
+    sps_real rho0, zeta;
     sps_real z_riemann;   /* rho0 c0: dissipation impedance of the Riemann solver */
-    int needs_gradient;   /* velocity gradient L: spin (-A variants) or stress */
-    int needs_stress;     /* shear stress tau integrated (OG family, or output asked) */
-    int stress_force;     /* divergence of tau in the momentum equation (OG, OAS, GNO, GNO-A) */
-    int eno;              /* accumulated Laplacian shear acceleration (ENO, ENO-A) */
-    int penalty;          /* accumulated hourglass penalty (GNO, GNO-A) */
-    int rotated;          /* a_s rotated by Rodrigues matrices (ENO-A, GNO-A, unless paired) */
-    int mean;             /* ... by the body's mean matrix */
-    int paired;           /* -A variant with SPS_ROTATION_PAIR: increments stored per pair (pair_force) */
     sps_real xi, oas_eps, oas_n, oas_w_dp;
     sps_real mean_rotation[9];
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
@@ -838,6 +909,8 @@ SPSDEF sps_world_def sps_default_world_def(void) {
 
 SPSDEF sps_material_def sps_default_material_def(void) {
     sps_material_def m;
+    memset(&m, 0, sizeof m);
+    m.kind = SPS_MATERIAL_ELASTIC;
     m.density = SPS_R(1000.0);
     m.youngs_modulus = SPS_R(1e6);
     m.poisson_ratio = SPS_R(0.3);
@@ -900,23 +973,96 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
-/* Sound speed c0 = sqrt(K/rho0) (ENO eq. 5), shear modulus G and bulk modulus K (may be NULL). */
-static void sps__material_constants(const sps_material_def* m, sps_real* c0, sps_real* G, sps_real* K) {
-    sps_real bulk = m->youngs_modulus / (3 * (1 - 2 * m->poisson_ratio));
-    *c0 = SPS__SQRT(bulk / m->density);
-    *G = m->youngs_modulus / (2 * (1 + m->poisson_ratio));
-    if (K) *K = bulk;
-}
+/* >>model */
 
-static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
+/* A body's model is data: a material row (sps__materials), a stabilisation row
+   (sps__stabilisations) and the def's rotation, resolved once by sps__resolve_model when the body
+   is added into what the step runs (sps__model) and which pass kernels it calls (sps__passes,
+   chosen by sps__choose_passes in the solver chapter). Adding a material means adding its row
+   here and, where its stress update or equation of state differs, its section; the step is not
+   edited. */
+
+/* ---- materials ---- */
+
+/* Linear elastic: K = E/(3(1-2nu)), c0 = sqrt(K/rho0) (ENO eq. 5), G = E/(2(1+nu)). */
+static sps__material_constants sps__elastic_constants(const sps_material_def* m) {
+    sps__material_constants c;
+    c.K = m->youngs_modulus / (3 * (1 - 2 * m->poisson_ratio));
+    c.c0 = SPS__SQRT(c.K / m->density);
+    c.G = m->youngs_modulus / (2 * (1 + m->poisson_ratio));
+    return c;
+}
+static void sps__elastic_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
     int broken = 0;
-    const sps_material_def* m = &def->material;
-    SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
     SPS__CHECK(m->density > 0 && sps__finite(m->density), "material.density = %g, allowed finite > 0", (double)m->density);
     SPS__CHECK(m->youngs_modulus > 0 && sps__finite(m->youngs_modulus), "material.youngs_modulus = %g, allowed finite > 0", (double)m->youngs_modulus);
     SPS__CHECK(m->poisson_ratio > -1 && m->poisson_ratio < SPS_R(0.5), "material.poisson_ratio = %g, allowed (-1, 0.5)", (double)m->poisson_ratio);
-    SPS__CHECK(def->shear >= SPS_SHEAR_ENO && def->shear <= SPS_SHEAR_GNO_A, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
-    SPS__CHECK(def->shear != SPS_SHEAR_OAS || dim == 2, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only", dim);
+    if (!broken) { /* each field in range, yet the derived constants may over- or underflow */
+        const sps__material_constants c = sps__elastic_constants(m);
+        SPS__CHECK(c.c0 > 0 && sps__finite(c.c0) && sps__finite(c.G),
+                   "material: sound speed c0 = %g m/s and shear modulus G = %g Pa from density = %g, youngs_modulus = %g, "
+                   "poisson_ratio = %g, allowed finite > 0", (double)c.c0, (double)c.G, (double)m->density, (double)m->youngs_modulus,
+                   (double)m->poisson_ratio);
+    }
+    *broken_out += broken;
+}
+/* tau:tau/(4G) + p^2/(2K): the shear and volumetric parts of the linear elastic energy */
+static sps_real sps__elastic_energy_density(const sps__material_constants* c, sps_real tau_tau, sps_real p) {
+    return tau_tau / (4 * c->G) + p * p / (2 * c->K);
+}
+
+static const sps__material_model sps__materials[] = {
+    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density},
+};
+#define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
+
+/* ---- stabilisations ---- */
+static const sps__stabilisation sps__stabilisations[] = {
+    /* shear           name     force eno  pen  proj art  rotated */
+    {SPS_SHEAR_ENO,   "ENO",   0,    1,   0,   0,   0,   0},
+    {SPS_SHEAR_ENO_A, "ENO-A", 0,    1,   0,   0,   0,   1},
+    {SPS_SHEAR_OG,    "OG",    1,    0,   0,   0,   0,   0},
+    {SPS_SHEAR_OAS,   "OAS",   1,    0,   0,   0,   1,   0},
+    {SPS_SHEAR_GNO,   "GNO",   1,    0,   1,   0,   0,   0},
+    {SPS_SHEAR_GNO_A, "GNO-A", 1,    0,   1,   1,   0,   1},
+};
+#define SPS__NSTABILISATIONS ((int)(sizeof sps__stabilisations / sizeof sps__stabilisations[0]))
+
+static const sps__material_model* sps__material_of(sps_material_kind kind) {
+    int k;
+    for (k = 0; k < SPS__NMATERIALS; ++k)
+        if (sps__materials[k].kind == kind) return &sps__materials[k];
+    return NULL;
+}
+static const sps__stabilisation* sps__stabilisation_of(sps_shear shear) {
+    int k;
+    for (k = 0; k < SPS__NSTABILISATIONS; ++k)
+        if (sps__stabilisations[k].shear == shear) return &sps__stabilisations[k];
+    return NULL;
+}
+
+/* The allowed combinations of a body's model, one rule a row: a def that breaks one gets the
+   row's message (a format of the world's dim). */
+typedef struct sps__combination_rule {
+    int (*broken)(int dim, const sps_body_def* def);
+    const char* message;
+} sps__combination_rule;
+static int sps__oas_outside_2d(int dim, const sps_body_def* def) { return def->shear == SPS_SHEAR_OAS && dim != 2; }
+static const sps__combination_rule sps__combination_rules[] = {
+    {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
+};
+
+static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
+    int broken = 0, k;
+    const sps__material_model* material = sps__material_of(def->material.kind);
+    SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
+    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic)", (int)def->material.kind);
+    if (material) material->check(&def->material, msg, msg_size, &broken);
+    SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
+    SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN, "solver = %d, allowed 0 (updated Lagrangian)", (int)def->solver);
+    SPS__CHECK(def->transport == SPS_TRANSPORT_NONE, "transport = %d, allowed 0 (none)", (int)def->transport);
+    for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
+        SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
     SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= 12, "oas_exponent = %g, allowed [1, 12]", (double)def->oas_exponent);
@@ -924,15 +1070,24 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                "rotation = %d, allowed 0 (mean), 1 (per particle) or 2 (pair)", (int)def->rotation);
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
     SPS__CHECK(def->track_stress == 0 || def->track_stress == 1, "track_stress = %d, allowed 0 or 1", def->track_stress);
-    if (!broken) { /* each field in range, yet the derived constants may over- or underflow */
-        sps_real c0, G;
-        sps__material_constants(&def->material, &c0, &G, NULL);
-        SPS__CHECK(c0 > 0 && sps__finite(c0) && sps__finite(G),
-                   "material: sound speed c0 = %g m/s and shear modulus G = %g Pa from density = %g, youngs_modulus = %g, "
-                   "poisson_ratio = %g, allowed finite > 0", (double)c0, (double)G, (double)m->density, (double)m->youngs_modulus,
-                   (double)m->poisson_ratio);
-    }
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
+}
+
+/* The pass kernels of a model in the world's dimension and pair geometry (chapter >>forces). */
+static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m);
+
+/* The model of a checked def (pass kernels excepted: sps__choose_passes). */
+static sps__model sps__resolve_model(const sps_body_def* def) {
+    sps__model m;
+    memset(&m, 0, sizeof m);
+    m.material = sps__material_of(def->material.kind);
+    m.stabilisation = sps__stabilisation_of(def->shear);
+    m.paired = m.stabilisation->rotated && def->rotation == SPS_ROTATION_PAIR;
+    m.turn = !m.stabilisation->rotated || m.paired ? SPS__TURN_NONE
+             : def->rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
+    m.stress = m.stabilisation->stress_force || def->track_stress;
+    m.gradient = m.turn != SPS__TURN_NONE || m.stress;
+    return m;
 }
 
 /* >>kernel */
@@ -1116,7 +1271,6 @@ static int sps__check_body(sps_world* w, sps_body b, const char* fn) {
 SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_body* out) {
     char msg[768];
     sps__body* b;
-    const sps_material_def* m;
     if (!w) return SPS_ERR_INVALID_ARG;
     if (out) out->id = 0;
     if (!def || !out) { sps__set_error(w, 0, "sps_world_add_body: def and out must not be NULL"); return SPS_ERR_INVALID_ARG; }
@@ -1136,26 +1290,19 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->def = *def;
     snprintf(b->name, sizeof b->name, "%s", def->name ? def->name : "body");
     b->def.name = b->name;
-    m = &def->material;
-    b->rho0 = m->density;
-    sps__material_constants(m, &b->c0, &b->G, &b->K);
+    b->model = sps__resolve_model(def);
+    b->model.pass = sps__choose_passes(w, &b->model);
+    b->rho0 = def->material.density;
+    b->mat = b->model.material->constants(&def->material);
     b->zeta = def->zeta > 0 ? def->zeta : SPS_R(0.7) * w->dim + SPS_R(2.1); /* ENO section 4 */
-    b->z_riemann = b->rho0 * b->c0;
-    b->eno = def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A;
-    b->stress_force = !b->eno;
-    b->penalty = def->shear == SPS_SHEAR_GNO || def->shear == SPS_SHEAR_GNO_A;
-    b->paired = (def->shear == SPS_SHEAR_ENO_A || def->shear == SPS_SHEAR_GNO_A) && def->rotation == SPS_ROTATION_PAIR;
-    b->rotated = (def->shear == SPS_SHEAR_ENO_A || def->shear == SPS_SHEAR_GNO_A) && !b->paired;
-    b->mean = b->rotated && def->rotation == SPS_ROTATION_MEAN;
-    b->needs_stress = b->stress_force || def->track_stress;
-    b->needs_gradient = b->rotated || b->needs_stress;
+    b->z_riemann = b->rho0 * b->mat.c0;
     b->xi = def->xi > 0 ? def->xi : 2; /* ANG section 5: xi_G = 2 */
     b->oas_eps = def->oas_epsilon;
     b->oas_n = def->oas_exponent;
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
 
-    if (b->c0 > w->c0_max) w->c0_max = b->c0;
+    if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
     out->id = ((uint32_t)w->tag << 16) | (uint32_t)(w->nbodies + 1);
     w->nbodies++;
     return SPS_OK;
@@ -1165,9 +1312,9 @@ SPSDEF sps_result sps_body_material_constants(const sps_world* w, sps_body b, sp
     int k = sps__body_slot(w, b);
     if (!w) return SPS_ERR_INVALID_ARG;
     if (k < 0) { sps__set_error_const(w, "sps_body_material_constants: body handle %u is not a body of this world", (unsigned)b.id); return SPS_ERR_INVALID_ARG; }
-    if (c0) *c0 = w->bodies[k].c0;
-    if (G) *G = w->bodies[k].G;
-    if (K) *K = w->bodies[k].K;
+    if (c0) *c0 = w->bodies[k].mat.c0;
+    if (G) *G = w->bodies[k].mat.G;
+    if (K) *K = w->bodies[k].mat.K;
     return SPS_OK;
 }
 
@@ -1602,7 +1749,7 @@ static sps_result sps__fill_lane_slots(sps_world* w) {
             int l, s0 = w->nb_group_start[b->group0 + g], len = (w->nb_group_start[b->group0 + g + 1] - s0) / SPS__LANES;
             for (l = 0; l < SPS__LANES; ++l) {
                 sps__fill_particle_slots(w, b, b->begin + g * SPS__LANES + l, s0 + l, len);
-                if (b->paired) sps__carry_pair_forces(w, b, b->begin + g * SPS__LANES + l, s0 + l, len);
+                if (b->model.paired) sps__carry_pair_forces(w, b, b->begin + g * SPS__LANES + l, s0 + l, len);
             }
             if (frozen) {
                 const sps__group q = sps__group_of(w, b, g);
@@ -1659,7 +1806,7 @@ static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int 
 static void sps__keep_pair_forces(sps_world* w) {
     int i, first = 0;
     for (i = 0; i < w->n; ++i) { /* offsets: a prefix sum in particle order */
-        const int count = w->bodies[w->body[i]].paired ? w->nb_count[i] : 0;
+        const int count = w->bodies[w->body[i]].model.paired ? w->nb_count[i] : 0;
         w->kept_first[w->id[i]] = first;
         w->kept_count[w->id[i]] = count;
         first += count;
@@ -1780,11 +1927,11 @@ static sps_result sps__commit(sps_world* w) {
     const size_t slots = (size_t)w->cap + SPS__LANES; /* with the lane padding */
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
-        need_gradient |= b->needs_gradient;
-        need_stress |= b->needs_stress;
-        need_mean |= b->mean;
-        need_art |= b->def.shear == SPS_SHEAR_OAS;
-        need_pair |= b->paired;
+        need_gradient |= b->model.gradient;
+        need_stress |= b->model.stress;
+        need_mean |= b->model.turn == SPS__TURN_MEAN;
+        need_art |= b->model.stabilisation->artificial_stress;
+        need_pair |= b->model.paired;
     }
     if (sps__ensure_neighbor_storage(w) != SPS_OK) {
         w->pair_cap = 0; /* some lists may be NULL: the next call must allocate them again */
@@ -1975,23 +2122,34 @@ static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, in
     *g1 = me == nt - 1 ? b->ngroups : sps__group_at_slot(start, b->ngroups, first + total * (me + 1) / nt);
 }
 
-/* Runs body(w, b, k, DIM, GEO, ...) for the lane groups k of body b this thread owns
-   (sps__group_share), then waits for the other threads, with literal DIM and GEO (see
-   sps__mode) so the dimension loops unroll. */
-#define SPS__FOR_EACH(w, b, body, ...)                                                                   \
-    do {                                                                                                 \
-        int k_, g0_, g1_;                                                                                \
-        sps__group_share(w, b, &g0_, &g1_);                                                              \
-        switch (sps__mode(w)) {                                                                          \
-        case 0: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 2, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
-        case 1: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 2, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
-        case 2: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 2, SPS__GEO_FROZEN, __VA_ARGS__); break;   \
-        case 3: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 3, SPS__GEO_WENDLAND, __VA_ARGS__); break; \
-        case 4: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 3, SPS__GEO_SPLINE, __VA_ARGS__); break;   \
-        default: for (k_ = g0_; k_ < g1_; ++k_) body(w, b, k_, 3, SPS__GEO_FROZEN, __VA_ARGS__); break;  \
-        }                                                                                                \
-        SPS__PRAGMA(omp barrier)                                                                         \
-    } while (0)
+/* Runs a pass kernel over the lane groups of body b that the calling thread owns
+   (sps__group_share), then waits for the other threads. */
+static void sps__run_groups(sps_world* w, const sps__body* b, sps__group_kernel kernel, sps_real dt) {
+    int g, g0, g1;
+    sps__group_share(w, b, &g0, &g1);
+    for (g = g0; g < g1; ++g) kernel(w, b, g, dt);
+    SPS__PRAGMA(omp barrier)
+}
+
+/* The six instances of a pass variant, one per world mode (sps__mode: dimension x pair
+   geometry), as named functions (they show up in a profiler), each calling the pass's generic
+   body with every choice a literal so that its loops carry no branch; and the mode table
+   sps__<pass>_<variant>[mode]. */
+#define SPS__INSTANCE(pass, variant, mode, dim, geo, ...)                                             \
+    static void sps__##pass##_##variant##_##mode(sps_world* w, const sps__body* b, int g, sps_real dt) { \
+        sps__##pass(w, b, g, dt, dim, geo, __VA_ARGS__);                                                \
+    }
+#define SPS__INSTANCES(pass, variant, ...)                                                            \
+    SPS__INSTANCE(pass, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, __VA_ARGS__)                      \
+    SPS__INSTANCE(pass, variant, 2d_spline, 2, SPS__GEO_SPLINE, __VA_ARGS__)                          \
+    SPS__INSTANCE(pass, variant, 2d_frozen, 2, SPS__GEO_FROZEN, __VA_ARGS__)                          \
+    SPS__INSTANCE(pass, variant, 3d_wendland, 3, SPS__GEO_WENDLAND, __VA_ARGS__)                      \
+    SPS__INSTANCE(pass, variant, 3d_spline, 3, SPS__GEO_SPLINE, __VA_ARGS__)                          \
+    SPS__INSTANCE(pass, variant, 3d_frozen, 3, SPS__GEO_FROZEN, __VA_ARGS__)                          \
+    static const sps__group_kernel sps__##pass##_##variant[6] = {                                     \
+        sps__##pass##_##variant##_2d_wendland, sps__##pass##_##variant##_2d_spline,                   \
+        sps__##pass##_##variant##_2d_frozen, sps__##pass##_##variant##_3d_wendland,                   \
+        sps__##pass##_##variant##_3d_spline, sps__##pass##_##variant##_3d_frozen};
 
 /* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with
    beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of the shear stress
@@ -2000,8 +2158,8 @@ static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, in
    the accumulated shear forces (1/m_i) sum_j g_ij e_ij along the current e_ij. stress, art and
    paired are literals at every call so each variant's loop is branch-free. Each lane sums its
    own particle's neighbours in list order, so the result does not depend on the vector width. */
-SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, const int dim, const int geo,
-                                       const int stress, const int art, const int paired) {
+SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
+                               const int stress, const int art, const int paired) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->z_riemann;
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = w->tau;
@@ -2009,6 +2167,7 @@ SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, 
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
     sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES];
     int k, l;
+    (void)dt; /* every pass kernel takes the sub-step; this pass needs none */
     for (l = 0; l < SPS__LANES; ++l)
         acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
     for (k = 0; k < q.len; ++k) {
@@ -2065,14 +2224,15 @@ SPS__INLINE void sps__pressure_variant(sps_world* w, const sps__body* b, int g, 
     }
 }
 
-SPS__INLINE void sps__pressure_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, int unused) {
-    (void)unused;
-    if (b->def.shear == SPS_SHEAR_OAS) sps__pressure_variant(w, b, g, dim, geo, 1, 1, 0);
-    else if (b->stress_force && b->paired) sps__pressure_variant(w, b, g, dim, geo, 1, 0, 1);
-    else if (b->stress_force) sps__pressure_variant(w, b, g, dim, geo, 1, 0, 0);
-    else if (b->paired) sps__pressure_variant(w, b, g, dim, geo, 0, 0, 1);
-    else sps__pressure_variant(w, b, g, dim, geo, 0, 0, 0);
-}
+/* The pressure pass's variants: (stress force, artificial stress, pair forces). */
+#define SPS__PRESSURE_VARIANTS(X) \
+    X(plain, 0, 0, 0)             \
+    X(pairs, 0, 0, 1)             \
+    X(stress, 1, 0, 0)            \
+    X(stress_pairs, 1, 0, 1)      \
+    X(oas, 1, 1, 0)
+#define SPS__PRESSURE_INSTANCES(variant, stress, art, paired) SPS__INSTANCES(pressure, variant, stress, art, paired)
+SPS__PRESSURE_VARIANTS(SPS__PRESSURE_INSTANCES)
 
 /* Gray et al.'s artificial stress R_i (2D): in the principal frame of sigma = -p I + tau each
    tensile principal stress s > 0 gives R' = -eps s / rho^2; rotated back (xx, xy, yy). */
@@ -2234,12 +2394,13 @@ SPS__INLINE void sps__rotation_lanes(const sps_world* w, sps__group q, sps_real 
 }
 
 /* Adds the increments da of lane group q to the accumulated shear acceleration a_s: plainly
-   (ENO, GNO), after rotating a_s by the particle's Rodrigues matrix (ANG eq. 34), or, for the
-   mean rotation, stored in acc_d and applied in sps__finish once the mean is known (ANG eq. 42).
+   (turn SPS__TURN_NONE: ENO, GNO), after rotating a_s by the particle's Rodrigues matrix
+   (SPS__TURN_PARTICLE, ANG eq. 34), or, for SPS__TURN_MEAN, stored in acc_d and applied in
+   sps__finish once the mean is known (ANG eq. 42). turn is a literal at every call.
    R: the lanes' Rodrigues matrices, used by the per-particle rotation only. */
 SPS__INLINE void sps__add_increments(sps_world* w, const sps__body* b, sps__group q, const int dim,
-                                     sps_real da[3][SPS__LANES], sps_real R[9][SPS__LANES]) {
-    const int rotated = b->rotated, mean = b->mean, end = b->end;
+                                     sps_real da[3][SPS__LANES], sps_real R[9][SPS__LANES], const int turn) {
+    const int end = b->end;
     int l, a, c;
     SPS__PRAGMA(omp simd)
     for (l = 0; l < SPS__LANES; ++l) {
@@ -2248,15 +2409,15 @@ SPS__INLINE void sps__add_increments(sps_world* w, const sps__body* b, sps__grou
         SPS__UNROLL
         for (a = 0; a < dim; ++a) {
             next[a] = da[a][l];
-            if (!rotated) next[a] += w->acc_s[a][i];
-            else if (!mean)
+            if (turn == SPS__TURN_NONE) next[a] += w->acc_s[a][i];
+            else if (turn == SPS__TURN_PARTICLE)
                 SPS__UNROLL
                 for (c = 0; c < dim; ++c) next[a] += R[3 * a + c][l] * w->acc_s[c][i];
         }
         if (i < end)
             SPS__UNROLL
             for (a = 0; a < dim; ++a) {
-                if (mean) w->acc_d[a][i] = next[a];
+                if (turn == SPS__TURN_MEAN) w->acc_d[a][i] = next[a];
                 else w->acc_s[a][i] = next[a];
             }
     }
@@ -2356,45 +2517,61 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
     }
 }
 
+/* How a continuity or penalty pass treats ENO's increments (a literal of its kernels). */
+enum { SPS__ENO_NONE, SPS__ENO_PARTICLES, SPS__ENO_PAIRS };
+
 /* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
    eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
-   before correction); A -= r_ij (x) e_ij dW V_j (B^-1); with the pair
-   rotation the ENO increment goes to the pair's force instead of lap. The loop
-   (sps__continuity_pairs) gets both choices as literals, so it carries no branch. Then the lanes'
-   ends (sps__continuity_lanes), the Jaumann stress when tracked, the Rodrigues matrices, this
-   group's share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass)
-   and the ENO increments. */
-SPS__INLINE void sps__continuity_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
+   before correction); A -= r_ij (x) e_ij dW V_j (B^-1); with the pair rotation (eno =
+   SPS__ENO_PAIRS) the ENO increment goes to the pair's force instead of lap. Then the lanes'
+   ends (sps__continuity_lanes), the Jaumann stress (stress), the Rodrigues matrices and this
+   group's share of the mean rotation (turn; ANG eq. 41, summed in group order by
+   sps__continuity_pass) and the ENO increments (eno = SPS__ENO_PARTICLES). Every choice is a
+   literal (SPS__CONTINUITY_VARIANTS). */
+SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
+                                 const int gradient, const int stress, const int eno, const int turn) {
     const sps__group q = sps__group_of(w, b, g);
-    const int gradient = b->needs_gradient, end = b->end, eno_pairs = b->eno && b->paired;
-    const sps_real shear_rate = 2 * b->zeta * b->G * dt; /* ENO eq. 24 without 1/rho_i */
+    const int end = b->end;
+    const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
     sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
     sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     int l, t, a;
     for (t = 0; t < SPS__NSUM; ++t)
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
-    if (gradient && eno_pairs) sps__continuity_pairs(w, q, dim, geo, 1, 1, shear_rate, sum);
-    else if (gradient) sps__continuity_pairs(w, q, dim, geo, 1, 0, shear_rate, sum);
-    else if (eno_pairs) sps__continuity_pairs(w, q, dim, geo, 0, 1, shear_rate, sum);
-    else sps__continuity_pairs(w, q, dim, geo, 0, 0, shear_rate, sum);
-    if (gradient) sps__continuity_lanes(w, q, end, dim, 1, shear_rate, sum, da, L);
-    else sps__continuity_lanes(w, q, end, dim, 0, shear_rate, sum, da, L);
-    if (b->needs_stress) sps__stress_lanes(w, q, end, dim, b->G, dt, L);
-    if (b->rotated) sps__rotation_lanes(w, q, dt, dim, L, R);
-    if (b->mean) {
+    sps__continuity_pairs(w, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, shear_rate, sum);
+    sps__continuity_lanes(w, q, end, dim, gradient, shear_rate, sum, da, L);
+    if (stress) sps__stress_lanes(w, q, end, dim, b->mat.G, dt, L);
+    if (turn != SPS__TURN_NONE) sps__rotation_lanes(w, q, dt, dim, L, R);
+    if (turn == SPS__TURN_MEAN) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
             for (a = 0; a < 9; ++a) rsum[a] += R[a][l];
         memcpy(w->group_sum + (size_t)9 * (b->group0 + g), rsum, sizeof rsum);
     }
-    if (b->eno && !eno_pairs) sps__add_increments(w, b, q, dim, da, R);
+    if (eno == SPS__ENO_PARTICLES) sps__add_increments(w, b, q, dim, da, R, turn);
 }
+
+/* The continuity pass's variants: (gradient, stress, eno, turn). turn is NONE where nothing in
+   this pass turns (GNO-A per particle turns its penalty in the penalty pass). */
+#define SPS__CONTINUITY_VARIANTS(X)                                                   \
+    X(eno, 0, 0, SPS__ENO_PARTICLES, SPS__TURN_NONE)                                  \
+    X(eno_stress, 1, 1, SPS__ENO_PARTICLES, SPS__TURN_NONE)                           \
+    X(eno_mean, 1, 0, SPS__ENO_PARTICLES, SPS__TURN_MEAN)                             \
+    X(eno_mean_stress, 1, 1, SPS__ENO_PARTICLES, SPS__TURN_MEAN)                      \
+    X(eno_particle, 1, 0, SPS__ENO_PARTICLES, SPS__TURN_PARTICLE)                     \
+    X(eno_particle_stress, 1, 1, SPS__ENO_PARTICLES, SPS__TURN_PARTICLE)              \
+    X(eno_pairs, 0, 0, SPS__ENO_PAIRS, SPS__TURN_NONE)                                \
+    X(eno_pairs_stress, 1, 1, SPS__ENO_PAIRS, SPS__TURN_NONE)                         \
+    X(stress, 1, 1, SPS__ENO_NONE, SPS__TURN_NONE)                                    \
+    X(stress_mean, 1, 1, SPS__ENO_NONE, SPS__TURN_MEAN)
+#define SPS__CONTINUITY_INSTANCES(variant, gradient, stress, eno, turn) SPS__INSTANCES(continuity, variant, gradient, stress, eno, turn)
+SPS__CONTINUITY_VARIANTS(SPS__CONTINUITY_INSTANCES)
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
     int g, a;
     sps_real acc[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     if (b->end == b->begin) return;
-    SPS__FOR_EACH(w, b, sps__continuity_group, dt);
-    if (!b->mean) return;
+    sps__run_groups(w, b, b->model.pass.continuity, dt);
+    if (b->model.turn != SPS__TURN_MEAN) return;
     SPS__PRAGMA(omp single)
     {
         for (g = 0; g < b->ngroups; ++g) /* ANG eq. 41: mean rotation, groups in a fixed order */
@@ -2409,15 +2586,15 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
    GNO   (ANG eq. 43): da = xi G/rho_i dt sum_j v^_ij / r_ij dW_ij V_j
    GNO-A (ANG eq. 46): da = xi G/rho_i dt sum_j (v^_ij . e_ij) / r_ij dW_ij e_ij V_j, then rotated.
    With r_ij = r e_ij: v^_ij / r_ij dW = v_ij dW/r - 1/2 (L_i + L_j) e_ij dW.
-   paired (SPS_ROTATION_PAIR, a literal): GNO-A's increment goes to the pair's force,
-   g_ij += xi G dt (v^_ij . e_ij) / r_ij dW V_i V_j (symmetric in i, j bit for bit). */
-SPS__INLINE void sps__penalty_variant(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt,
-                                      const int paired) {
+   paired (SPS_ROTATION_PAIR): GNO-A's increment goes to the pair's force,
+   g_ij += xi G dt (v^_ij . e_ij) / r_ij dW V_i V_j (symmetric in i, j bit for bit).
+   projected, paired and turn are literals (SPS__PENALTY_VARIANTS). */
+SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
+                              const int projected, const int paired, const int turn) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real* SPS__RESTRICT L = w->grad;
-    const int projected = b->def.shear == SPS_SHEAR_GNO_A;
-    const sps_real penalty_rate = b->xi * b->G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
+    const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
     sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES];
     int k, l, a, c;
     for (a = 0; a < 3; ++a)
@@ -2455,13 +2632,54 @@ SPS__INLINE void sps__penalty_variant(sps_world* w, const sps__body* b, int g, c
         SPS__UNROLL
         for (a = 0; a < dim; ++a) da[a][l] = penalty_rate / rho * sum[a][l];
     }
-    if (b->rotated && !b->mean) sps__rotation_lanes(w, q, dt, dim, NULL, R);
-    sps__add_increments(w, b, q, dim, da, R);
+    if (turn == SPS__TURN_PARTICLE) sps__rotation_lanes(w, q, dt, dim, NULL, R);
+    sps__add_increments(w, b, q, dim, da, R, turn);
 }
 
-SPS__INLINE void sps__penalty_group(sps_world* w, const sps__body* b, int g, const int dim, const int geo, sps_real dt) {
-    if (b->paired) sps__penalty_variant(w, b, g, dim, geo, dt, 1);
-    else sps__penalty_variant(w, b, g, dim, geo, dt, 0);
+/* The penalty pass's variants: (projected, pair forces, turn). */
+#define SPS__PENALTY_VARIANTS(X)                    \
+    X(gno, 0, 0, SPS__TURN_NONE)                    \
+    X(gno_a_mean, 1, 0, SPS__TURN_MEAN)             \
+    X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE)     \
+    X(gno_a_pairs, 1, 1, SPS__TURN_NONE)
+#define SPS__PENALTY_INSTANCES(variant, projected, paired, turn) SPS__INSTANCES(penalty, variant, projected, paired, turn)
+SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
+
+/* The pass kernels of a model in the world's mode: each pass's variant table searched for the
+   row whose literals are the model's choices (every resolvable model has exactly one). */
+typedef struct sps__variant_row {
+    int key[4];
+    const sps__group_kernel* modes;
+} sps__variant_row;
+#define SPS__ROW3(variant, a, b, c) {{a, b, c, 0}, sps__pressure_##variant},
+#define SPS__ROW_CONTINUITY(variant, a, b, c, d) {{a, b, c, d}, sps__continuity_##variant},
+#define SPS__ROW_PENALTY(variant, a, b, c) {{a, b, c, 0}, sps__penalty_##variant},
+static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW3)};
+static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
+static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
+
+static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[4], int mode) {
+    int r;
+    for (r = 0; r < nrows; ++r)
+        if (memcmp(rows[r].key, key, sizeof rows[r].key) == 0) return rows[r].modes[mode];
+    SPS_ASSERT(0 && "no pass kernel for this model");
+    return NULL;
+}
+
+static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
+    const sps__stabilisation* st = m->stabilisation;
+    const int mode = sps__mode(w);
+    const int eno = !st->eno ? SPS__ENO_NONE : m->paired ? SPS__ENO_PAIRS : SPS__ENO_PARTICLES;
+    /* the continuity pass turns ENO's increments, and sums the mean rotation for either */
+    const int continuity_turn = eno == SPS__ENO_PARTICLES || m->turn == SPS__TURN_MEAN ? (int)m->turn : SPS__TURN_NONE;
+    const int pressure_key[4] = {st->stress_force, st->artificial_stress, m->paired, 0};
+    const int continuity_key[4] = {m->gradient, m->stress, eno, continuity_turn};
+    const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, 0};
+    sps__passes p;
+    p.pressure = sps__find_kernel(sps__pressure_rows, (int)(sizeof sps__pressure_rows / sizeof sps__pressure_rows[0]), pressure_key, mode);
+    p.continuity = sps__find_kernel(sps__continuity_rows, (int)(sizeof sps__continuity_rows / sizeof sps__continuity_rows[0]), continuity_key, mode);
+    p.penalty = st->penalty ? sps__find_kernel(sps__penalty_rows, (int)(sizeof sps__penalty_rows / sizeof sps__penalty_rows[0]), penalty_key, mode) : NULL;
+    return p;
 }
 
 /* >>integrate */
@@ -2500,12 +2718,12 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
     int bi;
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
-        const sps_real c2 = b->c0 * b->c0, rho0 = b->rho0, h = SPS_R(0.5) * dt;
+        const sps_real c2 = b->mat.c0 * b->mat.c0, rho0 = b->rho0, h = SPS_R(0.5) * dt;
         int i, i0, i1;
         sps__thread_share(b, &i0, &i1);
         if (w->dim == 2) sps__drift_range(w, i0, i1, h, c2, rho0, 2);
         else sps__drift_range(w, i0, i1, h, c2, rho0, 3);
-        if (b->def.shear == SPS_SHEAR_OAS) /* after its own particles' pressure */
+        if (b->model.stabilisation->artificial_stress) /* after its own particles' pressure */
             for (i = i0; i < i1; ++i) sps__artificial_stress(w, b, i);
     }
     SPS__PRAGMA(omp barrier) /* the pressure pass reads the neighbours' drifted state */
@@ -2517,7 +2735,7 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
    vmax2 (NaN compares false: it is kept visible as infinity for the caller's check). */
 SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, const sps_real Hmean[9],
                                      sps_real vmax2, const int dim) {
-    const int rotated = b->rotated, per_particle = b->rotated && !b->mean;
+    const int rotated = b->model.turn != SPS__TURN_NONE, per_particle = b->model.turn == SPS__TURN_PARTICLE;
     const sps_real* g = w->def.gravity;
     sps_real Hp[9];
     int i, a, c;
@@ -2589,7 +2807,7 @@ static void sps__finish(sps_world* w, sps_real dt) {
     int bi;
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
-        const int dim = w->dim, mean = b->mean;
+        const int dim = w->dim, mean = b->model.turn == SPS__TURN_MEAN;
         const sps_real* R = b->mean_rotation;
         int i, i0, i1;
         sps__thread_share(b, &i0, &i1);
@@ -2684,11 +2902,11 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
     int bi;
     sps_real vmax2;
     sps__half_drift(w, dt);
-    for (bi = 0; bi < w->nbodies; ++bi) SPS__FOR_EACH(w, &w->bodies[bi], sps__pressure_group, 0);
+    for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
     vmax2 = sps__kick(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
-        if (w->bodies[bi].penalty) SPS__FOR_EACH(w, &w->bodies[bi], sps__penalty_group, dt);
+        if (w->bodies[bi].model.pass.penalty) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
     sps__finish(w, dt);
     return vmax2;
 }
@@ -3012,7 +3230,7 @@ static sps_real sps__von_mises(const sps_world* w, int i) {
     int a;
     /* tau holds the particles of the last commit (none before the first step); those added
        since have no stress yet */
-    if (w->bodies[w->body[i]].needs_stress && w->tau && i < w->allocated_for)
+    if (w->bodies[w->body[i]].model.stress && w->tau && i < w->allocated_for)
         for (a = 0; a < 6; ++a) s[a] = w->tau[(size_t)6 * i + a];
     s[0] -= p; s[3] -= p; /* sigma = -p I + tau */
     if (w->dim == 2) return SPS__SQRT(s[0] * s[0] + s[3] * s[3] - s[0] * s[3] + 3 * s[1] * s[1]);
@@ -3108,11 +3326,11 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
         out->angular_momentum[1] += m * (x[2] * v[0] - x[0] * v[2]);
         out->angular_momentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
         out->kinetic_energy += SPS_R(0.5) * m * v2;
-        if (b->needs_stress) {
+        if (b->model.stress) {
             const sps_real* t = w->tau + (size_t)6 * i;
             tt = t[0] * t[0] + t[3] * t[3] + t[5] * t[5] + 2 * (t[1] * t[1] + t[2] * t[2] + t[4] * t[4]);
         }
-        out->strain_energy += vol * (tt / (4 * b->G) + w->p[i] * w->p[i] / (2 * b->K));
+        out->strain_energy += vol * b->model.material->energy_density(&b->mat, tt, w->p[i]);
         if (SPS__SQRT(v2) > out->max_speed) out->max_speed = SPS__SQRT(v2);
         if (w->rho[i] < out->min_density) out->min_density = w->rho[i];
         if (w->rho[i] > out->max_density) out->max_density = w->rho[i];
