@@ -538,6 +538,15 @@ typedef enum sps_field {
 SPSDEF int sps_world_particle_count(const sps_world* w);
 /* The array of a field (NULL for z fields in 2D). Valid until the next step or add. */
 SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
+/* The array of a per-particle field by name, *components (may be NULL) values per particle,
+   particle i's at [components i]: "position_x" .. "position_z", "velocity_x" .., "reference_x"
+   .. (per axis, up to dim), "density", "pressure", "mass", "volume", "density_rate",
+   "shear_stress" (6: xx xy xz yy yz zz), "velocity_gradient" (9, row-major), and the solver's
+   scratch ("pressure_acceleration_x" .., "shear_acceleration_x" .., "shear_increment_x" ..,
+   "artificial_stress"). NULL (and the world's last error says why) for an unknown name, an
+   axis beyond dim, or an optional field that no body needs (before the first step, none is
+   allocated). Same order and lifetime as sps_world_field. */
+SPSDEF const sps_real* sps_world_field_by_name(const sps_world* w, const char* name, int* components);
 /* Stable particle ids (0..count-1 in order of addition), in current order. */
 SPSDEF const int* sps_world_particle_ids(const sps_world* w);
 /* State of the particle with stable id. */
@@ -643,7 +652,6 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #define SPS__LANES (128 / (int)sizeof(sps_real))
 #define SPS__MAX_BODIES 4096
 #define SPS__MAX_THREADS 1024
-#define SPS__GOOD_FIELDS 14 /* last good state: position 3, velocity 3, density, pressure, stress 6 */
 #define SPS__DT_COLLAPSE 1e-3 /* acoustic dt / dt at rest below which a run is unstable */
 #define SPS__MAX_PARTICLES 200000000 /* 2e8: keeps every per-particle array index inside an int */
 
@@ -760,7 +768,8 @@ struct sps_world {
        stress) at the last configuration update, field-major with stride good_cap, in the
        particle order of that moment (good_id) */
     sps_real* good;
-    int *good_id, good_n, good_cap, good_has_tau;
+    int *good_id, good_n, good_cap;
+    unsigned good_present; /* bit k: field k of sps__fields was saved */
     sps_real good_time;
 
     sps__body* bodies;
@@ -804,6 +813,89 @@ struct sps_world {
     long acoustic_steps, advection_steps;
     int allocated_for;
 };
+
+/* >>fields */
+
+/* The per-particle arrays, one row each: what it is, when it is needed and what housekeeping
+   it gets. Allocation, growth, sorting, freeing, the finiteness guard, the last good state,
+   sps_world_validate and the access by name are loops over this table, so a new array is one
+   new row (and its pointer in sps_world). */
+typedef enum {
+    SPS__NEED_ALWAYS,      /* every world: grown with the particles (sps__reserve) */
+    SPS__NEED_GRADIENT,    /* a body needs the velocity gradient L (model.gradient) */
+    SPS__NEED_STRESS,      /* a body integrates the shear stress (model.stress) */
+    SPS__NEED_MEAN_TURN,   /* a body turns its increments by the mean rotation */
+    SPS__NEED_ARTIFICIAL,  /* a body has Gray's artificial stress (OAS) */
+    SPS__NEED_CONSTRAINTS  /* allocated by the first sps_body_constrain_box */
+} sps__need;
+
+enum {
+    SPS__CARRIED = 1,  /* follows its particle through every sort (others are rebuilt before read) */
+    SPS__KEPT = 2,     /* an optional array whose contents survive its reallocation at commit */
+    SPS__CHECKED = 4,  /* must be finite at every configuration update (sps__check_finite) */
+    SPS__POSITIVE = 8, /* must also be > 0 wherever checked */
+    SPS__GOOD = 16,    /* copied into the last good state (keep_last_good_state) */
+    SPS__VALIDATED = 32 /* checked by sps_world_validate */
+};
+
+typedef struct sps__field_info {
+    const char* name;  /* for sps_world_field_by_name; per-axis arrays add _x, _y, _z */
+    const char* what;  /* in messages */
+    size_t offset;     /* of its pointer in sps_world (of the x axis' for per-axis arrays) */
+    int axes;          /* 1: one array per axis (dim of them used); 0: one array */
+    int components;    /* values per particle in one array */
+    int is_int;        /* int values (else sps_real) */
+    sps__need need;
+    unsigned care;
+} sps__field_info;
+
+#define SPS__OFF(member) offsetof(struct sps_world, member)
+static const sps__field_info sps__fields[] = {
+    {"velocity", "velocity", SPS__OFF(vel), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"position", "position", SPS__OFF(pos), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"reference", "reference position", SPS__OFF(ref), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__VALIDATED},
+    {"pressure_acceleration", "pressure acceleration", SPS__OFF(acc_p), 1, 1, 0, SPS__NEED_ALWAYS, 0},
+    {"shear_acceleration", "shear acceleration", SPS__OFF(acc_s), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__VALIDATED},
+    {"shear_increment", "shear increment", SPS__OFF(acc_d), 1, 1, 0, SPS__NEED_MEAN_TURN, 0},
+    {"density", "density", SPS__OFF(rho), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__POSITIVE | SPS__GOOD | SPS__VALIDATED},
+    {"density_rate", "density rate", SPS__OFF(drho), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED},
+    {"pressure", "pressure", SPS__OFF(p), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"volume", "volume", SPS__OFF(vol), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__POSITIVE | SPS__VALIDATED},
+    {"mass", "mass", SPS__OFF(mass), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__POSITIVE | SPS__VALIDATED},
+    {"shear_stress", "shear stress", SPS__OFF(tau), 0, 6, 0, SPS__NEED_STRESS, SPS__CARRIED | SPS__KEPT | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"artificial_stress", "artificial stress", SPS__OFF(art), 0, 3, 0, SPS__NEED_ARTIFICIAL, 0},
+    /* carried: the next kick reads it (the per-particle half-step rotation) */
+    {"velocity_gradient", "velocity gradient", SPS__OFF(grad), 0, 9, 0, SPS__NEED_GRADIENT, SPS__CARRIED},
+    {"id", "id", SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
+    {"body", "body", SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
+    {"slot_of_id", "slot of id", SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
+    {"constraint", "constraint", SPS__OFF(cons), 0, 1, 1, SPS__NEED_CONSTRAINTS, SPS__CARRIED},
+};
+#undef SPS__OFF
+#define SPS__NFIELDS ((int)(sizeof sps__fields / sizeof sps__fields[0]))
+
+/* The address of the pointer of field f's array for axis a (a = 0 for one-array fields). */
+static void* sps__field_slot(const sps_world* w, const sps__field_info* f, int a) {
+    return (char*)w + f->offset + (size_t)a * (f->is_int ? sizeof(int*) : sizeof(sps_real*));
+}
+static int sps__field_arrays(const sps__field_info* f) { return f->axes ? 3 : 1; }
+static size_t sps__field_bytes(const sps__field_info* f) { return (size_t)f->components * (f->is_int ? sizeof(int) : sizeof(sps_real)); }
+static sps_real* sps__real_array(const sps_world* w, const sps__field_info* f, int a) {
+    sps_real* p;
+    memcpy(&p, sps__field_slot(w, f, a), sizeof p);
+    return p;
+}
+static int* sps__int_array(const sps_world* w, const sps__field_info* f, int a) {
+    int* p;
+    memcpy(&p, sps__field_slot(w, f, a), sizeof p);
+    return p;
+}
+static const sps__field_info* sps__field_named(const char* name) {
+    int k;
+    for (k = 0; k < SPS__NFIELDS; ++k)
+        if (strcmp(sps__fields[k].name, name) == 0) return &sps__fields[k];
+    return NULL;
+}
 
 /* >>util */
 
@@ -1217,14 +1309,13 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
 }
 
 static void sps__free_particle_fields(sps_world* w) {
-    int a;
-    for (a = 0; a < 3; ++a) {
-        sps__free(w, w->pos[a]); sps__free(w, w->vel[a]); sps__free(w, w->ref[a]);
-        sps__free(w, w->acc_p[a]); sps__free(w, w->acc_s[a]); sps__free(w, w->acc_d[a]);
-    }
-    sps__free(w, w->rho); sps__free(w, w->drho); sps__free(w, w->p); sps__free(w, w->vol);
-    sps__free(w, w->mass); sps__free(w, w->tau); sps__free(w, w->art); sps__free(w, w->grad);
-    sps__free(w, w->id); sps__free(w, w->body); sps__free(w, w->slot_of_id); sps__free(w, w->cons);
+    int k, a;
+    for (k = 0; k < SPS__NFIELDS; ++k)
+        for (a = 0; a < sps__field_arrays(&sps__fields[k]); ++a) {
+            void* array;
+            memcpy(&array, sps__field_slot(w, &sps__fields[k], a), sizeof array);
+            sps__free(w, array);
+        }
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_j); sps__free(w, w->nb_count);
     sps__free(w, w->nb_ell);
     sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
@@ -1320,26 +1411,21 @@ SPSDEF sps_result sps_body_material_constants(const sps_world* w, sps_body b, sp
 
 /* >>particles */
 
-/* Makes room for at least need particles in every per-particle array. */
+/* Makes room for at least need particles in every array needed always (and the constraint
+   index once it exists); the optional arrays follow at the next commit. */
 static sps_result sps__reserve(sps_world* w, int need) {
-    int a, nc;
-    size_t r = sizeof(sps_real), o = (size_t)w->n, m;
+    int k, a, nc;
+    size_t o = (size_t)w->n, m;
     if (need <= w->cap) return SPS_OK;
     nc = w->cap ? w->cap + w->cap / 2 : 256;
     if (nc < need) nc = need;
     m = (size_t)nc + SPS__LANES; /* + the zeroed lane padding */
-    for (a = 0; a < 3; ++a) {
-        if (!sps__grow(w, &w->pos[a], r, o, m) || !sps__grow(w, &w->vel[a], r, o, m) ||
-            !sps__grow(w, &w->ref[a], r, o, m) || !sps__grow(w, &w->acc_p[a], r, o, m) ||
-            !sps__grow(w, &w->acc_s[a], r, o, m))
-            return SPS_ERR_OUT_OF_MEMORY;
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (f->need == SPS__NEED_CONSTRAINTS ? !w->cons : f->need != SPS__NEED_ALWAYS) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a)
+            if (!sps__grow(w, sps__field_slot(w, f, a), sps__field_bytes(f), o, m)) return SPS_ERR_OUT_OF_MEMORY;
     }
-    if (!sps__grow(w, &w->rho, r, o, m) || !sps__grow(w, &w->drho, r, o, m) ||
-        !sps__grow(w, &w->p, r, o, m) || !sps__grow(w, &w->vol, r, o, m) ||
-        !sps__grow(w, &w->mass, r, o, m) || !sps__grow(w, &w->id, sizeof(int), o, m) ||
-        !sps__grow(w, &w->body, sizeof(int), o, m) || !sps__grow(w, &w->slot_of_id, sizeof(int), o, m))
-        return SPS_ERR_OUT_OF_MEMORY;
-    if (w->cons && !sps__grow(w, &w->cons, sizeof(int), o, m)) return SPS_ERR_OUT_OF_MEMORY;
     w->cap = nc;
     return SPS_OK;
 }
@@ -1515,24 +1601,22 @@ static void sps__permute_int(sps_world* w, int* f, int begin, int count) {
     memcpy(f + begin, tmp, sizeof(int) * (size_t)count);
 }
 
-/* Fields rebuilt within every sub-step before they are read (acc_p, acc_d, art) are not
-   carried along; grad is, because the next kick reads it (per-particle half-step rotation). */
+/* The fields marked SPS__CARRIED follow their particles; the others are rebuilt before they
+   are read (sps__fields). */
 static void sps__sort_range(sps_world* w, int begin, int count, const int* key, int nkeys) {
-    int i, a, *start = w->cell_start;
+    int i, k, a, *start = w->cell_start;
     for (i = 0; i <= nkeys; ++i) start[i] = 0;
     for (i = 0; i < count; ++i) start[key[i] + 1]++;
     for (i = 0; i < nkeys; ++i) start[i + 1] += start[i];
     for (i = 0; i < count; ++i) w->perm[start[key[i]]++] = i; /* perm[new] = old */
-    for (a = 0; a < 3; ++a) {
-        sps__permute_real(w, w->pos[a], begin, count, 1); sps__permute_real(w, w->vel[a], begin, count, 1);
-        sps__permute_real(w, w->ref[a], begin, count, 1); sps__permute_real(w, w->acc_s[a], begin, count, 1);
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (!(f->care & SPS__CARRIED)) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a) {
+            if (f->is_int) sps__permute_int(w, sps__int_array(w, f, a), begin, count);
+            else sps__permute_real(w, sps__real_array(w, f, a), begin, count, f->components);
+        }
     }
-    sps__permute_real(w, w->rho, begin, count, 1); sps__permute_real(w, w->drho, begin, count, 1);
-    sps__permute_real(w, w->p, begin, count, 1); sps__permute_real(w, w->vol, begin, count, 1);
-    sps__permute_real(w, w->mass, begin, count, 1); sps__permute_real(w, w->tau, begin, count, 6);
-    sps__permute_real(w, w->grad, begin, count, 9);
-    sps__permute_int(w, w->id, begin, count); sps__permute_int(w, w->body, begin, count);
-    sps__permute_int(w, w->cons, begin, count);
     for (i = begin; i < begin + count; ++i) w->slot_of_id[w->id[i]] = i;
 }
 
@@ -1922,49 +2006,53 @@ static sps_result sps__ensure_pair_storage(sps_world* w) {
     return SPS_OK;
 }
 
-static sps_result sps__commit(sps_world* w) {
-    int i, bi, need_gradient = 0, need_stress = 0, need_mean = 0, need_art = 0, need_pair = 0;
-    const size_t slots = (size_t)w->cap + SPS__LANES; /* with the lane padding */
+/* Whether some body of the world needs the optional arrays of kind need. */
+static int sps__world_needs(const sps_world* w, sps__need need) {
+    int bi;
     for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__body* b = &w->bodies[bi];
-        need_gradient |= b->model.gradient;
-        need_stress |= b->model.stress;
-        need_mean |= b->model.turn == SPS__TURN_MEAN;
-        need_art |= b->model.stabilisation->artificial_stress;
-        need_pair |= b->model.paired;
+        const sps__model* m = &w->bodies[bi].model;
+        if ((need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
+            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
+            (need == SPS__NEED_ARTIFICIAL && m->stabilisation->artificial_stress))
+            return 1;
     }
+    return 0;
+}
+
+/* The optional array(s) of field f for cap particles and the lane padding, zeroed (its old
+   contents copied when the field is SPS__KEPT), if the scene needs it and it is missing or too
+   small. Returns 0 when out of memory. */
+static int sps__ensure_optional_field(sps_world* w, const sps__field_info* f) {
+    const size_t bytes = sps__field_bytes(f), slots = (size_t)w->cap + SPS__LANES;
+    int a;
+    for (a = 0; a < sps__field_arrays(f); ++a) {
+        void *old, *fresh;
+        memcpy(&old, sps__field_slot(w, f, a), sizeof old);
+        if (old && w->allocated_for >= w->cap) continue;
+        if (!(fresh = sps__alloc(w, bytes * slots))) return 0;
+        memset(fresh, 0, bytes * slots);
+        if (old && (f->care & SPS__KEPT)) memcpy(fresh, old, bytes * (size_t)w->allocated_for);
+        sps__free(w, old);
+        memcpy(sps__field_slot(w, f, a), &fresh, sizeof fresh);
+    }
+    return 1;
+}
+
+static sps_result sps__commit(sps_world* w) {
+    int i, bi, k;
     if (sps__ensure_neighbor_storage(w) != SPS_OK) {
         w->pair_cap = 0; /* some lists may be NULL: the next call must allocate them again */
         return SPS_ERR_OUT_OF_MEMORY;
     }
-    if (need_pair && sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
-    if (need_gradient && (!w->grad || w->allocated_for < w->cap)) {
-        sps__free(w, w->grad);
-        w->grad = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * slots);
-        if (!w->grad) return SPS_ERR_OUT_OF_MEMORY;
-        memset(w->grad, 0, sizeof(sps_real) * 9 * slots);
-    }
-    if (need_stress && (!w->tau || w->allocated_for < w->cap)) {
-        sps_real* t = (sps_real*)sps__alloc(w, sizeof(sps_real) * 6 * slots);
-        if (!t) return SPS_ERR_OUT_OF_MEMORY;
-        memset(t, 0, sizeof(sps_real) * 6 * slots);
-        if (w->tau) memcpy(t, w->tau, sizeof(sps_real) * 6 * (size_t)w->allocated_for);
-        sps__free(w, w->tau);
-        w->tau = t;
-    }
-    if (need_mean && (!w->acc_d[0] || !w->acc_d[1] || !w->acc_d[2] || w->allocated_for < w->cap)) {
-        int a;
-        for (a = 0; a < 3; ++a) {
-            sps__free(w, w->acc_d[a]);
-            w->acc_d[a] = (sps_real*)sps__alloc(w, sizeof(sps_real) * slots);
-            if (!w->acc_d[a]) return SPS_ERR_OUT_OF_MEMORY;
-            memset(w->acc_d[a], 0, sizeof(sps_real) * slots);
+    for (bi = 0; bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.paired) {
+            if (sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
+            break;
         }
-    }
-    if (need_art && (!w->art || w->allocated_for < w->cap)) { /* recomputed every sub-step */
-        sps__free(w, w->art);
-        if (!(w->art = (sps_real*)sps__alloc(w, sizeof(sps_real) * 3 * slots))) return SPS_ERR_OUT_OF_MEMORY;
-        memset(w->art, 0, sizeof(sps_real) * 3 * slots);
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (f->need == SPS__NEED_ALWAYS || f->need == SPS__NEED_CONSTRAINTS || !sps__world_needs(w, f->need)) continue;
+        if (!sps__ensure_optional_field(w, f)) return SPS_ERR_OUT_OF_MEMORY;
     }
     w->allocated_for = w->cap;
     /* group particles by body (stable), then set ranges */
@@ -2827,29 +2915,40 @@ static void sps__finish(sps_world* w, sps_real dt) {
     }
 }
 
-/* Names the first particle with a non-finite velocity, position, density (or one <= 0),
-   pressure, accumulated shear acceleration or shear stress. Once per advection step: the
-   branches are never taken in a sound run, so the loop costs about one read of the state. */
+/* The first of particles [0, n) whose values in array x (components each) are not finite (or,
+   positive, not > 0), with the value; n if none. Branch-free scan: a sound run never fails. */
+static int sps__first_bad(const sps_real* x, int n, int components, int positive, sps_real* value) {
+    const long total = (long)n * components;
+    long k;
+    for (k = 0; k < total; ++k)
+        if (!sps__finite(x[k]) || (positive && !(x[k] > 0))) {
+            *value = x[k];
+            return (int)(k / components);
+        }
+    return n;
+}
+
+/* Names the first particle with a non-finite value in a field marked SPS__CHECKED (or a value
+   <= 0 in one marked SPS__POSITIVE as well): velocity, position, shear acceleration, density,
+   pressure, shear stress. Once per advection step: about one read of the state. */
 static sps_result sps__check_finite(sps_world* w, const char* where) {
-    int i, a;
-    for (i = 0; i < w->n; ++i) {
-        const char* what = NULL;
-        sps_real val = 0;
-        for (a = 0; a < w->dim && !what; ++a) {
-            if (!sps__finite(w->vel[a][i])) { what = "velocity"; val = w->vel[a][i]; }
-            else if (!sps__finite(w->pos[a][i])) { what = "position"; val = w->pos[a][i]; }
-            else if (!sps__finite(w->acc_s[a][i])) { what = "shear acceleration"; val = w->acc_s[a][i]; }
+    int k, a, first = w->n;
+    const char* what = NULL;
+    sps_real val = 0;
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        for (a = 0; (f->care & SPS__CHECKED) && a < (f->axes ? w->dim : 1); ++a) {
+            const sps_real* x = sps__real_array(w, f, a);
+            sps_real v = 0;
+            const int i = x ? sps__first_bad(x, first, f->components, (f->care & SPS__POSITIVE) != 0, &v) : first;
+            if (i < first) { first = i; what = f->what; val = v; }
         }
-        if (!what && !(w->rho[i] > 0 && sps__finite(w->rho[i]))) { what = "density"; val = w->rho[i]; }
-        if (!what && !sps__finite(w->p[i])) { what = "pressure"; val = w->p[i]; }
-        for (a = 0; a < 6 && w->tau && !what; ++a)
-            if (!sps__finite(w->tau[(size_t)6 * i + a])) { what = "shear stress"; val = w->tau[(size_t)6 * i + a]; }
-        if (what) {
-            sps__set_error(w, 0, "unstable at t = %g (%s): particle %d of body '%s' has %s %g; "
-                           "the time step or the material is out of range for this scene",
-                           (double)w->time, where, w->id[i], w->bodies[w->body[i]].name, what, (double)val);
-            return SPS_ERR_UNSTABLE;
-        }
+    }
+    if (what) {
+        sps__set_error(w, 0, "unstable at t = %g (%s): particle %d of body '%s' has %s %g; "
+                       "the time step or the material is out of range for this scene",
+                       (double)w->time, where, w->id[first], w->bodies[w->body[first]].name, what, (double)val);
+        return SPS_ERR_UNSTABLE;
     }
     return SPS_OK;
 }
@@ -2937,31 +3036,47 @@ static sps_result sps__check_bodies_filled(sps_world* w) {
     return SPS_OK;
 }
 
+/* Reals per particle in the last good state: the components of the fields marked SPS__GOOD
+   (14: position 3, velocity 3, density, pressure, shear stress 6). */
+static size_t sps__good_reals(void) {
+    size_t total = 0;
+    int k;
+    for (k = 0; k < SPS__NFIELDS; ++k)
+        if (sps__fields[k].care & SPS__GOOD) total += (size_t)sps__field_arrays(&sps__fields[k]) * (size_t)sps__fields[k].components;
+    return total;
+}
+
 /* keep_last_good_state: room for the copy, allocated with the other step fields. */
 static sps_result sps__ensure_good_state(sps_world* w) {
     if (!w->def.keep_last_good_state || w->good_cap >= w->cap) return SPS_OK;
     sps__free(w, w->good); sps__free(w, w->good_id);
     w->good_cap = w->good_n = 0;
-    w->good = (sps_real*)sps__alloc(w, sizeof(sps_real) * SPS__GOOD_FIELDS * (size_t)w->cap);
+    w->good = (sps_real*)sps__alloc(w, sizeof(sps_real) * sps__good_reals() * (size_t)w->cap);
     w->good_id = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
     if (!w->good || !w->good_id) return sps__oom(w, "the last good state");
     w->good_cap = w->cap;
     return SPS_OK;
 }
 
-/* keep_last_good_state: copies the state that just passed the checks (plain copies, in the
-   current particle order, remembered in good_id). */
+/* keep_last_good_state: copies the fields marked SPS__GOOD that exist (plain copies, in the
+   current particle order, remembered in good_id): field after field, each array good_cap reals
+   per component, one array per axis. */
 static void sps__save_good_state(sps_world* w) {
-    const size_t n = (size_t)w->n, c = (size_t)w->good_cap, r = sizeof(sps_real);
-    int a;
+    const size_t n = (size_t)w->n, c = (size_t)w->good_cap;
+    size_t base = 0;
+    int k, a;
     if (!w->good || w->good_cap < w->n) return;
-    for (a = 0; a < w->dim; ++a) {
-        memcpy(w->good + a * c, w->pos[a], r * n);
-        memcpy(w->good + (3 + a) * c, w->vel[a], r * n);
+    w->good_present = 0;
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (!(f->care & SPS__GOOD)) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a, base += (size_t)f->components) {
+            const sps_real* x = sps__real_array(w, f, a);
+            if (!x || (f->axes && a >= w->dim)) continue;
+            memcpy(w->good + base * c, x, sps__field_bytes(f) * n);
+            w->good_present |= 1u << k;
+        }
     }
-    memcpy(w->good + 6 * c, w->rho, r * n);
-    memcpy(w->good + 7 * c, w->p, r * n);
-    if ((w->good_has_tau = w->tau != NULL)) memcpy(w->good + 8 * c, w->tau, 6 * r * n);
     memcpy(w->good_id, w->id, sizeof(int) * n);
     w->good_n = w->n;
     w->good_time = w->time;
@@ -3069,18 +3184,25 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
    they were saved; if the rebuild fails anyway, the lists stay marked invalid. */
 static void sps__restore_good_state(sps_world* w) {
     const size_t c = (size_t)w->good_cap;
-    int k, a;
+    size_t base = 0;
+    int k, a, m, j;
     if (!w->good || w->good_n == 0) return;
-    for (k = 0; k < w->good_n; ++k) {
-        int i = w->slot_of_id[w->good_id[k]];
-        for (a = 0; a < w->dim; ++a) {
-            w->pos[a][i] = w->good[a * c + k];
-            w->vel[a][i] = w->good[(3 + a) * c + k];
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (!(f->care & SPS__GOOD)) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a, base += (size_t)f->components) {
+            sps_real* x = sps__real_array(w, f, a);
+            const sps_real* saved = w->good + base * c;
+            if (!(w->good_present & (1u << k)) || (f->axes && a >= w->dim)) continue;
+            for (j = 0; j < w->good_n; ++j) {
+                const size_t i = (size_t)w->slot_of_id[w->good_id[j]];
+                for (m = 0; m < f->components; ++m) x[i * f->components + m] = saved[(size_t)j * f->components + m];
+            }
         }
-        w->rho[i] = w->good[6 * c + k];
-        w->p[i] = w->good[7 * c + k];
+    }
+    for (j = 0; j < w->good_n; ++j) { /* the volume follows from the restored density */
+        const int i = w->slot_of_id[w->good_id[j]];
         w->vol[i] = w->mass[i] / w->rho[i];
-        if (w->good_has_tau) memcpy(w->tau + (size_t)6 * i, w->good + 8 * c + (size_t)6 * k, 6 * sizeof(sps_real));
     }
     w->time = w->good_time;
     if (!w->needs_sort_by_body) w->lists_valid = sps__build_neighbors(w) == SPS_OK;
@@ -3134,38 +3256,36 @@ static void sps__tally_report(const sps_world* w, const sps__tally* t, const cha
               w->id[t->first], w->bodies[w->body[t->first]].name, t->value);
 }
 
-/* Particles: every state value finite, density, mass and volume > 0, ids a permutation. */
+/* Particles: every value of the fields marked SPS__VALIDATED finite (and > 0 where marked
+   SPS__POSITIVE: density, mass, volume), ids a permutation, body indices in range. */
 static void sps__validate_particles(const sps_world* w, char* msg, size_t msg_size, int* broken) {
-    sps__tally pos = {0, 0, 0}, vel = {0, 0, 0}, ref = {0, 0, 0}, rho = {0, 0, 0}, p = {0, 0, 0}, mass = {0, 0, 0};
-    sps__tally vol = {0, 0, 0}, acc = {0, 0, 0}, tau = {0, 0, 0}, id = {0, 0, 0};
-    int i, a;
-    for (i = 0; i < w->n; ++i) {
-        for (a = 0; a < w->dim; ++a) {
-            sps__tally_check(&pos, sps__finite(w->pos[a][i]), i, w->pos[a][i]);
-            sps__tally_check(&vel, sps__finite(w->vel[a][i]), i, w->vel[a][i]);
-            sps__tally_check(&ref, sps__finite(w->ref[a][i]), i, w->ref[a][i]);
-            sps__tally_check(&acc, sps__finite(w->acc_s[a][i]), i, w->acc_s[a][i]);
-        }
-        for (a = 0; a < 6 && w->tau && i < w->allocated_for; ++a) sps__tally_check(&tau, sps__finite(w->tau[(size_t)6 * i + a]), i, w->tau[(size_t)6 * i + a]);
-        sps__tally_check(&rho, w->rho[i] > 0 && sps__finite(w->rho[i]), i, w->rho[i]);
-        sps__tally_check(&p, sps__finite(w->p[i]), i, w->p[i]);
-        sps__tally_check(&mass, w->mass[i] > 0 && sps__finite(w->mass[i]), i, w->mass[i]);
-        sps__tally_check(&vol, w->vol[i] > 0 && sps__finite(w->vol[i]), i, w->vol[i]);
-        sps__tally_check(&id, w->id[i] >= 0 && w->id[i] < w->n && w->slot_of_id[w->id[i]] == i, i, w->id[i]);
-        if (w->body[i] < 0 || w->body[i] >= w->nbodies) { /* the report names the body: not this one */
+    sps__tally id = {0, 0, 0};
+    char rule[64];
+    int i, k, a, m;
+    for (i = 0; i < w->n; ++i)
+        if (w->body[i] < 0 || w->body[i] >= w->nbodies) { /* the reports name the body: not this one */
             sps__rule(msg, msg_size, broken, "particle in slot %d: body index %d, allowed [0, %d)", i, w->body[i], w->nbodies);
             return;
         }
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        const int positive = (f->care & SPS__POSITIVE) != 0;
+        /* optional arrays hold the particles of the last commit (none before the first step) */
+        const int n = f->need == SPS__NEED_ALWAYS ? w->n : (w->n < w->allocated_for ? w->n : w->allocated_for);
+        sps__tally t = {0, 0, 0};
+        if (!(f->care & SPS__VALIDATED)) continue;
+        for (a = 0; a < (f->axes ? w->dim : 1); ++a) {
+            const sps_real* x = sps__real_array(w, f, a);
+            for (i = 0; x && i < n; ++i)
+                for (m = 0; m < f->components; ++m) {
+                    const sps_real v = x[(size_t)i * f->components + m];
+                    sps__tally_check(&t, sps__finite(v) && (!positive || v > 0), i, v);
+                }
+        }
+        snprintf(rule, sizeof rule, "%s not finite%s", f->what, positive ? " > 0" : "");
+        sps__tally_report(w, &t, rule, msg, msg_size, broken);
     }
-    sps__tally_report(w, &pos, "position not finite", msg, msg_size, broken);
-    sps__tally_report(w, &vel, "velocity not finite", msg, msg_size, broken);
-    sps__tally_report(w, &ref, "reference position not finite", msg, msg_size, broken);
-    sps__tally_report(w, &acc, "shear acceleration not finite", msg, msg_size, broken);
-    sps__tally_report(w, &tau, "shear stress not finite", msg, msg_size, broken);
-    sps__tally_report(w, &rho, "density not finite > 0", msg, msg_size, broken);
-    sps__tally_report(w, &p, "pressure not finite", msg, msg_size, broken);
-    sps__tally_report(w, &mass, "mass not finite > 0", msg, msg_size, broken);
-    sps__tally_report(w, &vol, "volume not finite > 0", msg, msg_size, broken);
+    for (i = 0; i < w->n; ++i) sps__tally_check(&id, w->id[i] >= 0 && w->id[i] < w->n && w->slot_of_id[w->id[i]] == i, i, w->id[i]);
     sps__tally_report(w, &id, "id not a permutation of 0..n-1", msg, msg_size, broken);
 }
 
@@ -3358,23 +3478,47 @@ SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t s
 
 /* >>access */
 
+SPSDEF const sps_real* sps_world_field_by_name(const sps_world* w, const char* name, int* components) {
+    static const char* const suffix[3] = {"_x", "_y", "_z"};
+    const sps__field_info* f = NULL;
+    char base[64];
+    size_t len;
+    int k, axis = 0;
+    if (components) *components = 0;
+    if (!w) return NULL;
+    if (!name) { sps__set_error_const(w, "sps_world_field_by_name: name is NULL"); return NULL; }
+    len = strlen(name);
+    for (k = 0; k < 3 && !f; ++k) /* a per-axis name: the field's name and the axis' suffix */
+        if (len > 2 && len < sizeof base && strcmp(name + len - 2, suffix[k]) == 0) {
+            memcpy(base, name, len - 2);
+            base[len - 2] = 0;
+            if ((f = sps__field_named(base)) && f->axes) axis = k;
+            else f = NULL;
+        }
+    if (!f && (f = sps__field_named(name)) && f->axes) f = NULL;
+    if (!f || f->is_int) {
+        sps__set_error_const(w, "sps_world_field_by_name: name = '%s', allowed a real field of sps_world_field_by_name's list", name);
+        return NULL;
+    }
+    if (axis >= w->dim) { sps__set_error_const(w, "sps_world_field_by_name: '%s' with dim = %d", name, w->dim); return NULL; }
+    if (!sps__real_array(w, f, axis)) {
+        sps__set_error_const(w, "sps_world_field_by_name: '%s' is not allocated (no body needs it, or no step was taken yet)", name);
+        return NULL;
+    }
+    if (components) *components = f->components;
+    return sps__real_array(w, f, axis);
+}
+
 SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f) {
-    int axis = (int)f % 3;
+    static const char* const names[] = {"position_x", "position_y", "position_z", "velocity_x", "velocity_y", "velocity_z",
+                                        "reference_x", "reference_y", "reference_z", "density", "pressure", "mass"};
     if (!w) return NULL;
     if ((int)f < 0 || f > SPS_FIELD_MASS) {
         sps__set_error_const(w, "sps_world_field: field = %d, allowed 0..%d (SPS_FIELD_POSITION_X..SPS_FIELD_MASS)", (int)f, (int)SPS_FIELD_MASS);
         return NULL;
     }
-    if (f <= SPS_FIELD_REFERENCE_Z && axis >= w->dim) return NULL;
-    switch (f) {
-    case SPS_FIELD_POSITION_X: case SPS_FIELD_POSITION_Y: case SPS_FIELD_POSITION_Z: return w->pos[axis];
-    case SPS_FIELD_VELOCITY_X: case SPS_FIELD_VELOCITY_Y: case SPS_FIELD_VELOCITY_Z: return w->vel[axis];
-    case SPS_FIELD_REFERENCE_X: case SPS_FIELD_REFERENCE_Y: case SPS_FIELD_REFERENCE_Z: return w->ref[axis];
-    case SPS_FIELD_DENSITY: return w->rho;
-    case SPS_FIELD_PRESSURE: return w->p;
-    case SPS_FIELD_MASS: return w->mass;
-    }
-    return NULL;
+    if (f <= SPS_FIELD_REFERENCE_Z && (int)f % 3 >= w->dim) return NULL; /* z in 2D: NULL, not an error */
+    return sps_world_field_by_name(w, names[f], NULL);
 }
 
 SPSDEF const int* sps_world_particle_ids(const sps_world* w) { return w ? w->id : NULL; }

@@ -1508,6 +1508,30 @@ static int test_bad_arguments_named(void) {
     return 0;
 }
 
+/* Fields by name: the same arrays as the enum access, the optional ones only once a body needs
+   them (after the first step), unknown names and missing axes refused with a message. */
+static int test_field_by_name(void) {
+    sps_world* w = new_world(2, 0.01);
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.05, 0};
+    int n = 0, comps = -1;
+    const sps_real* tau;
+    ENSURE(w);
+    ENSURE(add_block(w, SPS_SHEAR_OG, lo, hi, &n).id != 0);
+    ENSURE(sps_world_field_by_name(w, "velocity_y", &comps) == sps_world_field(w, SPS_FIELD_VELOCITY_Y) && comps == 1);
+    ENSURE(sps_world_field_by_name(w, "density", NULL) == sps_world_field(w, SPS_FIELD_DENSITY));
+    ENSURE(sps_world_field_by_name(w, "shear_stress", NULL) == NULL && error_names(w, "not allocated") == 0);
+    ENSURE(sps_world_field_by_name(w, "position_z", NULL) == NULL && error_names(w, "dim = 2") == 0);
+    ENSURE(sps_world_field_by_name(w, "velocity", NULL) == NULL && error_names(w, "name = 'velocity'") == 0);
+    ENSURE(sps_world_field_by_name(w, "id", NULL) == NULL && error_names(w, "name = 'id'") == 0);
+    ENSURE(sps_world_field_by_name(w, NULL, NULL) == NULL && error_names(w, "name is NULL") == 0);
+    ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE((tau = sps_world_field_by_name(w, "shear_stress", &comps)) != NULL && comps == 6); /* OG integrates tau */
+    ENSURE(sps_world_field_by_name(w, "velocity_gradient", &comps) != NULL && comps == 9);
+    ENSURE(sps_world_field_by_name(w, "artificial_stress", NULL) == NULL); /* no OAS body */
+    sps_world_destroy(w);
+    return 0;
+}
+
 /* Handles of another world, or of a destroyed one, are rejected by every call taking one. */
 static int test_foreign_and_destroyed_handles(void) {
     sps_world *w1 = new_world(2, 0.01), *w2;
@@ -2465,6 +2489,7 @@ int main(int argc, char** argv) {
     RUN(test_memory_runaway_particle);
     RUN(test_null_world_arguments);
     RUN(test_bad_arguments_named);
+    RUN(test_field_by_name);
     RUN(test_foreign_and_destroyed_handles);
     RUN(test_flat_box_is_empty);
     RUN(test_step_empty_body);
