@@ -81,6 +81,7 @@ bench-knobs: all
 .PHONY: float-examples bench-tools bench-knobs
 
 run: $(BUILD)/plate2d
+	@echo "make run: the 2D plate (H/dp 10, ENO-A) to t = 1 s, about 10 s on 2 cores"
 	./$(BUILD)/plate2d --res 10 --vf 0.05 --shear eno-a --tend 1 --out out/plate2d
 	@echo "CSV time series: out/plate2d/plate2d.csv; VTK snapshots: out/plate2d/plate2d_*.vtk (open in ParaView)"
 
@@ -90,12 +91,12 @@ $(BUILD)/test_sphsolid: tests/test_sphsolid.c $(HEADER) | $(BUILD)
 $(BUILD)/test_sanitize: tests/test_sphsolid.c $(HEADER) | $(BUILD)
 	$(CC) -std=c99 -O1 -g $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
 test-fast: $(BUILD)/test_sphsolid
-	./$(BUILD)/test_sphsolid
+	./$(BUILD)/test_sphsolid > $(BUILD)/test_fast.log; status=$$?; cat $(BUILD)/test_fast.log; exit $$status
 test-sanitize: $(BUILD)/test_sanitize
 	ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/test_sanitize --quick
 # the README's quick start, run as printed: it prints only on error and writes strip.vtk
 quickstart-run: check
-	cd $(BUILD) && rm -f strip.vtk && ./quickstart > quickstart.out && test ! -s quickstart.out && test -s strip.vtk
+	cd $(BUILD) && rm -f strip.vtk && OMP_WAIT_POLICY=passive ./quickstart > quickstart.out && test ! -s quickstart.out && test -s strip.vtk
 	@echo "README quick start: ran to t = 1 s and wrote $(BUILD)/strip.vtk"
 # every example, run briefly: it must print its RESULT line and write its CSV and a VTK snapshot,
 # and a value out of range must end it with exit status 2 (the example contract in the README)
@@ -123,8 +124,13 @@ pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned_float --print > tests/pinned_float.inc
 .PHONY: test-pinned pinned-update
 
-# the fuzz output goes first so that the test runner's "N passed, M failed" closes make test
-test: check quickstart-run examples-smoke test-pinned fuzz fuzz-sanitize test-fast test-sanitize
+# The parts run two at a time (each prints its output when it is done); the test runner's
+# "N passed, M failed" is repeated last so that it closes make test. About 4 minutes on 2 cores.
+TEST_PARTS = check quickstart-run examples-smoke test-pinned fuzz fuzz-sanitize test-sanitize test-fast
+test:
+	@echo "make test: the header checks, examples, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4 minutes on 2 cores"
+	@$(MAKE) --no-print-directory -j2 --output-sync=target $(TEST_PARTS)
+	@tail -n 1 $(BUILD)/test_fast.log
 
 # ---- randomized API test (tests/fuzz_api.c); replay a case: build/fuzz_api --seed S --cases 1 --verbose ----
 FUZZ_CASES ?= 10000
