@@ -49,7 +49,10 @@ check: $(CHECK_SRC) $(HEADER) README.md
 	else echo "clang not found: skipped"; fi
 	awk '/^## Quick start/{q=1} q&&/^```c/{f=1;next} f&&/^```/{exit} f' README.md > $(BUILD)/quickstart.c
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp -I. $(BUILD)/quickstart.c -o $(BUILD)/quickstart $(LDLIBS)
-	@echo "header checks passed (and the README's quick start compiles)"
+	{ printf '#define SPHSOLID_IMPLEMENTATION\n#include "sphsolid.h"\n#include <stdio.h>\nint main(void) {\n'; \
+	  awk '/QUICK START/{q=1;next} q&&/CONFIG MACROS/{exit} q' $(HEADER); printf 'return 0;\n}\n'; } > $(BUILD)/header_quickstart.c
+	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp -I. $(BUILD)/header_quickstart.c -o $(BUILD)/header_quickstart $(LDLIBS)
+	@echo "header checks passed (and the quick starts of the README and of the header's manual compile)"
 
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)

@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.1.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.5.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic solids with updated-Lagrangian
    smoothed particle hydrodynamics (UL-SPH): Wendland C2 kernel, cell-linked-list neighbour search,
@@ -83,7 +83,7 @@
       follow the current positions (1.2-1.3x faster in double, no faster in float). The
       reference code stores e_ij too; a stored direction lags a rotating pair and makes it look
       shorter, which drifts the plate's period by 0.55% per cycle and gives the spinning plate
-      33% angular-momentum error (0.4.1 did that; see sps__pair).
+      33% angular-momentum error (see sps__pair).
 
    REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
       A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
@@ -210,6 +210,11 @@
       contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
+      0.5.0 (2026-12-01) a body's model as data (material, stabilisation, solver and transport
+                         rows, a table of allowed combinations; material.kind, solver and
+                         transport in the defs), pass kernels chosen once per body, a field
+                         registry (sps_world_field_by_name). Results bit for bit those of 0.4.2
+                         (tests/pinned.c).
       0.4.2 (2026-11-22) frozen geometry keeps dW/dr and 1/r_0 but takes e_ij, 1/r_ij and B_i from the
                          current positions: the stored directions of 0.4.1 made rotating pairs
                          look shorter (2D plate: period +0.55% per cycle; spinning plate ENO-A
@@ -240,9 +245,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 4
-#define SPHSOLID_VERSION_PATCH 2
-#define SPHSOLID_VERSION_STRING "0.4.2"
+#define SPHSOLID_VERSION_MINOR 5
+#define SPHSOLID_VERSION_PATCH 0
+#define SPHSOLID_VERSION_STRING "0.5.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
@@ -327,7 +332,7 @@ typedef void (*sps_log_fn)(int level, const char* message, void* user);
 typedef struct sps_world_def {
     int dim;                          /* space dimension, 2 or 3. Default 2. */
     sps_real dp;                      /* initial particle spacing [m], > 0. Default 0.01. */
-    sps_real h_over_dp;               /* smoothing length / dp, in [0.5, 3]. Default 1.3. */
+    sps_real h_over_dp;               /* smoothing length / dp, in [1, 3]. Default 1.3. */
     sps_kernel_type kernel;           /* Default SPS_KERNEL_WENDLAND_C2. */
     sps_stepping stepping;            /* Default SPS_STEPPING_DUAL. */
     sps_real cfl_acoustic;            /* CFL_ac in (0, 1]. Default 0.4. */
@@ -340,7 +345,7 @@ typedef struct sps_world_def {
                                          from 1/r_0) and B_i from the current
                                          positions: 1.2-1.3x faster in double (not in float);
                                          dW lags the stretch within an advection step.
-                                         Default 0 (see README, "Design notes"). */
+                                         Default 0 (bench/VALIDATION.md, design notes). */
     sps_real neighbor_capacity;       /* neighbour slots per particle relative to a full lattice
                                          support, >= 1. Default 2 (compression to rho/rho0 = 2). */
     int threads;                      /* OpenMP threads for this world; 0 = OpenMP default. */
@@ -388,7 +393,7 @@ typedef struct sps_body_def {
     const char* name;          /* for messages and output; copied (first 31 chars). Default "body". */
     sps_material_def material; /* Default sps_default_material_def(). */
     sps_shear shear;           /* Default SPS_SHEAR_ENO_A. */
-    sps_rotation rotation;     /* ENO-A only. Default SPS_ROTATION_MEAN. */
+    sps_rotation rotation;     /* the -A variants (ENO-A, GNO-A). Default SPS_ROTATION_MEAN. */
     sps_real zeta;             /* ENO coefficient; 0 selects 0.7 d + 2.1 (ENO section 4). Default 0. */
     sps_real xi;               /* GNO penalty coefficient xi_G; 0 selects 2 (ANG section 4.2). Default 0. */
     sps_real oas_epsilon;      /* OAS artificial-stress factor, [0, 1]. Default 0.3 (Gray et al.). */
@@ -427,7 +432,7 @@ typedef struct sps_particle_state {
     int body_index;
 } sps_particle_state;
 
-/* Callback of sps_world_set_velocity: v from the reference position x (both length 3). */
+/* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
 typedef void (*sps_velocity_fn)(const sps_real x[3], sps_real v[3], void* user);
 /* Callback of sps_world_advance, after every step; return nonzero to stop. */
 typedef int (*sps_step_fn)(sps_world* w, void* user);
@@ -587,6 +592,7 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #include <string.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <time.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -645,7 +651,7 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #define SPS__COOKIE 0x5350531
 /* Particles per lane group: the neighbour passes work on SPS__LANES consecutive particles at
    once, one per SIMD lane (two 512-bit vectors of sps_real: 16 doubles or 32 floats). Measured
-   on the 2D plate (README, design notes): 16 doubles in 512-bit vectors 1.2x faster than 8 in
+   on the 2D plate (bench/VALIDATION.md, design notes): 16 doubles in 512-bit vectors 1.2x faster than 8 in
    256-bit ones, 4 doubles 1.6x slower, 32 barely faster than 16.
    Per-particle arrays carry SPS__LANES zeroed slots beyond the capacity so a group that runs
    past the last particle reads valid memory. */
@@ -1074,7 +1080,7 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
    here and, where its stress update or equation of state differs, its section; the step is not
    edited. */
 
-/* ---- materials ---- */
+/* >>material: linear elastic */
 
 /* Linear elastic: K = E/(3(1-2nu)), c0 = sqrt(K/rho0) (ENO eq. 5), G = E/(2(1+nu)). */
 static sps__material_constants sps__elastic_constants(const sps_material_def* m) {
@@ -1102,6 +1108,8 @@ static void sps__elastic_check(const sps_material_def* m, char* msg, size_t msg_
 static sps_real sps__elastic_energy_density(const sps__material_constants* c, sps_real tau_tau, sps_real p) {
     return tau_tau / (4 * c->G) + p * p / (2 * c->K);
 }
+
+/* >>model (continued): the rows */
 
 static const sps__material_model sps__materials[] = {
     {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density},
@@ -1581,7 +1589,7 @@ SPSDEF sps_result sps_body_constrain_box(sps_world* w, sps_body b, const sps_rea
     return SPS_OK;
 }
 
-/* >>grid */
+/* >>neighbours */
 
 /* Sorts the particles of [begin, end) by key (stable counting sort; keys < nkeys) and applies
    the permutation to every per-particle field. */
@@ -1589,8 +1597,11 @@ static void sps__permute_real(sps_world* w, sps_real* f, int begin, int count, i
     sps_real* tmp = (sps_real*)w->scratch;
     int i, s;
     if (!f) return;
-    for (i = 0; i < count; ++i)
-        for (s = 0; s < stride; ++s) tmp[(size_t)i * stride + s] = f[(size_t)(begin + w->perm[i]) * stride + s];
+    if (stride == 1) /* most fields: a plain gather the compiler vectorises */
+        for (i = 0; i < count; ++i) tmp[i] = f[begin + w->perm[i]];
+    else
+        for (i = 0; i < count; ++i)
+            for (s = 0; s < stride; ++s) tmp[(size_t)i * stride + s] = f[(size_t)(begin + w->perm[i]) * stride + s];
     memcpy(f + (size_t)begin * stride, tmp, sizeof(sps_real) * (size_t)count * (size_t)stride);
 }
 static void sps__permute_int(sps_world* w, int* f, int begin, int count) {
@@ -1933,33 +1944,18 @@ SPS__INLINE void sps__blended_inverse(const sps_real* a, int as, sps_real* b, in
     }
 }
 
-/* B from a full symmetric 3x3 A (stride 3) into B (stride 3): the configuration-update form. */
-static void sps__regularized_inverse(int dim, const sps_real* A, sps_real* B) {
-    const sps_real sym6[6] = {A[0], A[1], A[2], A[4], A[5], A[8]};
-    int k;
-    for (k = 0; k < 9; ++k) B[k] = 0;
-    if (dim == 2) sps__blended_inverse(sym6, 1, B, 1, 2);
-    else sps__blended_inverse(sym6, 1, B, 1, 3);
-}
-
-/* Correction matrices B_i = (-sum_j r_ij (x) grad_i W_ij V_j)^-1 (ANG eq. 21) from the current
-   positions into out (9 per particle, stride 3). */
-static void sps__correction_matrices(sps_world* w, sps_real* out) {
-    int i;
-    SPS__PARALLEL_FOR(w, w->n)
-    for (i = 0; i < w->n; ++i) {
-        sps_real A[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        int k, a, c;
-        for (k = 0; k < w->nb_count[i]; ++k) {
-            int j = sps__neighbor(w, i, k);
-            sps_real d[3] = {0, 0, 0}, r2 = 0, r, f;
-            for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
-            r = SPS__SQRT(r2);
-            f = -sps__dwdr(w, r) / r * w->vol[j]; /* -dW/dr / r V_j: r_ij (x) e_ij dW = d d^T dW/r */
-            for (a = 0; a < w->dim; ++a)
-                for (c = 0; c < w->dim; ++c) A[3 * a + c] += f * d[a] * d[c];
-        }
-        sps__regularized_inverse(w->dim, A, out + (size_t)9 * i);
+/* Adds pair (i, j)'s term to A = B_i^-1 = -sum_j r_ij (x) grad_i W_ij V_j (ANG eq. 21): with
+   r_ij = r e_ij and grad W = dW e_ij, A -= r dW V_j e_ij (x) e_ij, rdwv = r dW V_j. A's entries
+   xx xy xz yy yz zz at A[k as] (the lane sums of the continuity pass, or one matrix). The
+   continuity pass and the diagnostics both build B this way. */
+SPS__INLINE void sps__add_moment(sps_real* A, int as, sps_real ex, sps_real ey, sps_real ez, sps_real rdwv, const int dim) {
+    A[0] -= rdwv * ex * ex;
+    A[as] -= rdwv * ex * ey;
+    A[3 * as] -= rdwv * ey * ey;
+    if (dim == 3) {
+        A[2 * as] -= rdwv * ex * ez;
+        A[4 * as] -= rdwv * ey * ez;
+        A[5 * as] -= rdwv * ez * ez;
     }
 }
 
@@ -2120,7 +2116,7 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     return SPS_OK;
 }
 
-/* >>forces */
+/* >>pairs: the geometry of a neighbour pair */
 
 /* Pair geometry modes, a literal in the neighbour loops so they carry no branch on it: the
    stored geometry, or recomputed with the Wendland C2 or the cubic-spline kernel. */
@@ -2174,6 +2170,29 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
     }
     return q;
 }
+
+/* Correction matrices B_i (ANG eq. 21) from the current positions into out (9 per particle,
+   row-major), summed and inverted as in the continuity pass (sps__add_moment). */
+static void sps__correction_matrices(sps_world* w, sps_real* out) {
+    const int geo = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
+    int i;
+    SPS__PARALLEL_FOR(w, w->n)
+    for (i = 0; i < w->n; ++i) {
+        sps_real A[6] = {0, 0, 0, 0, 0, 0}, *B = out + (size_t)9 * i;
+        int k;
+        for (k = 0; k < 9; ++k) B[k] = 0;
+        for (k = 0; k < w->nb_count[i]; ++k) {
+            const int j = sps__neighbor(w, i, k);
+            const sps__pair_geometry e = sps__pair(w, i, w->nb_first[i] + k * SPS__LANES, j, w->dim, geo);
+            sps__add_moment(A, 1, e.ex, e.ey, e.ez, e.r * (e.dw * w->vol[j]), w->dim);
+        }
+        if (w->dim == 2) sps__blended_inverse(A, 1, B, 3, 2);
+        else sps__blended_inverse(A, 1, B, 3, 3);
+    }
+}
+
+/* >>solver: the updated-Lagrangian passes (ENO section 5, ANG sections 3-4), one kernel per
+   variant, dimension and pair geometry */
 
 /* The first of body b's lane groups (of the group starts `start`, ngroups + 1 of them) whose
    first slot is at or after slot `target`. */
@@ -2592,14 +2611,7 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
                     sum[SPS__M02][l] -= gx * ez; sum[SPS__M12][l] -= gy * ez;
                     sum[SPS__M20][l] -= gz * ex; sum[SPS__M21][l] -= gz * ey; sum[SPS__M22][l] -= gz * ez;
                 }
-                sum[SPS__A00][l] -= rdwv * ex * ex;
-                sum[SPS__A01][l] -= rdwv * ex * ey;
-                sum[SPS__A11][l] -= rdwv * ey * ey;
-                if (dim == 3) {
-                    sum[SPS__A02][l] -= rdwv * ex * ez;
-                    sum[SPS__A12][l] -= rdwv * ey * ez;
-                    sum[SPS__A22][l] -= rdwv * ez * ez;
-                }
+                sps__add_moment(&sum[SPS__A00][l], SPS__LANES, ex, ey, ez, rdwv, dim);
             }
         }
     }
@@ -2770,7 +2782,7 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     return p;
 }
 
-/* >>integrate */
+/* >>step: the per-particle updates of a sub-step */
 
 /* The contiguous share [i0, i1) of body b that the calling thread updates in the per-particle
    steps (drift, kick, finish). All three use the same share, so between two barriers a thread
@@ -2867,7 +2879,7 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
    For the -A variants the accumulated a_s is aligned with the body at the end of the last
    sub-step, while this kick acts half a step (dt/2 of this sub-step) later: it is applied
    rotated by that half step's rotation H, which removes a spurious torque of order
-   omega^2 dt (spinning plate, ENO-A: 2.1 % -> 1.1 % angular-momentum error; README). */
+   omega^2 dt (spinning plate, ENO-A: 2.1 % -> 1.1 % angular-momentum error; bench/VALIDATION.md). */
 static sps_real sps__kick(sps_world* w, sps_real dt) {
     sps_real vmax2 = 0;
     int t, bi, nt, me;
@@ -2914,6 +2926,8 @@ static void sps__finish(sps_world* w, sps_real dt) {
         }
     }
 }
+
+/* >>guards: what stops a run that has gone wrong, and the last good state */
 
 /* The first of particles [0, n) whose values in array x (components each) are not finite (or,
    positive, not > 0), with the value; n if none. Branch-free scan: a sound run never fails. */
@@ -2995,32 +3009,6 @@ static sps_result sps__check_time_step(sps_world* w) {
     return SPS_ERR_UNSTABLE;
 }
 
-/* One acoustic sub-step (steps 1-5), called by every thread of the step's team.
-   Returns max |v|^2 after the kick. */
-static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
-    int bi;
-    sps_real vmax2;
-    sps__half_drift(w, dt);
-    for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
-    vmax2 = sps__kick(w, dt);
-    for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
-    for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
-        if (w->bodies[bi].model.pass.penalty) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
-    sps__finish(w, dt);
-    return vmax2;
-}
-
-static sps_real sps__max_speed2(const sps_world* w) {
-    sps_real vmax2 = 0;
-    int i, a;
-    for (i = 0; i < w->n; ++i) {
-        sps_real v2 = 0;
-        for (a = 0; a < w->dim; ++a) v2 += w->vel[a][i] * w->vel[a][i];
-        if (!(v2 <= vmax2)) vmax2 = v2;
-    }
-    return vmax2;
-}
-
 /* A body without particles is almost always a mistake (a box narrower than dp holds none):
    said before the first step instead of simulated silently. It also keeps the body count
    below the particle count, which the sort by body relies on (cell_start has 4 cap slots). */
@@ -3080,6 +3068,34 @@ static void sps__save_good_state(sps_world* w) {
     memcpy(w->good_id, w->id, sizeof(int) * n);
     w->good_n = w->n;
     w->good_time = w->time;
+}
+
+/* >>stepping: configuration updates, the advection step and its acoustic sub-steps */
+
+/* One acoustic sub-step (steps 1-5), called by every thread of the step's team.
+   Returns max |v|^2 after the kick. */
+static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
+    int bi;
+    sps_real vmax2;
+    sps__half_drift(w, dt);
+    for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
+    vmax2 = sps__kick(w, dt);
+    for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
+    for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
+        if (w->bodies[bi].model.pass.penalty) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
+    sps__finish(w, dt);
+    return vmax2;
+}
+
+static sps_real sps__max_speed2(const sps_world* w) {
+    sps_real vmax2 = 0;
+    int i, a;
+    for (i = 0; i < w->n; ++i) {
+        sps_real v2 = 0;
+        for (a = 0; a < w->dim; ++a) v2 += w->vel[a][i] * w->vel[a][i];
+        if (!(v2 <= vmax2)) vmax2 = v2;
+    }
+    return vmax2;
 }
 
 /* Configuration update: neighbour lists, pair geometry and correction matrices. */
@@ -3672,7 +3688,6 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) {
 
 /* >>realtime */
 
-#include <time.h>
 #ifndef SPHSOLID_WALL_SECONDS
 #ifdef CLOCK_MONOTONIC /* POSIX, when <time.h> declares it (_POSIX_C_SOURCE >= 199309L) */
 static double sps__monotonic_seconds(void) {
