@@ -2624,14 +2624,17 @@ enum { SPS__ENO_NONE, SPS__ENO_PARTICLES, SPS__ENO_PAIRS };
    eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
    before correction); A -= r_ij (x) e_ij dW V_j (B^-1); with the pair rotation (eno =
    SPS__ENO_PAIRS) the ENO increment goes to the pair's force instead of lap. Then the lanes'
-   ends (sps__continuity_lanes), the Jaumann stress (stress), the Rodrigues matrices and this
-   group's share of the mean rotation (turn; ANG eq. 41, summed in group order by
-   sps__continuity_pass) and the ENO increments (eno = SPS__ENO_PARTICLES). Every choice is a
-   literal (SPS__CONTINUITY_VARIANTS). */
+   ends (sps__continuity_lanes), the Jaumann stress, the Rodrigues matrices and this group's
+   share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass) and
+   the ENO increments (eno = SPS__ENO_PARTICLES). gradient and eno, which shape the pair loop,
+   are literals (SPS__CONTINUITY_VARIANTS); the once-per-group choices after it (stress, turn)
+   are read from the body's model. */
 SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                                 const int gradient, const int stress, const int eno, const int turn) {
+                                 const int gradient, const int eno) {
     const sps__group q = sps__group_of(w, b, g);
     const int end = b->end;
+    /* the turn this pass applies: ENO's increments, and the mean rotation's sum for GNO-A too */
+    const sps__turn turn = eno == SPS__ENO_PARTICLES || b->model.turn == SPS__TURN_MEAN ? b->model.turn : SPS__TURN_NONE;
     const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
     sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
     sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -2640,30 +2643,27 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
     sps__continuity_pairs(w, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, shear_rate, sum);
     sps__continuity_lanes(w, q, end, dim, gradient, shear_rate, sum, da, L);
-    if (stress) sps__stress_lanes(w, q, end, dim, b->mat.G, dt, L);
+    if (b->model.stress) sps__stress_lanes(w, q, end, dim, b->mat.G, dt, L);
     if (turn != SPS__TURN_NONE) sps__rotation_lanes(w, q, dt, dim, L, R);
     if (turn == SPS__TURN_MEAN) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
             for (a = 0; a < 9; ++a) rsum[a] += R[a][l];
         memcpy(w->group_sum + (size_t)9 * (b->group0 + g), rsum, sizeof rsum);
     }
-    if (eno == SPS__ENO_PARTICLES) sps__add_increments(w, b, q, dim, da, R, turn);
+    if (eno != SPS__ENO_PARTICLES) return;
+    if (turn == SPS__TURN_NONE) sps__add_increments(w, b, q, dim, da, R, SPS__TURN_NONE);
+    else if (turn == SPS__TURN_MEAN) sps__add_increments(w, b, q, dim, da, R, SPS__TURN_MEAN);
+    else sps__add_increments(w, b, q, dim, da, R, SPS__TURN_PARTICLE);
 }
 
-/* The continuity pass's variants: (gradient, stress, eno, turn). turn is NONE where nothing in
-   this pass turns (GNO-A per particle turns its penalty in the penalty pass). */
-#define SPS__CONTINUITY_VARIANTS(X)                                                   \
-    X(eno, 0, 0, SPS__ENO_PARTICLES, SPS__TURN_NONE)                                  \
-    X(eno_stress, 1, 1, SPS__ENO_PARTICLES, SPS__TURN_NONE)                           \
-    X(eno_mean, 1, 0, SPS__ENO_PARTICLES, SPS__TURN_MEAN)                             \
-    X(eno_mean_stress, 1, 1, SPS__ENO_PARTICLES, SPS__TURN_MEAN)                      \
-    X(eno_particle, 1, 0, SPS__ENO_PARTICLES, SPS__TURN_PARTICLE)                     \
-    X(eno_particle_stress, 1, 1, SPS__ENO_PARTICLES, SPS__TURN_PARTICLE)              \
-    X(eno_pairs, 0, 0, SPS__ENO_PAIRS, SPS__TURN_NONE)                                \
-    X(eno_pairs_stress, 1, 1, SPS__ENO_PAIRS, SPS__TURN_NONE)                         \
-    X(stress, 1, 1, SPS__ENO_NONE, SPS__TURN_NONE)                                    \
-    X(stress_mean, 1, 1, SPS__ENO_NONE, SPS__TURN_MEAN)
-#define SPS__CONTINUITY_INSTANCES(variant, gradient, stress, eno, turn) SPS__INSTANCES(continuity, variant, gradient, stress, eno, turn)
+/* The continuity pass's variants: (gradient, eno). */
+#define SPS__CONTINUITY_VARIANTS(X)                  \
+    X(eno, 0, SPS__ENO_PARTICLES)                    \
+    X(eno_gradient, 1, SPS__ENO_PARTICLES)           \
+    X(eno_pairs, 0, SPS__ENO_PAIRS)                  \
+    X(eno_pairs_gradient, 1, SPS__ENO_PAIRS)         \
+    X(gradient, 1, SPS__ENO_NONE)
+#define SPS__CONTINUITY_INSTANCES(variant, gradient, eno) SPS__INSTANCES(continuity, variant, gradient, eno)
 SPS__CONTINUITY_VARIANTS(SPS__CONTINUITY_INSTANCES)
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
@@ -2752,7 +2752,7 @@ typedef struct sps__variant_row {
     const sps__group_kernel* modes;
 } sps__variant_row;
 #define SPS__ROW3(variant, a, b, c) {{a, b, c, 0}, sps__pressure_##variant},
-#define SPS__ROW_CONTINUITY(variant, a, b, c, d) {{a, b, c, d}, sps__continuity_##variant},
+#define SPS__ROW_CONTINUITY(variant, a, b) {{a, b, 0, 0}, sps__continuity_##variant},
 #define SPS__ROW_PENALTY(variant, a, b, c) {{a, b, c, 0}, sps__penalty_##variant},
 static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW3)};
 static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
@@ -2770,10 +2770,8 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     const sps__stabilisation* st = m->stabilisation;
     const int mode = sps__mode(w);
     const int eno = !st->eno ? SPS__ENO_NONE : m->paired ? SPS__ENO_PAIRS : SPS__ENO_PARTICLES;
-    /* the continuity pass turns ENO's increments, and sums the mean rotation for either */
-    const int continuity_turn = eno == SPS__ENO_PARTICLES || m->turn == SPS__TURN_MEAN ? (int)m->turn : SPS__TURN_NONE;
     const int pressure_key[4] = {st->stress_force, st->artificial_stress, m->paired, 0};
-    const int continuity_key[4] = {m->gradient, m->stress, eno, continuity_turn};
+    const int continuity_key[4] = {m->gradient, eno, 0, 0};
     const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, 0};
     sps__passes p;
     p.pressure = sps__find_kernel(sps__pressure_rows, (int)(sizeof sps__pressure_rows / sizeof sps__pressure_rows[0]), pressure_key, mode);
