@@ -96,18 +96,27 @@ test-sanitize: $(BUILD)/test_sanitize
 quickstart-run: check
 	cd $(BUILD) && rm -f strip.vtk && ./quickstart > quickstart.out && test ! -s quickstart.out && test -s strip.vtk
 	@echo "README quick start: ran to t = 1 s and wrote $(BUILD)/strip.vtk"
-# every example, run briefly: it must print its RESULT line and write its CSV and a VTK snapshot,
+# every example, run briefly: it must print its RESULT line and write its CSV, a VTK snapshot and
+# its final picture (PNG and SVG, read back by tests/check_picture: valid, and the body visible),
 # and a value out of range must end it with exit status 2 (the example contract in the README)
 SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "plate3d --res 2 --tend 0.0002 --full" \
              "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01"
-examples-smoke: examples
+$(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) $< -o $@
+examples-smoke: examples $(BUILD)/check_picture
 	@for run in $(SMOKE_RUNS); do \
 	  set -- $$run; out=$(BUILD)/smoke/$$1; rm -rf $$out; \
 	  ./$(BUILD)/$$run --quiet --vtk-every 0.005 --out $$out | grep -q '^RESULT case=' && \
-	  test -s $$out/$$1.csv && test -s $$out/$$1_0000.vtk || { echo "examples-smoke: $$run failed"; exit 1; }; \
+	  test -s $$out/$$1.csv && test -s $$out/$$1_0000.vtk && \
+	  ./$(BUILD)/check_picture $$out/$$1_final.png && ./$(BUILD)/check_picture --min 50 $$out/$$1_final.svg || \
+	  { echo "examples-smoke: $$run failed"; exit 1; }; \
 	  ./$(BUILD)/$$1 --cfl 7 >/dev/null 2>&1; status=$$?; \
 	  test $$status -eq 2 || { echo "examples-smoke: $$1 --cfl 7 exited $$status, expected 2"; exit 1; }; \
-	done; echo "examples-smoke: 4 examples ran, wrote CSV and VTK, and refused a bad option"
+	done
+	@out=$(BUILD)/smoke/png_every; rm -rf $$out; \
+	./$(BUILD)/plate2d --res 3 --tend 0.01 --quiet --png-every 0.005 --png-field velocity --out $$out >/dev/null && \
+	./$(BUILD)/check_picture $$out/plate2d_0000.png $$out/plate2d_0001.png || { echo "examples-smoke: --png-every failed"; exit 1; }
+	@echo "examples-smoke: 4 examples ran, wrote CSV, VTK, PNG and SVG, and refused a bad option"
 # the fuzz output goes first so that the test runner's "N passed, M failed" closes make test
 test: check quickstart-run examples-smoke fuzz fuzz-sanitize test-fast test-sanitize
 
