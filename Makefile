@@ -24,7 +24,7 @@ BUILD    = build
 EXAMPLES = plate2d plate3d spinning_plate spinning_cube
 HEADER   = sphsolid.h
 
-.PHONY: probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
+.PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
 all: check examples $(BUILD)/beam_reference $(BUILD)/clamp_reference
 
@@ -56,6 +56,11 @@ EXAMPLE_HEADERS = examples/common.h examples/render.h $(wildcard examples/scenes
 $(BUILD)/%: examples/%.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+# the terminal demo: its own copy of the implementation, compiled after common.h's POSIX request,
+# so that the frame budget reads the monotonic clock (as bench/realtime.c)
+$(BUILD)/demo: examples/demo.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+demo: $(BUILD)/demo
 
 # ---- the examples built with sps_real = float (bench/knobs.sh measures what float costs) ----
 FLOAT = $(BUILD)/float
@@ -117,8 +122,15 @@ examples-smoke: examples $(BUILD)/check_picture
 	./$(BUILD)/plate2d --res 3 --tend 0.01 --quiet --png-every 0.005 --png-field velocity --out $$out >/dev/null && \
 	./$(BUILD)/check_picture $$out/plate2d_0000.png $$out/plate2d_0001.png || { echo "examples-smoke: --png-every failed"; exit 1; }
 	@echo "examples-smoke: 4 examples ran, wrote CSV, VTK, PNG and SVG, and refused a bad option"
+# the demo, headless for 25 frames (a block dropped at frame 10): its RESULT line, and the same
+# checksum with 1 and 2 threads (frames without a wall budget are deterministic)
+demo-smoke: $(BUILD)/demo
+	@one=$$(OMP_NUM_THREADS=1 ./$(BUILD)/demo --headless --frames 25) && two=$$(./$(BUILD)/demo --headless --frames 25 --threads 2) && \
+	echo "$$one" | grep -Eq '^RESULT case=demo frames=25 .*blocks=1 .*checksum=[0-9a-f]{16} .*ms_per_frame=[0-9.]+ .*fps=[0-9.]+ ' && \
+	test "$$(echo "$$one" | sed 's/.*checksum=\([0-9a-f]*\).*/\1/')" = "$$(echo "$$two" | sed 's/.*checksum=\([0-9a-f]*\).*/\1/')" || \
+	{ echo "demo-smoke failed: $$one / $$two"; exit 1; }; echo "demo-smoke: 25 headless frames, same checksum with 1 and 2 threads"
 # the fuzz output goes first so that the test runner's "N passed, M failed" closes make test
-test: check quickstart-run examples-smoke fuzz fuzz-sanitize test-fast test-sanitize
+test: check quickstart-run examples-smoke demo-smoke fuzz fuzz-sanitize test-fast test-sanitize
 
 # ---- randomized API test (tests/fuzz_api.c); replay a case: build/fuzz_api --seed S --cases 1 --verbose ----
 FUZZ_CASES ?= 10000

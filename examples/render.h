@@ -143,14 +143,17 @@ RENDER_UNUSED static void render_fill_rect(render_image* img, int x0, int y0, in
         for (x = x0; x < x1; ++x) img->pixels[(size_t)y * img->width + x] = colour;
 }
 
-RENDER_UNUSED static void render_disc_pixels(render_image* img, double cx, double cy, double r, unsigned char colour) {
+RENDER_UNUSED /* A disc of radius r at (cx, cy), clipped to the rectangle clip (x0, y0, x1, y1). */
+static void render_disc_pixels(render_image* img, const int clip[4], double cx, double cy, double r, unsigned char colour) {
     int x, y, x0 = (int)floor(cx - r), x1 = (int)ceil(cx + r), y0 = (int)floor(cy - r), y1 = (int)ceil(cy + r);
     if (r < 0.75) { /* smaller than a pixel: one pixel, so that no particle vanishes */
-        render_fill_rect(img, (int)floor(cx), (int)floor(cy), (int)floor(cx) + 1, (int)floor(cy) + 1, colour);
+        x = (int)floor(cx);
+        y = (int)floor(cy);
+        if (x >= clip[0] && x < clip[2] && y >= clip[1] && y < clip[3]) img->pixels[(size_t)y * img->width + x] = colour;
         return;
     }
-    for (y = y0 < 0 ? 0 : y0; y <= y1 && y < img->height; ++y)
-        for (x = x0 < 0 ? 0 : x0; x <= x1 && x < img->width; ++x)
+    for (y = y0 < clip[1] ? clip[1] : y0; y <= y1 && y < clip[3]; ++y)
+        for (x = x0 < clip[0] ? clip[0] : x0; x <= x1 && x < clip[2]; ++x)
             if ((x + 0.5 - cx) * (x + 0.5 - cx) + (y + 0.5 - cy) * (y + 0.5 - cy) <= r * r) img->pixels[(size_t)y * img->width + x] = colour;
 }
 
@@ -280,7 +283,7 @@ RENDER_UNUSED static void render_raster(const render_layout* L, render_image* im
     const int s = L->font;
     int k, y;
     memset(img->pixels, RENDER_BACKGROUND, (size_t)img->width * img->height);
-    for (k = 0; k < L->n; ++k) render_disc_pixels(img, L->discs[k].x, L->discs[k].y, L->radius, render_colour(L, L->discs[k].value));
+    for (k = 0; k < L->n; ++k) render_disc_pixels(img, L->plot, L->discs[k].x, L->discs[k].y, L->radius, render_colour(L, L->discs[k].value));
     if (L->o.decorations) {
         render_labels t;
         const int bar_len = (int)(L->scale_m * L->px_per_m + 0.5), sy = L->plot[3] + 8;
@@ -386,10 +389,13 @@ RENDER_UNUSED static int render_write_svg(const render_layout* L, const char* pa
     fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
                "viewBox=\"0 0 %d %d\" font-family=\"monospace\" font-size=\"%d\">\n<rect width=\"100%%\" height=\"100%%\" fill=\"#ffffff\"/>\n",
             L->o.width, L->o.height, L->o.width, L->o.height, 9 * s);
+    fprintf(f, "<clipPath id=\"plot\"><rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\"/></clipPath>\n<g clip-path=\"url(#plot)\">\n",
+            L->plot[0], L->plot[1], L->plot[2] - L->plot[0], L->plot[3] - L->plot[1]); /* the PNG's clipping */
     for (k = 0; k < L->n; ++k) {
         render_svg_colour(L, L->discs[k].value, colour);
         fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"%s\"/>\n", L->discs[k].x, L->discs[k].y, fmax(L->radius, 0.5), colour);
     }
+    fprintf(f, "</g>\n");
     if (L->o.decorations) {
         render_labels t;
         const double h = (L->bar[3] - L->bar[1]) / (double)steps, sy = L->plot[3] + 8, bar_len = L->scale_m * L->px_per_m;
