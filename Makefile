@@ -88,6 +88,22 @@ run: $(BUILD)/plate2d
 	./$(BUILD)/plate2d --res 10 --vf 0.05 --shear eno-a --tend 1 --out out/plate2d
 	@echo "CSV time series: out/plate2d/plate2d.csv; VTK snapshots: out/plate2d/plate2d_*.vtk (open in ParaView)"
 
+# ---- gallery: one picture per example, committed in bench/gallery/ (600 x 400, indexed: 241 KB each) ----
+# the 2D plate at its largest deflection (a quarter period), the 3D plate's mode (2,2) at its
+# largest deflection, the spinning plate and cube after a few tenths of a turn, the demo scene
+# 10 frames after its seventh block was dropped
+GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --tend 0.004 --full --png-field displacement --png-view iso" \
+               "spinning_plate --dp 0.025 --tend 0.1" "spinning_cube --dp 0.1 --tend 0.1 --png-view iso"
+gallery: examples $(BUILD)/demo $(BUILD)/check_picture
+	@mkdir -p bench/gallery
+	@for run in $(GALLERY_RUNS); do \
+	  set -- $$run; out=$(BUILD)/gallery/$$1; rm -rf $$out; \
+	  ./$(BUILD)/$$run --quiet --vtk-every 0 --out $$out >/dev/null && cp $$out/$$1_final.png bench/gallery/$$1.png && \
+	  ./$(BUILD)/check_picture bench/gallery/$$1.png || { echo "gallery: $$run failed"; exit 1; }; \
+	done
+	@./$(BUILD)/demo --headless --frames 140 --png bench/gallery/demo.png >/dev/null && ./$(BUILD)/check_picture bench/gallery/demo.png
+	@echo "gallery: bench/gallery/{plate2d,plate3d,spinning_plate,spinning_cube,demo}.png"
+
 # ---- tests ----
 $(BUILD)/test_sphsolid: tests/test_sphsolid.c $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)

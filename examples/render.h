@@ -246,7 +246,7 @@ RENDER_UNUSED static int render_layout_make(const sps_world* w, const render_opt
     render_place(L);
     span_u = box[2] - box[0]; span_v = box[3] - box[1];
     L->px_per_m = fmin((L->plot[2] - L->plot[0]) / span_u, (L->plot[3] - L->plot[1]) / span_v);
-    L->radius = 0.5 * dp * L->px_per_m;
+    L->radius = 0.75 * dp * L->px_per_m; /* over dp/sqrt(2): the discs of a square lattice leave no holes, a body looks solid */
     for (id = 0; id < n; ++id) { /* world to pixels, centred in the plot area; image y runs down */
         render_disc* d = &L->discs[id];
         d->x = 0.5 * (L->plot[0] + L->plot[2]) + (d->x - 0.5 * (box[0] + box[2])) * L->px_per_m;
