@@ -1,8 +1,12 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
 #   make          header checks (C99 gcc/clang, C++, float, static), the README quick start, examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
-#   make test     the README quick start and every example (brief runs), the randomized API test (10,000 cases),
-#                 the test runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases)
+#   make test     the README quick start and every example (brief runs, pictures read back), the demo (headless),
+#                 the randomized API test (10,000 cases), the test runner (optimised, OpenMP), and both again
+#                 under ASan + UBSan (quick tests, 1,000 cases)
+#   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
+#   make gallery  one picture per example into bench/gallery/ (about 15 s)
+#   make probes   the bench probes that read the library's private state (torque_probe, rotation_probe)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~8 min)
 #   make bench    speed tables (bench/results/)
 #   make bench-knobs  what each setting costs and buys (bench/knobs.sh, about 30 min)
@@ -86,7 +90,9 @@ bench-knobs: all
 
 run: $(BUILD)/plate2d
 	./$(BUILD)/plate2d --res 10 --vf 0.05 --shear eno-a --tend 1 --out out/plate2d
-	@echo "CSV time series: out/plate2d/plate2d.csv; VTK snapshots: out/plate2d/plate2d_*.vtk (open in ParaView)"
+	@echo "Output in out/plate2d/: the time series plate2d.csv (diagnostics and tip deflection every"; \
+	echo "2 ms), VTK snapshots plate2d_0000.vtk ... every 0.1 s (open them in ParaView), and a picture"; \
+	echo "of the plate at t = 1 s, plate2d_final.png (von Mises stress; --png-every T for a series)."
 
 # ---- gallery: one picture per example, committed in bench/gallery/ (600 x 400, indexed: 241 KB each) ----
 # the 2D plate at its largest deflection (a quarter period), the 3D plate's mode (2,2) at its
@@ -127,7 +133,7 @@ $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 examples-smoke: examples $(BUILD)/check_picture
 	@for run in $(SMOKE_RUNS); do \
 	  set -- $$run; out=$(BUILD)/smoke/$$1; rm -rf $$out; \
-	  ./$(BUILD)/$$run --quiet --vtk-every 0.005 --out $$out | grep -q '^RESULT case=' && \
+	  ./$(BUILD)/$$run --quiet --vtk-every 0.005 --svg --out $$out | grep -q '^RESULT case=' && \
 	  test -s $$out/$$1.csv && test -s $$out/$$1_0000.vtk && \
 	  ./$(BUILD)/check_picture $$out/$$1_final.png && ./$(BUILD)/check_picture --min 50 $$out/$$1_final.svg || \
 	  { echo "examples-smoke: $$run failed"; exit 1; }; \

@@ -213,7 +213,8 @@ EX_UNUSED static const char* rotation_name(int r) {
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, stress, threads, quiet; /* choice indices and flags */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
-    double png_every;   /* > 0: a PNG every png_every s; 0: none; < 0: one PNG (and SVG) at the end */
+    double png_every;   /* > 0: a PNG every png_every s; 0: none; < 0: one PNG at the end */
+    int svg;            /* 1: the final picture as SVG too (one circle per particle: large for big 3D runs) */
     int png_field;      /* 0 = the example's choice, k = render_fields[k - 1] */
     int png_view;       /* render_view */
     int png_size[2];    /* width, height [px] */
@@ -259,8 +260,9 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"threads", OPT_INT, &(c).threads, "OpenMP threads, 0 = all", 0, 1024, NULL},                       \
     {"jitter", OPT_REAL, &(c).jitter, "lattice jitter: each coordinate moved by U(-j/2, j/2) dp", 0, 0.5, NULL}, \
     {"seed", OPT_INT, &(c).seed, "seed of the jitter", 0, 2147483647, NULL},                           \
-    {"png-every", OPT_REAL, &(c).png_every, "PNG snapshot interval [s], 0 = none, -1 = one PNG and one SVG at the end", -1, 1e4, NULL}, \
-    {"png-field", OPT_CHOICE, &(c).png_field, "what colours the particles (auto: the example's choice)", 0, 0, png_field_choices()}, \
+    {"png-every", OPT_REAL, &(c).png_every, "PNG snapshot interval [s], 0 = none, -1 = one PNG at the end", -1, 1e4, NULL}, \
+    {"svg", OPT_FLAG, &(c).svg, "write the final picture as SVG too", 0, 0, NULL},                   \
+    {"png-field", OPT_CHOICE, &(c).png_field, "what colours the particles (auto: von-mises for a plate whose stress is tracked, else velocity)", 0, 0, png_field_choices()}, \
     {"png-view", OPT_CHOICE, &(c).png_view, "3D: projection plane or isometric view", 0, 0, RENDER_VIEW_CHOICES}, \
     {"png-size", OPT_PAIR, (c).png_size, "picture width,height [px]", 64, 4096, NULL},                 \
     {"quiet", OPT_FLAG, &(c).quiet, "no progress line", 0, 0, NULL}
@@ -346,7 +348,7 @@ typedef struct {
     FILE* csv;
     const char *dir, *name;
     double csv_every, vtk_every, png_every, next_csv, next_vtk, next_png, hourglass_max, min_spacing;
-    int frames, pictures;
+    int frames, pictures, svg;
     render_options picture;
 } output_plan;
 
@@ -358,6 +360,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     char file[256];
     memset(o, 0, sizeof *o);
     o->dir = c->out; o->name = name; o->csv_every = c->csv_every; o->vtk_every = c->vtk_every; o->png_every = c->png_every;
+    o->svg = c->svg;
     o->min_spacing = 1e30;
     o->picture.width = c->png_size[0];
     o->picture.height = c->png_size[1];
@@ -409,14 +412,12 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
     return wrote;
 }
 
-/* The end of the run: closes the CSV and, with --png-every < 0, writes the final picture as
-   dir/name_final.png and .svg. */
+/* The end of the run: closes the CSV, writes the final picture dir/name_final.png when
+   --png-every < 0, and dir/name_final.svg with --svg. */
 EX_UNUSED static void output_close(const sps_world* w, output_plan* o) {
     fclose(o->csv);
-    if (o->png_every < 0) {
-        output_picture(w, o, "final", RENDER_PNG);
-        output_picture(w, o, "final", RENDER_SVG);
-    }
+    if (o->png_every < 0) output_picture(w, o, "final", RENDER_PNG);
+    if (o->svg) output_picture(w, o, "final", RENDER_SVG);
 }
 
 /* A step failed (r): writes the world, rolled back to its last good state (keep_last_good_state

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
     sps_diagnostics d0, d;
     sps_body all = {0};
     sps_real corner[3] = {0.5, 0.5, 0.5};
-    double wall0, max_err = 0, max_p_drift = 0, p_scale;
+    double wall0, wall, max_err = 0, max_p_drift = 0, p_scale;
     int corner_id;
     output_plan output;
 
@@ -70,13 +70,14 @@ int main(int argc, char** argv) {
         }
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
+    wall = wall_seconds() - wall0;
     output_close(w, &output);
     printf("RESULT case=%s shear=%s dp=%g omega=%g stepping=%s nu=%g jitter=%g max_angmom_err=%.4g%% paper=%.2f%% "
            "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g %s particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n",
            CASE, shear_name(c.shear), p.dp, p.omega, c.stepping ? "single" : "dual", c.nu, c.jitter, 100 * max_err,
            paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy,
-           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall_seconds() - wall0, c.out);
+           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
 }
