@@ -167,7 +167,7 @@ static void sleep_until(double t) {
 
 int main(int argc, char** argv) {
     int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, substeps, frame, shear = 0, paused = 0, resets = 0;
-    double fps = 30, start, physics = 0, drawing = 0, next, shown_fps = 0, fps_clock;
+    double fps = 30, start, physics = 0, drawing = 0, slowest = 0, next, shown_fps = 0, fps_clock;
     const char* png = "";
     opt_spec opts[] = {
         {"headless", OPT_FLAG, &headless, "no terminal: run --frames frames, print a RESULT line (checksum, timing)", 0, 0, NULL},
@@ -224,6 +224,7 @@ int main(int argc, char** argv) {
         screen_draw(&scr, scene.w, status, hint);
         physics += t1 - t0;
         drawing += wall_seconds() - t1;
+        slowest = fmax(slowest, wall_seconds() - t0);
         if (headless) continue;
         fwrite(scr.text, 1, scr.length, stdout);
         fflush(stdout);
@@ -246,10 +247,10 @@ int main(int argc, char** argv) {
         sps_body all = {0};
         ex_check(scene.w, sps_world_diagnostics(scene.w, all, &d));
         printf("RESULT case=demo frames=%d substeps_per_frame=%d sim_s=%.4f particles=%d blocks=%d resets=%d checksum=%016llx "
-               "size=%dx%d ms_per_frame=%.2f physics_ms=%.2f drawing_ms=%.2f fps=%.1f threads=%d steps=%ld wall_s=%.2f\n",
+               "size=%dx%d ms_per_frame=%.2f physics_ms=%.2f drawing_ms=%.2f slowest_frame_ms=%.2f fps=%.1f threads=%d steps=%ld wall_s=%.2f\n",
                frame, substeps, (double)sps_world_time(scene.w), sps_world_particle_count(scene.w), scene.n_drops, resets,
                (unsigned long long)position_checksum(scene.w), size[0], size[1], 1e3 * (physics + drawing) / frame, 1e3 * physics / frame,
-               1e3 * drawing / frame, frame / (physics + drawing), threads, d.acoustic_steps, wall);
+               1e3 * drawing / frame, 1e3 * slowest, frame / (physics + drawing), threads, d.acoustic_steps, wall);
     }
     sps_world_destroy(scene.w);
     free(scr.img.pixels);
