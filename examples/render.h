@@ -210,53 +210,68 @@ RENDER_UNUSED static void render_place(render_layout* L) {
     L->bar[0] = L->plot[2] + 12; L->bar[1] = L->plot[1] + 7 * s; L->bar[2] = L->bar[0] + 10 * s; L->bar[3] = L->plot[3] - 7 * s;
 }
 
-/* Projects the world's particles into L (frees with render_layout_free). Returns 0, or -1 when
-   out of memory. */
-RENDER_UNUSED static int render_layout_make(const sps_world* w, const render_options* o, render_layout* L) {
-    const int n = sps_world_particle_count(w);
-    double box[4] = {1e300, 1e300, -1e300, -1e300}, span_u, span_v, pad;
-    const double dp = sps_world_get_def(w)->dp;
+/* Projects every particle of w into L->discs (world units still) and its value; box gets the
+   bounds of the current and the reference positions, so that a view fits both. */
+RENDER_UNUSED static void render_collect(const sps_world* w, render_layout* L, double box[4]) {
     int id, k;
-    memset(L, 0, sizeof *L);
-    L->o = *o;
-    L->time = sps_world_time(w);
-    if (!(L->discs = (render_disc*)malloc(sizeof(render_disc) * (size_t)(n > 0 ? n : 1)))) return -1;
-    L->n = n;
+    box[0] = box[1] = 1e300; box[2] = box[3] = -1e300;
     L->lo = 1e300; L->hi = -1e300;
-    for (id = 0; id < n; ++id) { /* project the current and the reference positions: the window holds both */
+    for (id = 0; id < L->n; ++id) {
         sps_particle_state s;
         sps_real ref[3];
         double u, v, depth;
         render_disc* d = &L->discs[id];
         sps_world_particle(w, id, &s);
         for (k = 0; k < 3; ++k) ref[k] = s.position[k] - s.displacement[k];
-        render_project(o->view, ref, &u, &v, &depth);
+        render_project(L->o.view, ref, &u, &v, &depth);
         box[0] = fmin(box[0], u); box[1] = fmin(box[1], v); box[2] = fmax(box[2], u); box[3] = fmax(box[3], v);
-        render_project(o->view, s.position, &d->x, &d->y, &d->depth);
+        render_project(L->o.view, s.position, &d->x, &d->y, &d->depth);
         box[0] = fmin(box[0], d->x); box[1] = fmin(box[1], d->y); box[2] = fmax(box[2], d->x); box[3] = fmax(box[3], d->y);
-        d->value = o->field->value(&s);
+        d->value = L->o.field->value(&s);
         L->lo = fmin(L->lo, d->value); L->hi = fmax(L->hi, d->value);
     }
-    if (o->range[0] != o->range[1]) { L->lo = o->range[0]; L->hi = o->range[1]; }
-    if (n == 0) L->lo = L->hi = 0;
-    if (o->window[0] != o->window[2]) memcpy(box, o->window, sizeof box);
-    else if (n == 0) box[0] = box[1] = 0, box[2] = box[3] = 1;
-    pad = 0.5 * dp + 0.03 * fmax(box[2] - box[0], box[3] - box[1]);
-    if (o->window[0] == o->window[2]) box[0] -= pad, box[1] -= pad, box[2] += pad, box[3] += pad;
-    render_place(L);
-    span_u = box[2] - box[0]; span_v = box[3] - box[1];
-    L->px_per_m = fmin((L->plot[2] - L->plot[0]) / span_u, (L->plot[3] - L->plot[1]) / span_v);
-    L->radius = 0.75 * dp * L->px_per_m; /* over dp/sqrt(2): the discs of a square lattice leave no holes, a body looks solid */
-    for (id = 0; id < n; ++id) { /* world to pixels, centred in the plot area; image y runs down */
+    if (L->n == 0) { box[0] = box[1] = 0; box[2] = box[3] = 1; L->lo = L->hi = 0; }
+}
+
+/* Scales the view box (u_lo, v_lo, u_hi, v_hi) [m] into the plot area, centred, and moves the
+   discs from world units to pixels (image y runs down). */
+RENDER_UNUSED static void render_fit(render_layout* L, const double box[4], double dp) {
+    int id;
+    L->px_per_m = fmin((L->plot[2] - L->plot[0]) / (box[2] - box[0]), (L->plot[3] - L->plot[1]) / (box[3] - box[1]));
+    L->radius = 0.75 * dp * L->px_per_m; /* over dp/sqrt(2): a square lattice's discs leave no holes, a body looks solid */
+    for (id = 0; id < L->n; ++id) {
         render_disc* d = &L->discs[id];
         d->x = 0.5 * (L->plot[0] + L->plot[2]) + (d->x - 0.5 * (box[0] + box[2])) * L->px_per_m;
         d->y = 0.5 * (L->plot[1] + L->plot[3]) - (d->y - 0.5 * (box[1] + box[3])) * L->px_per_m;
     }
-    qsort(L->discs, (size_t)n, sizeof *L->discs, render_by_depth); /* painter's order: far first */
-    {
+    { /* the scale bar: a round length near a quarter of the plot's width */
         double target = 0.25 * (L->plot[2] - L->plot[0]) / L->px_per_m, decade = pow(10, floor(log10(target)));
         L->scale_m = target >= 5 * decade ? 5 * decade : target >= 2 * decade ? 2 * decade : decade;
     }
+}
+
+/* Lays out the world's particles for options o (frees with render_layout_free). Returns 0, or
+   -1 when out of memory. */
+RENDER_UNUSED static int render_layout_make(const sps_world* w, const render_options* o, render_layout* L) {
+    const double dp = sps_world_get_def(w)->dp;
+    const int fit = o->window[0] == o->window[2];
+    double box[4];
+    memset(L, 0, sizeof *L);
+    L->o = *o;
+    L->time = sps_world_time(w);
+    L->n = sps_world_particle_count(w);
+    if (!(L->discs = (render_disc*)malloc(sizeof(render_disc) * (size_t)(L->n > 0 ? L->n : 1)))) return -1;
+    render_collect(w, L, box);
+    if (o->range[0] != o->range[1]) { L->lo = o->range[0]; L->hi = o->range[1]; }
+    if (fit) { /* the particles' bounds, with room for a disc and a margin */
+        const double pad = 0.5 * dp + 0.03 * fmax(box[2] - box[0], box[3] - box[1]);
+        box[0] -= pad; box[1] -= pad; box[2] += pad; box[3] += pad;
+    } else {
+        memcpy(box, o->window, sizeof box);
+    }
+    render_place(L);
+    render_fit(L, box, dp);
+    qsort(L->discs, (size_t)L->n, sizeof *L->discs, render_by_depth); /* painter's order: far first */
     return 0;
 }
 
@@ -324,9 +339,9 @@ RENDER_UNUSED static void render_png_chunk(FILE* f, const char* type, const unsi
     unsigned char head[8], tail[4];
     render_put32(head, (uint32_t)len);
     memcpy(head + 4, type, 4);
-    render_put32(tail, render_crc32(render_crc32(0, head + 4, 4), data, len));
+    render_put32(tail, len ? render_crc32(render_crc32(0, head + 4, 4), data, len) : render_crc32(0, head + 4, 4));
     fwrite(head, 1, 8, f);
-    fwrite(data, 1, len, f);
+    if (len) fwrite(data, 1, len, f); /* IEND has no data (and a NULL pointer) */
     fwrite(tail, 1, 4, f);
 }
 
