@@ -264,7 +264,7 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"svg", OPT_FLAG, &(c).svg, "write the final picture as SVG too", 0, 0, NULL},                   \
     {"png-field", OPT_CHOICE, &(c).png_field, "what colours the particles (auto: von-mises for a plate whose stress is tracked, else velocity)", 0, 0, png_field_choices()}, \
     {"png-view", OPT_CHOICE, &(c).png_view, "3D: projection plane or isometric view", 0, 0, RENDER_VIEW_CHOICES}, \
-    {"png-size", OPT_PAIR, (c).png_size, "picture width,height [px]", 64, 4096, NULL},                 \
+    {"png-size", OPT_PAIR, (c).png_size, "picture width,height [px]", 160, 4096, NULL},                 \
     {"quiet", OPT_FLAG, &(c).quiet, "no progress line", 0, 0, NULL}
 
 /* Copies the shared options into the world and body defs. */
