@@ -60,10 +60,7 @@ EXAMPLE_HEADERS = examples/common.h examples/render.h $(wildcard examples/scenes
 $(BUILD)/%: examples/%.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
-# the terminal demo: its own copy of the implementation, compiled after common.h's POSIX request,
-# so that the frame budget reads the monotonic clock (as bench/realtime.c)
-$(BUILD)/demo: examples/demo.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
-	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+# the terminal demo (built like the examples)
 demo: $(BUILD)/demo
 
 # ---- the examples built with sps_real = float (bench/knobs.sh measures what float costs) ----

@@ -17,8 +17,6 @@
 
    Build: make demo        Run: ./build/demo      Measure: OMP_NUM_THREADS=1 ./build/demo --headless
    Expect: >= 30 frames per second on one core of a 2020s machine at 80 x 24. */
-#define SPHSOLID_IMPLEMENTATION /* this program's own copy: common.h asks for POSIX before any
-                                   header, so the frame budget gets the monotonic clock */
 #include "common.h"
 #include "scenes/jelly.h"
 #include <signal.h>
