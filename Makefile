@@ -1,9 +1,12 @@
 # sphsolid.h - build, run, test and bench. Needs only gcc (or cc), make and libc.
 #   make          header checks (C99 gcc/clang, C++, float, static), the README quick start, examples
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
-#   make test     the README quick start and every example (brief runs), the pinned results (tests/pinned.c),
-#                 the randomized API test (10,000 cases),
-#                 the test runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases)
+#   make test     the README quick start and every example (brief runs, pictures read back), the demo (headless),
+#                 the pinned results (tests/pinned.c), the randomized API test (10,000 cases), the test
+#                 runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases)
+#   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
+#   make gallery  one picture per example into bench/gallery/ (about 15 s)
+#   make probes   the bench probes that read the library's private state (torque_probe, rotation_probe)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~8 min)
 #   make bench    speed tables (bench/results/)
 #   make bench-knobs  what each setting costs and buys (bench/knobs.sh, about 30 min)
@@ -25,10 +28,9 @@ BUILD    = build
 EXAMPLES = plate2d plate3d spinning_plate spinning_cube
 HEADER   = sphsolid.h
 
-.PHONY: all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
+.PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
-all: check examples $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/beam_reference \
-     $(BUILD)/clamp_reference
+all: check examples $(BUILD)/beam_reference $(BUILD)/clamp_reference
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -57,23 +59,26 @@ check: $(CHECK_SRC) $(HEADER) README.md
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) -c $< -o $@
-$(BUILD)/%: examples/%.c examples/common.h examples/spinning_plate.c examples/spinning_scene.h $(BUILD)/impl.o
+EXAMPLE_HEADERS = examples/common.h examples/render.h $(wildcard examples/scenes/*.h)
+$(BUILD)/%: examples/%.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+# the terminal demo (built like the examples)
+demo: $(BUILD)/demo
 
 # ---- the examples built with sps_real = float (bench/knobs.sh measures what float costs) ----
 FLOAT = $(BUILD)/float
 $(FLOAT)/impl.o: examples/impl.c $(HEADER)
 	@mkdir -p $(FLOAT)
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -c $< -o $@
-$(FLOAT)/%: examples/%.c examples/common.h examples/spinning_plate.c examples/spinning_scene.h $(FLOAT)/impl.o
+$(FLOAT)/%: examples/%.c $(EXAMPLE_HEADERS) $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
 float-examples: $(addprefix $(FLOAT)/,$(EXAMPLES))
 
 # ---- bench programs: the real-time loop (double and float) and the SVG plotter ----
-$(BUILD)/realtime: bench/realtime.c examples/common.h examples/spinning_scene.h $(HEADER) | $(BUILD)
+$(BUILD)/realtime: bench/realtime.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-$(FLOAT)/realtime: bench/realtime.c examples/common.h examples/spinning_scene.h $(HEADER) $(FLOAT)/impl.o
+$(FLOAT)/realtime: bench/realtime.c $(EXAMPLE_HEADERS) $(HEADER) $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
 $(BUILD)/svgplot: bench/svgplot.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
@@ -86,12 +91,30 @@ bench-knobs: all
 run: $(BUILD)/plate2d
 	@echo "make run: the 2D plate (H/dp 10, ENO-A) to t = 1 s, about 10 s on 2 cores"
 	./$(BUILD)/plate2d --res 10 --vf 0.05 --shear eno-a --tend 1 --out out/plate2d
-	@echo "CSV time series: out/plate2d/plate2d.csv; VTK snapshots: out/plate2d/plate2d_*.vtk (open in ParaView)"
+	@echo "Output in out/plate2d/: the time series plate2d.csv (diagnostics and tip deflection every"; \
+	echo "2 ms), VTK snapshots plate2d_0000.vtk ... every 0.1 s (open them in ParaView), and a picture"; \
+	echo "of the plate at t = 1 s, plate2d_final.png (von Mises stress; --png-every T for a series)."
+
+# ---- gallery: one picture per example, committed in bench/gallery/ (600 x 400, indexed: 241 KB each) ----
+# the 2D plate at its largest deflection (a quarter period), the 3D plate's mode (2,2) at its
+# largest deflection, the spinning plate and cube after a few tenths of a turn, the demo scene
+# 10 frames after its seventh block was dropped
+GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --tend 0.004 --full --png-field displacement --png-view iso" \
+               "spinning_plate --dp 0.025 --tend 0.1" "spinning_cube --dp 0.1 --tend 0.1 --png-view iso"
+gallery: examples $(BUILD)/demo $(BUILD)/check_picture
+	@mkdir -p bench/gallery
+	@for run in $(GALLERY_RUNS); do \
+	  set -- $$run; out=$(BUILD)/gallery/$$1; rm -rf $$out; \
+	  ./$(BUILD)/$$run --quiet --vtk-every 0 --out $$out >/dev/null && cp $$out/$$1_final.png bench/gallery/$$1.png && \
+	  ./$(BUILD)/check_picture bench/gallery/$$1.png || { echo "gallery: $$run failed"; exit 1; }; \
+	done
+	@./$(BUILD)/demo --headless --frames 140 --png bench/gallery/demo.png >/dev/null && ./$(BUILD)/check_picture bench/gallery/demo.png
+	@echo "gallery: bench/gallery/{plate2d,plate3d,spinning_plate,spinning_cube,demo}.png"
 
 # ---- tests ----
-$(BUILD)/test_sphsolid: tests/test_sphsolid.c $(HEADER) | $(BUILD)
+$(BUILD)/test_sphsolid: tests/test_sphsolid.c $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-$(BUILD)/test_sanitize: tests/test_sphsolid.c $(HEADER) | $(BUILD)
+$(BUILD)/test_sanitize: tests/test_sphsolid.c $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
 	$(CC) -std=c99 -O1 -g $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
 test-fast: $(BUILD)/test_sphsolid
 	./$(BUILD)/test_sphsolid > $(BUILD)/test_fast.log; status=$$?; cat $(BUILD)/test_fast.log; exit $$status
@@ -101,18 +124,34 @@ test-sanitize: $(BUILD)/test_sanitize
 quickstart-run: check
 	cd $(BUILD) && rm -f strip.vtk && OMP_WAIT_POLICY=passive ./quickstart > quickstart.out && test ! -s quickstart.out && test -s strip.vtk
 	@echo "README quick start: ran to t = 1 s and wrote $(BUILD)/strip.vtk"
-# every example, run briefly: it must print its RESULT line and write its CSV and a VTK snapshot,
+# every example, run briefly: it must print its RESULT line and write its CSV, a VTK snapshot and
+# its final picture (PNG and SVG, read back by tests/check_picture: valid, and the body visible),
 # and a value out of range must end it with exit status 2 (the example contract in the README)
 SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "plate3d --res 2 --tend 0.0002 --full" \
              "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01"
-examples-smoke: examples
+$(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
+	$(CC) -std=c99 -O2 $(WARN) $< -o $@
+examples-smoke: examples $(BUILD)/check_picture
 	@for run in $(SMOKE_RUNS); do \
 	  set -- $$run; out=$(BUILD)/smoke/$$1; rm -rf $$out; \
-	  ./$(BUILD)/$$run --quiet --vtk-every 0.005 --out $$out | grep -q '^RESULT case=' && \
-	  test -s $$out/$$1.csv && test -s $$out/$$1_0000.vtk || { echo "examples-smoke: $$run failed"; exit 1; }; \
+	  ./$(BUILD)/$$run --quiet --vtk-every 0.005 --svg --out $$out | grep -q '^RESULT case=' && \
+	  test -s $$out/$$1.csv && test -s $$out/$$1_0000.vtk && \
+	  ./$(BUILD)/check_picture $$out/$$1_final.png && ./$(BUILD)/check_picture --min 50 $$out/$$1_final.svg || \
+	  { echo "examples-smoke: $$run failed"; exit 1; }; \
 	  ./$(BUILD)/$$1 --cfl 7 >/dev/null 2>&1; status=$$?; \
 	  test $$status -eq 2 || { echo "examples-smoke: $$1 --cfl 7 exited $$status, expected 2"; exit 1; }; \
-	done; echo "examples-smoke: 4 examples ran, wrote CSV and VTK, and refused a bad option"
+	done
+	@out=$(BUILD)/smoke/png_every; rm -rf $$out; \
+	./$(BUILD)/plate2d --res 3 --tend 0.01 --quiet --png-every 0.005 --png-field velocity --out $$out >/dev/null && \
+	./$(BUILD)/check_picture $$out/plate2d_0000.png $$out/plate2d_0001.png || { echo "examples-smoke: --png-every failed"; exit 1; }
+	@echo "examples-smoke: 4 examples ran, wrote CSV, VTK, PNG and SVG, and refused a bad option"
+# the demo, headless for 25 frames (a block dropped at frame 10): its RESULT line, and the same
+# checksum with 1 and 2 threads (frames without a wall budget are deterministic)
+demo-smoke: $(BUILD)/demo
+	@one=$$(OMP_NUM_THREADS=1 ./$(BUILD)/demo --headless --frames 25) && two=$$(./$(BUILD)/demo --headless --frames 25 --threads 2) && \
+	echo "$$one" | grep -Eq '^RESULT case=demo frames=25 .*blocks=1 .*checksum=[0-9a-f]{16} .*ms_per_frame=[0-9.]+ .*fps=[0-9.]+ ' && \
+	test "$$(echo "$$one" | sed 's/.*checksum=\([0-9a-f]*\).*/\1/')" = "$$(echo "$$two" | sed 's/.*checksum=\([0-9a-f]*\).*/\1/')" || \
+	{ echo "demo-smoke failed: $$one / $$two"; exit 1; }; echo "demo-smoke: 25 headless frames, same checksum with 1 and 2 threads"
 # ---- pinned results: hashes of short runs over every formulation, bit for bit (tests/pinned.c) ----
 $(BUILD)/pinned: tests/pinned.c tests/pinned_double.inc $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
@@ -129,9 +168,9 @@ pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 
 # The parts run two at a time (each prints its output when it is done); the test runner's
 # "N passed, M failed" is repeated last so that it closes make test. About 4 minutes on 2 cores.
-TEST_PARTS = check quickstart-run examples-smoke test-pinned fuzz fuzz-sanitize test-sanitize test-fast
+TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned fuzz fuzz-sanitize test-sanitize test-fast
 test:
-	@echo "make test: the header checks, examples, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4 minutes on 2 cores"
+	@echo "make test: the header checks, examples, demo, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4 minutes on 2 cores"
 	@$(MAKE) --no-print-directory -j2 --output-sync=target $(TEST_PARTS)
 	@tail -n 1 $(BUILD)/test_fast.log
 
@@ -149,7 +188,7 @@ fuzz-sanitize: $(BUILD)/fuzz_sanitize
 
 # ---- valgrind: serial builds (no OpenMP runtime and its thread caches to suppress) ----
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect
-$(BUILD)/test_memcheck: tests/test_sphsolid.c $(HEADER) | $(BUILD)
+$(BUILD)/test_memcheck: tests/test_sphsolid.c $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
 	$(CC) -std=c99 -O1 -g $(WARN) $< -o $@ $(LDLIBS)
 $(BUILD)/fuzz_memcheck: tests/fuzz_api.c $(HEADER) | $(BUILD)
 	$(CC) -std=c99 -O1 -g $(WARN) $< -o $@ $(LDLIBS)
@@ -163,6 +202,8 @@ memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 # ---- bench ----
 bench: examples
 	sh bench/run_bench.sh
+# probes that reach into the library's private state (sps__ functions): built only on request
+probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe
 $(BUILD)/torque_probe: bench/torque_probe.c bench/kick_shear.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/rotation_probe: bench/rotation_probe.c bench/kick_shear.h $(HEADER) | $(BUILD)

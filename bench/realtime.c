@@ -14,7 +14,7 @@
 #define SPHSOLID_IMPLEMENTATION /* this program's own copy: common.h asks for POSIX before any
                                    header, so the frame budget gets the monotonic clock */
 #include "../examples/common.h"
-#include "../examples/spinning_scene.h"
+#include "../examples/scenes/spinning.h"
 
 /* First guess of the sub-steps per frame: one frame period at CFL_ac h/(c0 + |v|max). */
 static int frame_substeps(sps_world* w, sps_body block, double max_speed, double fps) {
@@ -37,33 +37,39 @@ static void sleep_until(double t) {
 }
 
 int main(int argc, char** argv) {
-    double dp = 0.05, omega = 50, fps = 60, budget = 0.8, period, start, next, physics = 0, physics_max = 0, max_err = 0;
+    spinning_params p = {.dim = 2, .dp = 0.05, .omega = 50};
+    double fps = 60, budget = 0.8, period, start, next, physics = 0, physics_max = 0, max_err = 0;
     int substeps = 0, calibrate;
     long frames = 0, over_budget = 0;
-    common_options c = spinning_defaults();
+    common_options c = {.shear = SPS_SHEAR_GNO_A, .cfl = 0.4, .t_end = 0.5, .vtk_every = 0, .csv_every = 0.01, .E = SPINNING_E,
+                        .nu = SPINNING_NU_2D, .rho0 = SPINNING_RHO0, .out = "out/realtime", .jitter = 0, .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
-        {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.25, NULL},
-        {"omega", OPT_REAL, &omega, "angular velocity [rad/s]", 0, 1e4, NULL},
+        {"dp", OPT_REAL, &p.dp, "particle spacing [m]", 1e-3, 0.25, NULL},
+        {"omega", OPT_REAL, &p.omega, "angular velocity [rad/s]", 0, 1e4, NULL},
         {"fps", OPT_REAL, &fps, "frames per second", 1, 1000, NULL},
         {"budget", OPT_REAL, &budget, "wall budget of a frame's physics, fraction of the frame period; 0 = none", 0, 1, NULL},
         {"substeps", OPT_INT, &substeps, "acoustic sub-steps per frame; 0 = one frame period of simulated time", 0, 1e7, NULL},
         COMMON_OPTION_SPECS(c),
     };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
     sps_world* w;
     sps_body block, all = {0};
     sps_diagnostics d0, d;
     output_plan output;
 
-    c.out = "out/realtime";
-    c.csv_every = 0.01;
-    c.vtk_every = 0;
+    c.png_every = 0; /* no picture unless asked for: the loop's wall time is the measurement */
     opt_parse(argc, argv, "real-time loop of the spinning plate (sps_world_advance_frame)", opts, (int)(sizeof opts / sizeof *opts));
-    spinning_scene(&c, dp, omega, &w, &block);
+    apply_common(&c, &wd, &bd);
+    p.jitter = c.jitter;
+    p.seed = c.seed;
+    wd.log = ex_log;
+    ex_check(NULL, spinning_create(wd, &bd, "spinning_plate", &p, &w, &block));
     sps_world_diagnostics(w, all, &d0);
     period = 1 / fps;
     calibrate = substeps == 0;
     if (calibrate) substeps = frame_substeps(w, block, d0.max_speed, fps);
-    output_open(&output, c.out, "realtime", c.csv_every, c.vtk_every, ",frame_physics_ms");
+    output_open(&output, &c, "realtime", "velocity", ",frame_physics_ms");
 
     start = next = wall_seconds();
     while (sps_world_time(w) < c.t_end) {
@@ -81,18 +87,18 @@ int main(int argc, char** argv) {
         if (spent > physics_max) physics_max = spent;
         if (budget > 0 && spent > budget * period) ++over_budget;
         snprintf(extra, sizeof extra, ",%.3f", 1e3 * spent);
-        if (output_tick(w, &output, extra, &d) && angmom_error(&d, &d0) > max_err) max_err = angmom_error(&d, &d0);
+        if (output_tick(w, &output, extra, &d) && spinning_angmom_error(&d, &d0) > max_err) max_err = spinning_angmom_error(&d, &d0);
         progress(sps_world_time(w), c.t_end, start, c.quiet);
         next += period;
         if (next < wall_seconds()) next = wall_seconds(); /* a late frame shifts the schedule: no catch-up burst */
         sleep_until(next);
     }
-    fclose(output.csv);
+    output_close(w, &output);
     sps_world_diagnostics(w, all, &d);
     printf("RESULT case=realtime shear=%s dp=%g fps=%g budget=%g substeps_per_frame=%d frames=%ld sim_s=%.4f wall_s=%.2f "
            "sim_per_wall=%.3f mean_substeps=%.1f physics_ms_mean=%.2f physics_ms_max=%.2f frames_over_budget=%ld "
            "max_angmom_err=%.4g%% %s particles=%d steps=%ld out=%s\n",
-           shear_name(c.shear), dp, fps, budget, substeps, frames, (double)sps_world_time(w), wall_seconds() - start,
+           shear_name(c.shear), p.dp, fps, budget, substeps, frames, (double)sps_world_time(w), wall_seconds() - start,
            sps_world_time(w) / (wall_seconds() - start), (double)d.acoustic_steps / frames, 1e3 * physics / frames, 1e3 * physics_max,
            over_budget, 100 * max_err, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, c.out);
     sps_world_destroy(w);

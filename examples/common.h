@@ -1,7 +1,8 @@
 /* common.h - what every example program shares: GNU-style options with --help, errors as one
-   line on stderr with exit status 2, a progress line on stderr, output folders, wall time,
-   jittered lattices and the zero-crossing period detector. Not part of the library; each
-   example includes it once. POSIX (mkdir, isatty, clock_gettime). */
+   line on stderr with exit status 2, a progress line on stderr, output folders (CSV, VTK, PNG
+   and SVG pictures), wall time, passive OpenMP waits and the zero-crossing period detector.
+   Not part of the library; each example includes it once. POSIX (mkdir, isatty, clock_gettime,
+   setenv, execvp). */
 #ifndef SPS_EXAMPLE_COMMON_H
 #define SPS_EXAMPLE_COMMON_H
 #if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
@@ -17,6 +18,7 @@
 #include <time.h>
 #include <unistd.h>
 #include "../sphsolid.h"
+#include "render.h"
 
 #define PI 3.14159265358979323846
 
@@ -26,6 +28,15 @@
 #else
 #define EX_UNUSED
 #endif
+
+/* ---- OpenMP waits ---- */
+/* On a shared machine OpenMP's default spinning waits make runs 3-4x slower (a spinning thread
+   waits a whole time slice for a descheduled team mate at each barrier), so the examples ask
+   for passive waits unless the user chose a policy. The runtime reads OMP_WAIT_POLICY when it
+   loads, before main, hence the one re-execution (as tests/test_sphsolid.c does). */
+EX_UNUSED static void ex_passive_openmp_waits(char** argv) {
+    if (!getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0) execvp(argv[0], argv);
+}
 
 /* ---- options ---- */
 typedef enum { OPT_INT, OPT_REAL, OPT_STRING, OPT_CHOICE, OPT_FLAG, OPT_PAIR } opt_type;
@@ -202,11 +213,31 @@ EX_UNUSED static const char* rotation_name(int r) {
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, stress, threads, quiet; /* choice indices and flags */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
+    double png_every;   /* > 0: a PNG every png_every s; 0: none; < 0: one PNG at the end */
+    int svg;            /* 1: the final picture as SVG too (one circle per particle: large for big 3D runs) */
+    int png_field;      /* 0 = the example's choice, k = render_fields[k - 1] */
+    int png_view;       /* render_view */
+    int png_size[2];    /* width, height [px] */
     double zeta, xi; /* ENO and GNO coefficients; 0 = the papers' values (0.7 d + 2.1, and 2) */
     const char* out;
     double jitter; /* lattice jitter in dp */
     int seed;      /* of the jitter */
 } common_options;
+
+/* "auto|velocity|pressure|...": the --png-field choices, from render.h's table of fields. */
+EX_UNUSED static const char* png_field_choices(void) {
+    static char choices[256];
+    int k;
+    if (!choices[0]) {
+        snprintf(choices, sizeof choices, "auto");
+        for (k = 0; k < RENDER_FIELD_COUNT; ++k)
+            snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "|%s", render_fields[k].name);
+    }
+    return choices;
+}
+
+/* The defaults of the picture options; an example's common_options initialiser ends with them. */
+#define PNG_DEFAULTS .png_every = -1, .png_field = 0, .png_view = RENDER_VIEW_XY, .png_size = {600, 400}
 
 /* The opt_spec entries of common_options c, for an example's option table. */
 #define COMMON_OPTION_SPECS(c)                                                                          \
@@ -229,6 +260,11 @@ typedef struct {
     {"threads", OPT_INT, &(c).threads, "OpenMP threads, 0 = all", 0, 1024, NULL},                       \
     {"jitter", OPT_REAL, &(c).jitter, "lattice jitter: each coordinate moved by U(-j/2, j/2) dp", 0, 0.5, NULL}, \
     {"seed", OPT_INT, &(c).seed, "seed of the jitter", 0, 2147483647, NULL},                           \
+    {"png-every", OPT_REAL, &(c).png_every, "PNG snapshot interval [s], 0 = none, -1 = one PNG at the end", -1, 1e4, NULL}, \
+    {"svg", OPT_FLAG, &(c).svg, "write the final picture as SVG too", 0, 0, NULL},                   \
+    {"png-field", OPT_CHOICE, &(c).png_field, "what colours the particles (auto: von-mises for a plate whose stress is tracked, else velocity)", 0, 0, png_field_choices()}, \
+    {"png-view", OPT_CHOICE, &(c).png_view, "3D: projection plane or isometric view", 0, 0, RENDER_VIEW_CHOICES}, \
+    {"png-size", OPT_PAIR, (c).png_size, "picture width,height [px]", 160, 4096, NULL},                 \
     {"quiet", OPT_FLAG, &(c).quiet, "no progress line", 0, 0, NULL}
 
 /* Copies the shared options into the world and body defs. */
@@ -249,33 +285,10 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
-/* Fills [lo, hi) of body b like sps_body_add_box (points lo + (i + 1/2) dp), each coordinate
-   then moved by a uniform random amount in [-j/2, j/2] dp (splitmix64 from seed), so neighbours
-   start at least (1 - j) dp apart along an axis. j = 0 is sps_body_add_box itself. Exits on error. */
-EX_UNUSED static void ex_add_box(sps_world* w, sps_body b, const sps_real lo[3], const sps_real hi[3], double j, int seed) {
-    const sps_world_def* wd = sps_world_get_def(w);
-    const double dp = wd->dp;
-    int cnt[3] = {1, 1, 1}, a, i, k, l, n = 0;
-    uint64_t rng = (uint64_t)seed;
-    sps_real* xyz;
-    if (j == 0) { ex_check(w, sps_body_add_box(w, b, lo, hi, NULL)); return; }
-    /* the library's lattice count (sps__fill), slack included: float rounding of lo, hi and dp */
-    for (a = 0; a < wd->dim; ++a) cnt[a] = (int)floor((hi[a] - lo[a]) / dp + (sps_is_double() ? 1e-6 : 1e-3));
-    if (!(xyz = (sps_real*)malloc(sizeof(sps_real) * 3 * (size_t)cnt[0] * cnt[1] * cnt[2]))) { fprintf(stderr, "%s: out of memory\n", g_prog); exit(2); }
-    for (l = 0; l < cnt[2]; ++l)
-        for (k = 0; k < cnt[1]; ++k)
-            for (i = 0; i < cnt[0]; ++i, ++n) {
-                int idx[3] = {i, k, l};
-                for (a = 0; a < 3; ++a) {
-                    uint64_t z = (rng += 0x9e3779b97f4a7c15ULL); /* splitmix64 */
-                    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-                    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-                    z ^= z >> 31;
-                    xyz[3 * n + a] = a < wd->dim ? lo[a] + (idx[a] + 0.5 + j * ((double)(z >> 11) / 9007199254740992.0 - 0.5)) * dp : 0;
-                }
-            }
-    ex_check(w, sps_body_add_particles(w, b, n, xyz, NULL));
-    free(xyz);
+/* 1 if bodies made with these options integrate the shear stress (von Mises, strain energy):
+   the OG family always, ENO and ENO-A bodies with --stress on. */
+EX_UNUSED static int ex_tracks_stress(const common_options* c) {
+    return c->stress == 0 || (c->shear != SPS_SHEAR_ENO && c->shear != SPS_SHEAR_ENO_A);
 }
 
 /* ---- time, progress, files ---- */
@@ -330,29 +343,46 @@ EX_UNUSED static const char* common_result_fields(const common_options* c) {
     return fields;
 }
 
-/* ---- CSV rows and VTK snapshots at fixed intervals of simulated time ---- */
+/* ---- CSV rows, VTK snapshots and PNG pictures at fixed intervals of simulated time ---- */
 typedef struct {
     FILE* csv;
     const char *dir, *name;
-    double csv_every, vtk_every, next_csv, next_vtk, hourglass_max, min_spacing;
-    int frames;
+    double csv_every, vtk_every, png_every, next_csv, next_vtk, next_png, hourglass_max, min_spacing;
+    int frames, pictures, svg;
+    render_options picture;
 } output_plan;
 
 /* Creates dir, opens dir/name.csv and writes the header: the diagnostics' columns, then the
-   case's own (extra_header starts with a comma). Exits with a message if it cannot. */
-EX_UNUSED static void output_open(output_plan* o, const char* dir, const char* name, double csv_every, double vtk_every,
+   case's own (extra_header starts with a comma). Pictures show c's --png-field, or
+   default_field (a render.h field name) for auto. Exits with a message if it cannot. */
+EX_UNUSED static void output_open(output_plan* o, const common_options* c, const char* name, const char* default_field,
                                   const char* extra_header) {
     char file[256];
     memset(o, 0, sizeof *o);
-    o->dir = dir; o->name = name; o->csv_every = csv_every; o->vtk_every = vtk_every; o->min_spacing = 1e30;
-    if (make_dirs(dir) != 0) { fprintf(stderr, "cannot create %s\n", dir); exit(1); }
+    o->dir = c->out; o->name = name; o->csv_every = c->csv_every; o->vtk_every = c->vtk_every; o->png_every = c->png_every;
+    o->svg = c->svg;
+    o->min_spacing = 1e30;
+    o->picture.width = c->png_size[0];
+    o->picture.height = c->png_size[1];
+    o->picture.view = (render_view)c->png_view;
+    o->picture.field = c->png_field ? &render_fields[c->png_field - 1] : render_field_by_name(default_field);
+    o->picture.decorations = 1;
+    if (make_dirs(o->dir) != 0) { fprintf(stderr, "cannot create %s\n", o->dir); exit(1); }
     snprintf(file, sizeof file, "%s.csv", name);
-    o->csv = open_out(dir, file);
+    o->csv = open_out(o->dir, file);
     fprintf(o->csv, "%s%s\n", sps_diagnostics_csv_header(), extra_header);
 }
 
+/* Writes a picture of w to dir/name_suffix.png (or .svg); exits with a message if it cannot. */
+EX_UNUSED static void output_picture(const sps_world* w, const output_plan* o, const char* suffix, render_format format) {
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s_%s.%s", o->dir, o->name, suffix, format == RENDER_SVG ? "svg" : "png");
+    if (render_world(w, &o->picture, format, path) != 0) { fprintf(stderr, "%s: cannot write %s\n", g_prog, path); exit(1); }
+}
+
 /* Writes what is due at the world's time: a CSV row (diagnostics, then extra, the case's own
-   columns starting with a comma) and a VTK snapshot. Returns 1 and fills d when a row was written. */
+   columns starting with a comma), a VTK snapshot and a PNG picture (numbered like the VTK
+   files). Returns 1 and fills d when a row was written. */
 EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra, sps_diagnostics* d) {
     double t = sps_world_time(w);
     int wrote = 0;
@@ -373,7 +403,21 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
         ex_check(w, sps_world_write_vtk(w, path));
         o->next_vtk += o->vtk_every;
     }
+    if (o->png_every > 0 && t >= o->next_png - 1e-12) {
+        char number[16];
+        snprintf(number, sizeof number, "%04d", o->pictures++);
+        output_picture(w, o, number, RENDER_PNG);
+        o->next_png += o->png_every;
+    }
     return wrote;
+}
+
+/* The end of the run: closes the CSV, writes the final picture dir/name_final.png when
+   --png-every < 0, and dir/name_final.svg with --svg. */
+EX_UNUSED static void output_close(const sps_world* w, output_plan* o) {
+    fclose(o->csv);
+    if (o->png_every < 0) output_picture(w, o, "final", RENDER_PNG);
+    if (o->svg) output_picture(w, o, "final", RENDER_SVG);
 }
 
 /* A step failed (r): writes the world, rolled back to its last good state (keep_last_good_state

@@ -1,8 +1,8 @@
 /* plate3d.c - 3D oscillating plate, simply supported, BENCHMARKS.md A2 (ENO 6.2, ANG 5.1.2).
 
-   A square plate L = W = 0.4, H = 0.01 (rho0 1000, E 1e8, nu 0.3) is simply supported: the
-   z-velocity of its mid-plane particles on the four lateral sides is held at zero, as ENO 6.2
-   describes it (--support edge). --support ring adds instead a one-particle ring outside
+   A square plate L = W = 0.4, H = 0.01 (rho0 1000, E 1e8, nu 0.3) is simply supported
+   (set-up: scenes/plate3d.h): the z-velocity of its mid-plane particles on the four lateral
+   sides is held at zero, as ENO 6.2 describes it (--support edge). --support ring adds instead a one-particle ring outside
    [0, L] x [0, W] in the mid plane (BENCHMARKS.md's note on the reference code); --support
    thick makes that ring as thick as the plate, all layers held in z (this reproduces the
    papers' particle counts: 44.7k / 204.0k / 1179.4k at H/dp = 3 / 5 / 9). It starts with v_z = sin(m pi x/L) sin(n pi y/W) and vibrates in mode
@@ -14,36 +14,25 @@
    Build: make examples        Run: ./build/plate3d --res 3 --mode 2,2
    Expect: period 0.0149 s for mode (2,2) at H/dp = 3 (paper), 0.0133 s in theory. */
 #include "common.h"
-
-#define PLATE_L 0.4
-#define PLATE_W 0.4
-#define PLATE_H 0.01
-
-typedef struct { int m, n; } mode;
-static void initial_velocity(const sps_real x[3], sps_real v[3], void* user) {
-    const mode* md = (const mode*)user;
-    int inside = x[0] > 0 && x[0] < PLATE_L && x[1] > 0 && x[1] < PLATE_W;
-    v[0] = v[1] = 0;
-    v[2] = inside ? sin(md->m * PI * x[0] / PLATE_L) * sin(md->n * PI * x[1] / PLATE_W) : 0; /* ANG eq. 53 */
-}
+#include "scenes/plate3d.h"
 
 /* The period of mode (m, n) by Mindlin's thick-plate theory (shear deformation and rotary
    inertia, shear coefficient pi^2/12), the continuum answer thin-plate theory leaves out for
    H/L = 0.025. With w = W s, div psi = P s and laplacian(s) = -k^2 s, Mindlin's equations give
    (kGH k^2 - rho H w^2)(D k^2 + kGH - rho I w^2) = (kGH)^2 k^2, I = H^3/12 (D: the flexural
    rigidity of ANG eq. 55): the lower root. */
-static double mindlin_period(double E, double nu, double D, double rho, mode md) {
+static double mindlin_period(double E, double nu, double D, double rho, plate3d_mode md) {
     const double kappa = PI * PI / 12, G = E / (2 * (1 + nu));
-    const double I = pow(PLATE_H, 3) / 12, k2 = PI * PI * (pow(md.m / PLATE_L, 2) + pow(md.n / PLATE_W, 2));
-    const double kgh = kappa * G * PLATE_H, a = kgh * k2, b = D * k2 + kgh;
-    const double qa = rho * PLATE_H * rho * I, qb = -(a * rho * I + b * rho * PLATE_H), qc = a * b - kgh * kgh * k2;
+    const double I = pow(PLATE3D_H, 3) / 12, k2 = PI * PI * (pow(md.m / PLATE3D_L, 2) + pow(md.n / PLATE3D_W, 2));
+    const double kgh = kappa * G * PLATE3D_H, a = kgh * k2, b = D * k2 + kgh;
+    const double qa = rho * PLATE3D_H * rho * I, qb = -(a * rho * I + b * rho * PLATE3D_H), qc = a * b - kgh * kgh * k2;
     const double omega2 = (-qb - sqrt(qb * qb - 4 * qa * qc)) / (2 * qa);
     return 2 * PI / sqrt(omega2);
 }
 
 /* ANG Table 3 (ENO-A, GNO-A) and ENO Table 3 (ENO), H/dp = 3, 5, 9; -1 where the papers have no
    value. The plate is square, so mode (1,2) has the period of (2,1). */
-static double paper_period(int shear, mode md, int res) {
+static double paper_period(int shear, plate3d_mode md, int res) {
     static const double eno_a[3][3] = {{0.0573, 0.0543, 0.0528}, {0.0231, 0.0218, 0.0212}, {0.0149, 0.0141, 0.0136}};
     static const double gno_a[3][3] = {{0.0581, 0.0553, 0.0538}, {0.0241, 0.0226, 0.0220}, {0.0153, 0.0144, 0.0138}};
     static const double eno[3][3] = {{0.0572, 0.0543, 0.0529}, {0.0231, 0.0218, 0.0212}, {0.0148, 0.0140, 0.0136}};
@@ -78,36 +67,17 @@ static int on_step(sps_world* w, void* user) {
     return s->stop_at_period && s->period.n >= 2;
 }
 
-/* The support ring: one row of particles just outside each edge, in the mid plane z = 0, or
-   (full = 1) in every layer of the plate's thickness; their z-velocity is held at zero. */
-static void add_support_ring(sps_world* w, sps_body plate, double dp, int res, int full) {
-    int nx = (int)(PLATE_L / dp + 0.5), ny = (int)(PLATE_W / dp + 0.5), i, l, layers = full ? res : 1;
-    sps_real p[3];
-    for (l = 0; l < layers; ++l) {
-        p[2] = full ? -PLATE_H / 2 + (l + 0.5) * dp : 0;
-        for (i = -1; i <= nx; ++i) { /* bottom and top rows, corners included */
-            p[0] = (i + 0.5) * dp;
-            p[1] = -0.5 * dp;          ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
-            p[1] = PLATE_W + 0.5 * dp; ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
-        }
-        for (i = 0; i < ny; ++i) { /* left and right columns */
-            p[1] = (i + 0.5) * dp;
-            p[0] = -0.5 * dp;          ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
-            p[0] = PLATE_L + 0.5 * dp; ex_check(w, sps_body_add_particles(w, plate, 1, p, NULL));
-        }
-    }
-}
-
 int main(int argc, char** argv) {
-    int res = 3, full = 0, md_arg[2] = {1, 1}, support = 0;
+    plate3d_params p = {.res = 3, .mode = {1, 1}, .support = PLATE3D_SUPPORT_EDGE};
+    int full = 0, md_arg[2] = {1, 1};
     /* t_end 0: stop once the first period is measured (at most 1.6 x theory) */
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 2e-4,
-                        .E = 1e8, .nu = 0.3, .rho0 = 1000, .out = "out/plate3d",
-                        .jitter = 0, .seed = 1};
+                        .E = PLATE3D_E, .nu = PLATE3D_NU, .rho0 = PLATE3D_RHO0, .out = "out/plate3d",
+                        .jitter = 0, .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
-        {"res", OPT_INT, &res, "resolution H/dp", 2, 40, NULL},
+        {"res", OPT_INT, &p.res, "resolution H/dp", 2, 40, NULL},
         {"mode", OPT_PAIR, md_arg, "vibration mode m,n", 1, 20, NULL},
-        {"support", OPT_CHOICE, &support, "simple support: mid-plane edge particles | mid-plane ring outside | full-thickness ring outside", 0, 0, "edge|ring|thick"},
+        {"support", OPT_CHOICE, &p.support, "simple support: mid-plane edge particles | mid-plane ring outside | full-thickness ring outside", 0, 0, "edge|ring|thick"},
         {"full", OPT_FLAG, &full, "with --tend, run to the end even after the period is found", 0, 0, NULL},
         COMMON_OPTION_SPECS(c),
     };
@@ -116,48 +86,26 @@ int main(int argc, char** argv) {
     sps_world* w;
     sps_body plate;
     run_state s;
-    mode md;
-    double dp, D, analytical, mindlin, paper, period, wall;
-    sps_real lo[3] = {0, 0, -PLATE_H / 2}, hi[3] = {PLATE_L, PLATE_W, PLATE_H / 2}, antinode[3];
-    sps_real ring_lo[4][3] = {{-1, -1, -1}, {PLATE_L, -1, -1}, {-1, -1, -1}, {-1, PLATE_W, -1}};
-    sps_real ring_hi[4][3] = {{0, 1, 1}, {1, 1, 1}, {1, 0, 1}, {1, 1, 1}};
-    int k;
+    double D, analytical, mindlin, paper, period, wall;
 
+    ex_passive_openmp_waits(argv);
     opt_parse(argc, argv, "3D oscillating plate (BENCHMARKS.md A2)", opts, (int)(sizeof opts / sizeof *opts));
-    md.m = md_arg[0];
-    md.n = md_arg[1];
-    antinode[0] = PLATE_L / (2 * md.m);
-    antinode[1] = PLATE_W / (2 * md.n);
-    antinode[2] = 0;
-    D = c.E * pow(PLATE_H, 3) / (12 * (1 - c.nu * c.nu));                                                 /* ANG eq. 55 */
-    analytical = 2 / PI / (pow(md.m / PLATE_L, 2) + pow(md.n / PLATE_W, 2)) * sqrt(c.rho0 * PLATE_H / D); /* ANG eq. 54 */
-    mindlin = mindlin_period(c.E, c.nu, D, c.rho0, md);
+    p.mode.m = md_arg[0];
+    p.mode.n = md_arg[1];
+    D = c.E * pow(PLATE3D_H, 3) / (12 * (1 - c.nu * c.nu));                                                            /* ANG eq. 55 */
+    analytical = 2 / PI / (pow(p.mode.m / PLATE3D_L, 2) + pow(p.mode.n / PLATE3D_W, 2)) * sqrt(c.rho0 * PLATE3D_H / D); /* ANG eq. 54 */
+    mindlin = mindlin_period(c.E, c.nu, D, c.rho0, p.mode);
     if (c.t_end == 0) c.t_end = 1.6 * analytical; /* stops earlier, at the second zero crossing */
-    dp = PLATE_H / res;
-    wd.dim = 3;
-    wd.dp = dp;
-    bd.name = "plate";
     apply_common(&c, &wd, &bd);
-    w = ex_create(&wd);
-    ex_check(w, sps_world_add_body(w, &bd, &plate));
-    ex_add_box(w, plate, lo, hi, c.jitter, c.seed);
-    if (support == 0) { /* the mid-plane particles (the two middle layers when H/dp is even) of the sides */
-        for (k = 0; k < 4; ++k) {
-            ring_lo[k][2] = -0.5001 * dp;
-            ring_hi[k][2] = 0.5001 * dp;
-        }
-        ring_hi[0][0] = dp; ring_lo[1][0] = PLATE_L - dp; ring_hi[2][1] = dp; ring_lo[3][1] = PLATE_W - dp;
-    } else {
-        add_support_ring(w, plate, dp, res, support == 2);
-    }
-    for (k = 0; k < 4; ++k) ex_check(w, sps_body_constrain_box(w, plate, ring_lo[k], ring_hi[k], SPS_AXIS_Z, NULL, NULL));
-    ex_check(w, sps_body_set_velocity(w, plate, initial_velocity, &md));
-
+    p.jitter = c.jitter;
+    p.seed = c.seed;
+    wd.log = ex_log;
     memset(&s, 0, sizeof s);
+    ex_check(NULL, plate3d_create(wd, &bd, &p, &w, &plate, &s.probe));
+
     s.quiet = c.quiet; s.t_end = c.t_end;
     s.stop_at_period = !full;
-    ex_check(w, sps_world_add_observer(w, plate, antinode, &s.probe));
-    output_open(&s.output, c.out, "plate3d", c.csv_every, c.vtk_every, ",deflection");
+    output_open(&s.output, &c, "plate3d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",deflection");
     s.wall0 = wall_seconds();
     on_step(w, &s);
     {
@@ -165,8 +113,8 @@ int main(int argc, char** argv) {
         if (r != SPS_OK) ex_step_failed(w, r, &s.output);
     }
     wall = wall_seconds() - s.wall0;
-    fclose(s.output.csv);
-    paper = paper_period(c.shear, md, res);
+    output_close(w, &s.output);
+    paper = paper_period(c.shear, p.mode, p.res);
     period = period_first(&s.period);
     {
         sps_diagnostics d;
@@ -180,7 +128,7 @@ int main(int argc, char** argv) {
         printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.6f paper=%s analytical=%.6f "
                "mindlin=%.6f err_paper=%s err_analytical=%s err_mindlin=%s hourglass_max=%.3g %s particles=%d steps=%ld advection_steps=%ld "
                "t_end=%.4g wall_s=%.2f out=%s\n",
-               shear_name(c.shear), res, md.m, md.n, c.stepping ? "single" : "dual", period, paper_text, analytical,
+               shear_name(c.shear), p.res, p.mode.m, p.mode.n, c.stepping ? "single" : "dual", period, paper_text, analytical,
                mindlin, err_paper, err_analytical, err_mindlin, s.output.hourglass_max, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, c.out);
     }
     sps_world_destroy(w);

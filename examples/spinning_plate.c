@@ -1,55 +1,55 @@
-/* spinning_plate.c - 2D spinning plate, BENCHMARKS.md A3 (ENO 6.10, ANG 5.1.3); compiled with
-   SPINNING_CUBE defined it is the 3D spinning cube, A4 (ANG 5.1.4): see spinning_cube.c.
+/* spinning_plate.c - 2D spinning plate, BENCHMARKS.md A3 (ENO 6.10, ANG 5.1.3).
 
-   A unit square (cube) centred at the origin, rho0 1100, E 1.7e7, nu 0.45 (cube: 0.3), starts
-   in rigid rotation at omega = 50 rad/s about z with no constraint. Linear and angular momentum
-   are exactly conserved in theory; we report the largest relative angular-momentum error
-   over the run next to ANG Fig. 13 / 16, the drift of the linear momentum, the smallest pair
-   distance (clustering) and the hourglass indicator. CSV: momenta, energies, and the
-   displacement and velocity of the top-right corner.
+   A unit square centred at the origin, rho0 1100, E 1.7e7, nu 0.45, starts in rigid rotation
+   at omega = 50 rad/s about z with no constraint (set-up: scenes/spinning.h). Linear and
+   angular momentum are exactly conserved in theory; we report the largest relative
+   angular-momentum error over the run next to ANG Fig. 13, the drift of the linear momentum,
+   the smallest pair distance (clustering) and the hourglass indicator. CSV: momenta, energies,
+   and the displacement and velocity of the top-right corner. spinning_cube.c is the same
+   measurement in 3D.
 
    Build: make examples     Run: ./build/spinning_plate --shear gno-a
    Expect: max_angmom_err about 0.5 % for GNO-A, a few % for ENO-A, tens of % for ENO. */
 #include "common.h"
-#include "spinning_scene.h"
+#include "scenes/spinning.h"
 
-#ifdef SPINNING_CUBE
-/* ANG 5.1.4, rows in sps_shear order (ENO, ENO-A, OG, OAS, GNO, GNO-A); -1: not in the paper */
-static const double paper_error[6] = {-1, 2.67, -1, -1, -1, 1.18};
-#else
-static const double paper_error[6] = {59.17, 2.58, -1, -1, 1.12, 0.55}; /* ANG Fig. 13 [%] */
-#endif
+#define CASE "spinning_plate"
+static const double paper_error[6] = {59.17, 2.58, -1, -1, 1.12, 0.55}; /* ANG Fig. 13 [%], rows in sps_shear order */
 
 static double norm3(const sps_real* a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 int main(int argc, char** argv) {
-    int corner_id;
-    double dp = 0.05, omega = 50;
-    common_options c = spinning_defaults();
+    spinning_params p = {.dim = 2, .dp = 0.05, .omega = 50};
+    common_options c = {.shear = SPS_SHEAR_GNO_A, .cfl = 0.4, .t_end = 0.5, .vtk_every = 0.1, .csv_every = 0.001,
+                        .E = SPINNING_E, .nu = SPINNING_NU_2D, .rho0 = SPINNING_RHO0, .out = "out/" CASE, .jitter = 0, .seed = 1,
+                        PNG_DEFAULTS};
     opt_spec opts[] = {
-        {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.25, NULL},
-        {"omega", OPT_REAL, &omega, "angular velocity [rad/s]", 0, 1e4, NULL},
+        {"dp", OPT_REAL, &p.dp, "particle spacing [m]", 1e-3, 0.25, NULL},
+        {"omega", OPT_REAL, &p.omega, "angular velocity [rad/s]", 0, 1e4, NULL},
         COMMON_OPTION_SPECS(c),
     };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
     sps_world* w;
     sps_body block;
     sps_diagnostics d0, d;
     sps_body all = {0};
     sps_real corner[3] = {0.5, 0.5, 0.5};
-    double wall0, max_err = 0, max_p_drift = 0, p_scale = 0;
-    int i, n;
+    double wall0, wall, max_err = 0, max_p_drift = 0, p_scale;
+    int corner_id;
     output_plan output;
 
-    opt_parse(argc, argv, TITLE, opts, (int)(sizeof opts / sizeof *opts));
-    spinning_scene(&c, dp, omega, &w, &block);
+    ex_passive_openmp_waits(argv);
+    opt_parse(argc, argv, "2D spinning plate (BENCHMARKS.md A3)", opts, (int)(sizeof opts / sizeof *opts));
+    apply_common(&c, &wd, &bd);
+    p.jitter = c.jitter;
+    p.seed = c.seed;
+    wd.log = ex_log;
+    ex_check(NULL, spinning_create(wd, &bd, CASE, &p, &w, &block));
     if ((corner_id = sps_world_nearest_particle(w, block, corner)) < 0) ex_check(w, SPS_ERR_INVALID_ARG);
 
-    output_open(&output, c.out, CASE, c.csv_every, c.vtk_every, ",corner_ux,corner_uy,corner_vx,corner_vy");
-    n = sps_world_particle_count(w);
-    for (i = 0; i < n; ++i) { /* momentum scale sum m |v| for the linear-momentum drift */
-        const sps_real *vx = sps_world_field(w, SPS_FIELD_VELOCITY_X), *vy = sps_world_field(w, SPS_FIELD_VELOCITY_Y);
-        p_scale += sps_world_field(w, SPS_FIELD_MASS)[i] * sqrt(vx[i] * vx[i] + vy[i] * vy[i]); /* v_z = 0 */
-    }
+    output_open(&output, &c, CASE, "velocity", ",corner_ux,corner_uy,corner_vx,corner_vy");
+    p_scale = spinning_momentum_scale(w);
     ex_check(w, sps_world_diagnostics(w, all, &d0));
     wall0 = wall_seconds();
     for (;;) {
@@ -60,9 +60,8 @@ int main(int argc, char** argv) {
         snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g,%.9g", (double)pc.displacement[0], (double)pc.displacement[1],
                  (double)pc.velocity[0], (double)pc.velocity[1]);
         if (output_tick(w, &output, extra, &d)) {
-            double err = angmom_error(&d, &d0);
-            if (err > max_err) max_err = err;
-            if (norm3(d.linear_momentum) / p_scale > max_p_drift) max_p_drift = norm3(d.linear_momentum) / p_scale;
+            max_err = fmax(max_err, spinning_angmom_error(&d, &d0));
+            max_p_drift = fmax(max_p_drift, norm3(d.linear_momentum) / p_scale);
         }
         if (t >= c.t_end) break;
         {
@@ -71,14 +70,14 @@ int main(int argc, char** argv) {
         }
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
-    fclose(output.csv);
+    wall = wall_seconds() - wall0;
+    output_close(w, &output);
     printf("RESULT case=%s shear=%s dp=%g omega=%g stepping=%s nu=%g jitter=%g max_angmom_err=%.4g%% paper=%.2f%% "
            "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g %s particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n",
-           CASE, shear_name(c.shear), dp, omega, c.stepping ? "single" : "dual", c.nu, c.jitter, 100 * max_err,
+           CASE, shear_name(c.shear), p.dp, p.omega, c.stepping ? "single" : "dual", c.nu, c.jitter, 100 * max_err,
            paper_error[c.shear], max_p_drift, output.min_spacing, output.hourglass_max, (double)d0.kinetic_energy, (double)d.kinetic_energy,
-           common_result_fields(&c), n,
-           d.acoustic_steps, wall_seconds() - wall0, c.out);
+           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
 }

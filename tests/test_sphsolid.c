@@ -748,104 +748,50 @@ static int test_momentum_conservation(void) {
 }
 
 /* ============================================================================================ */
-/* >>cases: the two plates of examples/plate2d.c and examples/plate3d.c, built the same way     */
+/* >>cases: the two plates of examples/plate2d.c and examples/plate3d.c, built by their scenes  */
 
-#define PLATE2D_L 0.2
-#define PLATE2D_H 0.02
-#define PLATE2D_KL 1.875 /* first root of cos(kL) cosh(kL) = -1 */
+#include "../examples/scenes/plate2d.h"
+#include "../examples/scenes/plate3d.h"
 
-/* First bending mode of a clamped-free beam (ENO eq. 33). */
-static double plate2d_mode(double x) {
-    double k = PLATE2D_KL / PLATE2D_L, kl = PLATE2D_KL;
-    return (sin(kl) + sinh(kl)) * (cos(k * x) - cosh(k * x)) - (cos(kl) + cosh(kl)) * (sin(k * x) - sinh(k * x));
-}
-typedef struct { double vf, c0; } plate2d_start;
-static void plate2d_velocity(const sps_real x[3], sps_real v[3], void* user) {
-    const plate2d_start* s = (const plate2d_start*)user;
-    v[0] = 0;
-    v[1] = x[0] > 0 ? s->vf * s->c0 * plate2d_mode(x[0]) / plate2d_mode(PLATE2D_L) : 0; /* ENO eq. 32 */
-}
-
-/* The 2D cantilever: L x H plate (rho0 1000, E 2e6, nu 0.3975) with a clamped holder of 4 dp,
-   first-mode start with v_f, observer at the free end (L, 0). */
+/* The 2D cantilever of examples/scenes/plate2d.h: L x H plate (rho0 1000, E 2e6, nu 0.3975)
+   with a clamped holder of 4 dp, first-mode start with v_f, observer at the free end (L, 0). */
 static sps_world* plate2d_build(int res, sps_shear shear, sps_rotation rotation, double vf, int threads, sps_observer* tip) {
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
+    plate2d_params p = {res, vf, 0, 0};
     sps_world* w;
     sps_body plate;
-    plate2d_start s0;
-    double dp = PLATE2D_H / res;
-    sps_real lo[3] = {-4 * dp, -PLATE2D_H / 2, 0}, hi[3] = {PLATE2D_L, PLATE2D_H / 2, 0};
-    sps_real clo[3] = {-1, -1, -1}, chi[3] = {0, 1, 1}, x_tip[3] = {PLATE2D_L, 0, 0}, c0;
-    wd.dim = 2; wd.dp = dp; wd.threads = threads; wd.log = quiet_log;
+    wd.threads = threads; wd.log = quiet_log;
     /* default (recomputed) pair geometry, as the example */
-    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
-    bd.name = "plate";
-    bd.material.density = 1000;
-    bd.material.youngs_modulus = 2e6;
-    bd.material.poisson_ratio = 0.3975;
+    bd.material.density = PLATE2D_RHO0;
+    bd.material.youngs_modulus = PLATE2D_E;
+    bd.material.poisson_ratio = PLATE2D_NU;
     bd.shear = shear;
     bd.rotation = rotation;
     bd.track_stress = 1;
-    if (sps_world_add_body(w, &bd, &plate) != SPS_OK || sps_body_add_box(w, plate, lo, hi, NULL) != SPS_OK ||
-        sps_body_constrain_box(w, plate, clo, chi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK ||
-        sps_body_material_constants(w, plate, &c0, NULL, NULL) != SPS_OK) {
-        sps_world_destroy(w);
-        return NULL;
-    }
-    s0.vf = vf;
-    s0.c0 = c0;
-    if (sps_body_set_velocity(w, plate, plate2d_velocity, &s0) != SPS_OK || sps_world_add_observer(w, plate, x_tip, tip) != SPS_OK) {
-        sps_world_destroy(w);
-        return NULL;
-    }
-    return w;
+    return plate2d_create(wd, &bd, &p, &w, &plate, tip) == SPS_OK ? w : NULL;
 }
 
-#define PLATE3D_L 0.4
-#define PLATE3D_W 0.4
-#define PLATE3D_H 0.01
-typedef struct { int m, n; } plate3d_mode;
-static void plate3d_velocity(const sps_real x[3], sps_real v[3], void* user) {
-    const plate3d_mode* md = (const plate3d_mode*)user;
-    int inside = x[0] > 0 && x[0] < PLATE3D_L && x[1] > 0 && x[1] < PLATE3D_W;
-    v[0] = v[1] = 0;
-    v[2] = inside ? sin(md->m * PI * x[0] / PLATE3D_L) * sin(md->n * PI * x[1] / PLATE3D_W) : 0; /* ANG eq. 53 */
-}
-
-/* The simply supported 3D plate: L x W x H (rho0 1000, E 1e8, nu 0.3), v_z held at 0 on the
-   mid-plane particles of the four sides (examples/plate3d.c --support edge, ENO 6.2's wording),
-   mode (m, n) start, observer at x_obs. */
-static sps_world* plate3d_build(int res, plate3d_mode* md, int threads, const sps_real x_obs[3], sps_observer* obs) {
+/* The simply supported 3D plate of examples/scenes/plate3d.h: L x W x H (rho0 1000, E 1e8,
+   nu 0.3), v_z held at 0 on the mid-plane particles of the four sides (examples/plate3d.c
+   --support edge, ENO 6.2's wording), mode (m, n) start, observer at the first antinode
+   (L/2m, W/2n, 0). */
+static sps_world* plate3d_build(int res, plate3d_mode md, int threads, sps_observer* obs) {
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
+    plate3d_params p = {res, md, PLATE3D_SUPPORT_EDGE, 0, 0};
     sps_world* w;
     sps_body plate;
-    double dp = PLATE3D_H / res;
-    sps_real lo[3] = {0, 0, -PLATE3D_H / 2}, hi[3] = {PLATE3D_L, PLATE3D_W, PLATE3D_H / 2};
-    sps_real side_lo[4][3] = {{-1, -1, 0}, {PLATE3D_L - dp, -1, 0}, {-1, -1, 0}, {-1, PLATE3D_W - dp, 0}};
-    sps_real side_hi[4][3] = {{dp, 1, 0}, {1, 1, 0}, {1, dp, 0}, {1, 1, 0}};
-    int k, ok = 1;
-    wd.dim = 3; wd.dp = dp; wd.threads = threads; wd.log = quiet_log;
+    wd.threads = threads; wd.log = quiet_log;
     /* stored pair geometry: half the cost; the first period is the same to 0.1 % at H/dp = 3
        (0.0158 s both ways, measured); only long runs drift with it (README, design notes) */
     wd.frozen_geometry = 1;
-    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
-    bd.name = "plate";
-    bd.material.density = 1000;
-    bd.material.youngs_modulus = 1e8;
-    bd.material.poisson_ratio = 0.3;
+    bd.material.density = PLATE3D_RHO0;
+    bd.material.youngs_modulus = PLATE3D_E;
+    bd.material.poisson_ratio = PLATE3D_NU;
     bd.shear = SPS_SHEAR_ENO_A;
     bd.track_stress = 1;
-    ok = sps_world_add_body(w, &bd, &plate) == SPS_OK && sps_body_add_box(w, plate, lo, hi, NULL) == SPS_OK;
-    for (k = 0; k < 4 && ok; ++k) { /* the mid-plane layer: |z| <= dp/2 (res odd) */
-        side_lo[k][2] = -0.5001 * dp;
-        side_hi[k][2] = 0.5001 * dp;
-        ok = sps_body_constrain_box(w, plate, side_lo[k], side_hi[k], SPS_AXIS_Z, NULL, NULL) == SPS_OK;
-    }
-    ok = ok && sps_body_set_velocity(w, plate, plate3d_velocity, md) == SPS_OK && sps_world_add_observer(w, plate, x_obs, obs) == SPS_OK;
-    if (!ok) { sps_world_destroy(w); return NULL; }
-    return w;
+    return plate3d_create(wd, &bd, &p, &w, &plate, obs) == SPS_OK ? w : NULL;
 }
 
 /* First period from the zero crossings of a signal that starts at 0 (as examples/common.h):
@@ -2225,13 +2171,12 @@ static int test_hourglass_og_breaks_others_do_not(void) {
    span is L + dp and the period 0.0158 s, +5.7%; the sides' own mid-plane particles, as ENO 6.2
    and ANG 5.1.2 describe the support, give 0.0151 s. */
 static int test_plate3d_period_mode22(void) {
-    plate3d_mode md = {2, 2};
-    sps_real x_obs[3] = {PLATE3D_L / 4, PLATE3D_W / 4, 0};
+    plate3d_mode md = {2, 2}; /* observed at its first antinode (L/4, W/4, 0) */
     period_probe p;
     sps_world* w;
     memset(&p, 0, sizeof p);
     p.axis = 2;
-    ENSURE((w = plate3d_build(3, &md, 0, x_obs, &p.obs)) != NULL);
+    ENSURE((w = plate3d_build(3, md, 0, &p.obs)) != NULL);
     ENSURE(sps_world_advance(w, 0.025, period_on_step, &p) == SPS_OK); /* 1.9 x theory; stops at 2nd crossing */
     sps_world_destroy(w);
     ENSURE(p.n == 2);

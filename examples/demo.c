@@ -1,0 +1,257 @@
+/* demo.c - jelly in the terminal, in real time: a cantilever, a tree and two spinning wheels
+   swing under gravity (scenes/jelly.h), and `space` drops new jelly blocks while it runs.
+   No dependency: 24-bit ANSI colours and the half block (two pixel rows per character cell),
+   termios raw mode (the terminal is restored on exit and on Ctrl-C).
+
+   Keys: space  drop a block (with the formulation shown)     f  next shear formulation
+         p      pause                                          q  quit
+   There is no contact between bodies yet: dropped blocks fall through everything, and are
+   parked below the view (the library cannot remove particles).
+
+   Each frame runs sps_world_advance_frame (sphsolid.h, REAL-TIME FRAMES): the first frame
+   calibrates the sub-steps that cover 1/fps of simulated time, and the others keep that count,
+   within a wall budget of 80% of the frame period (a slow machine shows slow motion).
+   --headless runs --frames frames with no terminal and no budget (deterministic: the same
+   checksum for any thread count), drops a block every 20 frames, and prints a RESULT line with
+   a checksum of the positions and the frame timing (physics and drawing).
+
+   Build: make demo        Run: ./build/demo      Measure: OMP_NUM_THREADS=1 ./build/demo --headless
+   Expect: >= 30 frames per second on one core of a 2020s machine at 80 x 24. */
+#include "common.h"
+#include "scenes/jelly.h"
+#include <signal.h>
+#include <stdarg.h>
+#include <sys/ioctl.h>
+#include <termios.h>
+
+#define STATUS_LINES 2
+static const sps_shear formulations[] = {SPS_SHEAR_ENO_A, SPS_SHEAR_GNO_A, SPS_SHEAR_ENO, SPS_SHEAR_GNO, SPS_SHEAR_OG};
+#define FORMULATIONS ((int)(sizeof formulations / sizeof *formulations))
+
+/* ---- terminal: raw mode, restored however the program ends ---- */
+static struct termios g_saved_termios;
+static int g_raw;
+static volatile sig_atomic_t g_stop;
+
+static void on_signal(int sig) { (void)sig; g_stop = 1; }
+
+static void terminal_restore(void) {
+    if (!g_raw) return;
+    tcsetattr(STDIN_FILENO, TCSAFLUSH, &g_saved_termios);
+    fputs("\x1b[0m\x1b[?25h\x1b[?1049l", stdout); /* colours off, cursor on, main screen back */
+    fflush(stdout);
+    g_raw = 0;
+}
+
+/* Keys arrive unbuffered and unechoed, read() never waits; Ctrl-C still raises SIGINT, whose
+   handler ends the loop so that the terminal is restored. */
+static void terminal_raw(void) {
+    struct termios raw;
+    struct sigaction sa;
+    if (tcgetattr(STDIN_FILENO, &g_saved_termios) != 0) { fprintf(stderr, "%s: stdin is not a terminal (try --headless)\n", g_prog); exit(2); }
+    raw = g_saved_termios;
+    raw.c_lflag &= ~(tcflag_t)(ICANON | ECHO);
+    raw.c_cc[VMIN] = 0;
+    raw.c_cc[VTIME] = 0;
+    tcsetattr(STDIN_FILENO, TCSAFLUSH, &raw);
+    g_raw = 1;
+    atexit(terminal_restore);
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    fputs("\x1b[?1049h\x1b[?25l\x1b[2J", stdout); /* alternate screen, cursor off, cleared */
+}
+
+static int read_key(void) {
+    unsigned char c;
+    return read(STDIN_FILENO, &c, 1) == 1 ? c : -1;
+}
+
+/* The terminal's columns and rows (80 x 24 when it does not say). */
+static void terminal_size(int size[2]) {
+    struct winsize ws;
+    size[0] = 80; size[1] = 24;
+    if (ioctl(STDOUT_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col >= 20 && ws.ws_row >= 8) { size[0] = ws.ws_col; size[1] = ws.ws_row; }
+}
+
+/* ---- a frame as text: each cell the upper half block, foreground the upper pixel, background the lower ---- */
+typedef struct {
+    render_options view;
+    render_image img;
+    char* text;
+    size_t length, capacity;
+} screen;
+
+static void screen_open(screen* s, int cols, int rows) {
+    memset(s, 0, sizeof *s);
+    s->view.width = s->img.width = cols;
+    s->view.height = s->img.height = 2 * (rows - STATUS_LINES);
+    s->view.field = render_field_by_name("velocity");
+    s->view.window[0] = -JELLY_VIEW_W / 2; s->view.window[1] = 0; s->view.window[2] = JELLY_VIEW_W / 2; s->view.window[3] = JELLY_VIEW_H;
+    s->view.range[0] = 0; s->view.range[1] = 3; /* [m/s]: fixed, so that colours do not flicker */
+    s->capacity = (size_t)cols * rows * 40 + 1024; /* two colour codes and a 3-byte character per cell at most */
+    s->img.pixels = (unsigned char*)malloc((size_t)s->img.width * s->img.height);
+    s->text = (char*)malloc(s->capacity);
+    if (!s->img.pixels || !s->text) { fprintf(stderr, "%s: out of memory\n", g_prog); exit(2); }
+}
+
+/* The terminal's colour of a palette index: the picture's white background turns dark. */
+static const unsigned char* cell_colour(unsigned char index) {
+    static const unsigned char dark[3] = {16, 18, 28};
+    return index == RENDER_BACKGROUND ? dark : render_palette() + 3 * index;
+}
+
+static void screen_printf(screen* s, const char* fmt, ...) {
+    va_list ap;
+    int n;
+    va_start(ap, fmt);
+    n = vsnprintf(s->text + s->length, s->capacity - s->length, fmt, ap);
+    va_end(ap);
+    if (n > 0) s->length += (size_t)n < s->capacity - s->length ? (size_t)n : s->capacity - s->length - 1;
+}
+
+/* Draws the world into s->text (the picture rows, then the status lines). */
+static void screen_draw(screen* s, const sps_world* w, const char* status, const char* hint) {
+    render_layout L;
+    int x, row, last_fg = -1, last_bg = -1;
+    if (render_layout_make(w, &s->view, &L) != 0) { fprintf(stderr, "%s: out of memory\n", g_prog); exit(2); }
+    render_raster(&L, &s->img);
+    render_layout_free(&L);
+    s->length = 0;
+    for (row = 0; 2 * row < s->img.height; ++row) {
+        screen_printf(s, "\x1b[%d;1H", row + 1);
+        for (x = 0; x < s->img.width; ++x) {
+            const unsigned char top = s->img.pixels[(size_t)2 * row * s->img.width + x], bottom = s->img.pixels[(size_t)(2 * row + 1) * s->img.width + x];
+            if (top != last_fg) { const unsigned char* c = cell_colour(top); screen_printf(s, "\x1b[38;2;%d;%d;%dm", c[0], c[1], c[2]); last_fg = top; }
+            if (bottom != last_bg) { const unsigned char* c = cell_colour(bottom); screen_printf(s, "\x1b[48;2;%d;%d;%dm", c[0], c[1], c[2]); last_bg = bottom; }
+            screen_printf(s, "\xe2\x96\x80"); /* U+2580 upper half block */
+        }
+    }
+    screen_printf(s, "\x1b[0m\x1b[%d;1H\x1b[2K%.*s\x1b[%d;1H\x1b[2K%.*s", s->img.height / 2 + 1, s->img.width, status, s->img.height / 2 + 2,
+                  s->img.width, hint);
+}
+
+/* FNV-1a of the positions in stable-id order: the state a run ends in, as one number. */
+static uint64_t position_checksum(const sps_world* w) {
+    uint64_t h = 1469598103934665603ULL;
+    int id, n = sps_world_particle_count(w);
+    for (id = 0; id < n; ++id) {
+        sps_particle_state p;
+        double x[3];
+        size_t k;
+        sps_world_particle(w, id, &p);
+        x[0] = p.position[0]; x[1] = p.position[1]; x[2] = p.position[2];
+        for (k = 0; k < sizeof x; ++k) h = (h ^ ((const unsigned char*)x)[k]) * 1099511628211ULL;
+    }
+    return h;
+}
+
+/* Sub-steps that cover one frame period, from the step CFL_ac h / c0 of the jelly at rest. */
+static int first_guess_substeps(const sps_world* w, double fps) {
+    const sps_world_def* wd = sps_world_get_def(w);
+    double c0 = sqrt(JELLY_E / (3 * (1 - 2 * JELLY_NU)) / JELLY_RHO0);
+    return (int)ceil(1 / (fps * wd->cfl_acoustic * wd->h_over_dp * wd->dp / c0));
+}
+
+static void sleep_until(double t) {
+    double left = t - wall_seconds();
+    struct timespec ts;
+    if (left <= 0) return;
+    ts.tv_sec = (time_t)left;
+    ts.tv_nsec = (long)((left - (double)ts.tv_sec) * 1e9);
+    nanosleep(&ts, NULL);
+}
+
+int main(int argc, char** argv) {
+    int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, substeps, frame, shear = 0, paused = 0, resets = 0;
+    double fps = 30, start, physics = 0, drawing = 0, slowest = 0, next, shown_fps = 0, fps_clock;
+    const char* png = "";
+    opt_spec opts[] = {
+        {"headless", OPT_FLAG, &headless, "no terminal: run --frames frames, print a RESULT line (checksum, timing)", 0, 0, NULL},
+        {"frames", OPT_INT, &frames, "headless: frames to run", 1, 1e7, NULL},
+        {"fps", OPT_REAL, &fps, "frames per second (simulated 1/fps s each)", 1, 240, NULL},
+        {"threads", OPT_INT, &threads, "OpenMP threads, 0 = all", 0, 1024, NULL},
+        {"size", OPT_PAIR, size, "headless: screen columns,rows (interactive: the terminal's)", 20, 1000, NULL},
+        {"png", OPT_STRING, &png, "write the last frame as a PNG picture (600 x 400) to this file; empty = none", 0, 0, NULL},
+    };
+    jelly_scene scene;
+    screen scr;
+    char status[256], hint[256] = "space drop  f formulation  p pause  q quit   (no contact yet: blocks fall through)";
+    int fps_frames = 0;
+
+    ex_passive_openmp_waits(argv);
+    opt_parse(argc, argv, "jelly in the terminal, in real time (scenes/jelly.h)", opts, (int)(sizeof opts / sizeof *opts));
+    if (!headless) terminal_size(size);
+    ex_check(NULL, jelly_create(threads, ex_log, &scene));
+    screen_open(&scr, size[0], size[1]);
+    substeps = first_guess_substeps(scene.w, fps);
+    if (!headless) terminal_raw();
+    start = next = fps_clock = wall_seconds();
+    for (frame = 0; headless ? frame < frames : !g_stop; ++frame) {
+        double t0 = wall_seconds(), t1;
+        int key = headless ? (frame % 20 == 10 ? ' ' : frame % 20 == 0 && frame ? 'f' : -1) : read_key();
+        if (key == 'q') break;
+        if (key == 'p') paused = !paused;
+        if (key == 'f') shear = (shear + 1) % FORMULATIONS;
+        if (key == ' ') {
+            if (scene.n_drops == JELLY_MAX_DROPS) { /* particles cannot be removed: start afresh */
+                sps_world_destroy(scene.w);
+                ex_check(NULL, jelly_create(threads, ex_log, &scene));
+                snprintf(hint, sizeof hint, "scene reset after %d blocks: particles cannot be removed yet", JELLY_MAX_DROPS);
+            }
+            ex_check(scene.w, jelly_drop_block(&scene, formulations[shear]));
+        }
+        if (!paused) {
+            sps_real covered;
+            sps_result r = sps_world_advance_frame(scene.w, substeps, headless || frame == 0 ? 0 : 0.8 / fps, &covered);
+            if (r == SPS_ERR_UNSTABLE && !headless) { /* an OG block may break down: show it and start afresh */
+                snprintf(hint, sizeof hint, "%.*s: scene reset", (int)sizeof hint - 16, sps_world_last_error(scene.w));
+                sps_world_destroy(scene.w);
+                ex_check(NULL, jelly_create(threads, ex_log, &scene));
+                ++resets;
+            } else {
+                ex_check(scene.w, r);
+                if (frame == 0) substeps = (int)ceil(substeps / (fps * covered)); /* the mean sub-step, measured (REAL-TIME FRAMES) */
+            }
+            ex_check(scene.w, jelly_park_fallen(&scene));
+        }
+        t1 = wall_seconds();
+        snprintf(status, sizeof status, "t = %6.2f s  %5d particles  %5.1f fps  new blocks: %s%s", (double)sps_world_time(scene.w),
+                 sps_world_particle_count(scene.w), shown_fps, shear_name(formulations[shear]), paused ? "  (paused)" : "");
+        screen_draw(&scr, scene.w, status, hint);
+        physics += t1 - t0;
+        drawing += wall_seconds() - t1;
+        slowest = fmax(slowest, wall_seconds() - t0);
+        if (headless) continue;
+        fwrite(scr.text, 1, scr.length, stdout);
+        fflush(stdout);
+        if (++fps_frames, wall_seconds() - fps_clock >= 1) { shown_fps = fps_frames / (wall_seconds() - fps_clock); fps_frames = 0; fps_clock = wall_seconds(); }
+        next += 1 / fps;
+        if (next < wall_seconds()) next = wall_seconds(); /* a late frame shifts the schedule: no catch-up burst */
+        sleep_until(next);
+    }
+    terminal_restore();
+    if (*png) {
+        render_options picture = scr.view;
+        picture.width = 600;
+        picture.height = 400;
+        picture.decorations = 1;
+        if (render_world(scene.w, &picture, RENDER_PNG, png) != 0) { fprintf(stderr, "%s: cannot write %s\n", g_prog, png); exit(1); }
+    }
+    {
+        const double wall = wall_seconds() - start;
+        sps_diagnostics d;
+        sps_body all = {0};
+        ex_check(scene.w, sps_world_diagnostics(scene.w, all, &d));
+        printf("RESULT case=demo frames=%d substeps_per_frame=%d sim_s=%.4f particles=%d blocks=%d resets=%d checksum=%016llx "
+               "size=%dx%d ms_per_frame=%.2f physics_ms=%.2f drawing_ms=%.2f slowest_frame_ms=%.2f fps=%.1f threads=%d steps=%ld wall_s=%.2f\n",
+               frame, substeps, (double)sps_world_time(scene.w), sps_world_particle_count(scene.w), scene.n_drops, resets,
+               (unsigned long long)position_checksum(scene.w), size[0], size[1], 1e3 * (physics + drawing) / frame, 1e3 * physics / frame,
+               1e3 * drawing / frame, 1e3 * slowest, frame / (physics + drawing), threads, d.acoustic_steps, wall);
+    }
+    sps_world_destroy(scene.w);
+    free(scr.img.pixels);
+    free(scr.text);
+    return 0;
+}

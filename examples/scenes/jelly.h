@@ -1,0 +1,144 @@
+/* jelly.h - the playground of examples/demo.c: soft jelly under gravity, built from what the
+   library does today (no contact between bodies, no walls, no removal of particles):
+   - a cantilever clamped in the left wall, which sags and swings;
+   - a tree clamped in the floor, started with a sway;
+   - two blocks spinning on fixed axles (the centre particle held: a rigid rotation about it
+     leaves it at rest, while holding more particles would weld the block to the axle);
+   - blocks dropped from the top while the scene runs (sps_world_add_body after steps). With no
+     contact they fall through everything; below the view they are parked (held still), since
+     particles cannot be removed, and after JELLY_MAX_DROPS the scene starts afresh.
+   The world has no escape guard (escape_distance = INFINITY): falling blocks leave their start
+   far behind. Needs only sphsolid.h. */
+#ifndef SPS_SCENE_JELLY_H
+#define SPS_SCENE_JELLY_H
+#include "scene.h"
+
+#define JELLY_DP 0.04       /* [m]: about one terminal pixel at 80 columns */
+#define JELLY_VIEW_W 2.0    /* the view: x in [-1, 1], y in [0, JELLY_VIEW_H] [m] */
+#define JELLY_VIEW_H 1.1
+#define JELLY_RHO0 1000
+#define JELLY_E 4e5         /* soft: c0 18 m/s, so a frame of 1/30 s takes about 30 sub-steps */
+#define JELLY_NU 0.3
+#define JELLY_MAX_DROPS 16  /* parked blocks still cost their share of every sub-step */
+#define JELLY_BLOCK 0.24    /* side of a dropped block [m] */
+#define JELLY_PARK_Y -0.4   /* a dropped block whose centre falls below this is parked */
+
+typedef struct {
+    sps_body body;
+    int centre_id;          /* stable id of its centre particle, to see where it is */
+    sps_real lo[3], hi[3];  /* its reference box */
+    int parked;
+} jelly_drop;
+
+typedef struct {
+    sps_world* w;
+    jelly_drop drops[JELLY_MAX_DROPS];
+    int n_drops;
+} jelly_scene;
+
+SCENE_UNUSED static sps_body_def jelly_body_def(sps_shear shear, const char* name) {
+    sps_body_def bd = sps_default_body_def();
+    bd.name = name;
+    bd.material.density = JELLY_RHO0;
+    bd.material.youngs_modulus = JELLY_E;
+    bd.material.poisson_ratio = JELLY_NU;
+    bd.shear = shear;
+    return bd;
+}
+
+/* Velocity fields of the start: the tree's sway, a block's spin about its centre. */
+SCENE_UNUSED static void jelly_sway(const sps_real x[3], sps_real v[3], void* user) {
+    (void)user;
+    v[0] = 0.8 * (x[1] / 0.64) * (x[1] / 0.64);
+    v[1] = v[2] = 0;
+}
+typedef struct { double omega, cx, cy; } jelly_spin;
+SCENE_UNUSED static void jelly_spinning(const sps_real x[3], sps_real v[3], void* user) {
+    const jelly_spin* s = (const jelly_spin*)user;
+    v[0] = -s->omega * (x[1] - s->cy);
+    v[1] = s->omega * (x[0] - s->cx);
+    v[2] = 0;
+}
+
+/* A square block of side `side` centred at (cx, cy) spinning at omega, free or (axle = 1) on
+   an axle through its centre particle (side an odd number of dp puts one there). */
+SCENE_UNUSED static sps_result jelly_add_block(sps_world* w, sps_body b, double cx, double cy, double side, double omega, int axle) {
+    sps_real lo[3] = {cx - side / 2, cy - side / 2, 0}, hi[3] = {cx + side / 2, cy + side / 2, 0};
+    sps_real axle_lo[3] = {cx - JELLY_DP / 4, cy - JELLY_DP / 4, -1}, axle_hi[3] = {cx + JELLY_DP / 4, cy + JELLY_DP / 4, 1};
+    jelly_spin spin;
+    sps_result r;
+    spin.omega = omega; spin.cx = cx; spin.cy = cy;
+    if ((r = sps_body_add_box(w, b, lo, hi, NULL)) != SPS_OK || (r = sps_body_set_velocity(w, b, jelly_spinning, &spin)) != SPS_OK) return r;
+    return axle ? sps_body_constrain_box(w, b, axle_lo, axle_hi, SPS_AXIS_ALL, NULL, NULL) : SPS_OK;
+}
+
+/* Builds the scene with `threads` OpenMP threads (0: all) into s; log receives the errors. */
+SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, jelly_scene* s) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def cantilever_def = jelly_body_def(SPS_SHEAR_ENO_A, "cantilever"), tree_def = jelly_body_def(SPS_SHEAR_ENO_A, "tree");
+    sps_body_def wheel_def = jelly_body_def(SPS_SHEAR_GNO_A, "wheel");
+    sps_real beam_lo[3] = {-1.0, 0.40, 0}, beam_hi[3] = {-0.2, 0.64, 0}, wall_lo[3] = {-2, -2, -1}, wall_hi[3] = {-0.88, 2, 1};
+    sps_real trunk_lo[3] = {0.52, 0, 0}, trunk_hi[3] = {0.76, 0.44, 0}, crown_lo[3] = {0.40, 0.44, 0}, crown_hi[3] = {0.88, 0.64, 0};
+    sps_real floor_lo[3] = {-2, -2, -1}, floor_hi[3] = {2, 0.12, 1};
+    sps_body cantilever, tree, wheel;
+    sps_result r;
+    memset(s, 0, sizeof *s);
+    wd.dim = 2;
+    wd.dp = JELLY_DP;
+    wd.gravity[1] = -9.81;
+    wd.threads = threads;
+    wd.escape_distance = INFINITY; /* dropped blocks fall far */
+    wd.log = log;
+    if ((r = sps_world_create(&wd, &s->w)) != SPS_OK) return r;
+    SCENE_TRY(&s->w, sps_world_add_body(s->w, &cantilever_def, &cantilever));
+    SCENE_TRY(&s->w, sps_body_add_box(s->w, cantilever, beam_lo, beam_hi, NULL));
+    SCENE_TRY(&s->w, sps_body_constrain_box(s->w, cantilever, wall_lo, wall_hi, SPS_AXIS_ALL, NULL, NULL));
+    SCENE_TRY(&s->w, sps_world_add_body(s->w, &tree_def, &tree));
+    SCENE_TRY(&s->w, sps_body_add_box(s->w, tree, trunk_lo, trunk_hi, NULL));
+    SCENE_TRY(&s->w, sps_body_add_box(s->w, tree, crown_lo, crown_hi, NULL));
+    SCENE_TRY(&s->w, sps_body_set_velocity(s->w, tree, jelly_sway, NULL));
+    SCENE_TRY(&s->w, sps_body_constrain_box(s->w, tree, floor_lo, floor_hi, SPS_AXIS_ALL, NULL, NULL));
+    SCENE_TRY(&s->w, sps_world_add_body(s->w, &wheel_def, &wheel));
+    SCENE_TRY(&s->w, jelly_add_block(s->w, wheel, -0.55, 0.84, 9 * JELLY_DP, 5, 1));
+    SCENE_TRY(&s->w, sps_world_add_body(s->w, &wheel_def, &wheel));
+    SCENE_TRY(&s->w, jelly_add_block(s->w, wheel, 0.08, 0.5, 9 * JELLY_DP, -5, 1));
+    return SPS_OK;
+}
+
+/* Drops block number s->n_drops (shear formulation `shear`) from the top of the view, at an
+   x that cycles over the view's width. SPS_ERR_STATE when JELLY_MAX_DROPS are out. */
+SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear) {
+    static const double x_of[5] = {-0.7, 0.3, -0.2, 0.75, -0.45};
+    jelly_drop* d = &s->drops[s->n_drops];
+    sps_body_def bd = jelly_body_def(shear, "dropped");
+    const double cx = x_of[s->n_drops % 5], cy = JELLY_VIEW_H - JELLY_BLOCK / 2 - 0.02;
+    sps_real centre[3] = {cx, cy, 0};
+    sps_result r;
+    if (s->n_drops == JELLY_MAX_DROPS) return SPS_ERR_STATE;
+    if ((r = sps_world_add_body(s->w, &bd, &d->body)) != SPS_OK || (r = jelly_add_block(s->w, d->body, cx, cy, JELLY_BLOCK, 3, 0)) != SPS_OK)
+        return r;
+    d->lo[0] = cx - JELLY_BLOCK; d->lo[1] = cy - JELLY_BLOCK; d->lo[2] = -1;
+    d->hi[0] = cx + JELLY_BLOCK; d->hi[1] = cy + JELLY_BLOCK; d->hi[2] = 1;
+    d->centre_id = sps_world_nearest_particle(s->w, d->body, centre);
+    d->parked = 0;
+    ++s->n_drops;
+    return SPS_OK;
+}
+
+/* Parks the dropped blocks that fell below the view: their velocity held at zero from now on. */
+SCENE_UNUSED static sps_result jelly_park_fallen(jelly_scene* s) {
+    int k;
+    for (k = 0; k < s->n_drops; ++k) {
+        jelly_drop* d = &s->drops[k];
+        sps_particle_state c;
+        sps_result r;
+        if (d->parked) continue;
+        if ((r = sps_world_particle(s->w, d->centre_id, &c)) != SPS_OK) return r;
+        if (c.position[1] > JELLY_PARK_Y) continue;
+        if ((r = sps_body_constrain_box(s->w, d->body, d->lo, d->hi, SPS_AXIS_ALL, NULL, NULL)) != SPS_OK) return r;
+        d->parked = 1;
+    }
+    return SPS_OK;
+}
+
+#endif
