@@ -543,15 +543,21 @@ typedef enum sps_field {
 SPSDEF int sps_world_particle_count(const sps_world* w);
 /* The array of a field (NULL for z fields in 2D). Valid until the next step or add. */
 SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
-/* The array of a per-particle field by name, *components (may be NULL) values per particle,
-   particle i's at [components i]: "position_x" .. "position_z", "velocity_x" .., "reference_x"
-   .. (per axis, up to dim), "density", "pressure", "mass", "volume", "density_rate",
-   "shear_stress" (6: xx xy xz yy yz zz), "velocity_gradient" (9, row-major), and the solver's
-   scratch ("pressure_acceleration_x" .., "shear_acceleration_x" .., "shear_increment_x" ..,
-   "artificial_stress"). NULL (and the world's last error says why) for an unknown name, an
-   axis beyond dim, or an optional field that no body needs (before the first step, none is
-   allocated). Same order and lifetime as sps_world_field. */
+/* Per-particle fields by name. Every particle has "position_x" .. "position_z", "velocity_x" ..,
+   "reference_x" .. (per axis, up to dim), "density", "pressure", "mass", "volume",
+   "density_rate" and the solver's "pressure_acceleration_x" .., "shear_acceleration_x" ..; a
+   body has "shear_stress" (6: xx xy xz yy yz zz) and "velocity_gradient" (9, row-major) only
+   if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation) and
+   "artificial_stress" (3: xx xy yy, OAS).
+   sps_world_field_by_name: the world's array of a field every particle has, *components (may
+   be NULL) values per particle, particle i's at [components i]; same order and lifetime as
+   sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
+   particles *first .. *first + *count - 1 in the current order (outputs may be NULL); after
+   the first step (the bodies' ranges are set then). Both return NULL, and the world's last
+   error says why, for an unknown name, an axis beyond dim or a field the body (or the world)
+   does not have. */
 SPSDEF const sps_real* sps_world_field_by_name(const sps_world* w, const char* name, int* components);
+SPSDEF const sps_real* sps_body_field(const sps_world* w, sps_body b, const char* name, int* components, int* first, int* count);
 /* Stable particle ids (0..count-1 in order of addition), in current order. */
 SPSDEF const int* sps_world_particle_ids(const sps_world* w);
 /* State of the particle with stable id. */
@@ -735,6 +741,11 @@ typedef struct sps__body {
     sps_real mean_rotation[9];
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
     int count;                 /* particles added (a body must have some before the first step) */
+    /* its optional per-particle arrays (the sps__fields rows owned by a body), allocated at commit
+       when its model needs them, else NULL: particle begin + k at [components k], with
+       SPS__LANES zeroed slots of lane padding after the last */
+    sps_real *acc_d[3], *tau, *art, *grad;
+    int field_count; /* particles they hold: its count at the last commit */
 } sps__body;
 
 typedef struct sps__constraint {
@@ -755,11 +766,8 @@ struct sps_world {
 
     /* particles (SoA, capacity cap) */
     int n, cap;
-    sps_real *pos[3], *vel[3], *ref[3], *acc_p[3], *acc_s[3], *acc_d[3];
+    sps_real *pos[3], *vel[3], *ref[3], *acc_p[3], *acc_s[3];
     sps_real *rho, *drho, *p, *vol, *mass;
-    sps_real *tau;  /* 6 per particle (xx xy xz yy yz zz) when any body tracks stress */
-    sps_real *art;  /* Gray's artificial stress R, 3 per particle (xx xy yy), OAS bodies only */
-    sps_real *grad; /* velocity gradient, 9 per particle, when needed */
     int *id, *body, *slot_of_id, *cons;
     int needs_sort_by_body; /* particles were added since the last step */
 
@@ -775,7 +783,6 @@ struct sps_world {
        particle order of that moment (good_id) */
     sps_real* good;
     int *good_id, good_n, good_cap;
-    unsigned good_present; /* bit k: field k of sps__fields was saved */
     sps_real good_time;
 
     sps__body* bodies;
@@ -825,9 +832,9 @@ struct sps_world {
 /* The per-particle arrays, one row each: what it is, when it is needed and what housekeeping
    it gets. Allocation, growth, sorting, freeing, the finiteness guard, the last good state,
    sps_world_validate and the access by name are loops over this table, so a new array is one
-   new row (and its pointer in sps_world). */
+   new row (and its pointer in sps_world, or in sps__body for an array a body owns). */
 typedef enum {
-    SPS__NEED_ALWAYS,      /* every world: grown with the particles (sps__reserve) */
+    SPS__NEED_ALWAYS,      /* every particle: grown with the particles (sps__reserve) */
     SPS__NEED_GRADIENT,    /* a body needs the velocity gradient L (model.gradient) */
     SPS__NEED_STRESS,      /* a body integrates the shear stress (model.stress) */
     SPS__NEED_MEAN_TURN,   /* a body turns its increments by the mean rotation */
@@ -837,7 +844,6 @@ typedef enum {
 
 enum {
     SPS__CARRIED = 1,  /* follows its particle through every sort (others are rebuilt before read) */
-    SPS__KEPT = 2,     /* an optional array whose contents survive its reallocation at commit */
     SPS__CHECKED = 4,  /* must be finite at every configuration update (sps__check_finite) */
     SPS__POSITIVE = 8, /* must also be > 0 wherever checked */
     SPS__GOOD = 16,    /* copied into the last good state (keep_last_good_state) */
@@ -847,7 +853,9 @@ enum {
 typedef struct sps__field_info {
     const char* name;  /* for sps_world_field_by_name; per-axis arrays add _x, _y, _z */
     const char* what;  /* in messages */
-    size_t offset;     /* of its pointer in sps_world (of the x axis' for per-axis arrays) */
+    int per_body;      /* 0: one array for the world (sps_world); 1: one for each body that needs
+                          it (sps__body), so a body pays only for the arrays of its own model */
+    size_t offset;     /* of its pointer in sps_world or sps__body (the x axis' for per-axis arrays) */
     int axes;          /* 1: one array per axis (dim of them used); 0: one array */
     int components;    /* values per particle in one array */
     int is_int;        /* int values (else sps_real) */
@@ -856,45 +864,54 @@ typedef struct sps__field_info {
 } sps__field_info;
 
 #define SPS__OFF(member) offsetof(struct sps_world, member)
+#define SPS__BOFF(member) offsetof(sps__body, member)
 static const sps__field_info sps__fields[] = {
-    {"velocity", "velocity", SPS__OFF(vel), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
-    {"position", "position", SPS__OFF(pos), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
-    {"reference", "reference position", SPS__OFF(ref), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__VALIDATED},
-    {"pressure_acceleration", "pressure acceleration", SPS__OFF(acc_p), 1, 1, 0, SPS__NEED_ALWAYS, 0},
-    {"shear_acceleration", "shear acceleration", SPS__OFF(acc_s), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__VALIDATED},
-    {"shear_increment", "shear increment", SPS__OFF(acc_d), 1, 1, 0, SPS__NEED_MEAN_TURN, 0},
-    {"density", "density", SPS__OFF(rho), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__POSITIVE | SPS__GOOD | SPS__VALIDATED},
-    {"density_rate", "density rate", SPS__OFF(drho), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED},
-    {"pressure", "pressure", SPS__OFF(p), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
-    {"volume", "volume", SPS__OFF(vol), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__POSITIVE | SPS__VALIDATED},
-    {"mass", "mass", SPS__OFF(mass), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__POSITIVE | SPS__VALIDATED},
-    {"shear_stress", "shear stress", SPS__OFF(tau), 0, 6, 0, SPS__NEED_STRESS, SPS__CARRIED | SPS__KEPT | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
-    {"artificial_stress", "artificial stress", SPS__OFF(art), 0, 3, 0, SPS__NEED_ARTIFICIAL, 0},
+    {"velocity", "velocity", 0, SPS__OFF(vel), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"position", "position", 0, SPS__OFF(pos), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"reference", "reference position", 0, SPS__OFF(ref), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__VALIDATED},
+    {"pressure_acceleration", "pressure acceleration", 0, SPS__OFF(acc_p), 1, 1, 0, SPS__NEED_ALWAYS, 0},
+    {"shear_acceleration", "shear acceleration", 0, SPS__OFF(acc_s), 1, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__VALIDATED},
+    {"shear_increment", "shear increment", 1, SPS__BOFF(acc_d), 1, 1, 0, SPS__NEED_MEAN_TURN, 0},
+    {"density", "density", 0, SPS__OFF(rho), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__POSITIVE | SPS__GOOD | SPS__VALIDATED},
+    {"density_rate", "density rate", 0, SPS__OFF(drho), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED},
+    {"pressure", "pressure", 0, SPS__OFF(p), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"volume", "volume", 0, SPS__OFF(vol), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__POSITIVE | SPS__VALIDATED},
+    {"mass", "mass", 0, SPS__OFF(mass), 0, 1, 0, SPS__NEED_ALWAYS, SPS__CARRIED | SPS__POSITIVE | SPS__VALIDATED},
+    {"shear_stress", "shear stress", 1, SPS__BOFF(tau), 0, 6, 0, SPS__NEED_STRESS, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"artificial_stress", "artificial stress", 1, SPS__BOFF(art), 0, 3, 0, SPS__NEED_ARTIFICIAL, 0},
     /* carried: the next kick reads it (the per-particle half-step rotation) */
-    {"velocity_gradient", "velocity gradient", SPS__OFF(grad), 0, 9, 0, SPS__NEED_GRADIENT, SPS__CARRIED},
-    {"id", "id", SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
-    {"body", "body", SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
-    {"slot_of_id", "slot of id", SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
-    {"constraint", "constraint", SPS__OFF(cons), 0, 1, 1, SPS__NEED_CONSTRAINTS, SPS__CARRIED},
+    {"velocity_gradient", "velocity gradient", 1, SPS__BOFF(grad), 0, 9, 0, SPS__NEED_GRADIENT, SPS__CARRIED},
+    {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
+    {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
+    {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
+    {"constraint", "constraint", 0, SPS__OFF(cons), 0, 1, 1, SPS__NEED_CONSTRAINTS, SPS__CARRIED},
 };
 #undef SPS__OFF
+#undef SPS__BOFF
 #define SPS__NFIELDS ((int)(sizeof sps__fields / sizeof sps__fields[0]))
 
-/* The address of the pointer of field f's array for axis a (a = 0 for one-array fields). */
-static void* sps__field_slot(const sps_world* w, const sps__field_info* f, int a) {
-    return (char*)w + f->offset + (size_t)a * (f->is_int ? sizeof(int*) : sizeof(sps_real*));
+/* The address of the pointer of field f's array for axis a (a = 0 for one-array fields) in its
+   owner: the world w, or the body b for a per-body field. */
+static void* sps__field_slot(const sps_world* w, const sps__body* b, const sps__field_info* f, int a) {
+    return (f->per_body ? (char*)b : (char*)w) + f->offset + (size_t)a * (f->is_int ? sizeof(int*) : sizeof(sps_real*));
 }
 static int sps__field_arrays(const sps__field_info* f) { return f->axes ? 3 : 1; }
 static size_t sps__field_bytes(const sps__field_info* f) { return (size_t)f->components * (f->is_int ? sizeof(int) : sizeof(sps_real)); }
-static sps_real* sps__real_array(const sps_world* w, const sps__field_info* f, int a) {
+static sps_real* sps__real_array(const sps_world* w, const sps__body* b, const sps__field_info* f, int a) {
     sps_real* p;
-    memcpy(&p, sps__field_slot(w, f, a), sizeof p);
+    memcpy(&p, sps__field_slot(w, b, f, a), sizeof p);
     return p;
 }
 static int* sps__int_array(const sps_world* w, const sps__field_info* f, int a) {
     int* p;
-    memcpy(&p, sps__field_slot(w, f, a), sizeof p);
+    memcpy(&p, sps__field_slot(w, NULL, f, a), sizeof p);
     return p;
+}
+/* The values of a real field (axis a) for body b's particles, the first of them at the returned
+   pointer (components each): a slice of the world's array, or the body's own; NULL if missing. */
+static sps_real* sps__body_values(const sps_world* w, const sps__body* b, const sps__field_info* f, int a) {
+    sps_real* x = sps__real_array(w, b, f, a);
+    return x && !f->per_body ? x + (size_t)b->begin * (size_t)f->components : x;
 }
 static const sps__field_info* sps__field_named(const char* name) {
     int k;
@@ -1316,14 +1333,23 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
     return SPS_OK;
 }
 
+/* Frees the arrays of field f in its owner (the world, or body b) and marks them NULL. */
+static void sps__free_field(sps_world* w, sps__body* b, const sps__field_info* f) {
+    int a;
+    for (a = 0; a < sps__field_arrays(f); ++a) {
+        void *array, *none = NULL;
+        memcpy(&array, sps__field_slot(w, b, f, a), sizeof array);
+        sps__free(w, array);
+        memcpy(sps__field_slot(w, b, f, a), &none, sizeof none);
+    }
+}
+
 static void sps__free_particle_fields(sps_world* w) {
-    int k, a;
+    int k, bi;
     for (k = 0; k < SPS__NFIELDS; ++k)
-        for (a = 0; a < sps__field_arrays(&sps__fields[k]); ++a) {
-            void* array;
-            memcpy(&array, sps__field_slot(w, &sps__fields[k], a), sizeof array);
-            sps__free(w, array);
-        }
+        if (!sps__fields[k].per_body) sps__free_field(w, NULL, &sps__fields[k]);
+        else
+            for (bi = 0; bi < w->nbodies; ++bi) sps__free_field(w, &w->bodies[bi], &sps__fields[k]);
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_j); sps__free(w, w->nb_count);
     sps__free(w, w->nb_ell);
     sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
@@ -1419,8 +1445,8 @@ SPSDEF sps_result sps_body_material_constants(const sps_world* w, sps_body b, sp
 
 /* >>particles */
 
-/* Makes room for at least need particles in every array needed always (and the constraint
-   index once it exists); the optional arrays follow at the next commit. */
+/* Makes room for at least need particles in every world array needed always (and the
+   constraint index once it exists); the bodies' arrays follow at the next commit. */
 static sps_result sps__reserve(sps_world* w, int need) {
     int k, a, nc;
     size_t o = (size_t)w->n, m;
@@ -1432,7 +1458,7 @@ static sps_result sps__reserve(sps_world* w, int need) {
         const sps__field_info* f = &sps__fields[k];
         if (f->need == SPS__NEED_CONSTRAINTS ? !w->cons : f->need != SPS__NEED_ALWAYS) continue;
         for (a = 0; a < sps__field_arrays(f); ++a)
-            if (!sps__grow(w, sps__field_slot(w, f, a), sps__field_bytes(f), o, m)) return SPS_ERR_OUT_OF_MEMORY;
+            if (!sps__grow(w, sps__field_slot(w, NULL, f, a), sps__field_bytes(f), o, m)) return SPS_ERR_OUT_OF_MEMORY;
     }
     w->cap = nc;
     return SPS_OK;
@@ -1612,23 +1638,51 @@ static void sps__permute_int(sps_world* w, int* f, int begin, int count) {
     memcpy(f + begin, tmp, sizeof(int) * (size_t)count);
 }
 
-/* The fields marked SPS__CARRIED follow their particles; the others are rebuilt before they
-   are read (sps__fields). */
-static void sps__sort_range(sps_world* w, int begin, int count, const int* key, int nkeys) {
-    int i, k, a, *start = w->cell_start;
+/* Counting sort of count keys (< nkeys) into w->perm (perm[new] = old), stable. */
+static void sps__sort_keys(sps_world* w, int count, const int* key, int nkeys) {
+    int i, *start = w->cell_start;
     for (i = 0; i <= nkeys; ++i) start[i] = 0;
     for (i = 0; i < count; ++i) start[key[i] + 1]++;
     for (i = 0; i < nkeys; ++i) start[i + 1] += start[i];
-    for (i = 0; i < count; ++i) w->perm[start[key[i]]++] = i; /* perm[new] = old */
+    for (i = 0; i < count; ++i) w->perm[start[key[i]]++] = i;
+}
+
+/* Applies w->perm to the count values of field f from index `from` of each of its arrays
+   (x: a real array, or NULL to take the world's int array). */
+static void sps__permute_field(sps_world* w, const sps__field_info* f, sps_real* x, int a, int from, int count) {
+    if (f->is_int) sps__permute_int(w, sps__int_array(w, f, a), from, count);
+    else sps__permute_real(w, x, from, count, f->components);
+}
+
+/* Groups the particles by body (stable; at commit): the world's carried fields follow. The
+   bodies' own arrays do not move: each body's particles keep their order (sps__ensure_body_field). */
+static void sps__sort_by_body(sps_world* w) {
+    int i, k, a;
+    sps__sort_keys(w, w->n, w->body, w->nbodies);
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (!(f->care & SPS__CARRIED) || f->per_body) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a) sps__permute_field(w, f, f->is_int ? NULL : sps__real_array(w, NULL, f, a), a, 0, w->n);
+    }
+    for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i;
+}
+
+/* Sorts body b's particles by key (their cells; keys < nkeys): every field marked SPS__CARRIED
+   follows its particle, the world's and the body's own; the others are rebuilt before they are
+   read. */
+static void sps__sort_body(sps_world* w, const sps__body* b, const int* key, int nkeys) {
+    const int count = b->end - b->begin;
+    int i, k, a;
+    sps__sort_keys(w, count, key, nkeys);
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];
         if (!(f->care & SPS__CARRIED)) continue;
         for (a = 0; a < sps__field_arrays(f); ++a) {
-            if (f->is_int) sps__permute_int(w, sps__int_array(w, f, a), begin, count);
-            else sps__permute_real(w, sps__real_array(w, f, a), begin, count, f->components);
+            if (f->per_body) sps__permute_field(w, f, sps__real_array(w, b, f, a), a, 0, count);
+            else sps__permute_field(w, f, f->is_int ? NULL : sps__real_array(w, NULL, f, a), a, b->begin, count);
         }
     }
-    for (i = begin; i < begin + count; ++i) w->slot_of_id[w->id[i]] = i;
+    for (i = b->begin; i < b->end; ++i) w->slot_of_id[w->id[i]] = i;
 }
 
 /* Cell grid of one body: cell size = support; dims capped near 4 cells per particle, each at
@@ -1752,8 +1806,8 @@ static sps_result sps__build_neighbors(sps_world* w) {
             for (c = 0, a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, w->pos[a][begin + i]);
             w->cell_of[i] = c;
         }
-        sps__sort_range(w, begin, count, w->cell_of, ncell);
-        /* sps__sort_range left cell_start[c] = end of cell c: shift to starts, and note each
+        sps__sort_body(w, b, w->cell_of, ncell);
+        /* sps__sort_keys left cell_start[c] = end of cell c: shift to starts, and note each
            sorted particle's cell */
         for (c = ncell; c > 0; --c) w->cell_start[c] = w->cell_start[c - 1];
         w->cell_start[0] = 0;
@@ -2002,35 +2056,23 @@ static sps_result sps__ensure_pair_storage(sps_world* w) {
     return SPS_OK;
 }
 
-/* Whether some body of the world needs the optional arrays of kind need. */
-static int sps__world_needs(const sps_world* w, sps__need need) {
-    int bi;
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        const sps__model* m = &w->bodies[bi].model;
-        if ((need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
-            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
-            (need == SPS__NEED_ARTIFICIAL && m->stabilisation->artificial_stress))
-            return 1;
-    }
-    return 0;
+/* Whether body b's model needs the arrays of kind need. */
+static int sps__body_needs(const sps__body* b, sps__need need) {
+    const sps__model* m = &b->model;
+    return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
+           (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
+           (need == SPS__NEED_ARTIFICIAL && m->stabilisation->artificial_stress);
 }
 
-/* The optional array(s) of field f for cap particles and the lane padding, zeroed (its old
-   contents copied when the field is SPS__KEPT), if the scene needs it and it is missing or too
-   small. Returns 0 when out of memory. */
-static int sps__ensure_optional_field(sps_world* w, const sps__field_info* f) {
-    const size_t bytes = sps__field_bytes(f), slots = (size_t)w->cap + SPS__LANES;
+/* Body b's array(s) of the per-body field f for its count particles and the lane padding,
+   zeroed past the field_count particles they held (which keep their values: a commit sorts
+   the particles by body stably, so each body's particles keep their order and the new ones
+   come last). Returns 0 when out of memory. */
+static int sps__ensure_body_field(sps_world* w, sps__body* b, const sps__field_info* f) {
     int a;
-    for (a = 0; a < sps__field_arrays(f); ++a) {
-        void *old, *fresh;
-        memcpy(&old, sps__field_slot(w, f, a), sizeof old);
-        if (old && w->allocated_for >= w->cap) continue;
-        if (!(fresh = sps__alloc(w, bytes * slots))) return 0;
-        memset(fresh, 0, bytes * slots);
-        if (old && (f->care & SPS__KEPT)) memcpy(fresh, old, bytes * (size_t)w->allocated_for);
-        sps__free(w, old);
-        memcpy(sps__field_slot(w, f, a), &fresh, sizeof fresh);
-    }
+    for (a = 0; a < sps__field_arrays(f); ++a)
+        if (!sps__grow(w, sps__field_slot(w, b, f, a), sps__field_bytes(f), (size_t)b->field_count, (size_t)b->count + SPS__LANES))
+            return 0;
     return 1;
 }
 
@@ -2045,14 +2087,17 @@ static sps_result sps__commit(sps_world* w) {
             if (sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
             break;
         }
-    for (k = 0; k < SPS__NFIELDS; ++k) {
-        const sps__field_info* f = &sps__fields[k];
-        if (f->need == SPS__NEED_ALWAYS || f->need == SPS__NEED_CONSTRAINTS || !sps__world_needs(w, f->need)) continue;
-        if (!sps__ensure_optional_field(w, f)) return SPS_ERR_OUT_OF_MEMORY;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps__body* b = &w->bodies[bi];
+        if (b->field_count == b->count) continue;
+        for (k = 0; k < SPS__NFIELDS; ++k)
+            if (sps__fields[k].per_body && sps__body_needs(b, sps__fields[k].need) && !sps__ensure_body_field(w, b, &sps__fields[k]))
+                return SPS_ERR_OUT_OF_MEMORY;
+        b->field_count = b->count;
     }
     w->allocated_for = w->cap;
     /* group particles by body (stable), then set ranges */
-    sps__sort_range(w, 0, w->n, w->body, w->nbodies);
+    sps__sort_by_body(w);
     for (bi = 0; bi < w->nbodies; ++bi) w->bodies[bi].begin = w->bodies[bi].end = 0;
     for (i = w->n - 1; i >= 0; --i) w->bodies[w->body[i]].begin = i;
     for (i = 0; i < w->n; ++i) w->bodies[w->body[i]].end = i + 1;
@@ -2186,8 +2231,8 @@ static void sps__correction_matrices(sps_world* w, sps_real* out) {
             const sps__pair_geometry e = sps__pair(w, i, w->nb_first[i] + k * SPS__LANES, j, w->dim, geo);
             sps__add_moment(A, 1, e.ex, e.ey, e.ez, e.r * (e.dw * w->vol[j]), w->dim);
         }
-        if (w->dim == 2) sps__blended_inverse(A, 1, B, 3, 2);
-        else sps__blended_inverse(A, 1, B, 3, 3);
+        if (w->dim == 2) sps__blended_inverse(A, 1, B, 1, 2);
+        else sps__blended_inverse(A, 1, B, 1, 3);
     }
 }
 
@@ -2269,7 +2314,8 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                                const int stress, const int art, const int paired) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->z_riemann;
-    const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = w->tau;
+    const int begin = b->begin; /* the body's own arrays (tau, art) hold particle begin + k at k */
+    const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
     sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES];
@@ -2297,7 +2343,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 if (dim == 3) shear[2][l] += f * ez;
             }
             if (stress) { /* (tau_i + tau_j) . e_ij dW V_j */
-                const sps_real *ti = tau + (size_t)6 * i, *tj = tau + (size_t)6 * j;
+                const sps_real *ti = tau + (size_t)6 * (i - begin), *tj = tau + (size_t)6 * (j - begin);
                 sps_real dwv = dw * vol[j];
                 sps_real sxx = ti[0] + tj[0], sxy = ti[1] + tj[1], syy = ti[3] + tj[3];
                 if (dim == 3) {
@@ -2311,7 +2357,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 }
             }
             if (art) {
-                const sps_real *ri = w->art + (size_t)3 * i, *rj = w->art + (size_t)3 * j;
+                const sps_real *ri = b->art + (size_t)3 * (i - begin), *rj = b->art + (size_t)3 * (j - begin);
                 sps_real f = w->kernel_norm * sps__kernel_f(w->def.kernel, rij * w->inv_h) / b->oas_w_dp, fn = 1, mf;
                 int m;
                 for (m = 0; m < (int)b->oas_n; ++m) fn *= f;
@@ -2344,14 +2390,15 @@ SPS__PRESSURE_VARIANTS(SPS__PRESSURE_INSTANCES)
 /* Gray et al.'s artificial stress R_i (2D): in the principal frame of sigma = -p I + tau each
    tensile principal stress s > 0 gives R' = -eps s / rho^2; rotated back (xx, xy, yy). */
 static void sps__artificial_stress(sps_world* w, const sps__body* b, int i) {
-    const sps_real* t = w->tau + (size_t)6 * i;
+    const sps_real* t = b->tau + (size_t)6 * (i - b->begin);
     sps_real sxx = t[0] - w->p[i], sxy = t[1], syy = t[3] - w->p[i], rho2 = w->rho[i] * w->rho[i];
     sps_real th = SPS_R(0.5) * SPS__ATAN2(2 * sxy, sxx - syy), c = SPS__COS(th), s = SPS__SIN(th);
     sps_real pxx = c * c * sxx + 2 * c * s * sxy + s * s * syy, pyy = s * s * sxx - 2 * c * s * sxy + c * c * syy;
     sps_real rxx = pxx > 0 ? -b->oas_eps * pxx / rho2 : 0, ryy = pyy > 0 ? -b->oas_eps * pyy / rho2 : 0;
-    w->art[(size_t)3 * i + 0] = c * c * rxx + s * s * ryy;
-    w->art[(size_t)3 * i + 1] = c * s * (rxx - ryy);
-    w->art[(size_t)3 * i + 2] = s * s * rxx + c * c * ryy;
+    sps_real* r = b->art + (size_t)3 * (i - b->begin);
+    r[0] = c * c * rxx + s * s * ryy;
+    r[1] = c * s * (rxx - ryy);
+    r[2] = s * s * rxx + c * c * ryy;
 }
 
 /* exp(W dt) for the spin W = (L - L^T)/2 of a velocity gradient L (9 entries, row-major), in
@@ -2458,9 +2505,10 @@ SPS__INLINE void sps__next_stress(const sps_real* t6, int ts, const sps_real* L,
 /* The Jaumann update of the particles of lane group q from their velocity gradients in the
    lane arrays L (contiguous per entry: the lanes vectorise; measured 6% of a 2D plate run as a
    scalar loop). Padding lanes compute and do not store. */
-SPS__INLINE void sps__stress_lanes(sps_world* w, sps__group q, int end, const int dim, sps_real G, sps_real dt,
-                                   sps_real L[9][SPS__LANES]) {
-    sps_real* SPS__RESTRICT tau = w->tau + (size_t)6 * q.i0;
+SPS__INLINE void sps__stress_lanes(const sps__body* b, sps__group q, const int dim, sps_real dt, sps_real L[9][SPS__LANES]) {
+    sps_real* SPS__RESTRICT tau = b->tau + (size_t)6 * (q.i0 - b->begin);
+    const sps_real G = b->mat.G;
+    const int end = b->end;
     int l;
     SPS__PRAGMA(omp simd)
     for (l = 0; l < SPS__LANES; ++l) {
@@ -2481,10 +2529,10 @@ SPS__INLINE void sps__stress_lanes(sps_world* w, sps__group q, int end, const in
 
 /* The Rodrigues matrix of each particle of lane group q from its velocity gradient: from the
    lane arrays L when given (the continuity pass has them at hand; contiguous, so the lanes
-   vectorise), else from w->grad. Lanes that turned more than 0.01 rad are redone by sin and cos. */
-SPS__INLINE void sps__rotation_lanes(const sps_world* w, sps__group q, sps_real dt, const int dim, sps_real L[9][SPS__LANES],
+   vectorise), else from the body's velocity gradients. Lanes that turned more than 0.01 rad are redone by sin and cos. */
+SPS__INLINE void sps__rotation_lanes(const sps__body* b, sps__group q, sps_real dt, const int dim, sps_real L[9][SPS__LANES],
                                      sps_real R[9][SPS__LANES]) {
-    const sps_real* SPS__RESTRICT grad = w->grad + (size_t)9 * q.i0;
+    const sps_real* SPS__RESTRICT grad = b->grad + (size_t)9 * (q.i0 - b->begin);
     sps_real theta2[SPS__LANES], exact[9];
     int l, a;
     if (L) {
@@ -2524,7 +2572,7 @@ SPS__INLINE void sps__add_increments(sps_world* w, const sps__body* b, sps__grou
         if (i < end)
             SPS__UNROLL
             for (a = 0; a < dim; ++a) {
-                if (turn == SPS__TURN_MEAN) w->acc_d[a][i] = next[a];
+                if (turn == SPS__TURN_MEAN) b->acc_d[a][i - b->begin] = next[a];
                 else w->acc_s[a][i] = next[a];
             }
     }
@@ -2542,12 +2590,13 @@ enum {
    increment without rotation (ENO eq. 24) into da, and, with gradient (a literal), the velocity
    gradient L = M B^T (ANG eq. 20; B from this pass's A, also with frozen geometry: a B kept
    from the configuration update would lag a rotating body). */
-SPS__INLINE void sps__continuity_lanes(sps_world* w, sps__group q, int end, const int dim, const int gradient,
+SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, const int gradient,
                                        sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES], sps_real da[3][SPS__LANES],
                                        sps_real L[9][SPS__LANES]) {
     const sps_real* SPS__RESTRICT rho = w->rho + q.i0;
     sps_real* SPS__RESTRICT drho = w->drho + q.i0;
-    sps_real* SPS__RESTRICT grad = w->grad + (size_t)9 * q.i0;
+    sps_real* SPS__RESTRICT grad = gradient ? b->grad + (size_t)9 * (q.i0 - b->begin) : NULL;
+    const int end = b->end;
     sps_real B[9][SPS__LANES];
     int l, a, c, m;
     SPS__PRAGMA(omp simd)
@@ -2642,9 +2691,9 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
     for (t = 0; t < SPS__NSUM; ++t)
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
     sps__continuity_pairs(w, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, shear_rate, sum);
-    sps__continuity_lanes(w, q, end, dim, gradient, shear_rate, sum, da, L);
-    if (b->model.stress) sps__stress_lanes(w, q, end, dim, b->mat.G, dt, L);
-    if (turn != SPS__TURN_NONE) sps__rotation_lanes(w, q, dt, dim, L, R);
+    sps__continuity_lanes(w, b, q, dim, gradient, shear_rate, sum, da, L);
+    if (b->model.stress) sps__stress_lanes(b, q, dim, dt, L);
+    if (turn != SPS__TURN_NONE) sps__rotation_lanes(b, q, dt, dim, L, R);
     if (turn == SPS__TURN_MEAN) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
             for (a = 0; a < 9; ++a) rsum[a] += R[a][l];
@@ -2693,7 +2742,8 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
                               const int projected, const int paired, const int turn) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
-    const sps_real* SPS__RESTRICT L = w->grad;
+    const sps_real* SPS__RESTRICT L = b->grad; /* the body's own: particle begin + k at 9 k */
+    const int begin = b->begin;
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
     sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES];
     int k, l, a, c;
@@ -2711,7 +2761,7 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
             for (a = 0; a < dim; ++a) {
                 sps_real le = 0, v_r;
                 SPS__UNROLL
-                for (c = 0; c < dim; ++c) le += (L[(size_t)9 * i + 3 * a + c] + L[(size_t)9 * j + 3 * a + c]) * e[c];
+                for (c = 0; c < dim; ++c) le += (L[(size_t)9 * (i - begin) + 3 * a + c] + L[(size_t)9 * (j - begin) + 3 * a + c]) * e[c];
                 v_r = (w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
                 vhat[a] = v_r * vol[j];
                 u += vhat[a] * e[a];
@@ -2732,7 +2782,7 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
         SPS__UNROLL
         for (a = 0; a < dim; ++a) da[a][l] = penalty_rate / rho * sum[a][l];
     }
-    if (turn == SPS__TURN_PARTICLE) sps__rotation_lanes(w, q, dt, dim, NULL, R);
+    if (turn == SPS__TURN_PARTICLE) sps__rotation_lanes(b, q, dt, dim, NULL, R);
     sps__add_increments(w, b, q, dim, da, R, turn);
 }
 
@@ -2844,7 +2894,7 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
         if (rotated) {
             const sps_real* H = Hmean;
             if (per_particle) {
-                sps__rodrigues(w->grad + (size_t)9 * i, SPS_R(0.5) * dt, dim, Hp);
+                sps__rodrigues(b->grad + (size_t)9 * (i - b->begin), SPS_R(0.5) * dt, dim, Hp);
                 H = Hp;
             }
             SPS__UNROLL
@@ -2916,7 +2966,7 @@ static void sps__finish(sps_world* w, sps_real dt) {
                 sps_real old[3];
                 for (a = 0; a < dim; ++a) old[a] = w->acc_s[a][i];
                 for (a = 0; a < dim; ++a) {
-                    sps_real s = w->acc_d[a][i];
+                    sps_real s = b->acc_d[a][i - b->begin];
                     for (c = 0; c < dim; ++c) s += R[3 * a + c] * old[c];
                     w->acc_s[a][i] = s;
                 }
@@ -2944,16 +2994,20 @@ static int sps__first_bad(const sps_real* x, int n, int components, int positive
    <= 0 in one marked SPS__POSITIVE as well): velocity, position, shear acceleration, density,
    pressure, shear stress. Once per advection step: about one read of the state. */
 static sps_result sps__check_finite(sps_world* w, const char* where) {
-    int k, a, first = w->n;
+    int k, a, bi, first = w->n;
     const char* what = NULL;
     sps_real val = 0;
-    for (k = 0; k < SPS__NFIELDS; ++k) {
-        const sps__field_info* f = &sps__fields[k];
-        for (a = 0; (f->care & SPS__CHECKED) && a < (f->axes ? w->dim : 1); ++a) {
-            const sps_real* x = sps__real_array(w, f, a);
-            sps_real v = 0;
-            const int i = x ? sps__first_bad(x, first, f->components, (f->care & SPS__POSITIVE) != 0, &v) : first;
-            if (i < first) { first = i; what = f->what; val = v; }
+    for (bi = 0; bi < w->nbodies && !what; ++bi) { /* bodies in particle order: the first bad one */
+        const sps__body* b = &w->bodies[bi];
+        int local = b->end - b->begin;
+        for (k = 0; k < SPS__NFIELDS; ++k) {
+            const sps__field_info* f = &sps__fields[k];
+            for (a = 0; (f->care & SPS__CHECKED) && a < (f->axes ? w->dim : 1); ++a) {
+                const sps_real* x = sps__body_values(w, b, f, a);
+                sps_real v = 0;
+                const int i = x ? sps__first_bad(x, local, f->components, (f->care & SPS__POSITIVE) != 0, &v) : local;
+                if (i < local) { local = i; what = f->what; val = v; first = b->begin + i; }
+            }
         }
     }
     if (what) {
@@ -3044,24 +3098,25 @@ static sps_result sps__ensure_good_state(sps_world* w) {
     return SPS_OK;
 }
 
-/* keep_last_good_state: copies the fields marked SPS__GOOD that exist (plain copies, in the
-   current particle order, remembered in good_id): field after field, each array good_cap reals
-   per component, one array per axis. */
+/* keep_last_good_state: copies the fields marked SPS__GOOD (plain copies, in the current
+   particle order, remembered in good_id): field after field, each array good_cap values per
+   component, one array per axis, the bodies' own arrays side by side in particle order. */
 static void sps__save_good_state(sps_world* w) {
     const size_t n = (size_t)w->n, c = (size_t)w->good_cap;
     size_t base = 0;
-    int k, a;
+    int k, a, bi;
     if (!w->good || w->good_cap < w->n) return;
-    w->good_present = 0;
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];
         if (!(f->care & SPS__GOOD)) continue;
-        for (a = 0; a < sps__field_arrays(f); ++a, base += (size_t)f->components) {
-            const sps_real* x = sps__real_array(w, f, a);
-            if (!x || (f->axes && a >= w->dim)) continue;
-            memcpy(w->good + base * c, x, sps__field_bytes(f) * n);
-            w->good_present |= 1u << k;
-        }
+        for (a = 0; a < sps__field_arrays(f); ++a, base += (size_t)f->components)
+            for (bi = 0; bi < w->nbodies && !(f->axes && a >= w->dim); ++bi) { /* a body without the field: zeros */
+                const sps__body* b = &w->bodies[bi];
+                const sps_real* x = sps__body_values(w, b, f, a);
+                sps_real* to = w->good + base * c + (size_t)b->begin * (size_t)f->components;
+                if (x) memcpy(to, x, sps__field_bytes(f) * (size_t)(b->end - b->begin));
+                else memset(to, 0, sps__field_bytes(f) * (size_t)(b->end - b->begin));
+            }
     }
     memcpy(w->good_id, w->id, sizeof(int) * n);
     w->good_n = w->n;
@@ -3205,12 +3260,15 @@ static void sps__restore_good_state(sps_world* w) {
         const sps__field_info* f = &sps__fields[k];
         if (!(f->care & SPS__GOOD)) continue;
         for (a = 0; a < sps__field_arrays(f); ++a, base += (size_t)f->components) {
-            sps_real* x = sps__real_array(w, f, a);
             const sps_real* saved = w->good + base * c;
-            if (!(w->good_present & (1u << k)) || (f->axes && a >= w->dim)) continue;
+            if (f->axes && a >= w->dim) continue;
             for (j = 0; j < w->good_n; ++j) {
-                const size_t i = (size_t)w->slot_of_id[w->good_id[j]];
-                for (m = 0; m < f->components; ++m) x[i * f->components + m] = saved[(size_t)j * f->components + m];
+                const int i = w->slot_of_id[w->good_id[j]];
+                const sps__body* b = &w->bodies[w->body[i]];
+                sps_real* x = sps__body_values(w, b, f, a);
+                if (!x) continue;
+                for (m = 0; m < f->components; ++m)
+                    x[(size_t)(i - b->begin) * f->components + m] = saved[(size_t)j * f->components + m];
             }
         }
     }
@@ -3270,12 +3328,23 @@ static void sps__tally_report(const sps_world* w, const sps__tally* t, const cha
               w->id[t->first], w->bodies[w->body[t->first]].name, t->value);
 }
 
+/* Tallies the count values (components each) of x, particle first + k at k, that are not
+   finite (or, positive, not > 0). */
+static void sps__tally_values(sps__tally* t, const sps_real* x, int first, int count, int components, int positive) {
+    int k, m;
+    for (k = 0; x && k < count; ++k)
+        for (m = 0; m < components; ++m) {
+            const sps_real v = x[(size_t)k * components + m];
+            sps__tally_check(t, sps__finite(v) && (!positive || v > 0), first + k, v);
+        }
+}
+
 /* Particles: every value of the fields marked SPS__VALIDATED finite (and > 0 where marked
    SPS__POSITIVE: density, mass, volume), ids a permutation, body indices in range. */
 static void sps__validate_particles(const sps_world* w, char* msg, size_t msg_size, int* broken) {
     sps__tally id = {0, 0, 0};
     char rule[64];
-    int i, k, a, m;
+    int i, k, a;
     for (i = 0; i < w->n; ++i)
         if (w->body[i] < 0 || w->body[i] >= w->nbodies) { /* the reports name the body: not this one */
             sps__rule(msg, msg_size, broken, "particle in slot %d: body index %d, allowed [0, %d)", i, w->body[i], w->nbodies);
@@ -3284,17 +3353,14 @@ static void sps__validate_particles(const sps_world* w, char* msg, size_t msg_si
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];
         const int positive = (f->care & SPS__POSITIVE) != 0;
-        /* optional arrays hold the particles of the last commit (none before the first step) */
-        const int n = f->need == SPS__NEED_ALWAYS ? w->n : (w->n < w->allocated_for ? w->n : w->allocated_for);
         sps__tally t = {0, 0, 0};
+        int bi;
         if (!(f->care & SPS__VALIDATED)) continue;
         for (a = 0; a < (f->axes ? w->dim : 1); ++a) {
-            const sps_real* x = sps__real_array(w, f, a);
-            for (i = 0; x && i < n; ++i)
-                for (m = 0; m < f->components; ++m) {
-                    const sps_real v = x[(size_t)i * f->components + m];
-                    sps__tally_check(&t, sps__finite(v) && (!positive || v > 0), i, v);
-                }
+            if (!f->per_body) sps__tally_values(&t, sps__real_array(w, NULL, f, a), 0, w->n, f->components, positive);
+            else /* a body's arrays hold its particles of the last commit (none before the first step) */
+                for (bi = 0; bi < w->nbodies; ++bi)
+                    sps__tally_values(&t, sps__real_array(w, &w->bodies[bi], f, a), w->bodies[bi].begin, w->bodies[bi].field_count, f->components, positive);
         }
         snprintf(rule, sizeof rule, "%s not finite%s", f->what, positive ? " > 0" : "");
         sps__tally_report(w, &t, rule, msg, msg_size, broken);
@@ -3360,12 +3426,13 @@ SPSDEF sps_result sps_world_validate(const sps_world* w, char* msg, size_t msg_s
 /* >>diagnostics */
 
 static sps_real sps__von_mises(const sps_world* w, int i) {
+    const sps__body* b = &w->bodies[w->body[i]];
     sps_real s[6] = {0, 0, 0, 0, 0, 0}, p = w->p[i];
     int a;
-    /* tau holds the particles of the last commit (none before the first step); those added
-       since have no stress yet */
-    if (w->bodies[w->body[i]].model.stress && w->tau && i < w->allocated_for)
-        for (a = 0; a < 6; ++a) s[a] = w->tau[(size_t)6 * i + a];
+    /* the body's tau holds its particles of the last commit (none before the first step);
+       those added since have no stress yet */
+    if (b->tau && i - b->begin < b->field_count)
+        for (a = 0; a < 6; ++a) s[a] = b->tau[(size_t)6 * (i - b->begin) + a];
     s[0] -= p; s[3] -= p; /* sigma = -p I + tau */
     if (w->dim == 2) return SPS__SQRT(s[0] * s[0] + s[3] * s[3] - s[0] * s[3] + 3 * s[1] * s[1]);
     s[5] -= p;
@@ -3461,7 +3528,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
         out->angular_momentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
         out->kinetic_energy += SPS_R(0.5) * m * v2;
         if (b->model.stress) {
-            const sps_real* t = w->tau + (size_t)6 * i;
+            const sps_real* t = b->tau + (size_t)6 * (i - b->begin);
             tt = t[0] * t[0] + t[3] * t[3] + t[5] * t[5] + 2 * (t[1] * t[1] + t[2] * t[2] + t[4] * t[4]);
         }
         out->strain_energy += vol * b->model.material->energy_density(&b->mat, tt, w->p[i]);
@@ -3492,35 +3559,67 @@ SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t s
 
 /* >>access */
 
-SPSDEF const sps_real* sps_world_field_by_name(const sps_world* w, const char* name, int* components) {
+/* The field row and axis of a public field name ("density", "velocity_x", ...); NULL (and the
+   error set, naming the caller fn) if it is unknown, an int field or an axis beyond dim. */
+static const sps__field_info* sps__field_of_name(const sps_world* w, const char* fn, const char* name, int* axis) {
     static const char* const suffix[3] = {"_x", "_y", "_z"};
     const sps__field_info* f = NULL;
     char base[64];
     size_t len;
-    int k, axis = 0;
-    if (components) *components = 0;
-    if (!w) return NULL;
-    if (!name) { sps__set_error_const(w, "sps_world_field_by_name: name is NULL"); return NULL; }
+    int k;
+    *axis = 0;
+    if (!name) { sps__set_error_const(w, "%s: name is NULL", fn); return NULL; }
     len = strlen(name);
     for (k = 0; k < 3 && !f; ++k) /* a per-axis name: the field's name and the axis' suffix */
         if (len > 2 && len < sizeof base && strcmp(name + len - 2, suffix[k]) == 0) {
             memcpy(base, name, len - 2);
             base[len - 2] = 0;
-            if ((f = sps__field_named(base)) && f->axes) axis = k;
+            if ((f = sps__field_named(base)) && f->axes) *axis = k;
             else f = NULL;
         }
     if (!f && (f = sps__field_named(name)) && f->axes) f = NULL;
     if (!f || f->is_int) {
-        sps__set_error_const(w, "sps_world_field_by_name: name = '%s', allowed a real field of sps_world_field_by_name's list", name);
+        sps__set_error_const(w, "%s: name = '%s', allowed a real field of sps_world_field_by_name's list", fn, name);
         return NULL;
     }
-    if (axis >= w->dim) { sps__set_error_const(w, "sps_world_field_by_name: '%s' with dim = %d", name, w->dim); return NULL; }
-    if (!sps__real_array(w, f, axis)) {
-        sps__set_error_const(w, "sps_world_field_by_name: '%s' is not allocated (no body needs it, or no step was taken yet)", name);
+    if (*axis >= w->dim) { sps__set_error_const(w, "%s: '%s' with dim = %d", fn, name, w->dim); return NULL; }
+    return f;
+}
+
+SPSDEF const sps_real* sps_world_field_by_name(const sps_world* w, const char* name, int* components) {
+    const sps__field_info* f;
+    int axis;
+    if (components) *components = 0;
+    if (!w || !(f = sps__field_of_name(w, "sps_world_field_by_name", name, &axis))) return NULL;
+    if (f->per_body) {
+        sps__set_error_const(w, "sps_world_field_by_name: '%s' is kept per body (only bodies whose model needs it have it): use sps_body_field", name);
         return NULL;
     }
     if (components) *components = f->components;
-    return sps__real_array(w, f, axis);
+    return sps__real_array(w, NULL, f, axis);
+}
+
+SPSDEF const sps_real* sps_body_field(const sps_world* w, sps_body body, const char* name, int* components, int* first, int* count) {
+    const sps__field_info* f;
+    const sps__body* b;
+    const sps_real* x;
+    int axis, k = sps__body_slot(w, body);
+    if (components) *components = 0;
+    if (first) *first = 0;
+    if (count) *count = 0;
+    if (!w) return NULL;
+    if (k < 0) { sps__set_error_const(w, "sps_body_field: body handle %u is not a body of this world", (unsigned)body.id); return NULL; }
+    if (!(f = sps__field_of_name(w, "sps_body_field", name, &axis))) return NULL;
+    b = &w->bodies[k];
+    if (w->needs_sort_by_body) { sps__set_error_const(w, "sps_body_field: particles were added since the last step: step first"); return NULL; }
+    if (!(x = sps__body_values(w, b, f, axis))) {
+        sps__set_error_const(w, "sps_body_field: body '%s' has no '%s' (its model does not need it)", b->name, name);
+        return NULL;
+    }
+    if (components) *components = f->components;
+    if (first) *first = b->begin;
+    if (count) *count = b->end - b->begin;
+    return x;
 }
 
 SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f) {

@@ -3,7 +3,8 @@
    Runs short cases over dimension x shear formulation x rotation x pair geometry x kernel (and
    single stepping, tracked stress, several bodies in one world), each at 1 and 2 threads, and
    compares a 64-bit FNV-1a hash of every particle's position, velocity, density, pressure and
-   von Mises stress (in id order) after a few advection steps with the value stored below.
+   von Mises stress (in id order), and of the world's diagnostics (energies, momenta, hourglass
+   indicator, smallest spacing), after a few advection steps with the value stored below.
    A change that moves any result by one bit fails here: a commit that changes results on
    purpose regenerates the table (--print) and says why in its message.
 
@@ -169,6 +170,16 @@ static uint64_t run_case(const pinned_case* c, int threads) {
         h = fnv_bytes(h, v, sizeof v);
     }
     h = fnv_bytes(h, &n, sizeof n);
+    {   /* the diagnostics too: energies, momenta, the hourglass indicator (its B_i) and spacing */
+        sps_diagnostics d;
+        sps_body all = {0};
+        double v[10];
+        if (sps_world_diagnostics(w, all, &d) != SPS_OK) goto fail;
+        v[0] = (double)d.kinetic_energy; v[1] = (double)d.strain_energy; v[2] = (double)d.hourglass;
+        v[3] = (double)d.min_spacing;
+        for (k = 0; k < 3; ++k) { v[4 + k] = (double)d.linear_momentum[k]; v[7 + k] = (double)d.angular_momentum[k]; }
+        h = fnv_bytes(h, v, sizeof v);
+    }
     sps_world_destroy(w);
     return h;
 fail:

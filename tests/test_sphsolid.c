@@ -1454,26 +1454,32 @@ static int test_bad_arguments_named(void) {
     return 0;
 }
 
-/* Fields by name: the same arrays as the enum access, the optional ones only once a body needs
-   them (after the first step), unknown names and missing axes refused with a message. */
+/* Fields by name: the world's arrays are those of the enum access; the optional arrays belong
+   to the bodies whose model needs them (an ENO body beside an OG body carries no stress), read
+   by sps_body_field after the first step; unknown names and missing axes refused with a message. */
 static int test_field_by_name(void) {
     sps_world* w = new_world(2, 0.01);
-    static const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.05, 0};
-    int n = 0, comps = -1;
-    const sps_real* tau;
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.05, 0}, lo2[3] = {0.2, 0, 0}, hi2[3] = {0.3, 0.05, 0};
+    int n = 0, n2 = 0, comps = -1, first = -1, count = -1;
+    sps_body og, eno;
     ENSURE(w);
-    ENSURE(add_block(w, SPS_SHEAR_OG, lo, hi, &n).id != 0);
+    ENSURE((og = add_block(w, SPS_SHEAR_OG, lo, hi, &n)).id != 0);
+    ENSURE((eno = add_block(w, SPS_SHEAR_ENO, lo2, hi2, &n2)).id != 0);
     ENSURE(sps_world_field_by_name(w, "velocity_y", &comps) == sps_world_field(w, SPS_FIELD_VELOCITY_Y) && comps == 1);
     ENSURE(sps_world_field_by_name(w, "density", NULL) == sps_world_field(w, SPS_FIELD_DENSITY));
-    ENSURE(sps_world_field_by_name(w, "shear_stress", NULL) == NULL && error_names(w, "not allocated") == 0);
+    ENSURE(sps_world_field_by_name(w, "shear_stress", NULL) == NULL && error_names(w, "use sps_body_field") == 0);
+    ENSURE(sps_body_field(w, og, "shear_stress", NULL, NULL, NULL) == NULL && error_names(w, "step first") == 0);
     ENSURE(sps_world_field_by_name(w, "position_z", NULL) == NULL && error_names(w, "dim = 2") == 0);
     ENSURE(sps_world_field_by_name(w, "velocity", NULL) == NULL && error_names(w, "name = 'velocity'") == 0);
     ENSURE(sps_world_field_by_name(w, "id", NULL) == NULL && error_names(w, "name = 'id'") == 0);
     ENSURE(sps_world_field_by_name(w, NULL, NULL) == NULL && error_names(w, "name is NULL") == 0);
     ENSURE(sps_world_step(w) == SPS_OK);
-    ENSURE((tau = sps_world_field_by_name(w, "shear_stress", &comps)) != NULL && comps == 6); /* OG integrates tau */
-    ENSURE(sps_world_field_by_name(w, "velocity_gradient", &comps) != NULL && comps == 9);
-    ENSURE(sps_world_field_by_name(w, "artificial_stress", NULL) == NULL); /* no OAS body */
+    ENSURE(sps_body_field(w, og, "shear_stress", &comps, &first, &count) != NULL && comps == 6 && count == n); /* OG integrates tau */
+    ENSURE(sps_body_field(w, og, "velocity_gradient", &comps, NULL, NULL) != NULL && comps == 9);
+    ENSURE(sps_body_field(w, og, "density", NULL, &first, NULL) == sps_world_field(w, SPS_FIELD_DENSITY) + first);
+    ENSURE(sps_body_field(w, eno, "shear_stress", NULL, NULL, NULL) == NULL && error_names(w, "does not need it") == 0);
+    ENSURE(sps_body_field(w, eno, "density", NULL, &first, &count) != NULL && count == n2);
+    ENSURE(sps_body_field(w, og, "artificial_stress", NULL, NULL, NULL) == NULL); /* no OAS body */
     sps_world_destroy(w);
     return 0;
 }
@@ -1653,7 +1659,7 @@ static int test_guard_nonfinite_state(void) {
         case 1: w->pos[0][i] = INFINITY; break;
         case 2: w->rho[i] = -1; break;
         case 3: w->p[i] = NAN; break;
-        case 4: w->tau[(size_t)6 * i + 1] = INFINITY; break;
+        case 4: w->bodies[0].tau[(size_t)6 * (i - w->bodies[0].begin) + 1] = INFINITY; break; /* the body owns its stress */
         default: w->acc_s[0][i] = NAN; break;
         }
         ENSURE(sps_world_step(w) == SPS_ERR_UNSTABLE);
