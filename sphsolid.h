@@ -131,6 +131,23 @@
       The shear stress tau (Jaumann rate, ENO eqs. 6-8) is integrated for the OG family always,
       for ENO bodies only with track_stress = 1 (von Mises output, strain energy).
 
+   MODELS AND FIELDS
+      A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic; the
+      material gives c0, G, K, its checks and its stored energy), its solver (solver:
+      SPS_SOLVER_UPDATED_LAGRANGIAN), its stabilisation (shear and rotation) and its transport
+      correction (transport: SPS_TRANSPORT_NONE). sps_world_add_body checks each field's range
+      and the table of allowed combinations (OAS only in 2D) and resolves the model once into
+      the pass kernels the step runs for the body: one named function per pass variant,
+      dimension and pair geometry (e.g. sps__continuity_eno_gradient_2d_wendland, what a
+      profiler shows), its choices literals. Adding a material is a row in sps__materials and
+      its section; a new stabilisation a row in sps__stabilisations and, where its terms
+      differ, a variant of the passes.
+      Per-particle arrays are rows of sps__fields (name, components, when needed, housekeeping).
+      Every particle has position, velocity, reference position, density, pressure, mass and
+      volume; the shear stress, the velocity gradient, the mean-rotation increments and Gray's
+      artificial stress belong to the bodies whose model needs them (an ENO body beside an OG
+      body carries no stress). Read them by name: sps_world_field_by_name and sps_body_field.
+
    DIAGNOSTICS (sps_world_diagnostics)
       kinetic energy     sum 1/2 m |v|^2
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.

@@ -4,7 +4,7 @@
 # error), the 3D plate at H/dp = 3 (cost; first period of mode (2,2) in double and float) and the
 # real-time loop (bench/realtime.c). Writes to bench/results/$MACHINE/:
 #   knobs.csv              one row per run (columns below)
-#   knobs.md               the tables of README "Choosing settings"
+#   knobs.md               the tables of README "Choosing settings" and bench/VALIDATION.md
 #   knobs_plate2d.svg      2D plate: CPU time vs |period error|, with the Pareto front
 #   knobs_spinning.svg     spinning plate: CPU time vs angular-momentum error per formulation
 #
@@ -26,7 +26,7 @@ CSV=$OUT/knobs.csv
 TIMER=${TIMER:-/usr/bin/time} # any POSIX time utility with -p
 RUNS=out/knobs
 # OpenMP threads spin at barriers by default; on a shared machine that costs whole time slices
-# (README, design notes)
+# (bench/VALIDATION.md, design notes)
 export OMP_WAIT_POLICY=passive
 COLUMNS_CSV="scene,knob,setting,real,res,shear,stepping,cfl,geometry,kernel,threads,t_end,particles,acoustic_steps,wall_s,user_s,sys_s,cpu_s,ns_cpu,period_s,period_err_pct,angmom_err_pct,energy_drift_pct,sim_per_wall,status"
 

@@ -1,6 +1,6 @@
 /* rotation_probe - does the mean rotation of ENO-A (ANG eqs. 41-42) turn a_s with the body?
 
-   Spins the unit square (BENCHMARKS.md A3) or cube (A4) about z, like torque_probe, and hooks
+   Spins the unit square (benchmark A3, bench/VALIDATION.md) or cube (A4) about z, like torque_probe, and hooks
    the end of every acoustic sub-step (sps__finish, renamed by the macro trick below, so the
    library header is used unmodified) to integrate three rotation angles about z:
      th_mean  the angle of the mean Rodrigues matrix of the step (what rotates a_s),

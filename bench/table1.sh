@@ -1,5 +1,5 @@
 #!/bin/sh
-# ANG Table 1: first period of the 2D plate (BENCHMARKS.md A1) for the six shear formulations
+# ANG Table 1: first period of the 2D plate (benchmark A1, bench/VALIDATION.md) for the six shear formulations
 # and v_f = 0.001, 0.01, 0.03, 0.05, next to the paper's values. Writes
 # bench/results/$MACHINE/table1.csv (one row per run; rows already there are kept, so an
 # interrupted sweep resumes) and prints the table in markdown.

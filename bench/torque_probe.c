@@ -1,6 +1,6 @@
 /* torque_probe - where the spurious torque of a spinning body comes from.
 
-   Spins the unit square (BENCHMARKS.md A3) or cube (A4) about z and, every 0.02 s, prints the
+   Spins the unit square (benchmark A3, bench/VALIDATION.md) or cube (A4) about z and, every 0.02 s, prints the
    torque about the centre of the two accelerations the kick applies: the pressure force acc_p
    (at the half-step positions it was computed at) and the accumulated shear acceleration a_s
    (rotated half a step ahead, at the positions of the next kick, as sps__kick applies it). Their

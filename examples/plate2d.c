@@ -1,4 +1,4 @@
-/* plate2d.c - 2D oscillating plate (cantilever), BENCHMARKS.md A1 (ENO 6.1, ANG 5.1.1).
+/* plate2d.c - 2D oscillating plate (cantilever), benchmark A1 (bench/VALIDATION.md) (ENO 6.1, ANG 5.1.1).
 
    A plate L = 0.2 x H = 0.02 (rho0 1000, E 2e6, nu 0.3975, plane strain) continues into a
    holder for x < 0 whose particles are clamped (set-up: scenes/plate2d.h). It starts from the
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
     double analytical, paper, period, wall;
 
     ex_passive_openmp_waits(argv);
-    opt_parse(argc, argv, "2D oscillating plate (BENCHMARKS.md A1)", opts, (int)(sizeof opts / sizeof *opts));
+    opt_parse(argc, argv, "2D oscillating plate (benchmark A1, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
     p.jitter = c.jitter;
     p.seed = c.seed;

@@ -1,9 +1,9 @@
-/* plate3d.c - 3D oscillating plate, simply supported, BENCHMARKS.md A2 (ENO 6.2, ANG 5.1.2).
+/* plate3d.c - 3D oscillating plate, simply supported, benchmark A2 (bench/VALIDATION.md) (ENO 6.2, ANG 5.1.2).
 
    A square plate L = W = 0.4, H = 0.01 (rho0 1000, E 1e8, nu 0.3) is simply supported
    (set-up: scenes/plate3d.h): the z-velocity of its mid-plane particles on the four lateral
    sides is held at zero, as ENO 6.2 describes it (--support edge). --support ring adds instead a one-particle ring outside
-   [0, L] x [0, W] in the mid plane (BENCHMARKS.md's note on the reference code); --support
+   [0, L] x [0, W] in the mid plane (the reference code, bench/VALIDATION.md); --support
    thick makes that ring as thick as the plate, all layers held in z (this reproduces the
    papers' particle counts: 44.7k / 204.0k / 1179.4k at H/dp = 3 / 5 / 9). It starts with v_z = sin(m pi x/L) sin(n pi y/W) and vibrates in mode
    (m, n). We measure the first period and compare it with ANG Table 3, with Kirchhoff plate
@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
     double D, analytical, mindlin, paper, period, wall;
 
     ex_passive_openmp_waits(argv);
-    opt_parse(argc, argv, "3D oscillating plate (BENCHMARKS.md A2)", opts, (int)(sizeof opts / sizeof *opts));
+    opt_parse(argc, argv, "3D oscillating plate (benchmark A2, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     p.mode.m = md_arg[0];
     p.mode.n = md_arg[1];
     D = c.E * pow(PLATE3D_H, 3) / (12 * (1 - c.nu * c.nu));                                                            /* ANG eq. 55 */

@@ -1,4 +1,4 @@
-/* spinning_cube.c - 3D spinning cube, BENCHMARKS.md A4 (ANG 5.1.4).
+/* spinning_cube.c - 3D spinning cube, benchmark A4 (bench/VALIDATION.md) (ANG 5.1.4).
 
    A unit cube centred at the origin, rho0 1100, E 1.7e7, nu 0.3, starts in rigid rotation at
    omega = (0, 0, 50) rad/s with no constraint (set-up: scenes/spinning.h). Linear and angular
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     output_plan output;
 
     ex_passive_openmp_waits(argv);
-    opt_parse(argc, argv, "3D spinning cube (BENCHMARKS.md A4)", opts, (int)(sizeof opts / sizeof *opts));
+    opt_parse(argc, argv, "3D spinning cube (benchmark A4, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
     p.jitter = c.jitter;
     p.seed = c.seed;

@@ -1,4 +1,4 @@
-/* spinning_plate.c - 2D spinning plate, BENCHMARKS.md A3 (ENO 6.10, ANG 5.1.3).
+/* spinning_plate.c - 2D spinning plate, benchmark A3 (bench/VALIDATION.md) (ENO 6.10, ANG 5.1.3).
 
    A unit square centred at the origin, rho0 1100, E 1.7e7, nu 0.45, starts in rigid rotation
    at omega = 50 rad/s about z with no constraint (set-up: scenes/spinning.h). Linear and
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     output_plan output;
 
     ex_passive_openmp_waits(argv);
-    opt_parse(argc, argv, "2D spinning plate (BENCHMARKS.md A3)", opts, (int)(sizeof opts / sizeof *opts));
+    opt_parse(argc, argv, "2D spinning plate (benchmark A3, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
     p.jitter = c.jitter;
     p.seed = c.seed;

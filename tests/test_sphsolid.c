@@ -784,7 +784,7 @@ static sps_world* plate3d_build(int res, plate3d_mode md, int threads, sps_obser
     sps_body plate;
     wd.threads = threads; wd.log = quiet_log;
     /* stored pair geometry: half the cost; the first period is the same to 0.1 % at H/dp = 3
-       (0.0158 s both ways, measured); only long runs drift with it (README, design notes) */
+       (0.0158 s both ways, measured); only long runs drift with it (bench/VALIDATION.md, design notes) */
     wd.frozen_geometry = 1;
     bd.material.density = PLATE3D_RHO0;
     bd.material.youngs_modulus = PLATE3D_E;
@@ -2141,7 +2141,7 @@ static int test_plate2d_period_eno_a_pair(void) {
 /* The hourglass indicator turns the papers' pictures into numbers: on the 2D plate (H/dp = 10,
    v_f = 0.05) SPH-OG zigzags at t = 0.012 and fractures at 0.021 (ENO Fig. 9), so by t = 0.1 its
    indicator must exceed 0.02 or its particles cluster (min spacing < 0.5 dp); the non-hourglass
-   formulations bend smoothly. Thresholds: smooth bending measures about 1e-3 (README), a
+   formulations bend smoothly. Thresholds: smooth bending measures about 1e-3 (bench/VALIDATION.md), a
    zigzag of a tenth of the spacing about 0.05. */
 static int test_hourglass_og_breaks_others_do_not(void) {
     static const sps_shear shears[5] = {SPS_SHEAR_OG, SPS_SHEAR_ENO, SPS_SHEAR_ENO_A, SPS_SHEAR_GNO, SPS_SHEAR_GNO_A};

@@ -1,4 +1,4 @@
-/* plate2d.h - the 2D oscillating plate (cantilever) of BENCHMARKS.md A1 (ENO 6.1, ANG 5.1.1):
+/* plate2d.h - the 2D oscillating plate (cantilever) of benchmark A1 (bench/VALIDATION.md) (ENO 6.1, ANG 5.1.1):
    its dimensions, material, first-mode start and set-up. Used by examples/plate2d.c, the tests
    and the gallery; needs only sphsolid.h.
 

@@ -1,11 +1,11 @@
-/* plate3d.h - the 3D simply supported plate of BENCHMARKS.md A2 (ENO 6.2, ANG 5.1.2): its
+/* plate3d.h - the 3D simply supported plate of benchmark A2 (bench/VALIDATION.md) (ENO 6.2, ANG 5.1.2): its
    dimensions, material, mode start, supports and set-up. Used by examples/plate3d.c, the tests
    and the gallery; needs only sphsolid.h.
 
    A square plate L = W = 0.4, H = 0.01 (rho0 1000, E 1e8, nu 0.3) is simply supported: the
    z-velocity of its mid-plane particles on the four lateral sides is held at zero, as ENO 6.2
    describes it (PLATE3D_SUPPORT_EDGE). PLATE3D_SUPPORT_RING adds instead a one-particle ring
-   outside [0, L] x [0, W] in the mid plane (BENCHMARKS.md's note on the reference code);
+   outside [0, L] x [0, W] in the mid plane (the reference code, bench/VALIDATION.md);
    PLATE3D_SUPPORT_THICK makes that ring as thick as the plate, all layers held in z (this
    reproduces the papers' particle counts: 44.7k / 204.0k / 1179.4k at H/dp = 3 / 5 / 9). It
    starts with v_z = sin(m pi x/L) sin(n pi y/W) and vibrates in mode (m, n). */

@@ -1,4 +1,4 @@
-/* spinning.h - the spinning plate (2D, BENCHMARKS.md A3, ENO 6.10, ANG 5.1.3) and the spinning
+/* spinning.h - the spinning plate (2D, benchmark A3 (bench/VALIDATION.md), ENO 6.10, ANG 5.1.3) and the spinning
    cube (3D, A4, ANG 5.1.4): their material, set-up and angular-momentum error. Used by
    examples/spinning_plate.c, examples/spinning_cube.c, bench/realtime.c and the gallery; needs
    only sphsolid.h.
