@@ -418,6 +418,8 @@ typedef struct sps_body_def {
     int track_stress;          /* 1: integrate the shear stress (von Mises, strain energy). Default 0. */
     sps_solver solver;         /* Default SPS_SOLVER_UPDATED_LAGRANGIAN. */
     sps_transport transport;   /* Default SPS_TRANSPORT_NONE. */
+    int contact;               /* 1: touches the other bodies with contact = 1 (CONTACT; pairs can be
+                                  turned off by sps_world_set_contact). Default 1. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -581,6 +583,25 @@ SPSDEF const int* sps_world_particle_ids(const sps_world* w);
 SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_state* out);
 /* Stable id of the particle of body b whose reference position is nearest to x; -1 if none. */
 SPSDEF int sps_world_nearest_particle(const sps_world* w, sps_body b, const sps_real x[3]);
+
+/* Rigid walls (CONTACT): the half-space behind a wall is solid. */
+typedef enum sps_wall_slip {
+    SPS_WALL_FREE_SLIP = 0, /* normal repulsion only */
+    SPS_WALL_NO_SLIP = 1    /* and a tangential drag that brings the contact layer to rest */
+} sps_wall_slip;
+/* Faces of sps_world_add_box_walls, to leave open. */
+enum { SPS_FACE_X_LO = 1, SPS_FACE_X_HI = 2, SPS_FACE_Y_LO = 4, SPS_FACE_Y_HI = 8, SPS_FACE_Z_LO = 16, SPS_FACE_Z_HI = 32 };
+
+/* Adds an analytic rigid wall through point with normal (length 3, any length > 0, pointing
+   out of the solid half-space into the free side; z ignored in 2D). Every body's particles
+   within 2h of it are pushed back (CONTACT). No particles, no cost beyond that distance test. */
+SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], const sps_real normal[3], sps_wall_slip slip);
+/* Adds the walls of the box [lo, hi] facing inwards (a tank: 2 dim faces, those in open_faces
+   left out, e.g. SPS_FACE_Y_HI for an open top in 2D). */
+SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], const sps_real hi[3], unsigned open_faces, sps_wall_slip slip);
+/* Whether bodies a and b touch (CONTACT; default: every pair of bodies whose defs have
+   contact = 1). a == b is refused: a body does not contact itself. */
+SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, int touch);
 
 /* Kernel value and derivative dW/dr for the world's kernel (for tests and teaching). */
 SPSDEF sps_real sps_world_kernel(const sps_world* w, sps_real r);
@@ -765,6 +786,13 @@ typedef struct sps__body {
     int field_count; /* particles they hold: its count at the last commit */
 } sps__body;
 
+/* An analytic rigid wall (chapter >>contact): the half-space (x - point) . normal < 0 is solid. */
+typedef struct sps__wall {
+    sps_real point[3], normal[3]; /* normal of unit length */
+    sps_wall_slip slip;
+} sps__wall;
+#define SPS__WALL_TABLE 64 /* intervals of the wall tables over [0, 2h] */
+
 typedef struct sps__constraint {
     unsigned mask;
     sps_real velocity[3];
@@ -836,6 +864,19 @@ struct sps_world {
     int diag_cap;
     int grid_wrap[3], grid_n[3];
     sps_real grid_lo[3];
+
+    /* contact (chapter >>contact): walls, which bodies touch, contact pairs (CSR, rebuilt at every
+       configuration update), contact densities */
+    sps__wall* walls;
+    int nwalls;
+    sps_real wall_sigma[SPS__WALL_TABLE + 1], wall_plane[SPS__WALL_TABLE + 1];
+    int *separate, nseparate;   /* body pairs turned off by sps_world_set_contact */
+    unsigned char* touch;       /* nbodies x nbodies: bodies a and b touch */
+    int touch_n, contact_bodies, contact_dirty;
+    int *ct_first, *ct_j, *ct_cell, *ct_order, *ct_cell_start, ct_cap;
+    long ct_pair_cap;
+    sps_real* sigma;
+    int sigma_cap;
 
     /* time */
     sps_real time, dt, vmax, c0_max;
@@ -1058,6 +1099,7 @@ SPSDEF sps_body_def sps_default_body_def(void) {
     d.rotation = SPS_ROTATION_MEAN;
     d.oas_epsilon = SPS_R(0.3);
     d.oas_exponent = 4;
+    d.contact = 1;
     d.internal_cookie = SPS__COOKIE;
     return d;
 }
@@ -1204,6 +1246,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                "rotation = %d, allowed 0 (mean), 1 (per particle) or 2 (pair)", (int)def->rotation);
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
     SPS__CHECK(def->track_stress == 0 || def->track_stress == 1, "track_stress = %d, allowed 0 or 1", def->track_stress);
+    SPS__CHECK(def->contact == 0 || def->contact == 1, "contact = %d, allowed 0 or 1", def->contact);
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
@@ -1375,6 +1418,9 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm);
     sps__free(w, w->scratch); sps__free(w, w->group_sum); sps__free(w, w->diag_scratch);
     sps__free(w, w->good); sps__free(w, w->good_id);
+    sps__free(w, w->walls); sps__free(w, w->separate); sps__free(w, w->touch); sps__free(w, w->sigma);
+    sps__free(w, w->ct_first); sps__free(w, w->ct_j); sps__free(w, w->ct_cell); sps__free(w, w->ct_order);
+    sps__free(w, w->ct_cell_start);
 }
 
 SPSDEF void sps_world_destroy(sps_world* w) {
@@ -1445,6 +1491,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
 
     if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
+    w->contact_dirty = 1;
     out->id = ((uint32_t)w->tag << 16) | (uint32_t)(w->nbodies + 1);
     w->nbodies++;
     return SPS_OK;
@@ -2847,6 +2894,315 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     return p;
 }
 
+/* >>contact: rigid walls and contact between bodies */
+
+/* Contact follows the reference code's contact density (DESIGN of the ENO paper's section 6.3):
+   each particle i of a body that touches others has the contact density
+       sigma_i = sum_{j of the bodies it touches} W_ij V_j   (dimensionless, 0 away from contact)
+   and feels the repulsion
+       F_i = -V_i sum_j K_ij (sigma_i + sigma_j) dW_ij e_ij V_j,
+   K_ij = 2 K_a K_b / (K_a + K_b) (the bodies' bulk moduli rho0 c0^2, harmonic mean). Every
+   factor is symmetric in i and j and e_ji = -e_ij, so F_j = -F_i: linear momentum is exact, and
+   each pair's force is central (angular momentum too). A gather like every other pass: the
+   thread that owns i writes only i.
+   An analytic wall is the same law with the solid half-space behind it taken as a continuum of
+   contact density sigma_i: its sums become integrals of the kernel, functions of the distance
+   d of the particle from the wall, tabulated once per world:
+       sigma_wall(d) = int_{half-space} W dV,    int_{half-space} grad_i W dV = -n W_plane(d),
+   W_plane(d) the kernel integrated over the wall's plane at distance d, so the wall adds
+       sigma_i += sigma_wall(d),    F_i += 2 V_i K sigma_i W_plane(d) n
+   (K the body's). A no-slip wall adds F_i -= 2 V_i rho0 c0 W_plane(d) v_t, a drag on the
+   tangential velocity with the Riemann solver's impedance (it brings the contact layer to rest
+   in about one acoustic time). */
+
+/* The wall tables: sigma_wall and W_plane at d = k (2h / SPS__WALL_TABLE), k = 0..SPS__WALL_TABLE,
+   by Simpson's rule over the plane (in 2D a line) and then over the depth. */
+static void sps__wall_tables(sps_world* w) {
+    const int n = SPS__WALL_TABLE, m = 400; /* Simpson panels: the kernel is smooth, 400 give 1e-9 */
+    const double support = (double)w->support;
+    int k, q;
+    for (k = 0; k <= n; ++k) {
+        const double d = support * k / n, span = sqrt(support * support - d * d);
+        double sum = 0;
+        for (q = 0; q <= m; ++q) { /* s along the plane from the foot of the perpendicular */
+            const double s = span * q / m, r = sqrt(d * d + s * s);
+            const double f = (double)sps_world_kernel(w, (sps_real)r) * (w->dim == 2 ? 2.0 : 2.0 * 3.14159265358979323846 * s);
+            sum += f * (q == 0 || q == m ? 1 : q % 2 ? 4 : 2);
+        }
+        w->wall_plane[k] = (sps_real)(sum * span / (3.0 * m));
+    }
+    w->wall_sigma[n] = 0;
+    for (k = n - 1; k >= 0; --k) /* trapezoids from the far end: sigma(d) = int_d^2h W_plane */
+        w->wall_sigma[k] = w->wall_sigma[k + 1] + (sps_real)(0.5 * support / n) * (w->wall_plane[k] + w->wall_plane[k + 1]);
+}
+
+/* A wall table at distance d in [0, 2h) (linear interpolation). */
+static sps_real sps__wall_lookup(const sps_world* w, const sps_real* table, sps_real d) {
+    const sps_real x = d / w->support * SPS__WALL_TABLE;
+    const int k = (int)x;
+    return k >= SPS__WALL_TABLE ? 0 : table[k] + (x - (sps_real)k) * (table[k + 1] - table[k]);
+}
+
+SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], const sps_real normal[3], sps_wall_slip slip) {
+    sps__wall wall;
+    sps_real len2 = 0;
+    int a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!sps__finite_point(w, point) || !sps__finite_point(w, normal)) {
+        sps__set_error(w, 0, "sps_world_add_wall: point %s and normal %s, allowed finite", point ? "set" : "NULL", normal ? "set" : "NULL");
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (a = 0; a < w->dim; ++a) len2 += normal[a] * normal[a];
+    if (!(len2 > 0) || !sps__finite(len2)) {
+        sps__set_error(w, 0, "sps_world_add_wall: normal = (%g, %g, %g) has length %g, allowed > 0", (double)normal[0], (double)normal[1],
+                       w->dim == 3 ? (double)normal[2] : 0.0, (double)SPS__SQRT(len2));
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (slip != SPS_WALL_FREE_SLIP && slip != SPS_WALL_NO_SLIP) {
+        sps__set_error(w, 0, "sps_world_add_wall: slip = %d, allowed 0 (free slip) or 1 (no slip)", (int)slip);
+        return SPS_ERR_INVALID_ARG;
+    }
+    memset(&wall, 0, sizeof wall);
+    for (a = 0; a < w->dim; ++a) {
+        wall.point[a] = point[a];
+        wall.normal[a] = normal[a] / SPS__SQRT(len2);
+    }
+    wall.slip = slip;
+    if (!sps__grow(w, &w->walls, sizeof wall, (size_t)w->nwalls, (size_t)w->nwalls + 1)) return sps__oom(w, "sps_world_add_wall: the wall table");
+    if (w->nwalls == 0) sps__wall_tables(w);
+    w->walls[w->nwalls++] = wall;
+    w->contact_dirty = 1;
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], const sps_real hi[3], unsigned open_faces, sps_wall_slip slip) {
+    int a, side;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!sps__check_box(w, "sps_world_add_box_walls", lo, hi)) return SPS_ERR_INVALID_ARG;
+    if (open_faces >= (1u << (2 * w->dim))) {
+        sps__set_error(w, 0, "sps_world_add_box_walls: open_faces = %u, allowed a mask of SPS_FACE_* below %u", open_faces, 1u << (2 * w->dim));
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (a = 0; a < w->dim; ++a)
+        for (side = 0; side < 2; ++side) {
+            sps_real point[3] = {0, 0, 0}, normal[3] = {0, 0, 0};
+            sps_result r;
+            if (open_faces & (1u << (2 * a + side))) continue;
+            point[a] = side ? hi[a] : lo[a];
+            normal[a] = side ? -1 : 1; /* inwards */
+            if ((r = sps_world_add_wall(w, point, normal, slip)) != SPS_OK) return r;
+        }
+    return SPS_OK;
+}
+
+/* Whether bodies a and b (indices, a != b) touch: both defs ask for contact and no call of
+   sps_world_set_contact turned the pair off. */
+static int sps__bodies_touch(const sps_world* w, int a, int b) {
+    int k;
+    if (!w->bodies[a].def.contact || !w->bodies[b].def.contact) return 0;
+    for (k = 0; k < w->nseparate; ++k)
+        if ((w->separate[2 * k] == a && w->separate[2 * k + 1] == b) || (w->separate[2 * k] == b && w->separate[2 * k + 1] == a)) return 0;
+    return 1;
+}
+
+SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, int touch) {
+    int ka, kb, k;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if ((ka = sps__check_body(w, a, "sps_world_set_contact")) < 0 || (kb = sps__check_body(w, b, "sps_world_set_contact")) < 0) return SPS_ERR_INVALID_ARG;
+    if (ka == kb || (touch != 0 && touch != 1)) {
+        sps__set_error(w, 0, "sps_world_set_contact: bodies %d and %d with touch = %d, allowed two different bodies and touch 0 or 1", ka, kb, touch);
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (k = 0; k < w->nseparate; ++k) /* drop the pair from the list of separated ones */
+        if ((w->separate[2 * k] == ka && w->separate[2 * k + 1] == kb) || (w->separate[2 * k] == kb && w->separate[2 * k + 1] == ka)) {
+            w->separate[2 * k] = w->separate[2 * (w->nseparate - 1)];
+            w->separate[2 * k + 1] = w->separate[2 * (w->nseparate - 1) + 1];
+            --w->nseparate;
+            break;
+        }
+    if (!touch) {
+        if (!sps__grow(w, &w->separate, 2 * sizeof(int), (size_t)w->nseparate, (size_t)w->nseparate + 1)) return sps__oom(w, "sps_world_set_contact: the pair table");
+        w->separate[2 * w->nseparate] = ka;
+        w->separate[2 * w->nseparate + 1] = kb;
+        ++w->nseparate;
+    }
+    w->contact_dirty = 1;
+    return SPS_OK;
+}
+
+/* Whether any two bodies touch (then the configuration update finds contact pairs). */
+static int sps__any_contact(const sps_world* w) {
+    int a, b;
+    for (a = 0; a < w->nbodies; ++a)
+        for (b = a + 1; b < w->nbodies; ++b)
+            if (sps__bodies_touch(w, a, b)) return 1;
+    return 0;
+}
+
+/* Contact pairs (at each configuration update): for every particle, the particles of the
+   bodies its body touches within the support, found through one cell grid over the world that
+   orders particle indices by cell (the particles themselves are not moved); in cell order, so
+   the lists, and the sums over them, do not depend on the thread count. CSR: particle i's are
+   ct_j[ct_first[i] .. ct_first[i + 1]). */
+static sps_result sps__find_contact_pairs(sps_world* w) {
+    const int n = w->n, dim = w->dim;
+    const sps_real cut2 = w->support * w->support;
+    int i, c, ncell, pass;
+    if (w->ct_cap < w->cap) {
+        sps__free(w, w->ct_first); sps__free(w, w->ct_cell); sps__free(w, w->ct_order); sps__free(w, w->ct_cell_start);
+        w->ct_first = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->cap + 1));
+        w->ct_cell = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
+        w->ct_order = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
+        w->ct_cell_start = (int*)sps__alloc(w, sizeof(int) * (4 * (size_t)w->cap + 64 + 2));
+        w->ct_cap = w->ct_first && w->ct_cell && w->ct_order && w->ct_cell_start ? w->cap : 0;
+        if (!w->ct_cap) return sps__oom(w, "the contact lists");
+    }
+    ncell = sps__setup_grid(w, 0, n);
+    for (i = 0; i < n; ++i) {
+        int a;
+        for (c = 0, a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, w->pos[a][i]);
+        w->ct_cell[i] = c;
+    }
+    for (c = 0; c <= ncell; ++c) w->ct_cell_start[c] = 0; /* counting sort of the indices */
+    for (i = 0; i < n; ++i) w->ct_cell_start[w->ct_cell[i] + 1]++;
+    for (c = 0; c < ncell; ++c) w->ct_cell_start[c + 1] += w->ct_cell_start[c];
+    for (i = 0; i < n; ++i) w->ct_order[w->ct_cell_start[w->ct_cell[i]]++] = i;
+    for (c = ncell; c > 0; --c) w->ct_cell_start[c] = w->ct_cell_start[c - 1];
+    w->ct_cell_start[0] = 0;
+    for (pass = 0; pass < 2; ++pass) { /* count, then fill */
+        int total = 0;
+        for (i = 0; i < n; ++i) {
+            const int bi = w->body[i], cx = w->ct_cell[i] % w->grid_n[0], cy = w->ct_cell[i] / w->grid_n[0] % w->grid_n[1];
+            const int cz = w->ct_cell[i] / (w->grid_n[0] * w->grid_n[1]);
+            int dx, dy, dz, m = 0;
+            if (pass == 1) { m = w->ct_first[i]; }
+            else w->ct_first[i] = total;
+            for (dz = -(dim == 3); dz <= (dim == 3); ++dz)
+                for (dy = -1; dy <= 1; ++dy)
+                    for (dx = -1; dx <= 1; ++dx) {
+                        int x = cx + dx, y = cy + dy, z = cz + dz, s;
+                        if ((!w->grid_wrap[0] && (x < 0 || x >= w->grid_n[0])) || (!w->grid_wrap[1] && (y < 0 || y >= w->grid_n[1])) ||
+                            (!w->grid_wrap[2] && (z < 0 || z >= w->grid_n[2])))
+                            continue;
+                        x = (x + w->grid_n[0]) % w->grid_n[0];
+                        y = (y + w->grid_n[1]) % w->grid_n[1];
+                        z = (z + w->grid_n[2]) % w->grid_n[2];
+                        c = x + w->grid_n[0] * (y + w->grid_n[1] * z);
+                        for (s = w->ct_cell_start[c]; s < w->ct_cell_start[c + 1]; ++s) {
+                            const int j = w->ct_order[s];
+                            sps_real r2 = 0;
+                            int a;
+                            if (w->body[j] == bi || !w->touch[(size_t)bi * w->nbodies + w->body[j]]) continue;
+                            for (a = 0; a < dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+                            if (!(r2 < cut2)) continue;
+                            if (pass == 1) w->ct_j[m] = j;
+                            ++m;
+                        }
+                    }
+            if (pass == 0) total += m;
+        }
+        if (pass == 0) {
+            w->ct_first[n] = total;
+            if (total > w->ct_pair_cap) { /* grows when more particles come into contact */
+                const long cap = (long)total + total / 2 + 64;
+                sps__free(w, w->ct_j);
+                if (!(w->ct_j = (int*)sps__alloc(w, sizeof(int) * (size_t)cap))) { w->ct_pair_cap = 0; return sps__oom(w, "the contact pairs"); }
+                w->ct_pair_cap = cap;
+            }
+        }
+    }
+    return SPS_OK;
+}
+
+/* The pair table of which bodies touch (nbodies^2 flags), made at commit; and the contact
+   storage that the scene needs: none without walls or touching bodies. */
+static sps_result sps__commit_contact(sps_world* w) {
+    int a, b;
+    w->contact_bodies = sps__any_contact(w);
+    if (!w->contact_bodies && w->nwalls == 0) return SPS_OK;
+    if (w->touch_n != w->nbodies) {
+        sps__free(w, w->touch);
+        w->touch_n = 0;
+        if (!(w->touch = (unsigned char*)sps__alloc(w, (size_t)w->nbodies * (size_t)w->nbodies))) return SPS_ERR_OUT_OF_MEMORY;
+        w->touch_n = w->nbodies;
+    }
+    for (a = 0; a < w->nbodies; ++a)
+        for (b = 0; b < w->nbodies; ++b) w->touch[(size_t)a * w->nbodies + b] = (unsigned char)(a != b && sps__bodies_touch(w, a, b));
+    if (w->sigma_cap < w->cap) {
+        sps__free(w, w->sigma);
+        w->sigma_cap = 0;
+        if (!(w->sigma = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)w->cap))) return SPS_ERR_OUT_OF_MEMORY;
+        w->sigma_cap = w->cap;
+    }
+    return SPS_OK;
+}
+
+/* Contact density of particle i (its pairs and the walls). */
+static sps_real sps__contact_density(const sps_world* w, int i) {
+    sps_real sigma = 0;
+    int k, a;
+    if (w->contact_bodies)
+        for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
+            const int j = w->ct_j[k];
+            sps_real r2 = 0;
+            for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+            sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
+        }
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps__wall* wl = &w->walls[k];
+        sps_real d = 0;
+        for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+        if (d < w->support) sigma += sps__wall_lookup(w, w->wall_sigma, d > 0 ? d : 0);
+    }
+    return sigma;
+}
+
+/* Harmonic mean of two bulk moduli: the stiffness of a contact between two bodies. */
+static sps_real sps__contact_stiffness(sps_real ka, sps_real kb) { return 2 * ka * kb / (ka + kb); }
+
+/* Adds the contact accelerations of particle i to acc_p (see the chapter's head). */
+static void sps__contact_force(sps_world* w, int i) {
+    const sps__body* bi = &w->bodies[w->body[i]];
+    const sps_real si = w->sigma[i], vi_mi = w->vol[i] / w->mass[i];
+    sps_real f[3] = {0, 0, 0};
+    int k, a;
+    if (w->contact_bodies)
+        for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
+            const int j = w->ct_j[k];
+            const sps_real kij = sps__contact_stiffness(bi->mat.K, w->bodies[w->body[j]].mat.K);
+            sps_real d[3] = {0, 0, 0}, r2 = 0, r, s;
+            for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+            r = SPS__SQRT(r2);
+            if (!(r > 0)) continue; /* coincident particles: no direction */
+            s = -kij * (si + w->sigma[j]) * sps_world_kernel_derivative(w, r) / r * w->vol[j];
+            for (a = 0; a < w->dim; ++a) f[a] += s * d[a];
+        }
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps__wall* wl = &w->walls[k];
+        sps_real d = 0, plane, vn = 0;
+        for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+        if (!(d < w->support)) continue;
+        plane = sps__wall_lookup(w, w->wall_plane, d > 0 ? d : 0);
+        for (a = 0; a < w->dim; ++a) f[a] += 2 * bi->mat.K * si * plane * wl->normal[a];
+        if (wl->slip == SPS_WALL_NO_SLIP) {
+            for (a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];
+            for (a = 0; a < w->dim; ++a) f[a] -= 2 * bi->z_riemann * plane * (w->vel[a][i] - vn * wl->normal[a]);
+        }
+    }
+    for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += vi_mi * f[a];
+}
+
+/* The contact pass of a sub-step (after the pressure pass, before the kick): the contact
+   densities of all particles, then their forces. Work-shared over the step's team. */
+static void sps__contact_pass(sps_world* w) {
+    int i;
+    if (!w->contact_bodies && w->nwalls == 0) return;
+    SPS__PRAGMA(omp for schedule(static))
+    for (i = 0; i < w->n; ++i) w->sigma[i] = sps__contact_density(w, i);
+    SPS__PRAGMA(omp for schedule(static))
+    for (i = 0; i < w->n; ++i) sps__contact_force(w, i);
+}
+
 /* >>step: the per-particle updates of a sub-step */
 
 /* The contiguous share [i0, i1) of body b that the calling thread updates in the per-particle
@@ -3149,6 +3505,7 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
     sps_real vmax2;
     sps__half_drift(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
+    sps__contact_pass(w);
     vmax2 = sps__kick(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
@@ -3182,6 +3539,9 @@ static sps_result sps__update_configuration(sps_world* w) {
     if ((r = sps__check_escape(w)) != SPS_OK) return r;
     w->lists_valid = 0;
     if ((r = sps__build_neighbors(w)) != SPS_OK) return r; /* also B_i when a body needs the velocity gradient */
+    if ((w->contact_dirty || w->sigma_cap < w->cap) && sps__commit_contact(w) != SPS_OK) return sps__oom(w, "the contact tables");
+    w->contact_dirty = 0;
+    if (w->contact_bodies && (r = sps__find_contact_pairs(w)) != SPS_OK) return r;
     w->lists_valid = 1;
     sps__save_good_state(w);
     return SPS_OK;

@@ -1,6 +1,6 @@
 /* common.h - what every example program shares: GNU-style options with --help, errors as one
    line on stderr with exit status 2, a progress line on stderr, output folders (CSV, VTK, PNG
-   and SVG pictures), wall time, passive OpenMP waits and the zero-crossing period detector.
+   and SVG pictures), wall time, short OpenMP spin waits and the zero-crossing period detector.
    Not part of the library; each example includes it once. POSIX (mkdir, isatty, clock_gettime,
    setenv, execvp). */
 #ifndef SPS_EXAMPLE_COMMON_H
@@ -30,12 +30,17 @@
 #endif
 
 /* ---- OpenMP waits ---- */
-/* On a shared machine OpenMP's default spinning waits make runs 3-4x slower (a spinning thread
-   waits a whole time slice for a descheduled team mate at each barrier), so the examples ask
-   for passive waits unless the user chose a policy. The runtime reads OMP_WAIT_POLICY when it
-   loads, before main, hence the one re-execution (as tests/test_sphsolid.c does). */
-EX_UNUSED static void ex_passive_openmp_waits(char** argv) {
-    if (!getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0) execvp(argv[0], argv);
+/* A sub-step has about eight barriers. GCC's OpenMP spins about 300,000 times at each before it
+   sleeps: on a shared machine a spinning thread then burns the time slice its descheduled team
+   mate needs (2D plate, 0.1 s with two busy processes beside it: 3.4 s), while passive waits
+   (OMP_WAIT_POLICY=passive) sleep at once and pay a wake-up at every barrier (4.7 s there, and
+   3x slower than spinning on an idle machine: 24-29 s against 8 s for 1 s of the plate). A
+   short spin, GOMP_SPINCOUNT=10000, is as fast as spinning on an idle machine and the fastest on
+   a busy one (1.6 s), so the examples set it unless the user chose a policy or a count. The
+   runtime reads the variables when it loads, before main, hence the one re-execution. Other
+   OpenMP runtimes ignore GOMP_SPINCOUNT. */
+EX_UNUSED static void ex_short_openmp_spin(char** argv) {
+    if (!getenv("OMP_WAIT_POLICY") && !getenv("GOMP_SPINCOUNT") && setenv("GOMP_SPINCOUNT", "10000", 1) == 0) execvp(argv[0], argv);
 }
 
 /* ---- options ---- */

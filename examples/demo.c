@@ -180,7 +180,7 @@ int main(int argc, char** argv) {
     char status[256], hint[256] = "space drop  f formulation  p pause  q quit   (no contact yet: blocks fall through)";
     int fps_frames = 0;
 
-    ex_passive_openmp_waits(argv);
+    ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "jelly in the terminal, in real time (scenes/jelly.h)", opts, (int)(sizeof opts / sizeof *opts));
     if (!headless) terminal_size(size);
     ex_check(NULL, jelly_create(threads, ex_log, &scene));

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
     run_state s;
     double analytical, paper, period, wall;
 
-    ex_passive_openmp_waits(argv);
+    ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "2D oscillating plate (benchmark A1, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
     p.jitter = c.jitter;

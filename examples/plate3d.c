@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
     run_state s;
     double D, analytical, mindlin, paper, period, wall;
 
-    ex_passive_openmp_waits(argv);
+    ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "3D oscillating plate (benchmark A2, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     p.mode.m = md_arg[0];
     p.mode.n = md_arg[1];

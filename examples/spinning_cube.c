@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     int corner_id;
     output_plan output;
 
-    ex_passive_openmp_waits(argv);
+    ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "3D spinning cube (benchmark A4, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
     p.jitter = c.jitter;

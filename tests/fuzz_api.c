@@ -287,7 +287,7 @@ static int stop_after_three(sps_world* w, void* user) {
 
 /* ---- one random call on one of the case's worlds ---- */
 static int random_call(fuzz_state* s) {
-    int k = below(MAX_WORLDS), op = below(27);
+    int k = below(MAX_WORLDS), op = below(29);
     sps_world* w = s->w[k];
     sps_real lo[3], hi[3], x[3];
     double dp = s->dp[k];
@@ -441,6 +441,20 @@ static int random_call(fuzz_state* s) {
         CALL(s, NULL, sps_body_add_box(NULL, b, x, x, NULL));
         (void)sps_world_time(NULL);
     } break;
+    case 27: { /* a wall, or the walls of a box */
+        sps_real normal[3];
+        for (a = 0; a < 3; ++a) normal[a] = chance(0.1) ? 0 : uniform(-1, 1);
+        if (chance(0.03)) normal[below(3)] = hostile_real();
+        if (chance(0.5)) {
+            CALL(s, w, sps_world_add_wall(w, chance(0.02) ? NULL : x, chance(0.02) ? NULL : normal, (sps_wall_slip)below(3)));
+        } else {
+            random_box(dp, dim, lo, hi);
+            CALL(s, w, sps_world_add_box_walls(w, lo, hi, (unsigned)below(80), (sps_wall_slip)below(3)));
+        }
+    } break;
+    case 28: /* which bodies touch */
+        CALL(s, w, sps_world_set_contact(w, any_body(s, k), any_body(s, k), below(3)));
+        break;
     default: /* 26: destroy and forget every world of the case */
         for (a = 0; a < MAX_WORLDS; ++a) {
             sps_world_destroy(s->w[a]);

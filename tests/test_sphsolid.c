@@ -934,6 +934,7 @@ static double* run_two_blocks(int threads, int two_bodies, double speed_b, sps_r
         if (two_bodies && k == add_step) {
             b = add_block_rotation(w, SPS_SHEAR_ENO_A, rotation, lo_b, hi_b, &n);
             if (!b.id || n != 527 || sps_body_set_velocity(w, b, swirl_velocity, (void*)&speed_b) != SPS_OK) goto done;
+            if (sps_world_set_contact(w, a, b, 0) != SPS_OK) goto done; /* one dp apart: they would touch */
         }
         if (sps_world_step(w) != SPS_OK) goto done;
     }
@@ -943,7 +944,7 @@ done:
     return s;
 }
 
-/* Bodies do not interact until contact exists (neighbour lists are per body) and each body's
+/* Bodies that do not touch (sps_world_set_contact) do not interact (neighbour lists are per body) and each body's
    sums (the mean rotation of ENO-A, per lane group) are its own: body A evolves bit for bit the
    same alone and beside body B one dp away, and the two-body world is the same with 1 and 2
    threads. The comparison is sharp: a faster B (a smaller global time step) changes A. */
@@ -2014,6 +2015,177 @@ static int test_csv_row(void) {
 }
 
 /* ============================================================================================ */
+/* >>contact                                                                                    */
+
+static void velocity_x(const sps_real x[3], sps_real v[3], void* user) {
+    (void)x;
+    v[0] = *(const sps_real*)user; v[1] = 0; v[2] = 0;
+}
+static void velocity_down(const sps_real x[3], sps_real v[3], void* user) {
+    (void)x;
+    v[0] = 0; v[1] = -*(const sps_real*)user; v[2] = 0;
+}
+
+/* Two blocks thrown at each other (0.1 c0 each), threads as given: returns the world after
+   t_end, or NULL. */
+static sps_world* colliding_blocks(int threads, double t_end, sps_body* left, sps_body* right) {
+    sps_world_def wd = sps_default_world_def();
+    sps_world* w = NULL;
+    static const double lo1[3] = {0, 0, 0}, hi1[3] = {0.2, 0.15, 0}, lo2[3] = {0.23, 0.05, 0}, hi2[3] = {0.43, 0.2, 0};
+    sps_real c0, v;
+    wd.dim = 2; wd.dp = 0.01; wd.threads = threads; wd.log = quiet_log;
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
+    *left = add_block(w, SPS_SHEAR_ENO_A, lo1, hi1, NULL);
+    *right = add_block(w, SPS_SHEAR_ENO_A, lo2, hi2, NULL);
+    if (!left->id || !right->id || sps_body_material_constants(w, *left, &c0, NULL, NULL) != SPS_OK) goto fail;
+    v = (sps_real)(0.1 * c0);
+    if (sps_body_set_velocity(w, *left, velocity_x, &v) != SPS_OK) goto fail;
+    v = -v;
+    if (sps_body_set_velocity(w, *right, velocity_x, &v) != SPS_OK) goto fail;
+    if (sps_world_advance(w, (sps_real)t_end, NULL, NULL) != SPS_OK) goto fail;
+    return w;
+fail:
+    printf("    %s\n", sps_world_last_error(w));
+    sps_world_destroy(w);
+    return NULL;
+}
+
+/* The smallest distance between particles of different bodies, in dp. */
+static double min_gap(const sps_world* w, double dp) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    int n = sps_world_particle_count(w), i, j;
+    double best = 1e30;
+    sps_particle_state a, b;
+    for (i = 0; i < n; ++i)
+        for (j = i + 1; j < n; ++j) {
+            double d2 = (double)(x[i] - x[j]) * (x[i] - x[j]) + (double)(y[i] - y[j]) * (y[i] - y[j]);
+            if (d2 >= best * best * dp * dp) continue;
+            sps_world_particle(w, sps_world_particle_ids(w)[i], &a);
+            sps_world_particle(w, sps_world_particle_ids(w)[j], &b);
+            if (a.body_index != b.body_index) best = sqrt(d2) / dp;
+        }
+    return best;
+}
+
+/* A step callback: the smallest gap between bodies so far (user: a double, in dp). */
+static int track_gap(sps_world* w, void* user) {
+    const double g = min_gap(w, 0.01);
+    if (g < *(double*)user) *(double*)user = g;
+    return 0;
+}
+/* A step callback: the lowest particle so far (user: a double). */
+static int track_lowest(sps_world* w, void* user) {
+    const sps_real* y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    int i;
+    for (i = 0; i < sps_world_particle_count(w); ++i)
+        if (y[i] < *(double*)user) *(double*)user = y[i];
+    return 0;
+}
+
+/* Two blocks collide and bounce: the contact forces are antisymmetric pair forces, so the total
+   linear momentum stays at its start (here 0 in x, by symmetry of the set-up not needed) to
+   round-off, the bodies never come closer than half a spacing, and they separate again. */
+static int test_contact_momentum(void) {
+    sps_body left, right;
+    sps_diagnostics d0, d1, dl;
+    sps_world* w = colliding_blocks(1, 0, &left, &right);
+    sps_body all = {0};
+    double scale, gap;
+    ENSURE(w);
+    ENSURE(sps_world_diagnostics(w, all, &d0) == SPS_OK && sps_world_diagnostics(w, left, &dl) == SPS_OK);
+    scale = fabs((double)dl.linear_momentum[0]); /* one body's momentum */
+    gap = 1e30;
+    ENSURE(sps_world_advance(w, 0.012, track_gap, &gap) == SPS_OK); /* they meet at about 0.005 s */
+    ENSURE(sps_world_diagnostics(w, all, &d1) == SPS_OK);
+    printf("    momentum x %.3g -> %.3g (scale %.3g), y %.3g; smallest gap %.3f dp\n", (double)d0.linear_momentum[0],
+           (double)d1.linear_momentum[0], scale, (double)d1.linear_momentum[1], gap);
+    ENSURE_NEAR(d1.linear_momentum[0], d0.linear_momentum[0], 1e-12 * scale); /* round-off of sums of ~1e5 pair forces */
+    ENSURE_NEAR(d1.linear_momentum[1], d0.linear_momentum[1], 1e-12 * scale);
+    ENSURE(gap > 0.5); /* the bound: contact keeps the bodies apart */
+    ENSURE(sps_world_diagnostics(w, left, &dl) == SPS_OK && dl.linear_momentum[0] < 0.5 * scale); /* the collision slowed it */
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* Contact at 1 and 2 threads: bit for bit the same (the pair lists are in cell order and each
+   particle's sum runs in list order). */
+static int test_contact_determinism(void) {
+    sps_body l1, r1, l2, r2;
+    sps_world *a = colliding_blocks(1, 0.003, &l1, &r1), *b = colliding_blocks(2, 0.003, &l2, &r2);
+    double *sa, *sb;
+    int n, same;
+    ENSURE(a && b);
+    n = sps_world_particle_count(a);
+    ENSURE(n > 512 && n == sps_world_particle_count(b)); /* above the size where a step uses threads */
+    sa = snapshot(a); sb = snapshot(b);
+    ENSURE(sa && sb);
+    same = memcmp(sa, sb, sizeof(double) * 6 * (size_t)n) == 0;
+    free(sa); free(sb);
+    sps_world_destroy(a); sps_world_destroy(b);
+    ENSURE(same);
+    return 0;
+}
+
+/* A block dropped on a floor (a free-slip analytic wall) at 0.05 c0 stays above it and bounces;
+   with no-slip it does not slide. */
+static int test_wall_stops_body(void) {
+    int slip;
+    for (slip = 0; slip < 2; ++slip) {
+        sps_world* w = new_world(2, 0.01);
+        static const double lo[3] = {0, 0.05, 0}, hi[3] = {0.1, 0.15, 0};
+        const sps_real floor_point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+        sps_body b;
+        sps_diagnostics d;
+        sps_real c0, v;
+        int n;
+        double lowest = 1e30;
+        ENSURE(w);
+        b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
+        ENSURE(b.id && sps_body_material_constants(w, b, &c0, NULL, NULL) == SPS_OK);
+        ENSURE(sps_world_add_wall(w, floor_point, up, (sps_wall_slip)slip) == SPS_OK);
+        v = (sps_real)(0.05 * c0);
+        ENSURE(sps_body_set_velocity(w, b, velocity_down, &v) == SPS_OK);
+        ENSURE(sps_world_advance(w, (sps_real)(0.1 / (0.05 * c0)), track_lowest, &lowest) == SPS_OK); /* twice the time to reach it */
+        ENSURE(sps_world_diagnostics(w, b, &d) == SPS_OK);
+        printf("    %s: lowest particle %.3f dp above the floor, momentum y %.3g (start %.3g)\n", slip ? "no-slip" : "free-slip",
+               lowest / 0.01, (double)d.linear_momentum[1], -(double)v * n * 0.1);
+        ENSURE(lowest > 0.25 * 0.01); /* a quarter spacing: inside the wall's contact layer, never through it */
+        ENSURE(d.linear_momentum[1] > 0); /* it bounced */
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
+/* Bad wall and contact input is refused with a message naming it. */
+static int test_contact_bad_input(void) {
+    sps_world* w = new_world(2, 0.01);
+    sps_world* other = new_world(2, 0.01);
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0};
+    const sps_real p[3] = {0, 0, 0}, zero[3] = {0, 0, 0}, up[3] = {0, 1, 0}, nan3[3] = {NAN, 0, 0};
+    const sps_real blo[3] = {0, 0, 0}, bhi[3] = {1, 1, 0};
+    sps_body a, b, foreign;
+    ENSURE(w && other);
+    a = add_block(w, SPS_SHEAR_ENO_A, lo, hi, NULL);
+    foreign = add_block(other, SPS_SHEAR_ENO_A, lo, hi, NULL);
+    ENSURE(sps_world_add_wall(w, p, zero, SPS_WALL_FREE_SLIP) == SPS_ERR_INVALID_ARG && error_names(w, "has length 0, allowed > 0") == 0);
+    ENSURE(sps_world_add_wall(w, nan3, up, SPS_WALL_FREE_SLIP) == SPS_ERR_INVALID_ARG && error_names(w, "allowed finite") == 0);
+    ENSURE(sps_world_add_wall(w, p, NULL, SPS_WALL_FREE_SLIP) == SPS_ERR_INVALID_ARG && error_names(w, "normal NULL") == 0);
+    ENSURE(sps_world_add_wall(w, p, up, (sps_wall_slip)2) == SPS_ERR_INVALID_ARG && error_names(w, "slip = 2") == 0);
+    ENSURE(sps_world_add_box_walls(w, bhi, blo, 0, SPS_WALL_FREE_SLIP) == SPS_ERR_INVALID_ARG && error_names(w, "lo < hi") == 0);
+    ENSURE(sps_world_add_box_walls(w, blo, bhi, 16, SPS_WALL_FREE_SLIP) == SPS_ERR_INVALID_ARG && error_names(w, "open_faces = 16") == 0);
+    ENSURE(sps_world_set_contact(w, a, a, 0) == SPS_ERR_INVALID_ARG && error_names(w, "two different bodies") == 0);
+    ENSURE(sps_world_set_contact(w, a, foreign, 0) == SPS_ERR_INVALID_ARG && error_names(w, "not a body of this world") == 0);
+    sps_world_destroy(other);
+    b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, NULL);
+    ENSURE(sps_world_set_contact(w, a, b, 2) == SPS_ERR_INVALID_ARG && error_names(w, "touch = 2") == 0);
+    ENSURE(sps_world_set_contact(w, a, b, 0) == SPS_OK && sps_world_set_contact(w, a, b, 1) == SPS_OK);
+    ENSURE(sps_world_set_contact(w, a, foreign, 1) == SPS_ERR_INVALID_ARG); /* a handle of a destroyed world */
+    ENSURE(sps_world_add_box_walls(w, blo, bhi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP) == SPS_OK);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* ============================================================================================ */
 /* >>observers                                                                                  */
 
 static void uniform_velocity(const sps_real x[3], sps_real v[3], void* user) {
@@ -2422,6 +2594,10 @@ int main(int argc, char** argv) {
     RUN(test_add_after_step_and_constraints);
     RUN(test_determinism_threads);
     RUN(test_bodies_independent);
+    RUN(test_contact_momentum);
+    RUN(test_contact_determinism);
+    RUN(test_wall_stops_body);
+    RUN(test_contact_bad_input);
     RUN(test_pair_forces_survive_adds);
     RUN(test_frame_arguments_rejected);
     RUN(test_frame_single_stepping_equals_steps);
