@@ -33,7 +33,7 @@
    2. Shifting (the particle-shifting / transport-velocity form, Lind et al. 2012; Adami, Hu &
       Adams 2013; Yu et al. 2023 eq. for the relaxation "acceleration" -2 p0 sum grad W V): every
       iteration moves every particle (Jacobi: all shifts from the old positions) by
-          dx_i = -alpha h^2 G_i,       G_i = sum_j grad_i W_ij V_j + S_i,       alpha = 0.2,
+          dx_i = -alpha h^2 G_i,       G_i = sum_j grad_i W_ij V_j + S_i,       alpha = 0.3,
       grad_i W_ij = dW/dr(r_ij) (x_i - x_j)/r_ij, V_j = dp^d, |dx_i| capped at 0.2 dp.
       G_i is the gradient of the particle number density sum_j W_ij V_j; it vanishes for a
       uniform distribution with full support, so the shift drives particles towards one.
@@ -48,27 +48,23 @@
       particle closer than about dp/2 to the surface back in; the rows inside (at dp/2, 3dp/2, ...
       deep) balance it when the outer row lies dp/2 inside, so the outer layer settles on a
       smooth surface dp/2 inside the shape (the particle volumes then tile the shape).
-   4. Bounding (Yu et al.'s "surface bounding"): a particle that moves to phi > 0 is projected
-      back along the gradient to the layer phi = -dp/2: x -= (phi + dp/2) grad phi / |grad phi|^2
-      (a Newton step; two at most).
+   4. Bounding (Yu et al.'s "surface bounding", as in SPHinXsys' ShapeSurfaceBounding): after
+      each move, a particle closer than dp/2 to the surface (phi > -dp/2; this includes any that
+      crossed it) is projected along the gradient onto the layer phi = -dp/2:
+      x -= (phi + dp/2) grad phi / |grad phi|^2 (a Newton step; two at most).
+   alpha = 0.3 is 2.5x below the measured stability limit (~0.8: the shift then overshoots and
+   the particles jitter at the 0.2 dp cap); convergence is diffusive (long waves need ~(L/h)^2
+   iterations), 300 iterations by default.
    The number of particles is the lattice's (no particle is added or removed). Cost O(N) per
    iteration (a cell list of cell size 2h, rebuilt every iteration), O(N) sdf calls per
    iteration plus 2 d per particle within 2h of the surface. Deterministic: no threads, sums in
    a fixed order; the same input gives the same particles bit for bit. */
 
 #define SPS__RELAX_TABLE 128           /* Wp(z) table points on z in [0, 2h] */
-#ifndef SPS__RELAX_ALPHA
-#define SPS__RELAX_ALPHA SPS_R(0.2)    /* shift coefficient: stable (measured up to ~0.5), see tests */
-#endif
-#ifndef SPS__RELAX_MAX_STEP
+#define SPS__RELAX_ALPHA SPS_R(0.3)    /* shift coefficient: unstable from ~0.8 (2D ring, 3D ball, h = 1.3 dp) */
 #define SPS__RELAX_MAX_STEP SPS_R(0.2) /* largest shift per iteration [dp] */
-#endif
-#ifndef SPS__RELAX_BOUND
-#define SPS__RELAX_BOUND SPS_R(0.0)
-#endif
-#ifndef SPS__RELAX_DEFAULT_ITERATIONS
-#define SPS__RELAX_DEFAULT_ITERATIONS 200
-#endif
+#define SPS__RELAX_BOUND SPS_R(0.5)     /* surface bounding: depth < dp/2 is projected to dp/2 */
+#define SPS__RELAX_DEFAULT_ITERATIONS 300
 #define SPS__RELAX_MAX_POINTS 200000000.0 /* the world's particle cap (2e8) */
 
 typedef struct sps__relax_ctx {
@@ -402,7 +398,7 @@ static sps_result sps__relax_measure(const sps_world* w, int n, const sps_real* 
    uniform distribution whose outer layer lies on a smooth surface dp/2 inside the shape (see
    BODY-FITTED PARTICLES above). sdf must be a signed distance (|grad| = 1) within 2h of the
    surface, negative inside; the box should contain the shape (a shape cut by the box is relaxed
-   as the intersection). iterations: shifting steps, >= 0; 0 selects 200. *added (may be NULL)
+   as the intersection). iterations: shifting steps, >= 0; 0 selects 300. *added (may be NULL)
    gets the number added: the lattice's count (the particles keep their volume dp^d).
    Errors: SPS_ERR_INVALID_ARG for a NULL world, sdf or lo/hi, an invalid body, a box not finite
    with lo < hi, iterations < 0, more lattice points than the world's cap, or an sdf that returns
