@@ -34,7 +34,10 @@
       Adams 2013; Yu et al. 2023 eq. for the relaxation "acceleration" -2 p0 sum grad W V): every
       iteration moves every particle (Jacobi: all shifts from the old positions) by
           dx_i = -alpha h^2 G_i,       G_i = sum_j grad_i W_ij V_j + S_i,       alpha = 0.3,
-      grad_i W_ij = dW/dr(r_ij) (x_i - x_j)/r_ij, V_j = dp^d, |dx_i| capped at 0.2 dp.
+      grad_i W_ij = dW/dr(r_ij) (x_i - x_j)/r_ij, V_j = dp^d, |dx_i| capped at 0.2 dp. Our
+      change: below the distance of its peak (h/2 for Wendland C2) dW/dr is held at the peak,
+      since the kernel's repulsion vanishes as r -> 0 and pressed pairs (sharp corners, parts
+      thinner than 2 dp) would merge and stay merged; coincident points split along x.
       G_i is the gradient of the particle number density sum_j W_ij V_j; it vanishes for a
       uniform distribution with full support, so the shift drives particles towards one.
    3. The surface: the neighbours missing beyond the surface are represented by the surface
@@ -78,6 +81,7 @@ typedef struct sps__relax_ctx {
     sps_real bad_x[3];   /* where */
     sps_real wp[SPS__RELAX_TABLE + 1]; /* Wp(z_k), z_k = k 2h / TABLE */
     sps_real wf[SPS__RELAX_TABLE + 1]; /* F(z_k) = int_{z_k}^{2h} Wp: kernel mass beyond a flat surface */
+    sps_real dw_peak, r_peak; /* the most negative dW/dr and where (sampled on 1024 points of 2h) */
     /* cell list */
     int cap_cells, nc[3];
     sps_real cmin[3], csize;
@@ -168,6 +172,11 @@ static void sps__relax_setup(sps__relax_ctx* c, const sps_world* w, const sps_re
         }
         c->wp[k] = sum * ds / 3;
     }
+    c->dw_peak = 0; c->r_peak = 0;
+    for (k = 1; k < 1024; ++k) {
+        sps_real r = c->support * (sps_real)k / 1024, dw = sps_world_kernel_derivative(w, r);
+        if (dw < c->dw_peak) { c->dw_peak = dw; c->r_peak = r; }
+    }
     c->wf[SPS__RELAX_TABLE] = 0; /* trapezoid on the table (Wp is smooth, its error ~1e-5) */
     for (k = SPS__RELAX_TABLE - 1; k >= 0; --k)
         c->wf[k] = c->wf[k + 1] + SPS_R(0.5) * (c->wp[k] + c->wp[k + 1]) * c->support / SPS__RELAX_TABLE;
@@ -192,12 +201,13 @@ static long sps__relax_lattice(sps__relax_ctx* c, sps_real* xyz) {
     for (l = 0; l < cnt[2]; ++l)
         for (j = 0; j < cnt[1]; ++j)
             for (i = 0; i < cnt[0]; ++i) {
-                sps_real x[3];
+                sps_real x[3], p;
                 x[0] = c->lo[0] + (i + SPS_R(0.5)) * c->dp;
                 x[1] = c->lo[1] + (j + SPS_R(0.5)) * c->dp;
                 x[2] = c->dim == 3 ? c->lo[2] + (l + SPS_R(0.5)) * c->dp : 0;
-                if (!(c->sdf(x, c->user) < 0)) { /* sps__fill's test, on the sdf alone */
-                    if (c->sdf(x, c->user) != c->sdf(x, c->user) && !c->bad) { c->bad = 1; memcpy(c->bad_x, x, sizeof x); }
+                p = c->sdf(x, c->user);
+                if (!(p < 0)) { /* sps__fill's test, on the sdf alone; NaN is an error here */
+                    if (p != p && !c->bad) { c->bad = 1; memcpy(c->bad_x, x, sizeof x); }
                     continue;
                 }
                 if (xyz) memcpy(xyz + 3 * n, x, sizeof x);
@@ -250,11 +260,10 @@ static void sps__relax_grid(sps__relax_ctx* c, int n, const sps_real* xyz) {
 /* Over the neighbours j != i within 2h of point i (cell list current): grad_out (if not NULL) +=
    sum_j grad_i W_ij V, and returns sum_j W_ij V (without the self term); *rmin gets the
    smallest distance. Fixed order (cells, then points in index order). */
-static sps_real sps__relax_sums(const sps__relax_ctx* c, int n, const sps_real* xyz, int i, sps_real grad_out[3], sps_real* rmin) {
+static sps_real sps__relax_sums(const sps__relax_ctx* c, const sps_real* xyz, int i, sps_real grad_out[3], sps_real* rmin) {
     int ci[3], a, dz, dy, dx;
     sps_real nd = 0, s2 = c->support * c->support, r2min = SPS_R(1e30);
     const sps_real* xi = xyz + 3 * i;
-    (void)n;
     ci[0] = c->cell[i] % c->nc[0];
     ci[1] = (c->cell[i] / c->nc[0]) % c->nc[1];
     ci[2] = c->cell[i] / (c->nc[0] * c->nc[1]);
@@ -272,11 +281,16 @@ static sps_real sps__relax_sums(const sps__relax_ctx* c, int n, const sps_real* 
                     if (j == i) continue;
                     for (a = 0; a < 3; ++a) { d[a] = xi[a] - xyz[3 * j + a]; r2 += d[a] * d[a]; }
                     if (r2 < r2min) r2min = r2;
-                    if (!(r2 < s2) || !(r2 > 0)) continue;
+                    if (!(r2 < s2)) continue;
                     r = (sps_real)sqrt((double)r2);
                     nd += sps_world_kernel(c->w, r) * c->vol;
                     if (grad_out) {
-                        sps_real f = sps_world_kernel_derivative(c->w, r) / r * c->vol;
+                        /* dW/dr, but not weaker than its peak below the peak's distance: the
+                           kernel's repulsion vanishes at r -> 0 (Wendland C2: peak at r = h/2),
+                           so pressed pairs (corners, thin parts) could merge and stay merged */
+                        sps_real f = (r < c->r_peak ? c->dw_peak : sps_world_kernel_derivative(c->w, r)) * c->vol;
+                        if (r > 0) f /= r;
+                        else { d[0] = j < i ? 1 : -1; d[1] = d[2] = 0; } /* coincident: split along x, by index */
                         for (a = 0; a < 3; ++a) grad_out[a] += f * d[a];
                     }
                 }
@@ -300,8 +314,8 @@ static sps_real sps__relax_project(sps__relax_ctx* c, sps_real x[3], sps_real ph
 }
 
 /* The relaxation of n points xyz (3 reals each, inside the shape) in place: iterations steps
-   of the shift (see the chapter's comment). work: 7n reals, 2n + cap_cells + 1 ints set up by
-   the caller (sps__relax_run). */
+   of the shift (see the chapter's comment). phi (n) and dx (3n) and the cell list come from
+   sps__relax_work. Every particle stays inside (phi < 0) after every iteration. */
 static void sps__relax_iterate(sps__relax_ctx* c, int n, sps_real* xyz, sps_real* phi, sps_real* dx, int iterations) {
     int it, i, a;
     sps_real alpha_h2 = SPS__RELAX_ALPHA * c->h * c->h, cap = SPS__RELAX_MAX_STEP * c->dp;
@@ -310,7 +324,7 @@ static void sps__relax_iterate(sps__relax_ctx* c, int n, sps_real* xyz, sps_real
         sps__relax_grid(c, n, xyz);
         for (i = 0; i < n; ++i) {
             sps_real gsum[3] = {0, 0, 0}, depth = -phi[i], len2 = 0;
-            sps__relax_sums(c, n, xyz, i, gsum, NULL);
+            sps__relax_sums(c, xyz, i, gsum, NULL);
             if (depth < c->support) { /* the surface stands in for the missing neighbours: n Wp(d) */
                 sps_real g[3], g2 = sps__relax_grad(c, xyz + 3 * i, g);
                 if (g2 > 0) {
@@ -325,10 +339,15 @@ static void sps__relax_iterate(sps__relax_ctx* c, int n, sps_real* xyz, sps_real
             }
         }
         for (i = 0; i < n; ++i) {
-            sps_real* x = xyz + 3 * i;
+            sps_real* x = xyz + 3 * i, old[3], p;
+            memcpy(old, x, sizeof old);
             for (a = 0; a < c->dim; ++a) x[a] += dx[3 * i + a];
-            phi[i] = sps__relax_phi(c, x);
-            if (phi[i] > -SPS__RELAX_BOUND * c->dp) phi[i] = sps__relax_project(c, x, phi[i], -SPS_R(0.5) * c->dp);
+            p = sps__relax_phi(c, x);
+            if (p > -SPS__RELAX_BOUND * c->dp) p = sps__relax_project(c, x, p, -SPS_R(0.5) * c->dp);
+            if (p < 0) phi[i] = p;
+            else memcpy(x, old, sizeof old); /* no layer dp/2 deep here (a shape thinner than dp,
+                                                a sharp corner): the particle stays where it was,
+                                                so every particle stays inside (phi < 0) */
         }
     }
 }
@@ -378,7 +397,7 @@ static sps_result sps__relax_measure(const sps_world* w, int n, const sps_real* 
     q->n = n;
     for (i = 0; i < n; ++i) {
         sps_real r, depth = -sps__relax_phi(&c, xyz + 3 * i);
-        double nd = (double)(sps__relax_sums(&c, n, xyz, i, NULL, &r) + sps_world_kernel(w, 0) * c.vol);
+        double nd = (double)(sps__relax_sums(&c, xyz, i, NULL, &r) + sps_world_kernel(w, 0) * c.vol);
         double full = nd + (double)(depth >= 0 ? sps__relax_table(&c, c.wf, depth) : 1 - sps__relax_table(&c, c.wf, -depth));
         if (r < rmin) rmin = r;
         s1 += full; s2 += full * full;
