@@ -160,6 +160,12 @@ $(BUILD)/pinned_float: tests/pinned.c tests/pinned_float.inc $(HEADER) | $(BUILD
 test-pinned: $(BUILD)/pinned $(BUILD)/pinned_float
 	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned
 	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned_float
+# body-fitted particles (sps_body_add_sdf_relaxed): the papers' ring and ball, determinism, bad input
+$(BUILD)/test_relax: tests/test_relax.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+test-relax: $(BUILD)/test_relax
+	./$(BUILD)/test_relax
+.PHONY: test-relax
 # a commit that changes results on purpose regenerates the tables and says why
 pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned --print > tests/pinned_double.inc
@@ -168,7 +174,7 @@ pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 
 # The parts run two at a time (each prints its output when it is done); the test runner's
 # "N passed, M failed" is repeated last so that it closes make test. About 4 minutes on 2 cores.
-TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned fuzz fuzz-sanitize test-sanitize test-fast
+TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned test-relax fuzz fuzz-sanitize test-sanitize test-fast
 test:
 	@echo "make test: the header checks, examples, demo, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4 minutes on 2 cores"
 	@$(MAKE) --no-print-directory -j2 --output-sync=target $(TEST_PARTS)

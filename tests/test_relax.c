@@ -9,7 +9,7 @@
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #define SPHSOLID_IMPLEMENTATION
 #include "sphsolid.h"
-#include "relax_chapter.h"
+
 
 #include <math.h>
 #include <stdio.h>
@@ -101,7 +101,7 @@ static int run_case(const fill_case* fc) {
     sps_body bl, br;
     sps_world *wl = make_world(fc->dim, fc->dp, &bl), *wr = make_world(fc->dim, fc->dp, &br);
     sps_real lo[3], hi[3], *pl, *pr, *lat, maxphi = -1e30;
-    sps__relax_quality ql, qr;
+    sps_fill_quality ql, qr;
     sps__relax_ctx c;
     int nl, nr, added = -1, a, i;
     double t0, t1, ideal;
@@ -120,8 +120,8 @@ static int run_case(const fill_case* fc) {
     ENSURE(sps__relax_lattice(&c, lat) == nl);
     ENSURE(memcmp(lat, pl, sizeof(sps_real) * 3 * (size_t)nl) == 0);
     free(lat);
-    ENSURE(sps__relax_measure(wl, nl, pl, lo, hi, fc->sdf, NULL, &ql) == SPS_OK);
-    ENSURE(sps__relax_measure(wr, nr, pr, lo, hi, fc->sdf, NULL, &qr) == SPS_OK);
+    ENSURE(sps_measure_fill(wl, nl, pl, lo, hi, fc->sdf, NULL, &ql) == SPS_OK);
+    ENSURE(sps_measure_fill(wr, nr, pr, lo, hi, fc->sdf, NULL, &qr) == SPS_OK);
     for (i = 0; i < nr; ++i) {
         sps_real p = fc->sdf(pr + 3 * i, NULL);
         if (p > maxphi) maxphi = p;
@@ -130,10 +130,10 @@ static int run_case(const fill_case* fc) {
     printf("  %-22s N %5d (shape/dp^%d %.1f, %+.2f%%)  %d iterations %6.2f s\n", fc->name, nr, fc->dim, ideal,
            100 * (nr / ideal - 1), SPS__RELAX_DEFAULT_ITERATIONS, t1 - t0);
     printf("  %-22s %-9s nd_spread %.4f  nd_spread_inner %.4f (%d)  min_spacing %.3f  surface_rms %.4f (%d)\n", "", "lattice",
-           (double)ql.nd_spread, (double)ql.nd_spread_inner, ql.inner, (double)ql.min_spacing, (double)ql.surface_rms, ql.layer);
+           (double)ql.density_spread, (double)ql.density_spread_inner, ql.inner, (double)ql.min_spacing, (double)ql.surface_rms, ql.surface);
     printf("  %-22s %-9s nd_spread %.4f  nd_spread_inner %.4f (%d)  min_spacing %.3f  surface_rms %.4f (%d)  smallest depth %.4f dp\n",
-           "", "relaxed", (double)qr.nd_spread, (double)qr.nd_spread_inner, qr.inner, (double)qr.min_spacing,
-           (double)qr.surface_rms, qr.layer, (double)(-maxphi / fc->dp));
+           "", "relaxed", (double)qr.density_spread, (double)qr.density_spread_inner, qr.inner, (double)qr.min_spacing,
+           (double)qr.surface_rms, qr.surface, (double)(-maxphi / fc->dp));
     /* the lattice count is the shape's measure up to the staircase: a few % at 10 dp widths */
     ENSURE(fabs(nr / ideal - 1) < 0.03);
     /* "well below": the lattice's depths spread uniformly over (0, dp) (RMS 0.29); at least 4x less */
@@ -141,7 +141,7 @@ static int run_case(const fill_case* fc) {
     /* clustering starts near 0.5 dp (DIAGNOSTICS); the brief's bound, measured 0.87-0.88 */
     ENSURE(qr.min_spacing > 0.7);
     /* the completed number density evens out: measured 3-9x less; ask for 2x */
-    ENSURE(qr.nd_spread < 0.5 * ql.nd_spread);
+    ENSURE(qr.density_spread < 0.5 * ql.density_spread);
     /* the bounding keeps every particle dp/2 inside (exact sdf: the Newton step lands to 1e-3 dp) */
     ENSURE(maxphi <= -0.5 * fc->dp + 2e-3 * fc->dp);
     free(pl); free(pr);
@@ -239,7 +239,7 @@ static int test_awkward_shapes(void) {
         sps_world* w = make_world(2, 0.002, &b);
         /* the ring's box cuts it at y = 0.02 */
         sps_real lo[3] = {-0.045, -0.045, 0}, hi[3] = {0.045, k == 2 ? 0.02 : 0.045, 0}, *p;
-        sps__relax_quality q;
+        sps_fill_quality q;
         int n, nl = 0, added = -1, i;
         ENSURE(w);
         ENSURE(sps_body_add_sdf(w, b, lo, hi, sdfs[k], NULL, &nl) == SPS_OK);
@@ -247,7 +247,7 @@ static int test_awkward_shapes(void) {
         ENSURE(added == nl && nl > 0);
         p = world_points(w, &n);
         for (i = nl; i < n; ++i) ENSURE(sdfs[k](p + 3 * i, NULL) < 0 && p[3 * i + 1] < hi[1]);
-        ENSURE(sps__relax_measure(w, n - nl, p + 3 * nl, lo, hi, sdfs[k], NULL, &q) == SPS_OK);
+        ENSURE(sps_measure_fill(w, n - nl, p + 3 * nl, lo, hi, sdfs[k], NULL, &q) == SPS_OK);
         printf("  shape %d: N %d min_spacing %.3f surface_rms %.4f\n", k, n - nl, (double)q.min_spacing, (double)q.surface_rms);
         /* these shapes hold more particles than fit dp/2 inside (the strip: 3 rows squeezed into the
            2 dp between its layers), so pairs come closer than dp; measured 0.51-0.58: no merging */
