@@ -2799,6 +2799,23 @@ static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, in
     *g1 = me == nt - 1 ? b->ngroups : sps__group_at_slot(start, b->ngroups, first + total * (me + 1) / nt);
 }
 
+/* The pair loop of every neighbour pass, the skeleton each pass fills with its terms: for each
+   neighbour rank k of lane group q, the lanes l side by side in one SIMD loop, each with its
+   particle i, its neighbour j (i itself in padding slots), the slot s and the pair geometry e
+   (sps__pair) declared for TERMS, the pass's statements, which add to the lanes' sums. Each lane
+   sums its own particle's neighbours in list order, so no result depends on the vector width.
+   k and l are the caller's ints. */
+#define SPS__PAIR_LOOP(w, q, dim, geo, k, l, ...)                                            \
+    for (k = 0; k < (q).len; ++k) {                                                          \
+        const int* SPS__RESTRICT js_ = (w)->nb_j + (q).s0 + k * SPS__LANES;                 \
+        SPS__PRAGMA(omp simd)                                                                \
+        for (l = 0; l < SPS__LANES; ++l) {                                                   \
+            const int i = (q).i0 + l, s = (q).s0 + k * SPS__LANES + l, j = js_[l];           \
+            const sps__pair_geometry e = sps__pair(w, i, s, j, dim, geo);                    \
+            __VA_ARGS__                                                                      \
+        }                                                                                    \
+    }
+
 /* Runs a pass kernel over the lane groups of body b that the calling thread owns
    (sps__group_share), then waits for the other threads. */
 static void sps__run_groups(sps_world* w, const sps__body* b, sps__group_kernel kernel, sps_real dt) {
@@ -2848,21 +2865,16 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     (void)dt; /* every pass kernel takes the sub-step; this pass needs none */
     for (l = 0; l < SPS__LANES; ++l)
         acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
-    for (k = 0; k < q.len; ++k) {
-        const int* SPS__RESTRICT js = w->nb_j + q.s0 + k * SPS__LANES;
-        SPS__PRAGMA(omp simd)
-        for (l = 0; l < SPS__LANES; ++l) {
-            const int i = q.i0 + l, j = js[l];
-            const sps__pair_geometry e = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo);
+    SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
-            sps_real u, s;
+            sps_real u, f2;
             u = (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
-            s = (p[i] + p[j] - z * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
-            acc[0][l] -= s * ex;
-            acc[1][l] -= s * ey;
-            if (dim == 3) acc[2][l] -= s * ez;
+            f2 = (p[i] + p[j] - z * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
+            acc[0][l] -= f2 * ex;
+            acc[1][l] -= f2 * ey;
+            if (dim == 3) acc[2][l] -= f2 * ez;
             if (paired) {
-                const sps_real f = pair_force[q.s0 + k * SPS__LANES + l];
+                const sps_real f = pair_force[s];
                 shear[0][l] += f * ex;
                 shear[1][l] += f * ey;
                 if (dim == 3) shear[2][l] += f * ez;
@@ -2890,8 +2902,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 gray[0][l] += mf * ((ri[0] + rj[0]) * ex + (ri[1] + rj[1]) * ey);
                 gray[1][l] += mf * ((ri[1] + rj[1]) * ex + (ri[2] + rj[2]) * ey);
             }
-        }
-    }
+    })
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l;
         w->acc_p[0][i] = acc[0][l] / w->rho[i] + gray[0][l];
@@ -3158,19 +3169,13 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     sps_real* SPS__RESTRICT pair_force = w->pair_force;
     int k, l;
-    for (k = 0; k < q.len; ++k) {
-        const int s = q.s0 + k * SPS__LANES;
-        const int* SPS__RESTRICT js = w->nb_j + s;
-        SPS__PRAGMA(omp simd)
-        for (l = 0; l < SPS__LANES; ++l) {
-            const int i = q.i0 + l, j = js[l];
-            const sps__pair_geometry e = sps__pair(w, i, s + l, j, dim, geo);
+    SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;
             const sps_real dvx = vx[i] - vx[j], dvy = vy[i] - vy[j], dvz = dim == 3 ? vz[i] - vz[j] : 0;
             const sps_real u = dvx * ex + dvy * ey + dvz * ez, dwv = dw * vol[j];
             sum[SPS__DRHO][l] += u * dwv;
             if (paired) {
-                pair_force[s + l] += shear_rate * (u * dw_r) * (vol[i] * vol[j]);
+                pair_force[s] += shear_rate * (u * dw_r) * (vol[i] * vol[j]);
             } else {
                 const sps_real lv = u * dw_r * vol[j];
                 sum[SPS__LX][l] += lv * ex;
@@ -3187,8 +3192,7 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
                 }
                 sps__add_moment(&sum[SPS__A00][l], SPS__LANES, ex, ey, ez, rdwv, dim);
             }
-        }
-    }
+    })
 }
 
 /* How a continuity or penalty pass treats ENO's increments (a literal of its kernels). */
@@ -3274,32 +3278,26 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     int k, l, a, c;
     for (a = 0; a < 3; ++a)
         for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
-    for (k = 0; k < q.len; ++k) {
-        const int* SPS__RESTRICT js = w->nb_j + q.s0 + k * SPS__LANES;
-        SPS__PRAGMA(omp simd)
-        for (l = 0; l < SPS__LANES; ++l) {
-            const int i = q.i0 + l, j = js[l];
-            const sps__pair_geometry pg = sps__pair(w, i, q.s0 + k * SPS__LANES + l, j, dim, geo);
-            const sps_real e[3] = {pg.ex, pg.ey, pg.ez}, dw = pg.dw, dw_r = pg.dw_r;
+    SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
+            const sps_real dir[3] = {e.ex, e.ey, e.ez}, dw = e.dw, dw_r = e.dw_r;
             sps_real vhat[3], u = 0, u_pair = 0;
             SPS__UNROLL
             for (a = 0; a < dim; ++a) {
                 sps_real le = 0, v_r;
                 SPS__UNROLL
-                for (c = 0; c < dim; ++c) le += (L[(size_t)9 * (i - begin) + 3 * a + c] + L[(size_t)9 * (j - begin) + 3 * a + c]) * e[c];
+                for (c = 0; c < dim; ++c) le += (L[(size_t)9 * (i - begin) + 3 * a + c] + L[(size_t)9 * (j - begin) + 3 * a + c]) * dir[c];
                 v_r = (w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
                 vhat[a] = v_r * vol[j];
-                u += vhat[a] * e[a];
-                if (paired) u_pair += v_r * e[a];
+                u += vhat[a] * dir[a];
+                if (paired) u_pair += v_r * dir[a];
             }
             if (paired) {
-                w->pair_force[q.s0 + k * SPS__LANES + l] += penalty_rate * u_pair * (vol[i] * vol[j]);
+                w->pair_force[s] += penalty_rate * u_pair * (vol[i] * vol[j]);
             } else {
                 SPS__UNROLL
-                for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * e[a] : vhat[a];
+                for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * dir[a] : vhat[a];
             }
-        }
-    }
+    })
     if (paired) return;
     SPS__PRAGMA(omp simd)
     for (l = 0; l < SPS__LANES; ++l) {
