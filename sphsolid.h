@@ -384,7 +384,10 @@ typedef struct sps_world_def {
 
 /* The constitutive model of a body (MATERIALS). */
 typedef enum sps_material_kind {
-    SPS_MATERIAL_ELASTIC = 0 /* linear elastic: p = c0^2 (rho - rho0), Jaumann-rate shear stress */
+    SPS_MATERIAL_ELASTIC = 0, /* linear elastic: p = c0^2 (rho - rho0), Jaumann-rate shear stress */
+    SPS_MATERIAL_RIGID = 1    /* a wall body: its particles keep the velocity given to them
+                                 (sps_body_set_velocity, constraints) and push the other bodies
+                                 by contact; density, E and nu set its mass and contact stiffness */
 } sps_material_kind;
 
 /* The solver of a body. */
@@ -746,6 +749,7 @@ typedef struct sps__material_model {
     sps__material_constants (*constants)(const sps_material_def* m);
     /* stored-energy density [J/m^3] from tau:tau of the shear stress (0 when not tracked) and p */
     sps_real (*energy_density)(const sps__material_constants* c, sps_real tau_tau, sps_real p);
+    int kinematic; /* its particles move as prescribed: no passes, no forces (a wall body) */
 } sps__material_model;
 
 /* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
@@ -785,6 +789,7 @@ typedef struct sps__model {
     int paired;   /* increments kept per neighbour pair (SPS_ROTATION_PAIR on a -A variant) */
     int stress;   /* the shear stress tau is integrated (stress force, or track_stress) */
     int gradient; /* the velocity gradient L is needed (stress, or a turned rotation) */
+    int artificial_stress; /* Gray's artificial stress is computed (OAS) */
     sps__passes pass;
 } sps__model;
 
@@ -1208,10 +1213,20 @@ static sps_real sps__elastic_energy_density(const sps__material_constants* c, sp
     return tau_tau / (4 * c->G) + p * p / (2 * c->K);
 }
 
+/* >>material: rigid (wall bodies) */
+
+/* A rigid body's particles move as prescribed: it stores no energy. Its elastic constants give
+   the stiffness of its contacts (sps__contact_stiffness). */
+static sps_real sps__rigid_energy_density(const sps__material_constants* c, sps_real tau_tau, sps_real p) {
+    (void)c; (void)tau_tau; (void)p;
+    return 0;
+}
+
 /* >>model (continued): the rows */
 
 static const sps__material_model sps__materials[] = {
-    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density},
+    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0},
+    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1},
 };
 #define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
@@ -1255,7 +1270,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
-    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic)", (int)def->material.kind);
+    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic) or 1 (rigid)", (int)def->material.kind);
     if (material) material->check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN, "solver = %d, allowed 0 (updated Lagrangian)", (int)def->solver);
@@ -1287,6 +1302,11 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
              : def->rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
     m.stress = m.stabilisation->stress_force || def->track_stress;
     m.gradient = m.turn != SPS__TURN_NONE || m.stress;
+    m.artificial_stress = m.stabilisation->artificial_stress;
+    if (m.material->kinematic) { /* a wall body runs no pass and needs no field of its own */
+        m.paired = m.stress = m.gradient = m.artificial_stress = 0;
+        m.turn = SPS__TURN_NONE;
+    }
     return m;
 }
 
@@ -1547,7 +1567,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
 
-    if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
+    if (!b->model.material->kinematic && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0; /* wall bodies: no waves */
     w->contact_dirty = 1;
     out->id = ((uint32_t)w->tag << 16) | (uint32_t)(w->nbodies + 1);
     w->nbodies++;
@@ -2325,6 +2345,10 @@ static sps_result sps__build_neighbors(sps_world* w) {
         int begin = b->begin, count = b->end - b->begin, ncell, c, overflow = -1;
         const int dim = w->dim, width = w->ell_width;
         if (count == 0) continue;
+        if (b->model.material->kinematic) { /* no pass reads a wall body's own neighbours */
+            for (i = begin; i < b->end; ++i) w->nb_count[i] = 0;
+            continue;
+        }
         ncell = sps__setup_grid(w, begin, b->end);
         for (i = 0; i < count; ++i) {
             int a;
@@ -2586,7 +2610,7 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
     const sps__model* m = &b->model;
     return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
-           (need == SPS__NEED_ARTIFICIAL && m->stabilisation->artificial_stress);
+           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -2820,6 +2844,7 @@ static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, in
    (sps__group_share), then waits for the other threads. */
 static void sps__run_groups(sps_world* w, const sps__body* b, sps__group_kernel kernel, sps_real dt) {
     int g, g0, g1;
+    if (!kernel) return; /* a body without this pass (a wall body): no barrier needed either */
     sps__group_share(w, b, &g0, &g1);
     for (g = g0; g < g1; ++g) kernel(w, b, g, dt);
     SPS__PRAGMA(omp barrier)
@@ -3247,7 +3272,7 @@ SPS__CONTINUITY_VARIANTS(SPS__CONTINUITY_INSTANCES)
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
     int g, a;
     sps_real acc[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    if (b->end == b->begin) return;
+    if (b->end == b->begin || !b->model.pass.continuity) return;
     sps__run_groups(w, b, b->model.pass.continuity, dt);
     if (b->model.turn != SPS__TURN_MEAN) return;
     SPS__PRAGMA(omp single)
@@ -3347,6 +3372,10 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     const int continuity_key[4] = {m->gradient, eno, 0, 0};
     const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, 0};
     sps__passes p;
+    if (m->material->kinematic) {
+        memset(&p, 0, sizeof p);
+        return p;
+    }
     p.pressure = sps__find_kernel(sps__pressure_rows, (int)(sizeof sps__pressure_rows / sizeof sps__pressure_rows[0]), pressure_key, mode);
     p.continuity = sps__find_kernel(sps__continuity_rows, (int)(sizeof sps__continuity_rows / sizeof sps__continuity_rows[0]), continuity_key, mode);
     p.penalty = st->penalty ? sps__find_kernel(sps__penalty_rows, (int)(sizeof sps__penalty_rows / sizeof sps__penalty_rows[0]), penalty_key, mode) : NULL;
@@ -3675,7 +3704,7 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
         sps__thread_share(b, &i0, &i1);
         if (w->dim == 2) sps__drift_range(w, i0, i1, h, c2, rho0, 2);
         else sps__drift_range(w, i0, i1, h, c2, rho0, 3);
-        if (b->model.stabilisation->artificial_stress) /* after its own particles' pressure */
+        if (b->model.artificial_stress) /* after its own particles' pressure */
             for (i = i0; i < i1; ++i) sps__artificial_stress(w, b, i);
     }
     SPS__PRAGMA(omp barrier) /* the pressure pass reads the neighbours' drifted state */
@@ -3726,6 +3755,21 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
     return vmax2;
 }
 
+/* Step 3 for the particles i0 .. i1-1 of a wall body: they keep their velocity (second half
+   drift only). Returns the range's max |v|^2 above vmax2. */
+static sps_real sps__move_range(sps_world* w, int i0, int i1, sps_real dt, sps_real vmax2) {
+    int i, a;
+    for (i = i0; i < i1; ++i) {
+        sps_real v2 = 0;
+        for (a = 0; a < w->dim; ++a) {
+            w->pos[a][i] += SPS_R(0.5) * dt * w->vel[a][i];
+            v2 += w->vel[a][i] * w->vel[a][i];
+        }
+        if (!(v2 <= vmax2)) vmax2 = v2 == v2 ? v2 : (sps_real)INFINITY;
+    }
+    return vmax2;
+}
+
 /* Step 3: velocity update, constraints, second half drift of positions; returns max |v|^2
    (the same value in every thread: per-thread maxima, then a barrier, then their max).
    For the -A variants the accumulated a_s is aligned with the body at the end of the last
@@ -3743,7 +3787,8 @@ static sps_real sps__kick(sps_world* w, sps_real dt) {
         int i0, i1;
         sps__thread_share(b, &i0, &i1);
         sps__rodrigues(b->mean_spin, SPS_R(0.5) * dt, dim, Hmean); /* half of this kick's turn */
-        vmax2 = dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3);
+        if (b->model.material->kinematic) vmax2 = sps__move_range(w, i0, i1, dt, vmax2);
+        else vmax2 = dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3);
     }
     w->thread_max[me] = vmax2;
     SPS__PRAGMA(omp barrier)
@@ -3877,6 +3922,10 @@ static sps_result sps__check_bodies_filled(sps_world* w) {
                            w->bodies[k].name, k);
             return SPS_ERR_STATE;
         }
+    if (!(w->c0_max > 0)) { /* the time step comes from the deformable bodies' sound speeds */
+        sps__set_error(w, 0, "the world has only rigid bodies (material.kind = SPS_MATERIAL_RIGID): add a deformable body to simulate");
+        return SPS_ERR_STATE;
+    }
     return SPS_OK;
 }
 

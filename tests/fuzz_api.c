@@ -239,6 +239,8 @@ static sps_body_def random_body_def(void) {
     d.material.poisson_ratio = chance(p) ? (chance(0.5) ? 0.5 : hostile_real()) : uniform(-0.5, 0.4999);
     d.shear = (sps_shear)(chance(p) ? hostile_int() : below(6));
     d.rotation = (sps_rotation)(chance(p) ? hostile_int() : below(3));
+    d.material.kind = (sps_material_kind)(chance(p) ? hostile_int() : chance(0.15)); /* sometimes a wall body */
+    d.contact = chance(p) ? hostile_int() : !chance(0.1);
     d.zeta = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);
     d.xi = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);
     d.oas_epsilon = maybe_hostile(uniform(0, 1), p);

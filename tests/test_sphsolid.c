@@ -2156,6 +2156,60 @@ static int test_wall_stops_body(void) {
     return 0;
 }
 
+/* A wall body (SPS_MATERIAL_RIGID) made of particles: a block dropped on a rigid plate bounces
+   off it and stays above it, the plate's particles do not move (at rest) or move exactly with
+   their prescribed velocity, and a world of rigid bodies only is refused. */
+static int test_rigid_wall_body(void) {
+    int moving;
+    for (moving = 0; moving < 2; ++moving) {
+        sps_world* w = new_world(2, 0.01);
+        sps_body_def rd = sps_default_body_def();
+        sps_body block, plate;
+        static const double lo[3] = {0.05, 0.05, 0}, hi[3] = {0.15, 0.15, 0};
+        const sps_real plo[3] = {0, -0.04, 0}, phi[3] = {0.2, 0, 0};
+        sps_real c0, v, vplate = moving ? (sps_real)-1.0 : 0, x_before, y_before;
+        sps_particle_state ps;
+        double lowest = 1e30;
+        int n, first_plate;
+        ENSURE(w);
+        block = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
+        rd.material.kind = SPS_MATERIAL_RIGID;
+        ENSURE(block.id && sps_world_add_body(w, &rd, &plate) == SPS_OK && sps_body_add_box(w, plate, plo, phi, NULL) == SPS_OK);
+        ENSURE(sps_body_material_constants(w, block, &c0, NULL, NULL) == SPS_OK);
+        v = (sps_real)(0.05 * c0);
+        ENSURE(sps_body_set_velocity(w, block, velocity_down, &v) == SPS_OK);
+        ENSURE(sps_body_set_velocity(w, plate, velocity_down, &vplate) == SPS_OK); /* moving: up at 1 m/s */
+        first_plate = n; /* ids: the block's first */
+        ENSURE(sps_world_particle(w, first_plate, &ps) == SPS_OK);
+        x_before = ps.position[0]; y_before = ps.position[1];
+        ENSURE(sps_world_advance(w, (sps_real)(0.1 / (0.05 * c0)), track_lowest, &lowest) == SPS_OK);
+        ENSURE(sps_world_particle(w, first_plate, &ps) == SPS_OK);
+        printf("    %s plate: plate particle moved (%.3g, %.3g) m in %.4g s\n", moving ? "moving" : "resting",
+               (double)(ps.position[0] - x_before), (double)(ps.position[1] - y_before), (double)sps_world_time(w));
+        ENSURE(ps.position[0] == x_before && ps.velocity[1] == -vplate); /* its velocity is kept */
+        ENSURE_NEAR(ps.position[1] - y_before, -vplate * sps_world_time(w), 1e-12); /* x += v dt: round-off only */
+        {
+            sps_diagnostics d;
+            ENSURE(sps_world_diagnostics(w, block, &d) == SPS_OK);
+            printf("    block momentum y %.3g (start %.3g)\n", (double)d.linear_momentum[1], -(double)v * n * 0.1);
+            ENSURE(d.linear_momentum[1] > 0); /* it bounced off the plate */
+        }
+        sps_world_destroy(w);
+    }
+    {   /* rigid bodies only: refused with a message */
+        sps_world* w = new_world(2, 0.01);
+        sps_body_def rd = sps_default_body_def();
+        sps_body plate;
+        const sps_real plo[3] = {0, 0, 0}, phi[3] = {0.1, 0.1, 0};
+        ENSURE(w);
+        rd.material.kind = SPS_MATERIAL_RIGID;
+        ENSURE(sps_world_add_body(w, &rd, &plate) == SPS_OK && sps_body_add_box(w, plate, plo, phi, NULL) == SPS_OK);
+        ENSURE(sps_world_step(w) == SPS_ERR_STATE && error_names(w, "only rigid bodies") == 0);
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
 /* Bad wall and contact input is refused with a message naming it. */
 static int test_contact_bad_input(void) {
     sps_world* w = new_world(2, 0.01);
@@ -2598,6 +2652,7 @@ int main(int argc, char** argv) {
     RUN(test_contact_determinism);
     RUN(test_wall_stops_body);
     RUN(test_contact_bad_input);
+    RUN(test_rigid_wall_body);
     RUN(test_pair_forces_survive_adds);
     RUN(test_frame_arguments_rejected);
     RUN(test_frame_single_stepping_equals_steps);
