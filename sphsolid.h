@@ -148,6 +148,26 @@
       artificial stress belong to the bodies whose model needs them (an ENO body beside an OG
       body carries no stress). Read them by name: sps_world_field_by_name and sps_body_field.
 
+   CONTACT (chapter >>contact)
+      Bodies touch each other when both defs have contact = 1 (the default) and no
+      sps_world_set_contact(w, a, b, 0) separated the pair. A particle near another body gets the
+      contact density sigma_i = sum_j W_ij V_j over the other body's particles within 2h, and the
+      repulsion F_i = -V_i sum_j K_ij (sigma_i + sigma_j) dW_ij e_ij V_j, K_ij the harmonic mean of
+      the two bulk moduli (the reference code's law). It is the exact gradient of the contact
+      energy (K/2) sum_i V_i sigma_i^2 (not included in the strain energy), and antisymmetric:
+      linear and angular momentum are exact. Pairs are found at each configuration update
+      through one cell grid over the world (indices ordered by cell; nothing is re-sorted), so
+      results are bit-identical for any thread count. A scene with one body and no walls runs
+      no contact code. Self-contact of a body is not modelled (it would take the same pairs
+      between particles of one body that are far apart in the reference configuration).
+      Analytic walls (sps_world_add_wall, sps_world_add_box_walls): the solid half-space is a
+      continuum of the same contact law, its sums the kernel integrals over the half-space
+      (sigma_i += int W dV) and the wall plane (F_i += 2 V_i K sigma_i W_plane(d) n), tabulated
+      once; a no-slip wall adds a drag -2 V_i rho0 c0 W_plane(d) v_t on the tangential velocity.
+      They cost a distance test per particle and wall.
+      Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
+      them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
+
    DIAGNOSTICS (sps_world_diagnostics)
       kinetic energy     sum 1/2 m |v|^2
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.
@@ -224,7 +244,7 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      contact between bodies, plasticity, granular media, total-Lagrangian SPH, removing particles.
+      self-contact, plasticity, fluids, granular media, total-Lagrangian SPH, removing particles.
 
    REVISION HISTORY
       0.5.0 (2026-12-01) a body's model as data (material, stabilisation, solver and transport
