@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
             if (rx[i] > PUNCH2D_L / 2 && ry[i] > PUNCH2D_L - p.dp) punch_ids[npunch++] = ids[i];
     }
 
-    output_open(&output, &c, CASE, ex_tracks_stress(&c) ? "pressure" : "pressure",
+    output_open(&output, &c, CASE, "pressure",
                 ",punch_depth,corner_uy,max_y,pressure_max,pressure_min,pressure_roughness");
     wall0 = wall_seconds();
     for (;;) {
