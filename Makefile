@@ -25,7 +25,7 @@ CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
 SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 BUILD    = build
-EXAMPLES = plate2d plate3d spinning_plate spinning_cube rings2d
+EXAMPLES = plate2d plate3d spinning_plate spinning_cube rings2d punch2d balls3d
 HEADER   = sphsolid.h
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
@@ -98,10 +98,11 @@ run: $(BUILD)/plate2d
 # ---- gallery: one picture per example, committed in bench/gallery/ (600 x 400, indexed: 241 KB each) ----
 # the 2D plate at its largest deflection (a quarter period), the 3D plate's mode (2,2) at its
 # largest deflection, the spinning plate and cube after a few tenths of a turn, the demo scene
-# 10 frames after its seventh block was dropped
+# 10 frames after its seventh block was dropped, the punch at 4 ms (pressure), the balls at 5 ms (after the impact)
 GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --tend 0.004 --full --png-field displacement --png-view iso" \
                "spinning_plate --dp 0.025 --tend 0.1" "spinning_cube --dp 0.1 --tend 0.1 --png-view iso" \
-               "rings2d --dp 0.001 --tend 0.005 --png-field von-mises"
+               "rings2d --dp 0.001 --tend 0.005 --png-field von-mises" \
+               "punch2d --dp 0.05 --tend 0.004 --png-field pressure" "balls3d --dp 0.004 --tend 0.005 --png-view iso"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \
@@ -130,7 +131,8 @@ quickstart-run: check
 # and a value out of range must end it with exit status 2 (the example contract in the README)
 SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "plate3d --res 2 --tend 0.0002 --full" \
              "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01" \
-             "rings2d --dp 0.004 --tend 0.002 --iterations 20"
+             "rings2d --dp 0.004 --tend 0.002 --iterations 20" \
+             "punch2d --dp 0.1 --tend 0.0005" "balls3d --dp 0.008 --tend 0.0002 --iterations 50"
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@
 examples-smoke: examples $(BUILD)/check_picture
