@@ -3617,6 +3617,14 @@ static sps_result sps__commit_contact(sps_world* w) {
     return SPS_OK;
 }
 
+/* The wall's contact density at distance d (negative: the particle is inside the wall). A
+   particle pushed into the wall sees more than half of its kernel there, 1 - sigma_wall(-d),
+   up to 1, while the plane integral stays at its peak: the repulsion grows with the penetration
+   instead of fading, so a particle cannot be squeezed through a wall. */
+static sps_real sps__wall_sigma(const sps_world* w, sps_real d) {
+    return d >= 0 ? sps__plane_table_at(w, w->wall_sigma, SPS__WALL_TABLE, d) : 1 - sps__plane_table_at(w, w->wall_sigma, SPS__WALL_TABLE, -d);
+}
+
 /* Contact density of particle i (its pairs and the walls). */
 static sps_real sps__contact_density(const sps_world* w, int i) {
     sps_real sigma = 0;
@@ -3632,7 +3640,7 @@ static sps_real sps__contact_density(const sps_world* w, int i) {
         const sps__wall* wl = &w->walls[k];
         sps_real d = 0;
         for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
-        if (d < w->support) sigma += sps__plane_table_at(w, w->wall_sigma, SPS__WALL_TABLE, d);
+        if (d < w->support) sigma += sps__wall_sigma(w, d);
     }
     return sigma;
 }
@@ -3662,7 +3670,7 @@ static void sps__contact_force(sps_world* w, int i) {
         sps_real d = 0, plane, vn = 0;
         for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
         if (!(d < w->support)) continue;
-        plane = sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d);
+        plane = sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d); /* at its peak for d <= 0 */
         for (a = 0; a < w->dim; ++a) f[a] += 2 * bi->mat.K * si * plane * wl->normal[a];
         if (wl->slip == SPS_WALL_NO_SLIP) {
             for (a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];

@@ -5,8 +5,7 @@
 
    Keys: space  drop a block (with the formulation shown)     f  next shear formulation
          p      pause                                          q  quit
-   There is no contact between bodies yet: dropped blocks fall through everything, and are
-   parked below the view (the library cannot remove particles).
+   The blocks land in a tank (rigid walls) and bounce off the floor, each other and the rest.
 
    Each frame runs sps_world_advance_frame (sphsolid.h, REAL-TIME FRAMES): the first frame
    calibrates the sub-steps that cover 1/fps of simulated time, and the others keep that count,
@@ -177,7 +176,7 @@ int main(int argc, char** argv) {
     };
     jelly_scene scene;
     screen scr;
-    char status[256], hint[256] = "space drop  f formulation  p pause  q quit   (no contact yet: blocks fall through)";
+    char status[256], hint[256] = "space drop  f formulation  p pause  q quit";
     int fps_frames = 0;
 
     ex_short_openmp_spin(argv);
@@ -193,7 +192,10 @@ int main(int argc, char** argv) {
         int key = headless ? (frame % 20 == 10 ? ' ' : frame % 20 == 0 && frame ? 'f' : -1) : read_key();
         if (key == 'q') break;
         if (key == 'p') paused = !paused;
-        if (key == 'f') shear = (shear + 1) % FORMULATIONS;
+        /* headless cycles the -A variants only (the first two): ENO and GNO do not turn the stored
+           shear of a spinning block and OG breaks down, so a block of theirs may fly apart on impact
+           (interactive: the scene resets with the message) */
+        if (key == 'f') shear = (shear + 1) % (headless ? 2 : FORMULATIONS);
         if (key == ' ') {
             if (scene.n_drops == JELLY_MAX_DROPS) { /* particles cannot be removed: start afresh */
                 sps_world_destroy(scene.w);
@@ -214,7 +216,6 @@ int main(int argc, char** argv) {
                 ex_check(scene.w, r);
                 if (frame == 0) substeps = (int)ceil(substeps / (fps * covered)); /* the mean sub-step, measured (REAL-TIME FRAMES) */
             }
-            ex_check(scene.w, jelly_park_fallen(&scene));
         }
         t1 = wall_seconds();
         snprintf(status, sizeof status, "t = %6.2f s  %5d particles  %5.1f fps  new blocks: %s%s", (double)sps_world_time(scene.w),

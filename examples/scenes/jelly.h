@@ -1,14 +1,13 @@
-/* jelly.h - the playground of examples/demo.c: soft jelly under gravity, built from what the
-   library does today (no contact between bodies, no walls, no removal of particles):
+/* jelly.h - the playground of examples/demo.c: soft jelly under gravity in a tank (analytic
+   rigid walls: the floor and both sides, no-slip; sphsolid.h CONTACT):
    - a cantilever clamped in the left wall, which sags and swings;
    - a tree clamped in the floor, started with a sway;
    - two blocks spinning on fixed axles (the centre particle held: a rigid rotation about it
      leaves it at rest, while holding more particles would weld the block to the axle);
-   - blocks dropped from the top while the scene runs (sps_world_add_body after steps). With no
-     contact they fall through everything; below the view they are parked (held still), since
-     particles cannot be removed, and after JELLY_MAX_DROPS the scene starts afresh.
-   The world has no escape guard (escape_distance = INFINITY): falling blocks leave their start
-   far behind. Needs only sphsolid.h. */
+   - blocks dropped from the top while the scene runs (sps_world_add_body after steps): they
+     land on the floor, on each other and on the others, and bounce (bodies touch by default).
+     Particles cannot be removed, so after JELLY_MAX_DROPS the scene starts afresh.
+   Needs only sphsolid.h. */
 #ifndef SPS_SCENE_JELLY_H
 #define SPS_SCENE_JELLY_H
 #include "scene.h"
@@ -19,15 +18,12 @@
 #define JELLY_RHO0 1000
 #define JELLY_E 4e5         /* soft: c0 18 m/s, so a frame of 1/30 s takes about 30 sub-steps */
 #define JELLY_NU 0.3
-#define JELLY_MAX_DROPS 16  /* parked blocks still cost their share of every sub-step */
+#define JELLY_MAX_DROPS 16  /* then the scene starts afresh (particles cannot be removed) */
 #define JELLY_BLOCK 0.24    /* side of a dropped block [m] */
-#define JELLY_PARK_Y -0.4   /* a dropped block whose centre falls below this is parked */
 
 typedef struct {
     sps_body body;
     int centre_id;          /* stable id of its centre particle, to see where it is */
-    sps_real lo[3], hi[3];  /* its reference box */
-    int parked;
 } jelly_drop;
 
 typedef struct {
@@ -43,6 +39,9 @@ SCENE_UNUSED static sps_body_def jelly_body_def(sps_shear shear, const char* nam
     bd.material.youngs_modulus = JELLY_E;
     bd.material.poisson_ratio = JELLY_NU;
     bd.shear = shear;
+    /* the -A variants turn their stored increments with each pair: with the mean rotation the
+       colliding, spinning blocks gain energy (bench/VALIDATION.md, A5) and the scene heats up */
+    bd.rotation = SPS_ROTATION_PAIR;
     return bd;
 }
 
@@ -87,9 +86,12 @@ SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, jelly_s
     wd.dp = JELLY_DP;
     wd.gravity[1] = -9.81;
     wd.threads = threads;
-    wd.escape_distance = INFINITY; /* dropped blocks fall far */
     wd.log = log;
     if ((r = sps_world_create(&wd, &s->w)) != SPS_OK) return r;
+    {   /* the tank: the view's floor and sides, open at the top */
+        const sps_real tank_lo[3] = {-JELLY_VIEW_W / 2, 0, 0}, tank_hi[3] = {JELLY_VIEW_W / 2, 4 * JELLY_VIEW_H, 0};
+        SCENE_TRY(&s->w, sps_world_add_box_walls(s->w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    }
     SCENE_TRY(&s->w, sps_world_add_body(s->w, &cantilever_def, &cantilever));
     SCENE_TRY(&s->w, sps_body_add_box(s->w, cantilever, beam_lo, beam_hi, NULL));
     SCENE_TRY(&s->w, sps_body_constrain_box(s->w, cantilever, wall_lo, wall_hi, SPS_AXIS_ALL, NULL, NULL));
@@ -105,39 +107,21 @@ SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, jelly_s
     return SPS_OK;
 }
 
-/* Drops block number s->n_drops (shear formulation `shear`) from the top of the view, at an
+/* Drops block number s->n_drops (shear formulation `shear`) from above the view, at an
    x that cycles over the view's width. SPS_ERR_STATE when JELLY_MAX_DROPS are out. */
 SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear) {
     static const double x_of[5] = {-0.7, 0.3, -0.2, 0.75, -0.45};
     jelly_drop* d = &s->drops[s->n_drops];
     sps_body_def bd = jelly_body_def(shear, "dropped");
-    const double cx = x_of[s->n_drops % 5], cy = JELLY_VIEW_H - JELLY_BLOCK / 2 - 0.02;
+    /* just above the view, clear of the spinning wheels' corners (bodies must not start overlapping) */
+    const double cx = x_of[s->n_drops % 5], cy = JELLY_VIEW_H + JELLY_BLOCK / 2 + 0.06;
     sps_real centre[3] = {cx, cy, 0};
     sps_result r;
     if (s->n_drops == JELLY_MAX_DROPS) return SPS_ERR_STATE;
     if ((r = sps_world_add_body(s->w, &bd, &d->body)) != SPS_OK || (r = jelly_add_block(s->w, d->body, cx, cy, JELLY_BLOCK, 3, 0)) != SPS_OK)
         return r;
-    d->lo[0] = cx - JELLY_BLOCK; d->lo[1] = cy - JELLY_BLOCK; d->lo[2] = -1;
-    d->hi[0] = cx + JELLY_BLOCK; d->hi[1] = cy + JELLY_BLOCK; d->hi[2] = 1;
     d->centre_id = sps_world_nearest_particle(s->w, d->body, centre);
-    d->parked = 0;
     ++s->n_drops;
-    return SPS_OK;
-}
-
-/* Parks the dropped blocks that fell below the view: their velocity held at zero from now on. */
-SCENE_UNUSED static sps_result jelly_park_fallen(jelly_scene* s) {
-    int k;
-    for (k = 0; k < s->n_drops; ++k) {
-        jelly_drop* d = &s->drops[k];
-        sps_particle_state c;
-        sps_result r;
-        if (d->parked) continue;
-        if ((r = sps_world_particle(s->w, d->centre_id, &c)) != SPS_OK) return r;
-        if (c.position[1] > JELLY_PARK_Y) continue;
-        if ((r = sps_body_constrain_box(s->w, d->body, d->lo, d->hi, SPS_AXIS_ALL, NULL, NULL)) != SPS_OK) return r;
-        d->parked = 1;
-    }
     return SPS_OK;
 }
 
