@@ -63,6 +63,8 @@ EXAMPLE_HEADERS = examples/common.h examples/render.h $(wildcard examples/scenes
 $(BUILD)/%: examples/%.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+# ball_plate3d.c is ball_plate2d.c built in 3D
+$(BUILD)/ball_plate3d $(FLOAT)/ball_plate3d: examples/ball_plate2d.c
 # the terminal demo (built like the examples)
 demo: $(BUILD)/demo
 
@@ -98,9 +100,12 @@ run: $(BUILD)/plate2d
 # ---- gallery: one picture per example, committed in bench/gallery/ (600 x 400, indexed: 241 KB each) ----
 # the 2D plate at its largest deflection (a quarter period), the 3D plate's mode (2,2) at its
 # largest deflection, the spinning plate and cube after a few tenths of a turn, the demo scene
-# 10 frames after its seventh block was dropped
+# 10 frames after its seventh block was dropped; the tensile plate at 1 ms, the 2D ball pressing into
+# the plate (0.06 c0, 6 ms), the 3D ball touching its plate (0.12 c0, 3 ms)
 GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --tend 0.004 --full --png-field displacement --png-view iso" \
-               "spinning_plate --dp 0.025 --tend 0.1" "spinning_cube --dp 0.1 --tend 0.1 --png-view iso"
+               "spinning_plate --dp 0.025 --tend 0.1" "spinning_cube --dp 0.1 --tend 0.1 --png-view iso" \
+               "tensile2d --dp 0.025 --tend 0.001" "ball_plate2d --dp 0.005 --v0 0.06 --tend 0.006" \
+               "ball_plate3d --dp 0.01 --v0 0.12 --tend 0.003 --png-view iso"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \
@@ -109,7 +114,7 @@ gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	  ./$(BUILD)/check_picture bench/gallery/$$1.png || { echo "gallery: $$run failed"; exit 1; }; \
 	done
 	@./$(BUILD)/demo --headless --frames 140 --png bench/gallery/demo.png >/dev/null && ./$(BUILD)/check_picture bench/gallery/demo.png
-	@echo "gallery: bench/gallery/{plate2d,plate3d,spinning_plate,spinning_cube,demo}.png"
+	@echo "gallery: bench/gallery/{plate2d,plate3d,spinning_plate,spinning_cube,tensile2d,ball_plate2d,ball_plate3d,demo}.png"
 
 # ---- tests ----
 $(BUILD)/test_sphsolid: tests/test_sphsolid.c $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
@@ -128,7 +133,9 @@ quickstart-run: check
 # its final picture (PNG and SVG, read back by tests/check_picture: valid, and the body visible),
 # and a value out of range must end it with exit status 2 (the example contract in the README)
 SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "plate3d --res 2 --tend 0.0002 --full" \
-             "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01"
+             "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01" \
+             "tensile2d --dp 0.1 --tend 0.0002 --report-every 0.0001" "ball_plate2d --dp 0.01 --v0 0.12 --tend 0.0015" \
+             "ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015"
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@
 examples-smoke: examples $(BUILD)/check_picture
@@ -144,7 +151,7 @@ examples-smoke: examples $(BUILD)/check_picture
 	@out=$(BUILD)/smoke/png_every; rm -rf $$out; \
 	./$(BUILD)/plate2d --res 3 --tend 0.01 --quiet --png-every 0.005 --png-field velocity --out $$out >/dev/null && \
 	./$(BUILD)/check_picture $$out/plate2d_0000.png $$out/plate2d_0001.png || { echo "examples-smoke: --png-every failed"; exit 1; }
-	@echo "examples-smoke: 4 examples ran, wrote CSV, VTK, PNG and SVG, and refused a bad option"
+	@echo "examples-smoke: 7 examples ran, wrote CSV, VTK, PNG and SVG, and refused a bad option"
 # the demo, headless for 25 frames (a block dropped at frame 10): its RESULT line, and the same
 # checksum with 1 and 2 threads (frames without a wall budget are deterministic)
 demo-smoke: $(BUILD)/demo
