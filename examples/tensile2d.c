@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
                         .E = TENSILE2D_E, .nu = TENSILE2D_NU, .rho0 = TENSILE2D_RHO0, .out = "out/tensile2d", .jitter = 0, .seed = 1,
                         PNG_DEFAULTS};
     opt_spec opts[] = {
-        {"dp", OPT_REAL, &p.dp, "particle spacing [m] (paper: 1/15 = 0.0666667 and 0.025)", 0.002, 0.25, NULL},
+        {"dp", OPT_REAL, &p.dp, "particle spacing [m], rounded to L/n (paper: 1/15 = 0.0666667 and 0.025)", 0.002, 0.25, NULL},
         {"vpull", OPT_REAL, &p.v_pull, "velocity of the top edge [m/s]", 0, 1e4, NULL},
         {"report-every", OPT_REAL, &report_every, "interval of the extents in the RESULT line [s]", 1e-6, 1, NULL},
         COMMON_OPTION_SPECS(c),
@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
         printf("RESULT case=tensile2d shear=%s dp=%.6g vpull=%g tend=%g%s hourglass_max=%.3g hourglass_end=%.3g min_spacing=%.3f "
                "min_spacing_end=%.3f kinetic_end=%.6g strain_end=%.6g paper=smooth_no_fracture_no_zigzag paper_ref=FEM_shape(Fig22) "
                "%s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
-               shear_name(c.shear), p.dp, p.v_pull, c.t_end, reports, s.output.hourglass_max, (double)d.hourglass,
+               shear_name(c.shear), (double)sps_world_get_def(w)->dp, p.v_pull, c.t_end, reports, s.output.hourglass_max, (double)d.hourglass,
                s.output.min_spacing, (double)d.min_spacing, (double)d.kinetic_energy, (double)d.strain_energy,
                common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
     }

@@ -19,11 +19,12 @@ typedef struct {
     double v_pull; /* velocity of the top holder [m/s] */
 } tensile2d_params;
 
-/* Creates the world of wd (dim and dp set here) holding the plate, a body of def bd (named
+/* Creates the world of wd (dim set here, dp = L / round(L / p->dp)) holding the plate, a body of def bd (named
    "plate"), clamped below y = 0 and pulled above y = L. On error *w is NULL. */
 SCENE_UNUSED static sps_result tensile2d_create(sps_world_def wd, const sps_body_def* bd, const tensile2d_params* p, sps_world** w,
                                                 sps_body* plate) {
-    const double dp = p->dp, hl = TENSILE2D_HOLDER_LAYERS * dp;
+    /* dp rounded to a whole number of particles across L (--dp 0.0666667 is 1/15, not 14 columns) */
+    const double dp = TENSILE2D_L / floor(TENSILE2D_L / p->dp + 0.5), hl = TENSILE2D_HOLDER_LAYERS * dp;
     sps_body_def def = *bd;
     sps_real lo[3] = {0, -hl, 0}, hi[3] = {TENSILE2D_L, TENSILE2D_L + hl, 0};
     sps_real bot_lo[3] = {-1, -1, -1}, bot_hi[3] = {2, 0, 1}, top_lo[3] = {-1, TENSILE2D_L, -1}, top_hi[3] = {2, 3, 1};
