@@ -25,7 +25,7 @@ CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
 SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 BUILD    = build
-EXAMPLES = plate2d plate3d spinning_plate spinning_cube rings2d punch2d balls3d
+EXAMPLES = plate2d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d
 HEADER   = sphsolid.h
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
@@ -63,6 +63,11 @@ EXAMPLE_HEADERS = examples/common.h examples/render.h $(wildcard examples/scenes
 $(BUILD)/%: examples/%.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+# ball_plate3d (A10) is examples/ball_plate2d.c (A9) built in 3D
+$(BUILD)/ball_plate3d: examples/ball_plate2d.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
+	$(CC) $(CFLAGS) -DBALL_PLATE_DIM=3 $< $(BUILD)/impl.o -o $@ $(LDLIBS)
+$(FLOAT)/ball_plate3d: examples/ball_plate2d.c $(EXAMPLE_HEADERS) $(FLOAT)/impl.o
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -DBALL_PLATE_DIM=3 $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
 # the terminal demo (built like the examples)
 demo: $(BUILD)/demo
 
@@ -98,11 +103,15 @@ run: $(BUILD)/plate2d
 # ---- gallery: one picture per example, committed in bench/gallery/ (600 x 400, indexed: 241 KB each) ----
 # the 2D plate at its largest deflection (a quarter period), the 3D plate's mode (2,2) at its
 # largest deflection, the spinning plate and cube after a few tenths of a turn, the demo scene
-# 10 frames after its seventh block was dropped, the punch at 4 ms (pressure), the balls at 5 ms (after the impact)
+# 10 frames after its seventh block was dropped, the punch at 4 ms (pressure), the balls at 5 ms (after the impact),
+# the tensile plate at 1 ms, the 2D ball pressing into the plate (0.06 c0, 6 ms), the 3D ball
+# pressing into its plate (0.12 c0, 3 ms, seen edge-on)
 GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --tend 0.004 --full --png-field displacement --png-view iso" \
                "spinning_plate --dp 0.025 --tend 0.1" "spinning_cube --dp 0.1 --tend 0.1 --png-view iso" \
                "rings2d --dp 0.001 --tend 0.005 --png-field von-mises" \
-               "punch2d --dp 0.05 --tend 0.004 --png-field pressure" "balls3d --dp 0.004 --tend 0.005 --png-view iso"
+               "punch2d --dp 0.05 --tend 0.004 --png-field pressure" "balls3d --dp 0.004 --tend 0.005 --png-view iso" \
+               "tensile2d --dp 0.025 --tend 0.001" "ball_plate2d --dp 0.005 --v0 0.06 --tend 0.006" \
+               "ball_plate3d --dp 0.01 --v0 0.12 --tend 0.003"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \
@@ -132,7 +141,9 @@ quickstart-run: check
 SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "plate3d --res 2 --tend 0.0002 --full" \
              "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01" \
              "rings2d --dp 0.004 --tend 0.002 --iterations 20" \
-             "punch2d --dp 0.1 --tend 0.0005" "balls3d --dp 0.008 --tend 0.0002 --iterations 50"
+             "punch2d --dp 0.1 --tend 0.0005" "balls3d --dp 0.008 --tend 0.0002 --iterations 50" \
+             "tensile2d --dp 0.1 --tend 0.0002 --report-every 0.0001" "ball_plate2d --dp 0.01 --v0 0.12 --tend 0.0015" \
+             "ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015"
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@
 examples-smoke: examples $(BUILD)/check_picture

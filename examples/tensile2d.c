@@ -1,0 +1,96 @@
+/* tensile2d.c - tensile test, benchmark A7 (ENO 6.5, after Lee et al. 2013).
+
+   A unit square plate (rho0 7000, E 2.1e10, nu 0.3, plane strain; c0 = 1581 m/s) has its bottom
+   edge fixed and its top edge pulled up at v_pull = 500 m/s (set-up: scenes/tensile2d.h: a
+   clamped holder below y = 0, a holder moving at (0, v_pull) above y = 1). We report the
+   extent of the plate (width of the row at mid height, height, the narrowest row: the neck) at
+   t = 0.25, 0.5, ... ms up to --tend, and the hourglass indicator and minimum spacing. The
+   paper compares shapes only (its Fig. 22 against FEM and CCFVM, no times in the text), so the
+   RESULT line gives our figures and the paper's finding (smooth, no fracture, no zigzag).
+
+   Build: make examples        Run: ./build/tensile2d --dp 0.0666667 --shear eno-a
+   Expect: the plate necks smoothly (width at mid height shrinking as it stretches), hourglass
+   indicator ~1e-3 for ENO-A; OG zigzags. */
+#include "common.h"
+#include "scenes/tensile2d.h"
+
+#define TENSILE2D_MAX_REPORTS 16
+
+typedef struct {
+    output_plan output;
+    double t_end, wall0;
+    int quiet;
+} run_state;
+
+static int on_step(sps_world* w, void* user) {
+    run_state* s = (run_state*)user;
+    sps_diagnostics d;
+    char extra[96];
+    double width, height, neck;
+    tensile2d_extent(w, &width, &height, &neck);
+    snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g", width, height, neck);
+    output_tick(w, &s->output, extra, &d);
+    progress(sps_world_time(w), s->t_end, s->wall0, s->quiet);
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    tensile2d_params p = {.dp = 1.0 / 15, .v_pull = 500};
+    double report_every = 2.5e-4;
+    common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 1e-3, .vtk_every = 2.5e-4, .csv_every = 1e-5,
+                        .E = TENSILE2D_E, .nu = TENSILE2D_NU, .rho0 = TENSILE2D_RHO0, .out = "out/tensile2d", .jitter = 0, .seed = 1,
+                        PNG_DEFAULTS};
+    opt_spec opts[] = {
+        {"dp", OPT_REAL, &p.dp, "particle spacing [m], rounded to L/n (paper: 1/15 = 0.0666667 and 0.025)", 0.002, 0.25, NULL},
+        {"vpull", OPT_REAL, &p.v_pull, "velocity of the top edge [m/s]", 0, 1e4, NULL},
+        {"report-every", OPT_REAL, &report_every, "interval of the extents in the RESULT line [s]", 1e-6, 1, NULL},
+        COMMON_OPTION_SPECS(c),
+    };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_body plate;
+    run_state s;
+    char reports[TENSILE2D_MAX_REPORTS * 64] = "";
+    size_t len = 0;
+    double wall, t_next;
+    int k;
+
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, "tensile test of a unit square (benchmark A7, ENO 6.5)", opts, (int)(sizeof opts / sizeof *opts));
+    apply_common(&c, &wd, &bd);
+    wd.log = ex_log;
+    memset(&s, 0, sizeof s);
+    ex_check(NULL, tensile2d_create(wd, &bd, &p, &w, &plate));
+
+    s.quiet = c.quiet; s.t_end = c.t_end;
+    output_open(&s.output, &c, "tensile2d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",width_mid,height,neck");
+    s.wall0 = wall_seconds();
+    on_step(w, &s);
+    for (k = 1; k <= TENSILE2D_MAX_REPORTS && (t_next = k * report_every) <= c.t_end * (1 + 1e-9); ++k) {
+        double width, height, neck;
+        sps_result r = sps_world_advance(w, t_next, on_step, &s);
+        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
+        tensile2d_extent(w, &width, &height, &neck);
+        len += (size_t)snprintf(reports + len, sizeof reports - len, " width_%gms=%.4f height_%gms=%.4f neck_%gms=%.4f", 1e3 * t_next,
+                                width, 1e3 * t_next, height, 1e3 * t_next, neck);
+    }
+    if (sps_world_time(w) < c.t_end) {
+        sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
+        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
+    }
+    wall = wall_seconds() - s.wall0;
+    output_close(w, &s.output);
+    {
+        sps_diagnostics d;
+        ex_check(w, sps_world_diagnostics(w, plate, &d));
+        printf("RESULT case=tensile2d shear=%s dp=%.6g vpull=%g tend=%g%s hourglass_max=%.3g hourglass_end=%.3g min_spacing=%.3f "
+               "min_spacing_end=%.3f kinetic_end=%.6g strain_end=%.6g paper=smooth_no_fracture_no_zigzag paper_ref=FEM_shape(Fig22) "
+               "%s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
+               shear_name(c.shear), (double)sps_world_get_def(w)->dp, p.v_pull, c.t_end, reports, s.output.hourglass_max, (double)d.hourglass,
+               s.output.min_spacing, (double)d.min_spacing, (double)d.kinetic_energy, (double)d.strain_energy,
+               common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
+    }
+    sps_world_destroy(w);
+    return 0;
+}
