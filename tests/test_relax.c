@@ -8,7 +8,7 @@
    carries a comment with its reason. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #define SPHSOLID_IMPLEMENTATION
-#include "sphsolid.h"
+#include "../sphsolid.h"
 
 
 #include <math.h>
