@@ -63,6 +63,11 @@ EXAMPLE_HEADERS = examples/common.h examples/render.h $(wildcard examples/scenes
 $(BUILD)/%: examples/%.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+# spinning_cube (A4) is examples/spinning_plate.c (A3) built in 3D
+$(BUILD)/spinning_cube: examples/spinning_plate.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
+	$(CC) $(CFLAGS) -DSPINNING_DIM=3 $< $(BUILD)/impl.o -o $@ $(LDLIBS)
+$(FLOAT)/spinning_cube: examples/spinning_plate.c $(EXAMPLE_HEADERS) $(FLOAT)/impl.o
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -DSPINNING_DIM=3 $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
 # ball_plate3d (A10) is examples/ball_plate2d.c (A9) built in 3D
 $(BUILD)/ball_plate3d: examples/ball_plate2d.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) -DBALL_PLATE_DIM=3 $< $(BUILD)/impl.o -o $@ $(LDLIBS)
