@@ -1038,6 +1038,18 @@ static void sps__set_error(sps_world* w, int level, const char* fmt, ...) {
     sps__vset_error(w, level, fmt, ap);
     va_end(ap);
 }
+/* A warning (log level 1): a call that did what it was asked but probably not what was meant.
+   It goes to the log only; the world's last error stays as it was. */
+static void sps__warn(const sps_world* w, const char* fmt, ...) {
+    char msg[512];
+    va_list ap;
+    if (!w->def.log) return;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    w->def.log(1, msg, w->def.log_user);
+}
+
 /* For the calls that take a const world: the error message is the one thing they write. Every
    world is allocated non-const (sps_world_create), so casting the const away is defined. */
 static void sps__set_error_const(const sps_world* w, const char* fmt, ...) {
@@ -1588,6 +1600,13 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
 
     if (!b->model.material->kinematic && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0; /* wall bodies: no waves */
+    if (def->material.poisson_ratio > SPS_R(0.499)) { /* nearly incompressible: say what it costs */
+        sps_material_def ref = def->material;
+        ref.poisson_ratio = SPS_R(0.3);
+        sps__warn(w, "body '%s': material.poisson_ratio = %g is within 1e-3 of 0.5: the sound speed, %g m/s, is %.3g times that at "
+                  "nu = 0.3, and the time step as many times shorter", b->name, (double)def->material.poisson_ratio, (double)b->mat.c0,
+                  (double)(b->mat.c0 / b->model.material->constants(&ref).c0));
+    }
     w->contact_dirty = 1;
     out->id = ((uint32_t)w->tag << 16) | (uint32_t)(w->nbodies + 1);
     w->nbodies++;
@@ -1656,6 +1675,12 @@ static int sps__check_box(sps_world* w, const char* fn, const sps_real lo[3], co
     return 1;
 }
 
+/* The warning of a fill that added no particle (a box thinner than dp, or an sdf < 0 nowhere). */
+static void sps__warn_empty_fill(const sps_world* w, const char* fn, sps_body b, int with_sdf) {
+    sps__warn(w, "%s: no lattice point of spacing dp = %g lies in the box%s: body '%s' got no particle", fn, (double)w->def.dp,
+              with_sdf ? " where sdf < 0" : "", w->bodies[sps__body_slot(w, b)].name);
+}
+
 static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_real lo[3], const sps_real hi[3],
                             sps_real (*sdf)(const sps_real x[3], void* user), void* user, int* added) {
     int k, cnt[3] = {1, 1, 1}, a, i, j, l, total = 0;
@@ -1671,7 +1696,10 @@ static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_
         double c = SPS__FLOOR((hi[a] - lo[a]) / dp + (sizeof(sps_real) == sizeof(float) ? SPS_R(1e-3) : SPS_R(1e-6)));
         cells *= c;
         cnt[a] = (int)(c < 1e9 ? c : 1e9);
-        if (c < 1) return SPS_OK; /* no lattice point along this axis (and 0 x inf is NaN) */
+        if (c < 1) { /* no lattice point along this axis (and 0 x inf is NaN) */
+            sps__warn_empty_fill(w, fn, b, sdf != NULL);
+            return SPS_OK;
+        }
     }
     if (cells > (double)(SPS__MAX_PARTICLES - w->n)) {
         sps__set_error(w, 0, "%s: box holds %.3g lattice points, the world %d particles; allowed a total of %d", fn, cells, w->n, SPS__MAX_PARTICLES);
@@ -1690,6 +1718,7 @@ static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_
                 ++total;
             }
     if (added) *added = total;
+    if (total == 0) sps__warn_empty_fill(w, fn, b, sdf != NULL);
     return SPS_OK;
 }
 
@@ -1772,6 +1801,9 @@ SPSDEF sps_result sps_body_constrain_box(sps_world* w, sps_body b, const sps_rea
         ++c;
     }
     w->ncons++;
+    if (c == 0)
+        sps__warn(w, "sps_body_constrain_box: no particle of body '%s' has its reference position in the box: nothing is constrained",
+                  w->bodies[k].name);
     if (count) *count = c;
     return SPS_OK;
 }

@@ -1485,6 +1485,41 @@ static int test_field_by_name(void) {
     return 0;
 }
 
+/* Calls that do what they were asked but probably not what was meant warn through the log
+   (level 1) and return SPS_OK: a box thinner than dp, a constraint box that matches no
+   particle, a Poisson ratio within 1e-3 of 0.5 (with what it costs in time step). */
+static int g_warnings;
+static char g_warning_last[512];
+static void warning_log(int level, const char* message, void* user) {
+    (void)user;
+    if (level == 1) { ++g_warnings; snprintf(g_warning_last, sizeof g_warning_last, "%s", message); }
+}
+static int test_warnings_for_silent_cases(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body b;
+    const sps_real lo[3] = {0, 0, 0}, thin[3] = {0.1, 0.005, 0}, hi[3] = {0.1, 0.1, 0}, far_lo[3] = {5, 5, 0}, far_hi[3] = {6, 6, 0};
+    int added = -1, count = -1;
+    wd.dp = 0.01;
+    wd.log = warning_log;
+    g_warnings = 0;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK && g_warnings == 0); /* nu = 0.3: no warning */
+    ENSURE(sps_body_add_box(w, b, lo, thin, &added) == SPS_OK && added == 0);
+    ENSURE(g_warnings == 1 && strstr(g_warning_last, "got no particle") != NULL);
+    ENSURE(sps_body_add_box(w, b, lo, hi, &added) == SPS_OK && added == 100 && g_warnings == 1);
+    ENSURE(sps_body_constrain_box(w, b, far_lo, far_hi, SPS_AXIS_ALL, NULL, &count) == SPS_OK && count == 0);
+    ENSURE(g_warnings == 2 && strstr(g_warning_last, "nothing is constrained") != NULL);
+    bd.material.poisson_ratio = 0.4995;
+    ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK);
+    printf("    %s\n", g_warning_last);
+    ENSURE(g_warnings == 3 && strstr(g_warning_last, "within 1e-3 of 0.5") != NULL);
+    ENSURE(strcmp(sps_world_last_error(w), "") == 0); /* warnings are not errors */
+    sps_world_destroy(w);
+    return 0;
+}
+
 /* Handles of another world, or of a destroyed one, are rejected by every call taking one. */
 static int test_foreign_and_destroyed_handles(void) {
     sps_world *w1 = new_world(2, 0.01), *w2;
@@ -2672,6 +2707,7 @@ int main(int argc, char** argv) {
     RUN(test_null_world_arguments);
     RUN(test_bad_arguments_named);
     RUN(test_field_by_name);
+    RUN(test_warnings_for_silent_cases);
     RUN(test_foreign_and_destroyed_handles);
     RUN(test_flat_box_is_empty);
     RUN(test_step_empty_body);
