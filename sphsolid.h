@@ -627,6 +627,11 @@ SPSDEF const sps_real* sps_body_field(const sps_world* w, sps_body b, const char
 SPSDEF const int* sps_world_particle_ids(const sps_world* w);
 /* State of the particle with stable id. */
 SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_state* out);
+/* Writes the position and/or the velocity (length-3 arrays, z ignored in 2D; either may be NULL)
+   of the particle with stable id, between steps (the next step rebuilds the neighbour lists
+   from the new positions). A constrained axis keeps its prescribed velocity at the next kick.
+   SPS_ERR_INVALID_ARG for an id outside [0, n) or a value that is not finite. No allocation. */
+SPSDEF sps_result sps_world_set_particle(sps_world* w, int id, const sps_real position[3], const sps_real velocity[3]);
 /* Stable id of the particle of body b whose reference position is nearest to x; -1 if none. */
 SPSDEF int sps_world_nearest_particle(const sps_world* w, sps_body b, const sps_real x[3]);
 
@@ -4571,6 +4576,23 @@ SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_st
     out->pressure = w->p[i];
     out->von_mises = sps__von_mises(w, i);
     out->body_index = w->body[i];
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_set_particle(sps_world* w, int id, const sps_real position[3], const sps_real velocity[3]) {
+    int i, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (id < 0 || id >= w->n || (position && !sps__finite_point(w, position)) || (velocity && !sps__finite_point(w, velocity))) {
+        sps__set_error(w, 0, "sps_world_set_particle: id = %d, position %s, velocity %s; allowed id in [0, %d) and finite values", id,
+                       !position ? "NULL" : sps__finite_point(w, position) ? "finite" : "not finite",
+                       !velocity ? "NULL" : sps__finite_point(w, velocity) ? "finite" : "not finite", w->n);
+        return SPS_ERR_INVALID_ARG;
+    }
+    i = w->slot_of_id[id];
+    for (a = 0; a < w->dim; ++a) {
+        if (position) w->pos[a][i] = position[a];
+        if (velocity) w->vel[a][i] = velocity[a];
+    }
     return SPS_OK;
 }
 

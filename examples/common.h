@@ -303,15 +303,20 @@ EX_UNUSED static double wall_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* One-line progress with simulated time and ETA, only on a terminal, at most 4 times a second. */
+/* Progress on stderr: on a terminal one line rewritten four times a second; elsewhere (a pipe,
+   a log file) a full line every 5 s, so that a long run in a pipe shows it is alive. */
 EX_UNUSED static void progress(double t, double t_end, double wall_start, int quiet) {
-    static double last = 0;
+    static double last = -1;
+    const int terminal = isatty(2);
     double now = wall_seconds(), eta;
-    if (quiet || !isatty(2) || now - last < 0.25) return;
+    if (quiet) return;
+    if (last < 0) last = terminal ? 0 : now; /* a pipe: the first line after 5 s */
+    if (now - last < (terminal ? 0.25 : 5.0)) return;
     last = now;
     eta = t > 0 ? (now - wall_start) * (t_end - t) / t : 0;
-    fprintf(stderr, "\r  t = %.4g / %.4g s   %3.0f%%   ETA %.0f s   ", t, t_end, 100 * t / t_end, eta);
-    if (t >= t_end) fprintf(stderr, "\n");
+    fprintf(stderr, terminal ? "\r  t = %.4g / %.4g s   %3.0f%%   ETA %.0f s   " : "  t = %.4g / %.4g s   %3.0f%%   ETA %.0f s\n", t, t_end,
+            100 * t / t_end, eta);
+    if (terminal && t >= t_end) fprintf(stderr, "\n");
 }
 
 /* Creates dir and its parents (mkdir -p); returns 0 on success. */

@@ -289,7 +289,7 @@ static int stop_after_three(sps_world* w, void* user) {
 
 /* ---- one random call on one of the case's worlds ---- */
 static int random_call(fuzz_state* s) {
-    int k = below(MAX_WORLDS), op = below(29);
+    int k = below(MAX_WORLDS), op = below(30);
     sps_world* w = s->w[k];
     sps_real lo[3], hi[3], x[3];
     double dp = s->dp[k];
@@ -457,6 +457,12 @@ static int random_call(fuzz_state* s) {
     case 28: /* which bodies touch */
         CALL(s, w, sps_world_set_contact(w, any_body(s, k), any_body(s, k), below(3)));
         break;
+    case 29: { /* write a particle's position or velocity */
+        sps_real v[3];
+        for (a = 0; a < 3; ++a) v[a] = chance(0.03) ? hostile_real() : uniform(-1, 1);
+        CALL(s, w, sps_world_set_particle(w, chance(0.9) ? below(sps_world_particle_count(w) + 2) - 1 : hostile_int(),
+                                          chance(0.5) ? x : NULL, chance(0.5) ? v : NULL));
+    } break;
     default: /* 26: destroy and forget every world of the case */
         for (a = 0; a < MAX_WORLDS; ++a) {
             sps_world_destroy(s->w[a]);

@@ -1520,6 +1520,29 @@ static int test_warnings_for_silent_cases(void) {
     return 0;
 }
 
+/* A particle's position and velocity are writable by id between steps, and read back exactly;
+   the next step starts from them. Bad ids and values are refused with a message. */
+static int test_set_particle(void) {
+    sps_world* w = new_world(2, 0.01);
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.1, 0};
+    const sps_real x[3] = {0.3, 0.2, 0}, v[3] = {1.5, -2, 0}, nan3[3] = {NAN, 0, 0};
+    sps_particle_state ps;
+    int n = 0;
+    ENSURE(w && add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n).id);
+    ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE(sps_world_set_particle(w, 7, x, v) == SPS_OK);
+    ENSURE(sps_world_particle(w, 7, &ps) == SPS_OK);
+    ENSURE(ps.position[0] == x[0] && ps.position[1] == x[1] && ps.velocity[0] == v[0] && ps.velocity[1] == v[1]);
+    ENSURE(sps_world_set_particle(w, 8, NULL, v) == SPS_OK && sps_world_particle(w, 8, &ps) == SPS_OK && ps.velocity[1] == v[1]);
+    ENSURE(sps_world_step(w) == SPS_OK); /* the moved particle, away from its body, steps on alone */
+    ENSURE(sps_world_particle(w, 7, &ps) == SPS_OK && ps.position[0] > x[0]);
+    ENSURE(sps_world_set_particle(w, n, x, NULL) == SPS_ERR_INVALID_ARG && error_names(w, "allowed id in [0, 100)") == 0);
+    ENSURE(sps_world_set_particle(w, 0, nan3, NULL) == SPS_ERR_INVALID_ARG && error_names(w, "position not finite") == 0);
+    ENSURE(sps_world_set_particle(NULL, 0, x, v) == SPS_ERR_INVALID_ARG);
+    sps_world_destroy(w);
+    return 0;
+}
+
 /* Handles of another world, or of a destroyed one, are rejected by every call taking one. */
 static int test_foreign_and_destroyed_handles(void) {
     sps_world *w1 = new_world(2, 0.01), *w2;
@@ -2707,6 +2730,7 @@ int main(int argc, char** argv) {
     RUN(test_null_world_arguments);
     RUN(test_bad_arguments_named);
     RUN(test_field_by_name);
+    RUN(test_set_particle);
     RUN(test_warnings_for_silent_cases);
     RUN(test_foreign_and_destroyed_handles);
     RUN(test_flat_box_is_empty);
