@@ -935,7 +935,7 @@ struct sps_world {
     sps_real time, dt, vmax, c0_max;
     sps_real thread_max[SPS__MAX_THREADS]; /* per-thread max |v|^2 of the kick */
     long acoustic_steps, advection_steps;
-    int allocated_for;
+    int allocated_for; /* particles the neighbour storage was sized for (sps__ensure_neighbor_storage) */
 };
 
 /* >>fields */
@@ -3196,7 +3196,7 @@ SPS__INLINE void sps__add_increments(sps_world* w, const sps__body* b, sps__grou
     }
 }
 
-/* The sums of the continuity pass's pair loop, per lane (see sps__continuity_group): density
+/* The sums of the continuity pass's pair loop, per lane (see sps__continuity): density
    rate, Laplacian, uncorrected velocity gradient M (row-major) and the symmetric A = B^-1. */
 enum {
     SPS__DRHO, SPS__LX, SPS__LY, SPS__LZ,
@@ -3240,7 +3240,7 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__gr
     }
 }
 
-/* The pair loop of the continuity pass for lane group q (terms: see sps__continuity_group).
+/* The pair loop of the continuity pass for lane group q (terms: see sps__continuity).
    gradient adds the sums of M and A; paired (SPS_ROTATION_PAIR) adds each ENO increment to its
    pair's force g_ij += 2 zeta G dt (v_ij . e_ij) dW/r V_i V_j instead of the particle's
    Laplacian: every factor is symmetric in i, j bit for bit, so g_ij = g_ji and the shear
