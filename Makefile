@@ -128,9 +128,9 @@ gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@echo "gallery: bench/gallery/*.png, one per example"
 
 # ---- tests ----
-$(BUILD)/test_sphsolid: tests/test_sphsolid.c $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
+$(BUILD)/test_sphsolid: tests/test_sphsolid.c tests/ensure.h $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-$(BUILD)/test_sanitize: tests/test_sphsolid.c $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
+$(BUILD)/test_sanitize: tests/test_sphsolid.c tests/ensure.h $(HEADER) $(wildcard examples/scenes/*.h) | $(BUILD)
 	$(CC) -std=c99 -O1 -g $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
 test-fast: $(BUILD)/test_sphsolid
 	./$(BUILD)/test_sphsolid > $(BUILD)/test_fast.log; status=$$?; cat $(BUILD)/test_fast.log; exit $$status
@@ -181,7 +181,7 @@ test-pinned: $(BUILD)/pinned $(BUILD)/pinned_float
 	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned
 	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned_float
 # body-fitted particles (sps_body_add_sdf_relaxed): the papers' ring and ball, determinism, bad input
-$(BUILD)/test_relax: tests/test_relax.c $(HEADER) | $(BUILD)
+$(BUILD)/test_relax: tests/test_relax.c tests/ensure.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 test-relax: $(BUILD)/test_relax
 	./$(BUILD)/test_relax

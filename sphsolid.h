@@ -1076,11 +1076,11 @@ static void sps__stderr_log(int level, const char* message, void* user) {
 }
 #endif
 
-static void* sps__alloc(sps_world* w, size_t size) {
+static void* sps__alloc(const sps_world* w, size_t size) {
     if (size == 0) size = 1;
     return w->def.allocator.alloc(size, w->def.allocator.user);
 }
-static void sps__free(sps_world* w, void* p) {
+static void sps__free(const sps_world* w, void* p) {
     if (p) w->def.allocator.free(p, w->def.allocator.user);
 }
 static void* sps__default_alloc(size_t size, void* user) { return SPHSOLID_MALLOC(size, user); }
@@ -1880,8 +1880,6 @@ typedef struct sps__relax_ctx {
     int *start, *order, *cell;
 } sps__relax_ctx;
 
-static void* sps__relax_alloc(const sps_world* w, size_t size) { return sps__alloc((sps_world*)w, size); }
-static void sps__relax_free(const sps_world* w, void* p) { sps__free((sps_world*)w, p); }
 
 /* phi = max(sdf, box); NaN is recorded in c->bad (and returned as +1e30: outside). */
 static sps_real sps__relax_phi(sps__relax_ctx* c, const sps_real x[3]) {
@@ -2117,7 +2115,7 @@ static void* sps__relax_work(sps__relax_ctx* c, int n, sps_real** phi, sps_real*
     char* blk;
     c->cap_cells = 2 * n + 64; /* at most ~2 cells per point: O(N) memory whatever the box */
     ni = (size_t)n * 2 + (size_t)c->cap_cells + 1;
-    blk = (char*)sps__relax_alloc(c->w, nr * sizeof(sps_real) + ni * sizeof(int));
+    blk = (char*)sps__alloc(c->w, nr * sizeof(sps_real) + ni * sizeof(int));
     if (!blk) return NULL;
     *phi = (sps_real*)blk;
     *dx = *phi + n;
@@ -2150,7 +2148,7 @@ SPSDEF sps_result sps_measure_fill(const sps_world* w, int n, const sps_real* xy
         if (depth > c.support) { q->inner++; t1 += nd; t2 += nd * nd; }
         if (depth < c.dp) { double e = (double)(depth / c.dp) - 0.5; q->surface++; e2 += e * e; }
     }
-    sps__relax_free(w, blk);
+    sps__free(w, blk);
     s1 /= n; s2 /= n;
     q->density_spread = (sps_real)(sqrt(fmax(s2 - s1 * s1, 0)) / s1);
     if (q->inner) { t1 /= q->inner; t2 /= q->inner; q->density_spread_inner = (sps_real)(sqrt(fmax(t2 - t1 * t1, 0)) / t1); }
@@ -2177,19 +2175,13 @@ SPSDEF sps_result sps_body_add_sdf_relaxed(sps_world* w, sps_body b, const sps_r
     sps_real *xyz, *phi, *dx;
     void* blk;
     long n;
-    int a;
     sps_result r;
     if (added) *added = 0;
     if (!w) return SPS_ERR_INVALID_ARG;
-    if (!sps_body_is_valid(w, b)) { sps__set_error_const(w, "%s: body handle %u is not a body of this world", fn, (unsigned)b.id); return SPS_ERR_INVALID_ARG; }
-    if (!sdf) { sps__set_error_const(w, "%s: sdf must not be NULL", fn); return SPS_ERR_INVALID_ARG; }
-    if (!lo || !hi) { sps__set_error_const(w, "%s: lo and hi must not be NULL", fn); return SPS_ERR_INVALID_ARG; }
-    if (iterations < 0) { sps__set_error_const(w, "%s: iterations = %d, allowed >= 0 (0: %d)", fn, iterations, SPS__RELAX_DEFAULT_ITERATIONS); return SPS_ERR_INVALID_ARG; }
-    for (a = 0; a < sps_world_get_def(w)->dim; ++a)
-        if (!(lo[a] - lo[a] == 0) || !(hi[a] - hi[a] == 0) || !(lo[a] < hi[a])) {
-            sps__set_error_const(w, "%s: box axis %d is [%g, %g), allowed finite with lo < hi", fn, a, (double)lo[a], (double)hi[a]);
-            return SPS_ERR_INVALID_ARG;
-        }
+    if (sps__check_body(w, b, fn) < 0) return SPS_ERR_INVALID_ARG;
+    if (!sdf) { sps__set_error(w, 0, "%s: sdf must not be NULL", fn); return SPS_ERR_INVALID_ARG; }
+    if (!sps__check_box(w, fn, lo, hi)) return SPS_ERR_INVALID_ARG;
+    if (iterations < 0) { sps__set_error(w, 0, "%s: iterations = %d, allowed >= 0 (0: %d)", fn, iterations, SPS__RELAX_DEFAULT_ITERATIONS); return SPS_ERR_INVALID_ARG; }
     if (iterations == 0) iterations = SPS__RELAX_DEFAULT_ITERATIONS;
     sps__relax_setup(&c, w, lo, hi, sdf, user);
     n = sps__relax_lattice(&c, NULL);
@@ -2200,8 +2192,8 @@ SPSDEF sps_result sps_body_add_sdf_relaxed(sps_world* w, sps_body b, const sps_r
     }
     if (n == 0) return SPS_OK;
     if (!(blk = sps__relax_work(&c, (int)n, &phi, &dx))) { sps__set_error_const(w, "%s: out of memory for the work arrays of %ld points", fn, n); return SPS_ERR_OUT_OF_MEMORY; }
-    xyz = (sps_real*)sps__relax_alloc(w, sizeof(sps_real) * 3 * (size_t)n);
-    if (!xyz) { sps__relax_free(w, blk); sps__set_error_const(w, "%s: out of memory for %ld points", fn, n); return SPS_ERR_OUT_OF_MEMORY; }
+    xyz = (sps_real*)sps__alloc(w, sizeof(sps_real) * 3 * (size_t)n);
+    if (!xyz) { sps__free(w, blk); sps__set_error_const(w, "%s: out of memory for %ld points", fn, n); return SPS_ERR_OUT_OF_MEMORY; }
     sps__relax_lattice(&c, xyz);
     sps__relax_iterate(&c, (int)n, xyz, phi, dx, iterations);
     if (c.bad) {
@@ -2212,8 +2204,8 @@ SPSDEF sps_result sps_body_add_sdf_relaxed(sps_world* w, sps_body b, const sps_r
         r = sps_body_add_particles(w, b, (int)n, xyz, NULL);
         if (r == SPS_OK && added) *added = (int)n;
     }
-    sps__relax_free(w, xyz);
-    sps__relax_free(w, blk);
+    sps__free(w, xyz);
+    sps__free(w, blk);
     return r;
 }
 

@@ -26,15 +26,6 @@ static int frame_substeps(sps_world* w, sps_body block, double max_speed, double
     return (int)ceil(1 / (fps * dt));
 }
 
-/* Waits until wall time t [s] (at once if it has passed). */
-static void sleep_until(double t) {
-    double left = t - wall_seconds();
-    struct timespec ts;
-    if (left <= 0) return;
-    ts.tv_sec = (time_t)left;
-    ts.tv_nsec = (long)((left - (double)ts.tv_sec) * 1e9);
-    nanosleep(&ts, NULL);
-}
 
 int main(int argc, char** argv) {
     spinning_params p = {.dim = 2, .dp = 0.05, .omega = 50};

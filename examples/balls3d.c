@@ -82,11 +82,7 @@ int main(int argc, char** argv) {
                  (double)dl.strain_energy, (double)dr.strain_energy, el, er, gap);
         output_tick(w, &output, extra, &da);
         if (t >= c.t_end) break;
-        {
-            double next = ++k * c.csv_every;
-            sps_result r = sps_world_advance(w, next < c.t_end ? next : c.t_end, NULL, NULL);
-            if (r != SPS_OK) ex_step_failed(w, r, &output);
-        }
+        ex_advance_row(w, &k, &c, &output);
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
     wall = wall_seconds() - wall0;

@@ -303,6 +303,16 @@ EX_UNUSED static double wall_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* Sleeps until the wall clock reads t [s] (wall_seconds); at once if it is past. */
+EX_UNUSED static void sleep_until(double t) {
+    double left = t - wall_seconds();
+    struct timespec ts;
+    if (left <= 0) return;
+    ts.tv_sec = (time_t)left;
+    ts.tv_nsec = (long)((left - (double)ts.tv_sec) * 1e9);
+    nanosleep(&ts, NULL);
+}
+
 /* Progress on stderr: on a terminal one line rewritten four times a second; elsewhere (a pipe,
    a log file) a full line every 5 s, so that a long run in a pipe shows it is alive. */
 EX_UNUSED static void progress(double t, double t_end, double wall_start, int quiet) {
@@ -439,6 +449,14 @@ EX_UNUSED static void ex_step_failed(sps_world* w, sps_result r, const output_pl
     if (sps_world_write_vtk(w, path) != SPS_OK) snprintf(path, sizeof path, "(not written)");
     fprintf(stderr, "%s: %s: %s (state at t = %g written to %s)\n", g_prog, sps_result_string(r), failure, (double)sps_world_time(w), path);
     exit(2);
+}
+
+/* Advances w to the time of CSV row *row + 1 (csv_every apart, at most t_end) and counts the
+   row; a library error ends the program (ex_step_failed). */
+EX_UNUSED static void ex_advance_row(sps_world* w, int* row, const common_options* c, const output_plan* o) {
+    const double next = ++*row * c->csv_every;
+    const sps_result r = sps_world_advance(w, (sps_real)(next < c->t_end ? next : c->t_end), NULL, NULL);
+    if (r != SPS_OK) ex_step_failed(w, r, o);
 }
 
 /* ---- period of an oscillation from the zero crossings of a signal starting at zero ---- */

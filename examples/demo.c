@@ -153,14 +153,6 @@ static int first_guess_substeps(const sps_world* w, double fps) {
     return (int)ceil(1 / (fps * wd->cfl_acoustic * wd->h_over_dp * wd->dp / c0));
 }
 
-static void sleep_until(double t) {
-    double left = t - wall_seconds();
-    struct timespec ts;
-    if (left <= 0) return;
-    ts.tv_sec = (time_t)left;
-    ts.tv_nsec = (long)((left - (double)ts.tv_sec) * 1e9);
-    nanosleep(&ts, NULL);
-}
 
 int main(int argc, char** argv) {
     int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, substeps, frame, shear = 0, paused = 0, resets = 0;

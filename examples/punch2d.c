@@ -101,11 +101,7 @@ int main(int argc, char** argv) {
         output_tick(w, &output, extra, &d);
         if (t >= kshape * shape_every - 1e-12 && nshapes < MAX_SHAPES) { shapes[nshapes++] = last; ++kshape; }
         if (t >= c.t_end) break;
-        {
-            double next = ++k * c.csv_every;
-            sps_result r = sps_world_advance(w, next < c.t_end ? next : c.t_end, NULL, NULL);
-            if (r != SPS_OK) ex_step_failed(w, r, &output);
-        }
+        ex_advance_row(w, &k, &c, &output);
         progress(sps_world_time(w), c.t_end, wall0, c.quiet);
     }
     wall = wall_seconds() - wall0;

@@ -1,8 +1,8 @@
-/* test_relax.c - tests of relax_chapter.h (body-fitted particles, sps_body_add_sdf_relaxed).
+/* test_relax.c - tests of the body-fitted particles (sps_body_add_sdf_relaxed, sps_measure_fill;
+   the header's chapter >>fill).
 
    Build and run (from the top of the repository):
-       gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -I. tests/test_relax.c -o /tmp/test_relax -lm
-       /tmp/test_relax
+       make build/test_relax && ./build/test_relax   (make test runs it)
    Runs in ~10 s on one core (the 3D ball is most of it). Prints the quality table (lattice vs
    relaxed) and, last, "N passed, M failed"; the exit status is 0 iff M == 0. Every tolerance
    carries a comment with its reason. */
@@ -19,19 +19,7 @@
 
 static int g_passed, g_failed;
 
-#define ENSURE(c)                                                             \
-    do {                                                                      \
-        if (!(c)) {                                                           \
-            printf("    %s:%d: ENSURE(%s) failed\n", __FILE__, __LINE__, #c); \
-            return 1;                                                         \
-        }                                                                     \
-    } while (0)
-
-static double wall_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "ensure.h"
 
 /* ---- shapes (exact signed distances) ---- */
 static sps_real ring_sdf(const sps_real x[3], void* user) { /* ENO 6.3: inner radius 0.03, outer 0.04 */

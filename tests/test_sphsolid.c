@@ -35,30 +35,7 @@ static const char* g_filter;    /* substring filter on test names, or NULL */
 static const char* g_exclude;   /* --exclude: skip the tests whose names contain it, or NULL */
 static int g_passed, g_failed, g_skipped;
 
-#define ENSURE(c)                                                                   \
-    do {                                                                            \
-        if (!(c)) {                                                                 \
-            printf("    %s:%d: ENSURE(%s) failed\n", __FILE__, __LINE__, #c);       \
-            return 1;                                                               \
-        }                                                                           \
-    } while (0)
-
-/* Fails on NaN too: !(|a - b| <= tol). */
-#define ENSURE_NEAR(a, b, tol)                                                                      \
-    do {                                                                                            \
-        double a_ = (double)(a), b_ = (double)(b), t_ = (double)(tol);                              \
-        if (!(fabs(a_ - b_) <= t_)) {                                                               \
-            printf("    %s:%d: ENSURE_NEAR(%s, %s, %s) failed: %.17g vs %.17g, |diff| %.3g > %.3g\n", \
-                   __FILE__, __LINE__, #a, #b, #tol, a_, b_, fabs(a_ - b_), t_);                     \
-            return 1;                                                                               \
-        }                                                                                           \
-    } while (0)
-
-static double wall_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "ensure.h"
 
 /* Runs one test in a child process (fork), so a crash is reported as that test's failure and
    the other tests still run; --no-fork runs it in-process (for a debugger). */
