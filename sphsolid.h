@@ -60,7 +60,11 @@
       G    shear modulus E/(2(1+nu)).
       Time steps (dual-criteria, ENO eqs. 25-26): advection dt_ad = CFL_ad h/|v|max (particle
       configuration and neighbour lists updated), acoustic dt_ac = CFL_ac h/(c0 + |v|max)
-      (all other variables updated). CFL_ad = 0.2, CFL_ac = 0.4.
+      (all other variables updated). CFL_ad = 0.2, CFL_ac = 0.4. |v|max is measured in each
+      body's frame (its mass-weighted mean velocity), or is the largest approach speed of two
+      bodies that touch (or of a body towards the walls) if that is larger: a uniform motion
+      does not change the time steps (a spinning plate translating at 20 m/s takes the same
+      steps as at rest, tested).
 
    STEP BY STEP (one acoustic sub-step, position-based Verlet, ENO eqs. 27-29)
       1. rho += dt/2 drho/dt; p = c0^2 (rho - rho0); x += dt/2 v
@@ -171,6 +175,14 @@
    DIAGNOSTICS (sps_world_diagnostics)
       kinetic energy     sum 1/2 m |v|^2
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.
+      contact energy     sum V (1/2 K sigma^2 + K sigma_w^2): the potential of the contact forces
+                         (sigma: contact density from the other bodies, sigma_w: from the walls).
+      potential energy   -sum m g.x over the deformable bodies (gravity).
+      prescribed work    work done on the deformable bodies by moving velocity constraints and
+                         rigid bodies (counted while the energy watchdog is on).
+      The account kinetic + strain + contact + potential - prescribed work is conserved by the
+      continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
+      numerical: the energy watchdog (ERRORS) reports it.
       linear momentum    sum m v;  angular momentum sum m x X v (about the origin; z in 2D)
       hourglass          sum_pairs |u_ij - 1/2 (Gu_i + Gu_j) r_ij| / sum_pairs r_ij, where u is the
                          displacement from the reference position and Gu_i its B-corrected
@@ -191,6 +203,7 @@
       h_over_dp [1, 3], kernel, stepping, cfl_acoustic (0, 1], cfl_advection (0, 1],
       max_substeps [1, 10000], gravity finite, frozen_geometry 0/1, neighbor_capacity [1, 64],
       threads [0, 1024], escape_distance >= 0 (INFINITY allowed), keep_last_good_state 0/1,
+      report_fragments 0/1, energy_growth_limit > 0 (INFINITY: off), energy_growth_stops 0/1,
       allocator (both or neither). Body def: cookie, material.density and .youngs_modulus
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
       c0 > 0), shear (0..5; OAS only in 2D), rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon
@@ -201,12 +214,29 @@
       constraint masks (1..7), particle ids [0, n), field enums, t_end (finite).
       Stepping: a world without particles, or a body without particles, gives SPS_ERR_STATE
       naming the body (a box narrower than dp holds no lattice point).
+      Warnings (log level 1, the call returns SPS_OK; the last error is untouched): a fill that
+      adds no particle, a constraint box that matches none, a Poisson ratio within 1e-3 of 0.5
+      (with the factor it shortens the time step by), bodies that can touch (or a body and the
+      walls) moving at more than 0.2 c0 relative to each other (once per world), a CFL number
+      above the measured stable limit of a body's formulation (STABLE CFL), the energy
+      watchdog, and with report_fragments = 1 a particle that broke off its body.
       Run-time guards (SPS_ERR_UNSTABLE; the message names time, body, particle and value):
       - at every configuration update (once per advection step, ~0.25 % of its time): a
         non-finite velocity, position, pressure, shear stress or accumulated shear acceleration,
         or a density that is not finite > 0;
-      - a particle farther than escape_distance from the bounding box of the reference
-        positions (default: 10 x the box's largest side, at least 100 dp);
+      - a particle farther than escape_distance beyond its body's size from the body's current
+        centre of mass (default: 10 body sizes, at least 100 dp), so a body that travels or
+        spins is never stopped; report_fragments = 1 warns (once per body) when a particle
+        breaks off its body;
+      - energy watchdog, at most every 10 sub-steps: the energy account (DIAGNOSTICS) above its
+        start by more than energy_growth_limit (default 5 %) of the largest kinetic + strain +
+        contact energy seen: a warning (log level 1) naming time, growth and the body that
+        gained most, once; with energy_growth_stops = 1, SPS_ERR_UNSTABLE. A run past its stable
+        time step or formulation stays finite and would return SPS_OK silently (the 3D
+        cantilever at cfl_acoustic = 0.8, the spinning plate with ENO-A at 100 rad/s; tested).
+        A new start is taken after every call that changes the state on purpose (velocities,
+        particles, constraints, walls, contacts). For a body that does not track its stress
+        the shear strain energy is missing and the account is a lower bound;
       - an acoustic step below 1e-3 of its value at rest (CFL_ac h / c0), i.e. a particle faster
         than 999 c0 (named with its speed); a speed whose square overflows; a step that makes
         no progress; a particle with more neighbours than neighbor_capacity allows (clustering).
@@ -386,10 +416,23 @@ typedef struct sps_world_def {
     sps_real neighbor_capacity;       /* neighbour slots per particle relative to a full lattice
                                          support, >= 1. Default 2 (compression to rho/rho0 = 2). */
     int threads;                      /* OpenMP threads for this world; 0 = OpenMP default. */
-    sps_real escape_distance;         /* [m] a particle farther than this from the bounding box of
-                                         the reference (initial) positions stops the run with
-                                         SPS_ERR_UNSTABLE. 0: 10 x the box's largest side, at
-                                         least 100 dp. INFINITY: never. Default 0. */
+    sps_real escape_distance;         /* [m] a particle farther than its body's size (the largest
+                                         distance of a reference position from the reference
+                                         centre of mass) plus this from the body's current centre
+                                         of mass stops the run with SPS_ERR_UNSTABLE: a body that
+                                         travels is never stopped. 0: 10 body sizes (20 x that
+                                         largest distance), at least 100 dp. INFINITY: never.
+                                         Default 0. */
+    int report_fragments;             /* 1: a warning (log level 1), once per body, when one of
+                                         its particles has no neighbour left within 2h (it broke
+                                         off). Default 0. */
+    sps_real energy_growth_limit;     /* energy watchdog (ERRORS): a warning, once, when the total
+                                         energy (kinetic + strain + gravity potential - work of
+                                         the prescribed motions) exceeds its value at the start by
+                                         more than this fraction of the largest mechanical energy
+                                         (kinetic + strain) seen; > 0, INFINITY: off. Default 0.05. */
+    int energy_growth_stops;          /* 1: the watchdog's finding stops the run with
+                                         SPS_ERR_UNSTABLE instead. Default 0. */
     int keep_last_good_state;         /* 1: copy positions, velocities, densities, pressures and
                                          stresses at every configuration update, and on
                                          SPS_ERR_UNSTABLE roll the world back to that copy (see
@@ -456,6 +499,11 @@ typedef struct sps_diagnostics {
     sps_real time;                /* simulated time [s] */
     sps_real kinetic_energy;      /* [J] (J/m in 2D) */
     sps_real strain_energy;       /* [J] (J/m in 2D) */
+    sps_real contact_energy;      /* [J] stored in the contacts with other bodies and walls */
+    sps_real potential_energy;    /* [J] in gravity: -sum m g.x over the deformable bodies */
+    sps_real prescribed_work;     /* [J] done on the deformable bodies by the prescribed motions
+                                     (moving velocity constraints, rigid bodies) since they were
+                                     set; counted while the energy watchdog is on */
     sps_real linear_momentum[3];  /* [kg m/s] */
     sps_real angular_momentum[3]; /* [kg m^2/s], about the origin */
     sps_real max_speed;           /* [m/s] */
@@ -831,11 +879,22 @@ typedef struct sps__body {
     sps_real xi, oas_eps, oas_n, oas_w_dp;
     sps_real mean_rotation[9];
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
+    sps_real frame_velocity[3]; /* its mass-weighted mean velocity at the start of the advection
+                                   step: the time-step speeds are measured against it */
     int count;                 /* particles added (a body must have some before the first step) */
+    sps_real reach;            /* largest distance of a reference position from the reference
+                                  centre of mass: the body's size for the escape guard */
+    sps_real escape_limit;     /* a particle farther than this from the current centre of mass
+                                  has escaped (sps__check_escape) */
+    int fragment_reported;     /* report_fragments: the warning was given */
+    int driven;                /* the watchdog counts the work of its prescribed motion: a
+                                  rigid body, or one with a moving velocity constraint */
+    sps_real energy_start;     /* its kinetic + strain + contact energy at the watchdog's start */
     /* its optional per-particle arrays (the sps__fields rows owned by a body), allocated at commit
        when its model needs them, else NULL: particle begin + k at [components k], with
        SPS__LANES zeroed slots of lane padding after the last */
     sps_real *acc_d[3], *tau, *art, *grad;
+    sps_real* driven_work; /* driven: work done by its prescribed motion through each particle */
     int field_count; /* particles they hold: its count at the last commit */
 } sps__body;
 
@@ -870,9 +929,12 @@ struct sps_world {
     int needs_sort_by_body; /* particles were added since the last step */
 
     /* run-time guards (sps__check_state, sps__check_time_step) */
-    sps_real ref_lo[3], ref_hi[3]; /* bounding box of the reference positions */
-    sps_real escape;               /* effective escape distance [m] */
     int stopped;                   /* a step failed with SPS_ERR_UNSTABLE: no more steps */
+    struct {                       /* the energy watchdog (sps__watch_energy) */
+        int armed, fired;          /* its start is taken; it has warned */
+        long checked_at;           /* acoustic steps at its last check */
+        sps_real start, scale, start_time; /* the account at the start, the largest mechanical energy since */
+    } watch;
     int lists_valid;               /* the neighbour lists match the particle order (a failed
                                       configuration update may leave them half built) */
     char failure[1024];            /* ... and its message */
@@ -932,7 +994,12 @@ struct sps_world {
     int sigma_cap;
 
     /* time */
-    sps_real time, dt, vmax, c0_max;
+    sps_real time, dt, c0_max;
+    sps_real vmax;     /* the time-step speed: the largest particle speed in its body's frame, or
+                          approach if larger (sps__frame_speeds) */
+    int impact_warned; /* sps__warn_impact has spoken */
+    sps_real approach; /* the largest relative speed of two bodies that touch, or of a body
+                          towards the walls (at rest), at the start of the advection step */
     sps_real thread_max[SPS__MAX_THREADS]; /* per-thread max |v|^2 of the kick */
     long acoustic_steps, advection_steps;
     int allocated_for; /* particles the neighbour storage was sized for (sps__ensure_neighbor_storage) */
@@ -950,7 +1017,8 @@ typedef enum {
     SPS__NEED_STRESS,      /* a body integrates the shear stress (model.stress) */
     SPS__NEED_MEAN_TURN,   /* a body turns its increments by the mean rotation */
     SPS__NEED_ARTIFICIAL,  /* a body has Gray's artificial stress (OAS) */
-    SPS__NEED_CONSTRAINTS  /* allocated by the first sps_body_constrain_box */
+    SPS__NEED_CONSTRAINTS, /* allocated by the first sps_body_constrain_box */
+    SPS__NEED_DRIVEN       /* a body whose prescribed motion does work (sps__body.driven) */
 } sps__need;
 
 enum {
@@ -992,6 +1060,8 @@ static const sps__field_info sps__fields[] = {
     {"artificial_stress", "artificial stress", 1, SPS__BOFF(art), 0, 3, 0, SPS__NEED_ARTIFICIAL, 0},
     /* carried: the next kick reads it (the per-particle half-step rotation) */
     {"velocity_gradient", "velocity gradient", 1, SPS__BOFF(grad), 0, 9, 0, SPS__NEED_GRADIENT, SPS__CARRIED},
+    /* only its sum is read: it need not follow its particle */
+    {"prescribed_work", "prescribed work", 1, SPS__BOFF(driven_work), 0, 1, 0, SPS__NEED_DRIVEN, 0},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
@@ -1046,7 +1116,7 @@ static void sps__set_error(sps_world* w, int level, const char* fmt, ...) {
 /* A warning (log level 1): a call that did what it was asked but probably not what was meant.
    It goes to the log only; the world's last error stays as it was. */
 static void sps__warn(const sps_world* w, const char* fmt, ...) {
-    char msg[512];
+    char msg[1024];
     va_list ap;
     if (!w->def.log) return;
     va_start(ap, fmt);
@@ -1063,6 +1133,12 @@ static void sps__set_error_const(const sps_world* w, const char* fmt, ...) {
     sps__vset_error((sps_world*)w, 0, fmt, ap);
     va_end(ap);
 }
+/* The energy watchdog (sps__watch_energy) is on unless energy_growth_limit is INFINITY. */
+static int sps__watchdog_on(const sps_world* w) { return w->def.energy_growth_limit < (sps_real)INFINITY; }
+/* A call that changes the energy on purpose (velocities, positions, particles, constraints,
+   walls, contacts set by the user) makes the watchdog take a new start at the next step. */
+static void sps__rearm_watchdog(sps_world* w) { w->watch.armed = 0; }
+
 /* Reports a failed allocation (what: the data it was for); returns SPS_ERR_OUT_OF_MEMORY. */
 static sps_result sps__oom(sps_world* w, const char* what) {
     sps__set_error(w, 0, "out of memory: the allocator returned NULL for %s", what);
@@ -1141,6 +1217,7 @@ SPSDEF sps_world_def sps_default_world_def(void) {
     d.max_substeps = 100;
     d.frozen_geometry = 0;
     d.neighbor_capacity = SPS_R(2.0);
+    d.energy_growth_limit = SPS_R(0.05);
     d.internal_cookie = SPS__COOKIE;
     return d;
 }
@@ -1208,6 +1285,9 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
     SPS__CHECK(def->threads >= 0 && def->threads <= SPS__MAX_THREADS, "threads = %d, allowed [0, %d]", def->threads, SPS__MAX_THREADS);
     SPS__CHECK(def->escape_distance >= 0, "escape_distance = %g, allowed 0 (automatic), > 0 or INFINITY", (double)def->escape_distance);
     SPS__CHECK(def->keep_last_good_state == 0 || def->keep_last_good_state == 1, "keep_last_good_state = %d, allowed 0 or 1", def->keep_last_good_state);
+    SPS__CHECK(def->report_fragments == 0 || def->report_fragments == 1, "report_fragments = %d, allowed 0 or 1", def->report_fragments);
+    SPS__CHECK(def->energy_growth_limit > 0, "energy_growth_limit = %g, allowed > 0 (INFINITY: off)", (double)def->energy_growth_limit);
+    SPS__CHECK(def->energy_growth_stops == 0 || def->energy_growth_stops == 1, "energy_growth_stops = %d, allowed 0 or 1", def->energy_growth_stops);
     SPS__CHECK((def->allocator.alloc == NULL) == (def->allocator.free == NULL), "allocator: set both alloc and free, or neither");
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
@@ -1603,6 +1683,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->oas_n = def->oas_exponent;
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
+    b->driven = b->model.material->kinematic && sps__watchdog_on(w);
 
     if (!b->model.material->kinematic && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0; /* wall bodies: no waves */
     if (def->material.poisson_ratio > SPS_R(0.499)) { /* nearly incompressible: say what it costs */
@@ -1773,6 +1854,7 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
             w->vel[a][i] = v[a];
         }
     }
+    sps__rearm_watchdog(w);
     return SPS_OK;
 }
 
@@ -1806,6 +1888,12 @@ SPSDEF sps_result sps_body_constrain_box(sps_world* w, sps_body b, const sps_rea
         ++c;
     }
     w->ncons++;
+    sps__rearm_watchdog(w);
+    for (a = 0; a < w->dim && c > 0 && sps__watchdog_on(w) && !w->bodies[k].driven; ++a)
+        if ((mask & (1u << a)) && con.velocity[a] != 0) { /* a moving constraint does work: count it */
+            w->bodies[k].driven = 1;
+            w->needs_sort_by_body = 1; /* the next step's commit allocates its prescribed_work */
+        }
     if (c == 0)
         sps__warn(w, "sps_body_constrain_box: no particle of body '%s' has its reference position in the box: nothing is constrained",
                   w->bodies[k].name);
@@ -2613,21 +2701,35 @@ SPS__INLINE void sps__add_moment(sps_real* A, int as, sps_real ex, sps_real ey, 
 
 /* >>commit */
 
-/* The escape limit (world def escape_distance) around the bounding box of the reference
-   positions; set whenever particles were added. */
-static void sps__set_escape_box(sps_world* w) {
-    int a, i;
-    sps_real side = 0;
-    for (a = 0; a < w->dim; ++a) {
-        w->ref_lo[a] = w->ref_hi[a] = w->ref[a][0];
-        for (i = 1; i < w->n; ++i) {
-            if (w->ref[a][i] < w->ref_lo[a]) w->ref_lo[a] = w->ref[a][i];
-            if (w->ref[a][i] > w->ref_hi[a]) w->ref_hi[a] = w->ref[a][i];
-        }
-        if (w->ref_hi[a] - w->ref_lo[a] > side) side = w->ref_hi[a] - w->ref_lo[a];
+/* The mass-weighted centre of body b's positions x (the reference or the current ones). */
+static void sps__centre_of_mass(const sps_world* w, const sps__body* b, sps_real* const x[3], sps_real c[3]) {
+    sps_real m = 0;
+    int i, a;
+    c[0] = c[1] = c[2] = 0;
+    for (i = b->begin; i < b->end; ++i) {
+        m += w->mass[i];
+        for (a = 0; a < w->dim; ++a) c[a] += w->mass[i] * x[a][i];
     }
-    w->escape = w->def.escape_distance;
-    if (w->escape == 0) w->escape = 10 * side > 100 * w->def.dp ? 10 * side : 100 * w->def.dp;
+    for (a = 0; a < w->dim && m > 0; ++a) c[a] /= m;
+}
+
+/* Each body's escape limit (world def escape_distance) around its own size, its reach from the
+   reference centre of mass; set whenever particles were added. */
+static void sps__set_escape_limits(sps_world* w) {
+    int bi, i, a;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps__body* b = &w->bodies[bi];
+        sps_real c[3], reach2 = 0, extra = w->def.escape_distance;
+        sps__centre_of_mass(w, b, w->ref, c);
+        for (i = b->begin; i < b->end; ++i) {
+            sps_real d2 = 0;
+            for (a = 0; a < w->dim; ++a) d2 += (w->ref[a][i] - c[a]) * (w->ref[a][i] - c[a]);
+            if (d2 > reach2) reach2 = d2;
+        }
+        b->reach = SPS__SQRT(reach2);
+        if (extra == 0) extra = 20 * b->reach > 100 * w->def.dp ? 20 * b->reach : 100 * w->def.dp; /* 10 body sizes */
+        b->escape_limit = b->reach + extra;
+    }
 }
 
 /* Sorts particles by body (after adds), sets body ranges and allocates what the scene needs:
@@ -2659,7 +2761,7 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
     const sps__model* m = &b->model;
     return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
-           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress);
+           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_DRIVEN && b->driven);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -3481,6 +3583,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
     if (w->nwalls == 0) sps__kernel_plane_tables(w, SPS__WALL_TABLE, w->wall_plane, w->wall_sigma);
     w->walls[w->nwalls++] = wall;
     w->contact_dirty = 1;
+    sps__rearm_watchdog(w);
     return SPS_OK;
 }
 
@@ -3536,6 +3639,7 @@ SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, in
         ++w->nseparate;
     }
     w->contact_dirty = 1;
+    sps__rearm_watchdog(w);
     return SPS_OK;
 }
 
@@ -3677,6 +3781,33 @@ static sps_real sps__contact_density(const sps_world* w, int i) {
 /* Harmonic mean of two bulk moduli: the stiffness of a contact between two bodies. */
 static sps_real sps__contact_stiffness(sps_real ka, sps_real kb) { return 2 * ka * kb / (ka + kb); }
 
+/* The energy stored in particle i's contacts [J] (J/m in 2D). The contact force between bodies
+   is the gradient of U = 1/2 sum_i K V_i sigma_i^2 (sigma_i its contact density from the other
+   bodies; K of its pair of bodies, here that of its first contact partner: exact for two bodies
+   or equal moduli), and the wall force that of K V_i sigma_w,i^2 (sigma_w,i its density of
+   wall); a particle near both gets the sum of the two, the cross term of the force law left out.
+   Volumes are taken as fixed, as in the force. */
+static sps_real sps__contact_energy(const sps_world* w, int i) {
+    const sps__body* bi = &w->bodies[w->body[i]];
+    sps_real sigma = 0, sigma_wall = 0, k_pair = 0;
+    int k, a;
+    if (w->contact_bodies)
+        for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
+            const int j = w->ct_j[k];
+            sps_real r2 = 0;
+            for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+            sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
+            if (k == w->ct_first[i]) k_pair = sps__contact_stiffness(bi->mat.K, w->bodies[w->body[j]].mat.K);
+        }
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps__wall* wl = &w->walls[k];
+        sps_real d = 0;
+        for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+        if (d < w->support) sigma_wall += sps__wall_sigma(w, d);
+    }
+    return w->vol[i] * (SPS_R(0.5) * k_pair * sigma * sigma + bi->mat.K * sigma_wall * sigma_wall);
+}
+
 /* Adds the contact accelerations of particle i to acc_p (see the chapter's head). */
 static void sps__contact_force(sps_world* w, int i) {
     const sps__body* bi = &w->bodies[w->body[i]];
@@ -3774,7 +3905,7 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
 SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, const sps_real Hmean[9],
                                      sps_real vmax2, const int dim) {
     const int rotated = b->model.turn != SPS__TURN_NONE, per_particle = b->model.turn == SPS__TURN_PARTICLE;
-    const sps_real* g = w->def.gravity;
+    const sps_real *g = w->def.gravity, *frame = b->frame_velocity;
     sps_real Hp[9];
     int i, a, c;
     for (i = i0; i < i1; ++i) {
@@ -3798,14 +3929,19 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
         for (a = 0; a < dim; ++a) w->vel[a][i] += dt * (w->acc_p[a][i] + as[a] + g[a]);
         if (w->cons && w->cons[i] >= 0) {
             const sps__constraint* cn = &w->constraints[w->cons[i]];
+            sps_real work = 0; /* the constraint's force m (v_set - v_free)/dt times v_set, over dt */
             SPS__UNROLL
             for (a = 0; a < dim; ++a)
-                if (cn->mask & (1u << a)) w->vel[a][i] = cn->velocity[a];
+                if (cn->mask & (1u << a)) {
+                    work += (cn->velocity[a] - w->vel[a][i]) * cn->velocity[a];
+                    w->vel[a][i] = cn->velocity[a];
+                }
+            if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * work;
         }
         SPS__UNROLL
         for (a = 0; a < dim; ++a) {
             w->pos[a][i] += SPS_R(0.5) * dt * w->vel[a][i];
-            v2 += w->vel[a][i] * w->vel[a][i];
+            v2 += (w->vel[a][i] - frame[a]) * (w->vel[a][i] - frame[a]);
         }
         if (!(v2 <= vmax2)) vmax2 = v2 == v2 ? v2 : (sps_real)INFINITY;
     }
@@ -3813,22 +3949,30 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
 }
 
 /* Step 3 for the particles i0 .. i1-1 of a wall body: they keep their velocity (second half
-   drift only). Returns the range's max |v|^2 above vmax2. */
-static sps_real sps__move_range(sps_world* w, int i0, int i1, sps_real dt, sps_real vmax2) {
+   drift only). The contact pass left the force of the other bodies on each of them in acc_p:
+   the opposite force, at the particle's velocity over dt, is the work the wall body does on
+   them (driven); acc_p is then cleared for the next sub-step's contacts. Returns the range's
+   max |v|^2 above vmax2. */
+static sps_real sps__move_range(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, sps_real vmax2) {
     int i, a;
     for (i = i0; i < i1; ++i) {
-        sps_real v2 = 0;
+        sps_real v2 = 0, power = 0;
+        for (a = 0; a < w->dim; ++a) {
+            power -= w->acc_p[a][i] * w->vel[a][i];
+            w->acc_p[a][i] = 0;
+        }
+        if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * power * dt;
         for (a = 0; a < w->dim; ++a) {
             w->pos[a][i] += SPS_R(0.5) * dt * w->vel[a][i];
-            v2 += w->vel[a][i] * w->vel[a][i];
+            v2 += (w->vel[a][i] - b->frame_velocity[a]) * (w->vel[a][i] - b->frame_velocity[a]);
         }
         if (!(v2 <= vmax2)) vmax2 = v2 == v2 ? v2 : (sps_real)INFINITY;
     }
     return vmax2;
 }
 
-/* Step 3: velocity update, constraints, second half drift of positions; returns max |v|^2
-   (the same value in every thread: per-thread maxima, then a barrier, then their max).
+/* Step 3: velocity update, constraints, second half drift of positions; returns the max over
+   particles of |v - frame velocity of its body|^2 (sps__frame_speeds; the same value in every thread: per-thread maxima, then a barrier, then their max).
    For the -A variants the accumulated a_s is aligned with the body at the end of the last
    sub-step, while this kick acts half a step (dt/2 of this sub-step) later: it is applied
    rotated by that half step's rotation H, which removes a spurious torque of order
@@ -3844,7 +3988,7 @@ static sps_real sps__kick(sps_world* w, sps_real dt) {
         int i0, i1;
         sps__thread_share(b, &i0, &i1);
         sps__rodrigues(b->mean_spin, SPS_R(0.5) * dt, dim, Hmean); /* half of this kick's turn */
-        if (b->model.material->kinematic) vmax2 = sps__move_range(w, i0, i1, dt, vmax2);
+        if (b->model.material->kinematic) vmax2 = sps__move_range(w, b, i0, i1, dt, vmax2);
         else vmax2 = dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3);
     }
     w->thread_max[me] = vmax2;
@@ -3925,45 +4069,72 @@ static sps_result sps__check_finite(sps_world* w, const char* where) {
     return SPS_OK;
 }
 
-/* Names the first particle farther than the escape distance from the reference bounding box. */
+/* Names the first particle farther than its body's escape limit from the body's current centre
+   of mass: a body that travels or turns, however far, keeps its particles; a particle flung ten
+   body sizes away from its body has escaped (a blow-up, or with a debris cloud an escape
+   distance the scene should set). */
 static sps_result sps__check_escape(sps_world* w) {
-    const sps_real limit2 = w->escape * w->escape;
-    int i, a;
-    if (!(limit2 < (sps_real)INFINITY)) return SPS_OK;
-    for (i = 0; i < w->n; ++i) {
-        sps_real d2 = 0;
-        for (a = 0; a < w->dim; ++a) {
-            sps_real x = w->pos[a][i], out = x < w->ref_lo[a] ? w->ref_lo[a] - x : x > w->ref_hi[a] ? x - w->ref_hi[a] : 0;
-            d2 += out * out;
-        }
-        if (d2 > limit2) {
-            sps__set_error(w, 0, "unstable at t = %g: particle %d of body '%s' escaped to (%g, %g, %g), %g m from the box of the "
-                           "initial positions, beyond escape_distance = %g m", (double)w->time, w->id[i], w->bodies[w->body[i]].name,
-                           (double)w->pos[0][i], (double)w->pos[1][i], w->dim == 3 ? (double)w->pos[2][i] : 0.0,
-                           (double)SPS__SQRT(d2), (double)w->escape);
+    int bi, i, a;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        const sps__body* b = &w->bodies[bi];
+        const sps_real limit2 = b->escape_limit * b->escape_limit;
+        sps_real c[3];
+        if (!(limit2 < (sps_real)INFINITY)) continue;
+        sps__centre_of_mass(w, b, w->pos, c);
+        for (i = b->begin; i < b->end; ++i) {
+            sps_real d2 = 0;
+            for (a = 0; a < w->dim; ++a) d2 += (w->pos[a][i] - c[a]) * (w->pos[a][i] - c[a]);
+            if (!(d2 > limit2)) continue;
+            sps__set_error(w, 0, "unstable at t = %g: particle %d of body '%s' escaped to (%g, %g, %g), %g m from the body's centre "
+                           "of mass (%g, %g, %g), beyond its size (%g m from the centre) plus escape_distance (%g m)", (double)w->time,
+                           w->id[i], b->name, (double)w->pos[0][i], (double)w->pos[1][i], w->dim == 3 ? (double)w->pos[2][i] : 0.0,
+                           (double)SPS__SQRT(d2), (double)c[0], (double)c[1], (double)c[2], (double)b->reach,
+                           (double)(b->escape_limit - b->reach));
             return SPS_ERR_UNSTABLE;
         }
     }
     return SPS_OK;
 }
 
-/* The acoustic step dt = CFL_ac h / (c0 + |v|max) falls below 1e-3 of its value at rest
-   (CFL_ac h / c0) only when a particle moves at more than 999 c0: the run has blown up, and
-   going on would take ever more steps for nothing. Names the fastest particle. */
+/* report_fragments: a warning, once per body, when one of its particles has no neighbour left
+   within the support 2h: it has broken off (a fragment of one particle; a larger piece keeps
+   neighbours and is not reported). Wall bodies keep no neighbour lists and are skipped. */
+static void sps__report_fragments(sps_world* w) {
+    int bi, i;
+    for (bi = 0; bi < w->nbodies && w->def.report_fragments; ++bi) {
+        sps__body* b = &w->bodies[bi];
+        if (b->fragment_reported || b->model.material->kinematic) continue;
+        for (i = b->begin; i < b->end; ++i)
+            if (w->nb_count[i] == 0) {
+                sps__warn(w, "t = %g: particle %d of body '%s' broke off its body (no neighbour within 2h = %g m) at (%g, %g, %g); "
+                          "further fragments of this body are not reported", (double)w->time, w->id[i], b->name, (double)w->support,
+                          (double)w->pos[0][i], (double)w->pos[1][i], w->dim == 3 ? (double)w->pos[2][i] : 0.0);
+                b->fragment_reported = 1;
+                break;
+            }
+    }
+}
+
+/* The acoustic step dt = CFL_ac h / (c0 + v) (v: the time-step speed, sps__frame_speeds) falls
+   below 1e-3 of its value at rest (CFL_ac h / c0) only when a particle moves at more than
+   999 c0 relative to its body, or two bodies approach that fast: the run has blown up, and going
+   on would take ever more steps for nothing. Names the fastest particle in its body's frame. */
 static sps_result sps__check_time_step(sps_world* w) {
     const sps_real dt_rest = w->def.cfl_acoustic * w->h / w->c0_max, dt = w->def.cfl_acoustic * w->h / (w->c0_max + w->vmax);
     sps_real v2max = -1;
     int i, a, fastest = 0;
     if (dt >= SPS__DT_COLLAPSE * dt_rest) return SPS_OK;
     for (i = 0; i < w->n; ++i) {
+        const sps_real* frame = w->bodies[w->body[i]].frame_velocity;
         sps_real v2 = 0;
-        for (a = 0; a < w->dim; ++a) v2 += w->vel[a][i] * w->vel[a][i];
+        for (a = 0; a < w->dim; ++a) v2 += (w->vel[a][i] - frame[a]) * (w->vel[a][i] - frame[a]);
         if (v2 > v2max) { v2max = v2; fastest = i; }
     }
     sps__set_error(w, 0, "unstable at t = %g: the acoustic time step collapsed to dt = %g s, below %g of its value at rest (%g s): "
-                   "particle %d of body '%s' moves at %g m/s, %.0f times the sound speed c0 = %g m/s",
+                   "particle %d of body '%s' moves at %g m/s relative to its body (bodies approach each other or the walls at "
+                   "%g m/s), %.0f times the sound speed c0 = %g m/s",
                    (double)w->time, (double)dt, SPS__DT_COLLAPSE, (double)dt_rest, w->id[fastest], w->bodies[w->body[fastest]].name,
-                   (double)w->vmax, (double)(w->vmax / w->c0_max), (double)w->c0_max);
+                   (double)SPS__SQRT(v2max), (double)w->approach, (double)(w->vmax / w->c0_max), (double)w->c0_max);
     return SPS_ERR_UNSTABLE;
 }
 
@@ -4033,6 +4204,120 @@ static void sps__save_good_state(sps_world* w) {
     w->good_time = w->time;
 }
 
+/* ---- the energy watchdog ----
+   A run can go wrong and stay finite: past its stable time step or formulation the energy grows
+   while every guard above stays quiet. The account E = kinetic + strain + contact + gravity
+   potential - work of the prescribed motions is conserved by the continuous equations (the
+   Riemann dissipation and no-slip walls only take energy away), so its growth above its start
+   is numerical. For the ENO family the shear strain energy is left out (sps__body_energies):
+   the account is then a lower bound, judged by its kinetic energy. Checked at the configuration
+   updates, at most every 10 acoustic sub-steps (one serial O(N) sum, ~1 % of a sub-step's cost
+   spread over 10). */
+
+/* Kinetic and strain energy of particle i of body b [J] (J/m in 2D; DIAGNOSTICS), the shear
+   part from the tracked stress only if with_shear. */
+static void sps__particle_energies(const sps_world* w, const sps__body* b, int i, int with_shear, sps_real* kinetic, sps_real* strain) {
+    sps_real v2 = 0, tt = 0;
+    int a;
+    for (a = 0; a < w->dim; ++a) v2 += w->vel[a][i] * w->vel[a][i];
+    if (with_shear && b->model.stress && i - b->begin < b->field_count) { /* particles added since the last commit have no stress yet */
+        const sps_real* t = b->tau + (size_t)6 * (i - b->begin);
+        tt = t[0] * t[0] + t[3] * t[3] + t[5] * t[5] + 2 * (t[1] * t[1] + t[2] * t[2] + t[4] * t[4]);
+    }
+    *kinetic = SPS_R(0.5) * w->mass[i] * v2;
+    *strain = w->mass[i] / w->rho[i] * b->model.material->energy_density(&b->mat, tt, w->p[i]);
+}
+
+/* The energies of body b [J]: kinetic + strain, contact, gravity potential -sum m g.x, and the
+   work its prescribed motion has done (serial sums: a fixed order). The shear strain energy
+   counts only where the shear force is the divergence of the tracked stress (the OG family):
+   the ENO force accumulates its own increments, and the stress an ENO body tracks beside it
+   over-reads its energy in large bending (3D cantilever, ENO: strain energy 24 % above the
+   start while the kinetic energy's peaks stay below it). */
+typedef struct { sps_real motion, contact, potential, work; } sps__energies;
+static sps__energies sps__body_energies(const sps_world* w, const sps__body* b) {
+    const sps_real* g = w->def.gravity;
+    const int contacts = w->contact_bodies || w->nwalls > 0, with_shear = b->model.stabilisation->stress_force;
+    sps__energies e = {0, 0, 0, 0};
+    int i, a;
+    for (i = b->begin; i < b->end; ++i) {
+        sps_real kinetic, strain;
+        sps__particle_energies(w, b, i, with_shear, &kinetic, &strain);
+        e.motion += kinetic + strain;
+        if (contacts) e.contact += sps__contact_energy(w, i);
+        for (a = 0; a < w->dim; ++a) e.potential -= w->mass[i] * g[a] * w->pos[a][i];
+    }
+    for (i = 0; b->driven_work && i < b->end - b->begin; ++i) e.work += b->driven_work[i];
+    return e;
+}
+
+/* Body b's share of the account (below) and its mechanical energy: kinetic + strain + contact;
+   a wall body moves as prescribed, so its own kinetic and potential energy are not the
+   simulation's, but its side of the contacts and its work on the others are. */
+static void sps__body_account(const sps_world* w, const sps__body* b, sps_real* account, sps_real* mechanical) {
+    const sps__energies e = sps__body_energies(w, b);
+    *mechanical = b->model.material->kinematic ? e.contact : e.motion + e.contact;
+    *account = *mechanical + (b->model.material->kinematic ? 0 : e.potential) - e.work;
+}
+
+/* The world's account E (kinetic + strain + contact + gravity potential - work of the
+   prescribed motions) and its mechanical energy. */
+static void sps__energy_account(const sps_world* w, sps_real* account, sps_real* mechanical) {
+    int bi;
+    *account = *mechanical = 0;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps_real a, m;
+        sps__body_account(w, &w->bodies[bi], &a, &m);
+        *account += a;
+        *mechanical += m;
+    }
+}
+
+/* Takes the start of the account (after a user's change: sps__rearm_watchdog) or compares with
+   it: a growth above energy_growth_limit times the largest mechanical energy seen is reported
+   once (log level 1), naming the body whose kinetic + strain energy grew most, or stops the run
+   (energy_growth_stops). */
+static sps_result sps__watch_energy(sps_world* w) {
+    char msg[768];
+    sps_real account, mechanical, growth, gain = 0;
+    int bi, most = 0;
+    if (!sps__watchdog_on(w) || w->watch.fired || (w->watch.armed && w->acoustic_steps - w->watch.checked_at < 10)) return SPS_OK;
+    w->watch.checked_at = w->acoustic_steps;
+    sps__energy_account(w, &account, &mechanical);
+    if (!w->watch.armed) {
+        w->watch.armed = 1;
+        w->watch.start = account;
+        w->watch.scale = mechanical;
+        w->watch.start_time = w->time;
+        for (bi = 0; bi < w->nbodies; ++bi) {
+            sps_real share;
+            sps__body_account(w, &w->bodies[bi], &share, &w->bodies[bi].energy_start);
+        }
+        return SPS_OK;
+    }
+    if (mechanical > w->watch.scale) w->watch.scale = mechanical;
+    growth = account - w->watch.start;
+    if (!(growth > w->def.energy_growth_limit * w->watch.scale)) return SPS_OK;
+    w->watch.fired = 1;
+    for (bi = 0; bi < w->nbodies; ++bi) { /* the body that gained most: where it went wrong */
+        sps_real share, m;
+        sps__body_account(w, &w->bodies[bi], &share, &m);
+        if (bi == 0 || m - w->bodies[bi].energy_start > gain) { gain = m - w->bodies[bi].energy_start; most = bi; }
+    }
+    snprintf(msg, sizeof msg,
+             "energy watchdog at t = %g: the total energy (kinetic + strain + contact + gravity potential - work of prescribed "
+             "motions) "
+             "grew from %g J to %g J since t = %g, by %.3g %% of the largest mechanical energy %g J (energy_growth_limit = %g %%); "
+             "body '%s' gained most (%g J). The time step (cfl_acoustic = %g) or the shear formulation is beyond its stable "
+             "range for this scene (bench/VALIDATION.md, stability map)",
+             (double)w->time, (double)w->watch.start, (double)account, (double)w->watch.start_time,
+             (double)(100 * growth / w->watch.scale), (double)w->watch.scale, (double)(100 * w->def.energy_growth_limit),
+             w->bodies[most].name, (double)gain, (double)w->def.cfl_acoustic);
+    if (!w->def.energy_growth_stops) { sps__warn(w, "%s", msg); return SPS_OK; }
+    sps__set_error(w, 0, "unstable: %s", msg);
+    return SPS_ERR_UNSTABLE;
+}
+
 /* >>stepping: configuration updates, the advection step and its acoustic sub-steps */
 
 /* One acoustic sub-step (steps 1-5), called by every thread of the step's team.
@@ -4051,15 +4336,71 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
     return vmax2;
 }
 
-static sps_real sps__max_speed2(const sps_world* w) {
-    sps_real vmax2 = 0;
-    int i, a;
-    for (i = 0; i < w->n; ++i) {
-        sps_real v2 = 0;
-        for (a = 0; a < w->dim; ++a) v2 += w->vel[a][i] * w->vel[a][i];
-        if (!(v2 <= vmax2)) vmax2 = v2;
+/* Impacts faster than this fraction of the sound speed (of the softer deformable body) are
+   warned of: the papers validate contact up to 0.12 c0 (ENO section 6.7), and at 0.2 c0 the
+   contact stability map (bench/VALIDATION.md) has OG stopping and GNO, GNO-A blowing up. */
+#define SPS__IMPACT_MACH 0.2
+
+/* Warns, once per world, when bodies bi and bj (bj < 0: the walls) that can touch move at
+   relative speed sqrt(v2) above SPS__IMPACT_MACH c0. */
+static void sps__warn_impact(sps_world* w, int bi, int bj, sps_real v2) {
+    const sps__body *a = &w->bodies[bi], *b = bj >= 0 ? &w->bodies[bj] : NULL;
+    char who[160];
+    sps_real c0 = a->model.material->kinematic ? (sps_real)INFINITY : a->mat.c0;
+    if (w->impact_warned) return;
+    if (b && !b->model.material->kinematic && b->mat.c0 < c0) c0 = b->mat.c0;
+    if (!(v2 > (sps_real)(SPS__IMPACT_MACH * SPS__IMPACT_MACH) * c0 * c0) || !(c0 < (sps_real)INFINITY)) return;
+    w->impact_warned = 1;
+    if (b) snprintf(who, sizeof who, "bodies '%s' and '%s' move at %g m/s relative to each other", a->name, b->name, (double)SPS__SQRT(v2));
+    else snprintf(who, sizeof who, "body '%s' moves at %g m/s relative to the walls", a->name, (double)SPS__SQRT(v2));
+    sps__warn(w, "t = %g: %s, %.2f times the sound speed c0 = %g m/s: contact is validated up to 0.12 c0 (ENO section 6.7); beyond "
+              "%.1f c0 expect strong dissipation, tearing or blow-ups (bench/VALIDATION.md, contact stability map), which the energy "
+              "watchdog reports", (double)w->time, who, (double)(SPS__SQRT(v2) / c0), (double)c0, SPS__IMPACT_MACH);
+}
+
+/* The speeds of the time-step criteria (ENO eqs. 25-26), measured in each body's own frame:
+   its mass-weighted mean velocity, kept in frame_velocity for the advection step, so that a
+   uniform motion of the scene does not change the discretisation (Galilean invariance). Bodies
+   that can touch each other move relative to one another, and those in a world with walls
+   relative to the walls: approach is the largest such speed (of the bodies' mean velocities),
+   which bounds how far they travel towards each other between configuration updates. Returns
+   the larger of approach and the fastest particle speed in its body's frame. */
+static sps_real sps__frame_speeds(sps_world* w) {
+    sps_real vmax2 = 0, approach2 = 0;
+    int i, a, bi, bj;
+    for (bi = 0; bi < w->nbodies; ++bi) { /* serial sums: a fixed order */
+        sps__body* b = &w->bodies[bi];
+        sps_real m = 0, mv[3] = {0, 0, 0};
+        for (i = b->begin; i < b->end; ++i) {
+            m += w->mass[i];
+            for (a = 0; a < w->dim; ++a) mv[a] += w->mass[i] * w->vel[a][i];
+        }
+        for (a = 0; a < 3; ++a) b->frame_velocity[a] = a < w->dim && m > 0 ? mv[a] / m : 0;
+        for (i = b->begin; i < b->end; ++i) {
+            sps_real v2 = 0;
+            for (a = 0; a < w->dim; ++a) v2 += (w->vel[a][i] - b->frame_velocity[a]) * (w->vel[a][i] - b->frame_velocity[a]);
+            if (!(v2 <= vmax2)) vmax2 = v2; /* NaN is kept: the caller's finiteness check sees it */
+        }
     }
-    return vmax2;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        const sps_real* vi = w->bodies[bi].frame_velocity;
+        sps_real v2 = 0;
+        if (w->nwalls > 0) {
+            for (a = 0; a < w->dim; ++a) v2 += vi[a] * vi[a];
+            if (v2 > approach2) approach2 = v2;
+            sps__warn_impact(w, bi, -1, v2);
+        }
+        for (bj = bi + 1; bj < w->nbodies && w->touch; ++bj) {
+            const sps_real* vj = w->bodies[bj].frame_velocity;
+            if (!w->touch[(size_t)bi * w->nbodies + bj]) continue;
+            v2 = 0;
+            for (a = 0; a < w->dim; ++a) v2 += (vi[a] - vj[a]) * (vi[a] - vj[a]);
+            if (v2 > approach2) approach2 = v2;
+            sps__warn_impact(w, bi, bj, v2);
+        }
+    }
+    w->approach = SPS__SQRT(approach2);
+    return !(vmax2 <= approach2) ? SPS__SQRT(vmax2) : w->approach;
 }
 
 /* Configuration update: neighbour lists, pair geometry and correction matrices. */
@@ -4068,14 +4409,16 @@ static sps_result sps__update_configuration(sps_world* w) {
     if ((r = sps__check_bodies_filled(w)) != SPS_OK) return r;
     if (w->needs_sort_by_body) {
         w->lists_valid = 0; /* the sort by body reorders the particles */
+        sps__rearm_watchdog(w); /* new particles bring their energy */
         if ((r = sps__commit(w)) != SPS_OK) return r == SPS_ERR_OUT_OF_MEMORY ? sps__oom(w, "the neighbour lists and step fields") : r;
-        sps__set_escape_box(w);
+        sps__set_escape_limits(w);
     }
     if ((r = sps__ensure_good_state(w)) != SPS_OK) return r; /* allocates only after adds (or a refusal) */
     if ((r = sps__check_finite(w, "configuration update")) != SPS_OK) return r;
     if ((r = sps__check_escape(w)) != SPS_OK) return r;
     w->lists_valid = 0;
     if ((r = sps__build_neighbors(w)) != SPS_OK) return r; /* also B_i when a body needs the velocity gradient */
+    sps__report_fragments(w);
     if ((w->contact_dirty || w->sigma_cap < w->cap) && sps__commit_contact(w) != SPS_OK) return sps__oom(w, "the contact tables");
     w->contact_dirty = 0;
     if (w->contact_bodies && (r = sps__find_contact_pairs(w)) != SPS_OK) return r;
@@ -4102,13 +4445,14 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
     long steps_before;
     if ((r = sps__update_configuration(w)) != SPS_OK) return r;
     w->advection_steps++;
-    w->vmax = SPS__SQRT(sps__max_speed2(w));
+    w->vmax = sps__frame_speeds(w);
     if (!(w->vmax < (sps_real)INFINITY)) { /* |v|^2 overflowed: the time step would be zero */
         sps__set_error(w, 0, "unstable at t = %g: a particle speed is so large (|v|^2 = %g) that the time step is zero",
                        (double)w->time, (double)w->vmax);
         return SPS_ERR_UNSTABLE;
     }
     if ((r = sps__check_time_step(w)) != SPS_OK) return r;
+    if (!w->watch.armed) sps__watch_energy(w); /* the watchdog's start: this step's first state */
     /* ENO eq. 25 (advection step); the travel bound below also ends the step when the speed
        grows within it, so particles never move more than CFL_ad h between list updates */
     travel_max = w->def.cfl_advection * w->h;
@@ -4134,6 +4478,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             dt_last = dt;
             ++done;
             vmax = SPS__SQRT(vmax2);
+            if (vmax < w->approach) vmax = w->approach;
             travel += vmax * dt;
             if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || t >= t_limit) break;
         }
@@ -4158,7 +4503,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
         return SPS_ERR_UNSTABLE;
     }
     if (w->pair_force) sps__keep_pair_forces(w);
-    return SPS_OK;
+    return sps__watch_energy(w);
 }
 
 /* keep_last_good_state: puts the saved state back (by particle id: a failed configuration
@@ -4402,7 +4747,7 @@ static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_s
 }
 
 SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnostics* out) {
-    int begin = 0, end, i, a, k = -1;
+    int begin = 0, end, i, a, bi, k = -1;
     if (!w) return SPS_ERR_INVALID_ARG;
     if (!out) { sps__set_error(w, 0, "sps_world_diagnostics: out must not be NULL"); return SPS_ERR_INVALID_ARG; }
     memset(out, 0, sizeof *out);
@@ -4430,7 +4775,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
     out->max_density = out->min_density;
     for (i = begin; i < end; ++i) { /* serial: a fixed summation order */
         const sps__body* b = &w->bodies[w->body[i]];
-        sps_real m = w->mass[i], v2 = 0, x[3], v[3], vol = w->mass[i] / w->rho[i], tt = 0;
+        sps_real m = w->mass[i], v2 = 0, x[3], v[3], kinetic, strain;
         for (a = 0; a < 3; ++a) {
             x[a] = w->pos[a][i];
             v[a] = a < w->dim ? w->vel[a][i] : 0;
@@ -4440,15 +4785,19 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
         out->angular_momentum[0] += m * (x[1] * v[2] - x[2] * v[1]);
         out->angular_momentum[1] += m * (x[2] * v[0] - x[0] * v[2]);
         out->angular_momentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
-        out->kinetic_energy += SPS_R(0.5) * m * v2;
-        if (b->model.stress) {
-            const sps_real* t = b->tau + (size_t)6 * (i - b->begin);
-            tt = t[0] * t[0] + t[3] * t[3] + t[5] * t[5] + 2 * (t[1] * t[1] + t[2] * t[2] + t[4] * t[4]);
-        }
-        out->strain_energy += vol * b->model.material->energy_density(&b->mat, tt, w->p[i]);
+        sps__particle_energies(w, b, i, 1, &kinetic, &strain);
+        out->kinetic_energy += kinetic;
+        out->strain_energy += strain;
+        if (!b->model.material->kinematic)
+            for (a = 0; a < w->dim; ++a) out->potential_energy -= m * w->def.gravity[a] * x[a];
+        if (w->contact_bodies || w->nwalls > 0) out->contact_energy += sps__contact_energy(w, i);
         if (SPS__SQRT(v2) > out->max_speed) out->max_speed = SPS__SQRT(v2);
         if (w->rho[i] < out->min_density) out->min_density = w->rho[i];
         if (w->rho[i] > out->max_density) out->max_density = w->rho[i];
+    }
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        const sps__body* b = &w->bodies[bi];
+        for (i = 0; b->driven_work && (k < 0 || bi == k) && i < b->end - b->begin; ++i) out->prescribed_work += b->driven_work[i];
     }
     out->hourglass = sps__hourglass(w, begin, end, &out->min_spacing);
     return SPS_OK;
@@ -4457,18 +4806,19 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
 SPSDEF const char* sps_diagnostics_csv_header(void) {
     return "time,kinetic_energy,strain_energy,total_energy,momentum_x,momentum_y,momentum_z,"
            "angular_momentum_x,angular_momentum_y,angular_momentum_z,max_speed,min_density,max_density,"
-           "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic";
+           "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic,contact_energy,potential_energy,prescribed_work";
 }
 
 SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t size) {
     if (!d || (!buf && size)) return -1;
-    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g",
+    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g",
                     (double)d->time, (double)d->kinetic_energy, (double)d->strain_energy,
                     (double)(d->kinetic_energy + d->strain_energy), (double)d->linear_momentum[0],
                     (double)d->linear_momentum[1], (double)d->linear_momentum[2], (double)d->angular_momentum[0],
                     (double)d->angular_momentum[1], (double)d->angular_momentum[2], (double)d->max_speed,
                     (double)d->min_density, (double)d->max_density, (double)d->hourglass, (double)d->min_spacing, d->acoustic_steps,
-                    d->advection_steps, (double)d->dt_acoustic);
+                    d->advection_steps, (double)d->dt_acoustic, (double)d->contact_energy, (double)d->potential_energy,
+                    (double)d->prescribed_work);
 }
 
 /* >>access */
@@ -4585,6 +4935,7 @@ SPSDEF sps_result sps_world_set_particle(sps_world* w, int id, const sps_real po
         if (position) w->pos[a][i] = position[a];
         if (velocity) w->vel[a][i] = velocity[a];
     }
+    sps__rearm_watchdog(w);
     return SPS_OK;
 }
 

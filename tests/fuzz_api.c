@@ -220,6 +220,9 @@ static sps_world_def random_world_def(fuzz_alloc* a) {
     d.threads = chance(p) ? hostile_int() : below(3);
     d.escape_distance = chance(0.3) ? (chance(0.5) ? INFINITY : uniform(0.01, 1)) : maybe_hostile(0, p);
     d.keep_last_good_state = chance(p) ? hostile_int() : below(2);
+    d.report_fragments = chance(p) ? hostile_int() : below(2);
+    d.energy_growth_limit = chance(0.2) ? (chance(0.5) ? INFINITY : uniform(0.001, 0.5)) : maybe_hostile(0.05, p);
+    d.energy_growth_stops = chance(p) ? hostile_int() : below(2);
     d.log = capture_log;
     a->fail_p = chance(0.08) ? uniform(0.005, 0.1) : 0;
     a->live = 0;
