@@ -9,16 +9,20 @@
 #   omega   50 100 200 rad/s           (spinning plate; default 50)
 #   jitter  0 0.1 0.3 dp               (each coordinate moved by U(-j/2, j/2) dp, seed 1; default 0)
 #   cfl     0.4 0.8 1.0 1.5            (acoustic CFL; default 0.4; 1.5 is outside the allowed (0, 1])
+# and the 3D plate (examples/plate3d, H/dp = 3, mode (2,2), to t = 0.002 s; 43,200 particles) at
+#   cfl     0.4 0.5 0.6 0.8 1.0
 # Each run is classified:
 #   stable     ran to the end, hourglass indicator max < 0.02 and min spacing > 0.5 dp
 #   degraded   ran to the end, but the hourglass indicator reached 0.02 (zigzag) or particles
 #              came closer than 0.5 dp (clustering)
+#   +energy    added to either when the energy watchdog warned (the energy grew by more than
+#              5 % of its largest mechanical energy): a blow-up is never silent
 #   unstable   stopped with a clean SPS_ERR_UNSTABLE message (exit status 2)
 #   rejected   refused with a validation message naming option, value and range (exit status 2)
 #   CRASH      any other exit, or still running after the timeout: must never happen
 # Writes bench/results/<machine>/stability_map.csv and prints a markdown table.
 # One thread per run at nice 10 (the other core stays free for timing work).
-# Usage: sh bench/stability_map.sh [machine-name]     (default c-2core-xeon; ~10 min)
+# Usage: sh bench/stability_map.sh [machine-name]     (default c-2core-xeon; ~10 min, the 3D rows ~15 min more)
 set -eu
 cd "$(dirname "$0")/.."
 machine=${1:-c-2core-xeon}
@@ -57,6 +61,7 @@ run() {
         hg=$(field hourglass_max "$result"); ms=$(field min_spacing "$result")
         if [ "$(echo "$hg < $hourglass_limit && $ms > $spacing_limit" | bc)" -eq 1 ]; then class=stable; else class=degraded; fi
         message=""
+        if grep -q 'energy watchdog' "$tmp/stderr"; then class="$class+energy"; message=$(grep -m 1 'energy watchdog' "$tmp/stderr" | cut -c1-200 | tr ',' ';'); fi
     elif [ "$status" -eq 2 ] && grep -q 'simulation unstable' "$tmp/stderr"; then
         class=unstable
     elif [ "$status" -eq 2 ] && grep -q 'outside \[' "$tmp/stderr"; then
@@ -78,6 +83,10 @@ for shear in $shears; do
     for v in 50 100 200; do run spinning_plate omega "$v" "$shear" --dp 0.1 --tend 0.2 --omega "$v"; done
     for v in 0 0.1 0.3; do run spinning_plate jitter "$v" "$shear" --dp 0.1 --tend 0.2 --jitter "$v"; done
     for v in 0.4 0.8 1.0 1.5; do run spinning_plate cfl "$v" "$shear" --dp 0.1 --tend 0.2 --cfl "$v"; done
+done
+for shear in $shears; do
+    [ "$shear" = oas ] && continue # 2D only
+    for v in 0.4 0.5 0.6 0.8 1.0; do run plate3d cfl "$v" "$shear" --res 3 --mode 2,2 --full --tend 0.002 --cfl "$v"; done
 done
 total=$(( $(date +%s) - total_start ))
 

@@ -126,10 +126,10 @@ int main(int argc, char** argv) {
         if (period > 0) snprintf(err_analytical, sizeof err_analytical, "%.1f%%", 100 * (period - analytical) / analytical);
         if (period > 0) snprintf(err_mindlin, sizeof err_mindlin, "%.1f%%", 100 * (period - mindlin) / mindlin);
         printf("RESULT case=plate3d shear=%s res=%d mode=%d,%d stepping=%s period=%.6f paper=%s analytical=%.6f "
-               "mindlin=%.6f err_paper=%s err_analytical=%s err_mindlin=%s hourglass_max=%.3g %s particles=%d steps=%ld advection_steps=%ld "
+               "mindlin=%.6f err_paper=%s err_analytical=%s err_mindlin=%s hourglass_max=%.3g min_spacing=%.3f %s particles=%d steps=%ld advection_steps=%ld "
                "t_end=%.4g wall_s=%.2f out=%s\n",
                shear_name(c.shear), p.res, p.mode.m, p.mode.n, c.stepping ? "single" : "dual", period, paper_text, analytical,
-               mindlin, err_paper, err_analytical, err_mindlin, s.output.hourglass_max, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, c.out);
+               mindlin, err_paper, err_analytical, err_mindlin, s.output.hourglass_max, s.output.min_spacing, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, sps_world_time(w), wall, c.out);
     }
     sps_world_destroy(w);
     return 0;
