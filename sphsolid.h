@@ -443,6 +443,10 @@ typedef struct sps_body_def {
     sps_transport transport;   /* Default SPS_TRANSPORT_NONE. */
     int contact;               /* 1: touches the other bodies with contact = 1 (CONTACT; pairs can be
                                   turned off by sps_world_set_contact). Default 1. */
+    sps_real damping;          /* c [1/s], finite >= 0: every particle's velocity decays as
+                                  dv/dt = a - c v (DAMPING; numerical, not a physical material
+                                  damping: for reaching a static equilibrium). 0 = off. Not for
+                                  wall bodies. Default 0. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -476,6 +480,12 @@ typedef struct sps_particle_state {
 
 /* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
 typedef void (*sps_velocity_fn)(const sps_real x[3], sps_real v[3], void* user);
+/* Callback of sps_body_set_acceleration: the external acceleration a [m/s^2] (length 3, zeroed
+   before the call; z ignored in 2D) of one particle at time t [s] from its current position x,
+   its reference position x0 and its velocity v (see EXTERNAL ACCELERATION for when and by which
+   threads it is called). */
+typedef void (*sps_acceleration_fn)(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3],
+                                    void* user);
 /* Callback of sps_world_advance, after every step; return nonzero to stop. */
 typedef int (*sps_step_fn)(sps_world* w, void* user);
 
@@ -554,6 +564,11 @@ SPSDEF sps_result sps_body_add_particles(sps_world* w, sps_body b, int n, const 
 
 /* Sets the velocity of every particle of the body from fn(reference position). */
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user);
+/* Gives every particle of body b the external acceleration fn(x, x0, v, t, a, user) on top of
+   the world's gravity, from the next sub-step on (EXTERNAL ACCELERATION); fn NULL removes it.
+   SPS_ERR_INVALID_ARG for an invalid body or a wall body (its particles keep their velocity).
+   No allocation; costs one call per particle and acoustic sub-step. */
+SPSDEF sps_result sps_body_set_acceleration(sps_world* w, sps_body b, sps_acceleration_fn fn, void* user);
 /* Constrains the particles whose reference position lies in [lo, hi]: on the axes in mask the
    velocity is held at velocity[axis] (NULL: zero), so mask SPS_AXIS_ALL with NULL clamps them
    (v = 0, x = x0). Later calls override earlier ones for the same particle. *count may be NULL. */
@@ -735,12 +750,14 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #define SPS__COS cosf
 #define SPS__FLOOR floorf
 #define SPS__ATAN2 atan2f
+#define SPS__EXPM1 expm1f
 #else
 #define SPS__SQRT sqrt
 #define SPS__SIN sin
 #define SPS__COS cos
 #define SPS__FLOOR floor
 #define SPS__ATAN2 atan2
+#define SPS__EXPM1 expm1
 #endif
 #define SPS__PI SPS_R(3.14159265358979323846)
 #define SPS__COOKIE 0x5350531
@@ -831,6 +848,8 @@ typedef struct sps__body {
     sps_real xi, oas_eps, oas_n, oas_w_dp;
     sps_real mean_rotation[9];
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
+    sps_acceleration_fn acceleration; /* external acceleration (sps_body_set_acceleration), or NULL */
+    void* acceleration_user;
     int count;                 /* particles added (a body must have some before the first step) */
     /* its optional per-particle arrays (the sps__fields rows owned by a body), allocated at commit
        when its model needs them, else NULL: particle begin + k at [components k], with
@@ -1299,8 +1318,10 @@ typedef struct sps__combination_rule {
     const char* message;
 } sps__combination_rule;
 static int sps__oas_outside_2d(int dim, const sps_body_def* def) { return def->shear == SPS_SHEAR_OAS && dim != 2; }
+static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
+    {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
 };
 
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
@@ -1322,6 +1343,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
     SPS__CHECK(def->track_stress == 0 || def->track_stress == 1, "track_stress = %d, allowed 0 or 1", def->track_stress);
     SPS__CHECK(def->contact == 0 || def->contact == 1, "contact = %d, allowed 0 or 1", def->contact);
+    SPS__CHECK(def->damping >= 0 && sps__finite(def->damping), "damping = %g, allowed finite >= 0 1/s (0: off)", (double)def->damping);
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
@@ -1773,6 +1795,20 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
             w->vel[a][i] = v[a];
         }
     }
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_set_acceleration(sps_world* w, sps_body b, sps_acceleration_fn fn, void* user) {
+    int k;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, "sps_body_set_acceleration")) < 0) return SPS_ERR_INVALID_ARG;
+    if (fn && w->bodies[k].model.material->kinematic) {
+        sps__set_error(w, 0, "sps_body_set_acceleration: body '%s' is a wall body (material.kind = rigid): its particles keep the velocity given to them",
+                       w->bodies[k].name);
+        return SPS_ERR_INVALID_ARG;
+    }
+    w->bodies[k].acceleration = fn;
+    w->bodies[k].acceleration_user = fn ? user : NULL;
     return SPS_OK;
 }
 
@@ -3767,14 +3803,19 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
     SPS__PRAGMA(omp barrier) /* the pressure pass reads the neighbours' drifted state */
 }
 
-/* Step 3 for particles i0 .. i1-1 of body b, dim a literal (the loops unroll: measured 14 ns a
-   particle with a variable dim): velocity update with the -A variants' turned a_s (see
+/* Step 3 for particles i0 .. i1-1 of body b, dim and damped literals (the loops unroll: measured
+   14 ns a particle with a variable dim): velocity update with the -A variants' turned a_s (see
    sps__kick), constraints, second half drift of positions. Returns the range's max |v|^2, above
-   vmax2 (NaN compares false: it is kept visible as infinity for the caller's check). */
+   vmax2 (NaN compares false: it is kept visible as infinity for the caller's check).
+   A damped body (DAMPING) integrates dv/dt = a - c v exactly over the sub-step for the
+   acceleration a of this kick: v = e^(-c dt) v + (1 - e^(-c dt))/c a, which is stable for any
+   c dt, and at rest under a balanced load it leaves v = 0 as an undamped kick does. */
 SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, const sps_real Hmean[9],
-                                     sps_real vmax2, const int dim) {
+                                     sps_real vmax2, const int dim, const int damped) {
     const int rotated = b->model.turn != SPS__TURN_NONE, per_particle = b->model.turn == SPS__TURN_PARTICLE;
     const sps_real* g = w->def.gravity;
+    const sps_real decay_minus_1 = damped ? SPS__EXPM1(-b->def.damping * dt) : 0; /* e^(-c dt) - 1, exact for small c dt */
+    const sps_real decay = 1 + decay_minus_1, kick = damped ? -decay_minus_1 / b->def.damping : dt;
     sps_real Hp[9];
     int i, a, c;
     for (i = i0; i < i1; ++i) {
@@ -3794,8 +3835,13 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
                 for (c = 0; c < dim; ++c) as[a] += H[3 * a + c] * w->acc_s[c][i];
             }
         }
-        SPS__UNROLL
-        for (a = 0; a < dim; ++a) w->vel[a][i] += dt * (w->acc_p[a][i] + as[a] + g[a]);
+        if (damped) {
+            SPS__UNROLL
+            for (a = 0; a < dim; ++a) w->vel[a][i] = decay * w->vel[a][i] + kick * (w->acc_p[a][i] + as[a] + g[a]);
+        } else {
+            SPS__UNROLL
+            for (a = 0; a < dim; ++a) w->vel[a][i] += dt * (w->acc_p[a][i] + as[a] + g[a]);
+        }
         if (w->cons && w->cons[i] >= 0) {
             const sps__constraint* cn = &w->constraints[w->cons[i]];
             SPS__UNROLL
@@ -3810,6 +3856,33 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
         if (!(v2 <= vmax2)) vmax2 = v2 == v2 ? v2 : (sps_real)INFINITY;
     }
     return vmax2;
+}
+
+/* The kick of an elastic body's share, specialised per body (not per particle) for its
+   dimension and whether it is damped: an undamped body runs the loop it ran before damping
+   existed, bit for bit. */
+static sps_real sps__kick_body(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, const sps_real Hmean[9], sps_real vmax2) {
+    if (b->def.damping > 0)
+        return w->dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2, 1) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3, 1);
+    return w->dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2, 0) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3, 0);
+}
+
+/* The external acceleration of body b (sps_body_set_acceleration) for particles i0 .. i1-1,
+   added to the neighbour passes' acceleration that the kick reads: evaluated where the kick
+   acts, at the half-drifted position x and time t (the middle of the sub-step), with the
+   velocity before the kick. */
+static void sps__add_external_acceleration(sps_world* w, const sps__body* b, int i0, int i1, sps_real t) {
+    int i, a;
+    for (i = i0; i < i1; ++i) {
+        sps_real x[3] = {0, 0, 0}, x0[3] = {0, 0, 0}, v[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+        for (a = 0; a < w->dim; ++a) {
+            x[a] = w->pos[a][i];
+            x0[a] = w->ref[a][i];
+            v[a] = w->vel[a][i];
+        }
+        b->acceleration(x, x0, v, t, acc, b->acceleration_user);
+        for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += acc[a];
+    }
 }
 
 /* Step 3 for the particles i0 .. i1-1 of a wall body: they keep their velocity (second half
@@ -3833,9 +3906,9 @@ static sps_real sps__move_range(sps_world* w, int i0, int i1, sps_real dt, sps_r
    sub-step, while this kick acts half a step (dt/2 of this sub-step) later: it is applied
    rotated by that half step's rotation H, which removes a spurious torque of order
    omega^2 dt (spinning plate, ENO-A: 2.1 % -> 1.1 % angular-momentum error; bench/VALIDATION.md). */
-static sps_real sps__kick(sps_world* w, sps_real dt) {
+static sps_real sps__kick(sps_world* w, sps_real t, sps_real dt) {
     sps_real vmax2 = 0;
-    int t, bi, nt, me;
+    int thread, bi, nt, me;
     const int dim = w->dim;
     sps__team_rank(&nt, &me);
     for (bi = 0; bi < w->nbodies; ++bi) {
@@ -3844,13 +3917,17 @@ static sps_real sps__kick(sps_world* w, sps_real dt) {
         int i0, i1;
         sps__thread_share(b, &i0, &i1);
         sps__rodrigues(b->mean_spin, SPS_R(0.5) * dt, dim, Hmean); /* half of this kick's turn */
-        if (b->model.material->kinematic) vmax2 = sps__move_range(w, i0, i1, dt, vmax2);
-        else vmax2 = dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3);
+        if (b->model.material->kinematic) {
+            vmax2 = sps__move_range(w, i0, i1, dt, vmax2);
+            continue;
+        }
+        if (b->acceleration) sps__add_external_acceleration(w, b, i0, i1, t + SPS_R(0.5) * dt);
+        vmax2 = sps__kick_body(w, b, i0, i1, dt, Hmean, vmax2);
     }
     w->thread_max[me] = vmax2;
     SPS__PRAGMA(omp barrier)
-    for (t = 0; t < nt; ++t)
-        if (w->thread_max[t] > vmax2) vmax2 = w->thread_max[t];
+    for (thread = 0; thread < nt; ++thread)
+        if (w->thread_max[thread] > vmax2) vmax2 = w->thread_max[thread];
     return vmax2;
 }
 
@@ -4035,15 +4112,15 @@ static void sps__save_good_state(sps_world* w) {
 
 /* >>stepping: configuration updates, the advection step and its acoustic sub-steps */
 
-/* One acoustic sub-step (steps 1-5), called by every thread of the step's team.
+/* One acoustic sub-step (steps 1-5) from time t, called by every thread of the step's team.
    Returns max |v|^2 after the kick. */
-static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
+static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt) {
     int bi;
     sps_real vmax2;
     sps__half_drift(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
     sps__contact_pass(w);
-    vmax2 = sps__kick(w, dt);
+    vmax2 = sps__kick(w, t, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
         if (w->bodies[bi].model.pass.penalty) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
@@ -4126,7 +4203,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
         for (;;) {
             sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, dt_ad, t_limit), vmax2;
             if (!(dt > 0)) break;
-            vmax2 = sps__acoustic_substep(w, dt);
+            vmax2 = sps__acoustic_substep(w, t, dt);
             elapsed += dt;
             ++sub;
             if (!(vmax2 < (sps_real)INFINITY)) { blew_up = 1; break; } /* same in all threads */
