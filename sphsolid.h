@@ -3841,7 +3841,10 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
    vmax2 (NaN compares false: it is kept visible as infinity for the caller's check).
    A damped body (DAMPING) integrates dv/dt = a - c v exactly over the sub-step for the
    acceleration a of this kick: v = e^(-c dt) v + (1 - e^(-c dt))/c a, which is stable for any
-   c dt, and at rest under a balanced load it leaves v = 0 as an undamped kick does. */
+   c dt (an explicit v -= c dt v grows for c dt > 2), and at rest under a balanced load it leaves
+   v = 0 as an undamped kick does. It damps the absolute velocity, a particle's own: no sum over
+   the body, and the mean velocity, which carries most of a cantilever's first mode, is damped
+   too (DAMPING says why not the velocity relative to the mean). */
 SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, const sps_real Hmean[9],
                                      sps_real vmax2, const int dim, const int damped) {
     const int rotated = b->model.turn != SPS__TURN_NONE, per_particle = b->model.turn == SPS__TURN_PARTICLE;

@@ -82,6 +82,10 @@
        the table for ny = 2, 4, 8, ... up to N (default H 0.02, N 32); nx = ny L / H, so a
        thin plate needs a smaller N (--thickness 0.002 --max-ny 16: 211,000 equations, 0.2 GB).
        --max-ny 64: 1.4 GB and about a minute.
+     ./build/clamp_reference --sag G
+       instead of the period, the static sag under the plate's weight in gravity G (downwards)
+       for root conditions (a) and (b), against Timoshenko's (examples/cantilever_sag.c; the
+       output of --sag 1 is in bench/results/cantilever_sag.txt).
      Build: make build/clamp_reference (gcc -std=c99 -O2, libc and libm only, one thread).
 
    Expected output (default run, about 5 s on one core; all of it in
