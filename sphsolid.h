@@ -176,8 +176,8 @@
       sub-step for the kick's acceleration a, v <- e^(-c dt) v + (1 - e^(-c dt))/c a: stable
       for any c dt, and the equilibrium it reaches (a = 0 at v = 0) does not depend on c. Every
       mode decays at least as e^(-c t/2); a mode of angular frequency omega is critically damped
-      at c = 2 omega (the 2D plate's first mode: c = 49/s; examples/cantilever_sag.c settles to
-      1e-4 in 0.5 s). It acts on the absolute velocity, so it brakes a rigid motion too (a free
+      at c = 2 omega (the 2D plate's first mode: c = 49/s; in examples/cantilever_sag.c its sag
+      changes by 1.4e-4 of itself from t = 0.5 to 0.6 s). It acts on the absolute velocity, so it brakes a rigid motion too (a free
       body falls at |g|/c at most): damp bodies that are held, not bodies in free flight. Why
       not the velocity relative to the body's mean: that leaves the mean velocity undamped, and
       a cantilever's first mode has 61 % of its kinetic energy in it (its effective modal mass),
