@@ -25,7 +25,7 @@ CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
 SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 BUILD    = build
-EXAMPLES = plate2d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d
+EXAMPLES = plate2d cantilever_sag plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d
 HEADER   = sphsolid.h
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
@@ -143,7 +143,7 @@ quickstart-run: check
 # every example, run briefly: it must print its RESULT line and write its CSV, a VTK snapshot and
 # its final picture (PNG and SVG, read back by tests/check_picture: valid, and the body visible),
 # and a value out of range must end it with exit status 2 (the example contract in the README)
-SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "plate3d --res 2 --tend 0.0002 --full" \
+SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 --load callback" "plate3d --res 2 --tend 0.0002 --full" \
              "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01" \
              "rings2d --dp 0.004 --tend 0.002 --iterations 20" \
              "punch2d --dp 0.1 --tend 0.0005" "balls3d --dp 0.008 --tend 0.0002 --iterations 50" \

@@ -72,7 +72,8 @@
          (the low-dissipation Riemann solver of ENO eqs. 13-16 with beta = 1 and Z = rho0 c0:
          what the reference code uses for elastic solids); OG family: + (1/rho_i) sum_j
          (tau_i + tau_j) e_ij dW_ij V_j (ENO eq. 17); OAS: + Gray's artificial stress
-      3. v += dt (dv/dt + a_s + g); velocity constraints; x += dt/2 v
+      3. v += dt (dv/dt + a_s + g + a_ext); velocity constraints; x += dt/2 v (a damped body:
+         v = e^(-c dt) v + (1 - e^(-c dt))/c (dv/dt + a_s + g + a_ext); DAMPING)
       4. continuity pass: drho/dt_i = rho_i sum_j (v_ij.e_ij) dW_ij V_j; velocity gradient
          L_i = -sum_j v_ij (x) (B_i grad W_ij) V_j when needed (ANG eq. 20); Jaumann stress;
          ENO: da_i = 2 zeta G/rho_i sum_j (e_ij.v_ij)/r_ij dW_ij e_ij V_j dt (ENO eq. 24)
@@ -172,14 +173,44 @@
       Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
       them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
 
+   DAMPING AND EXTERNAL ACCELERATION (sps_body_def.damping, sps_body_set_acceleration)
+      Damping is numerical, not a property of the material: it is there to bring a loaded body
+      to its static equilibrium (a quasi-static run: load, let it settle, read the state). A
+      body with damping c > 0 [1/s] integrates dv/dt = a - c v in the kick exactly over each
+      sub-step for the kick's acceleration a, v <- e^(-c dt) v + (1 - e^(-c dt))/c a: stable
+      for any c dt, and the equilibrium it reaches (a = 0 at v = 0) does not depend on c. Every
+      mode decays at least as e^(-c t/2); a mode of angular frequency omega is critically damped
+      at c = 2 omega (the 2D plate's first mode: c = 49/s; in examples/cantilever_sag.c its sag
+      changes by 1.4e-4 of itself from t = 0.5 to 0.6 s). It acts on the absolute velocity, so it brakes a rigid motion too (a free
+      body falls at |g|/c at most): damp bodies that are held, not bodies in free flight. Why
+      not the velocity relative to the body's mean: that leaves the mean velocity undamped, and
+      a cantilever's first mode has 61 % of its kinetic energy in it (its effective modal mass),
+      it would still brake a rotation, and it needs a sum over the body in every sub-step (a
+      barrier). The kick is chosen per body, not per particle: an undamped body (the default)
+      runs the kick it ran before damping existed, bit for bit (tests/pinned.c).
+      External acceleration: fn(x, x0, v, t, a, user) is called for every particle of the body
+      in every acoustic sub-step, where the kick acts: x is the position half-drifted to the
+      middle of the sub-step, t that middle (so a load that varies in time or space is
+      integrated to second order, like the internal forces), v the velocity before the kick (a
+      velocity-dependent force lags half a sub-step). a is added to gravity; "pressure_acceleration"
+      then includes it. Why every sub-step and not once per advection step: at rest an advection
+      step holds up to max_substeps (100) sub-steps, so a stored load would lag by 100 of them (a
+      staircase in time, and a drag evaluated 100 sub-steps late), while a call costs about
+      10 ns a particle (2D plate, H/dp 10, 1 thread: 3.98 s against 3.81 s with the same load as
+      gravity; shared machine). Thread safety: with OpenMP the threads of the step call fn at
+      once, each for its own particles: fn may read user but must not write to anything shared
+      nor call the library on this world. If a depends only on fn's arguments (and data that
+      does not change during the step), results are bit-identical for any thread count.
+
    DIAGNOSTICS (sps_world_diagnostics)
       kinetic energy     sum 1/2 m |v|^2
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.
       contact energy     sum V (1/2 K sigma^2 + K sigma_w^2): the potential of the contact forces
                          (sigma: contact density from the other bodies, sigma_w: from the walls).
       potential energy   -sum m g.x over the deformable bodies (gravity).
-      prescribed work    work done on the deformable bodies by moving velocity constraints and
-                         rigid bodies (counted while the energy watchdog is on).
+      prescribed work    work done on the deformable bodies by moving velocity constraints, rigid
+                         bodies and external accelerations (counted while the energy watchdog
+                         is on).
       The account kinetic + strain + contact + potential - prescribed work is conserved by the
       continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
       numerical: the energy watchdog (ERRORS) reports it. The shear part of the strain energy,
@@ -209,7 +240,8 @@
       allocator (both or neither). Body def: cookie, material.density and .youngs_modulus
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
       c0 > 0), shear (0..5; OAS only in 2D), rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon
-      [0, 1], oas_exponent [1, 12], track_stress 0/1. Calls: NULL pointers (defs, outputs,
+      [0, 1], oas_exponent [1, 12], track_stress 0/1, damping finite >= 0 (0 for a wall body).
+      Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
       at most 2e8), coordinates, volumes, points and velocities (finite, volumes > 0),
@@ -488,6 +520,10 @@ typedef struct sps_body_def {
     sps_transport transport;   /* Default SPS_TRANSPORT_NONE. */
     int contact;               /* 1: touches the other bodies with contact = 1 (CONTACT; pairs can be
                                   turned off by sps_world_set_contact). Default 1. */
+    sps_real damping;          /* c [1/s], finite >= 0: every particle's velocity decays as
+                                  dv/dt = a - c v (DAMPING; numerical, not a physical material
+                                  damping: for reaching a static equilibrium). 0 = off. Not for
+                                  wall bodies. Default 0. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -504,8 +540,9 @@ typedef struct sps_diagnostics {
     sps_real contact_energy;      /* [J] stored in the contacts with other bodies and walls */
     sps_real potential_energy;    /* [J] in gravity: -sum m g.x over the deformable bodies */
     sps_real prescribed_work;     /* [J] done on the deformable bodies by the prescribed motions
-                                     (moving velocity constraints, rigid bodies) since they were
-                                     set; counted while the energy watchdog is on */
+                                     (moving velocity constraints, rigid bodies) and external
+                                     accelerations since they were set; counted while the
+                                     energy watchdog is on */
     sps_real linear_momentum[3];  /* [kg m/s] */
     sps_real angular_momentum[3]; /* [kg m^2/s], about the origin */
     sps_real max_speed;           /* [m/s] */
@@ -526,6 +563,12 @@ typedef struct sps_particle_state {
 
 /* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
 typedef void (*sps_velocity_fn)(const sps_real x[3], sps_real v[3], void* user);
+/* Callback of sps_body_set_acceleration: the external acceleration a [m/s^2] (length 3, zeroed
+   before the call; z ignored in 2D) of one particle at time t [s] from its current position x,
+   its reference position x0 and its velocity v (see EXTERNAL ACCELERATION for when and by which
+   threads it is called). */
+typedef void (*sps_acceleration_fn)(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3],
+                                    void* user);
 /* Callback of sps_world_advance, after every step; return nonzero to stop. */
 typedef int (*sps_step_fn)(sps_world* w, void* user);
 
@@ -604,6 +647,11 @@ SPSDEF sps_result sps_body_add_particles(sps_world* w, sps_body b, int n, const 
 
 /* Sets the velocity of every particle of the body from fn(reference position). */
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user);
+/* Gives every particle of body b the external acceleration fn(x, x0, v, t, a, user) on top of
+   the world's gravity, from the next sub-step on (EXTERNAL ACCELERATION); fn NULL removes it.
+   SPS_ERR_INVALID_ARG for an invalid body or a wall body (its particles keep their velocity).
+   No allocation; costs one call per particle and acoustic sub-step. */
+SPSDEF sps_result sps_body_set_acceleration(sps_world* w, sps_body b, sps_acceleration_fn fn, void* user);
 /* Constrains the particles whose reference position lies in [lo, hi]: on the axes in mask the
    velocity is held at velocity[axis] (NULL: zero), so mask SPS_AXIS_ALL with NULL clamps them
    (v = 0, x = x0). Later calls override earlier ones for the same particle. *count may be NULL. */
@@ -660,7 +708,8 @@ SPSDEF int sps_world_particle_count(const sps_world* w);
 SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
 /* Per-particle fields by name. Every particle has "position_x" .. "position_z", "velocity_x" ..,
    "reference_x" .. (per axis, up to dim), "density", "pressure", "mass", "volume",
-   "density_rate" and the solver's "pressure_acceleration_x" .., "shear_acceleration_x" ..; a
+   "density_rate" and the solver's "pressure_acceleration_x" .. (with contact and the external
+   acceleration), "shear_acceleration_x" ..; a
    body has "shear_stress" (6: xx xy xz yy yz zz) and "velocity_gradient" (9, row-major) only
    if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation) and
    "artificial_stress" (3: xx xy yy, OAS).
@@ -785,12 +834,14 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #define SPS__COS cosf
 #define SPS__FLOOR floorf
 #define SPS__ATAN2 atan2f
+#define SPS__EXPM1 expm1f
 #else
 #define SPS__SQRT sqrt
 #define SPS__SIN sin
 #define SPS__COS cos
 #define SPS__FLOOR floor
 #define SPS__ATAN2 atan2
+#define SPS__EXPM1 expm1
 #endif
 #define SPS__PI SPS_R(3.14159265358979323846)
 #define SPS__COOKIE 0x5350531
@@ -884,14 +935,17 @@ typedef struct sps__body {
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
     sps_real frame_velocity[3]; /* its mass-weighted mean velocity at the start of the advection
                                    step: the time-step speeds are measured against it */
+    sps_acceleration_fn acceleration; /* external acceleration (sps_body_set_acceleration), or NULL */
+    void* acceleration_user;
     int count;                 /* particles added (a body must have some before the first step) */
     sps_real reach;            /* largest distance of a reference position from the reference
                                   centre of mass: the body's size for the escape guard */
     sps_real escape_limit;     /* a particle farther than this from the current centre of mass
                                   has escaped (sps__check_escape) */
     int fragment_reported;     /* report_fragments: the warning was given */
-    int driven;                /* the watchdog counts the work of its prescribed motion: a
-                                  rigid body, or one with a moving velocity constraint */
+    int driven;                /* the watchdog counts the work done on it: a rigid body (its
+                                  work on the others), a moving velocity constraint or an
+                                  external acceleration */
     sps_real energy_start;     /* its kinetic + strain + contact energy at the watchdog's start */
     /* its optional per-particle arrays (the sps__fields rows owned by a body), allocated at commit
        when its model needs them, else NULL: particle begin + k at [components k], with
@@ -1398,8 +1452,10 @@ typedef struct sps__combination_rule {
     const char* message;
 } sps__combination_rule;
 static int sps__oas_outside_2d(int dim, const sps_body_def* def) { return def->shear == SPS_SHEAR_OAS && dim != 2; }
+static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
+    {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
 };
 
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
@@ -1421,6 +1477,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
     SPS__CHECK(def->track_stress == 0 || def->track_stress == 1, "track_stress = %d, allowed 0 or 1", def->track_stress);
     SPS__CHECK(def->contact == 0 || def->contact == 1, "contact = %d, allowed 0 or 1", def->contact);
+    SPS__CHECK(def->damping >= 0 && sps__finite(def->damping), "damping = %g, allowed finite >= 0 1/s (0: off)", (double)def->damping);
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
@@ -1878,6 +1935,24 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
         before = sps__kinetic(w, i, NULL);
         for (a = 0; a < w->dim; ++a) w->vel[a][i] = v[a];
         sps__watch_adjust(w, k, sps__kinetic(w, i, NULL) - before, 0);
+    }
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_set_acceleration(sps_world* w, sps_body b, sps_acceleration_fn fn, void* user) {
+    int k;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, "sps_body_set_acceleration")) < 0) return SPS_ERR_INVALID_ARG;
+    if (fn && w->bodies[k].model.material->kinematic) {
+        sps__set_error(w, 0, "sps_body_set_acceleration: body '%s' is a wall body (material.kind = rigid): its particles keep the velocity given to them",
+                       w->bodies[k].name);
+        return SPS_ERR_INVALID_ARG;
+    }
+    w->bodies[k].acceleration = fn;
+    w->bodies[k].acceleration_user = fn ? user : NULL;
+    if (fn && sps__watchdog_on(w) && !w->bodies[k].driven) { /* its work enters the energy account */
+        w->bodies[k].driven = 1;
+        w->needs_sort_by_body = 1; /* the next step's commit allocates its prescribed_work */
     }
     return SPS_OK;
 }
@@ -3923,14 +3998,22 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
     SPS__PRAGMA(omp barrier) /* the pressure pass reads the neighbours' drifted state */
 }
 
-/* Step 3 for particles i0 .. i1-1 of body b, dim a literal (the loops unroll: measured 14 ns a
-   particle with a variable dim): velocity update with the -A variants' turned a_s (see
+/* Step 3 for particles i0 .. i1-1 of body b, dim and damped literals (the loops unroll: measured
+   14 ns a particle with a variable dim): velocity update with the -A variants' turned a_s (see
    sps__kick), constraints, second half drift of positions. Returns the range's max |v|^2, above
-   vmax2 (NaN compares false: it is kept visible as infinity for the caller's check). */
+   vmax2 (NaN compares false: it is kept visible as infinity for the caller's check).
+   A damped body (DAMPING) integrates dv/dt = a - c v exactly over the sub-step for the
+   acceleration a of this kick: v = e^(-c dt) v + (1 - e^(-c dt))/c a, which is stable for any
+   c dt (an explicit v -= c dt v grows for c dt > 2), and at rest under a balanced load it leaves
+   v = 0 as an undamped kick does. It damps the absolute velocity, a particle's own: no sum over
+   the body, and the mean velocity, which carries most of a cantilever's first mode, is damped
+   too (DAMPING says why not the velocity relative to the mean). */
 SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, const sps_real Hmean[9],
-                                     sps_real vmax2, const int dim) {
+                                     sps_real vmax2, const int dim, const int damped) {
     const int rotated = b->model.turn != SPS__TURN_NONE, per_particle = b->model.turn == SPS__TURN_PARTICLE;
     const sps_real *g = w->def.gravity, *frame = b->frame_velocity;
+    const sps_real decay_minus_1 = damped ? SPS__EXPM1(-b->def.damping * dt) : 0; /* e^(-c dt) - 1, exact for small c dt */
+    const sps_real decay = 1 + decay_minus_1, kick = damped ? -decay_minus_1 / b->def.damping : dt;
     sps_real Hp[9];
     int i, a, c;
     for (i = i0; i < i1; ++i) {
@@ -3950,8 +4033,13 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
                 for (c = 0; c < dim; ++c) as[a] += H[3 * a + c] * w->acc_s[c][i];
             }
         }
-        SPS__UNROLL
-        for (a = 0; a < dim; ++a) w->vel[a][i] += dt * (w->acc_p[a][i] + as[a] + g[a]);
+        if (damped) {
+            SPS__UNROLL
+            for (a = 0; a < dim; ++a) w->vel[a][i] = decay * w->vel[a][i] + kick * (w->acc_p[a][i] + as[a] + g[a]);
+        } else {
+            SPS__UNROLL
+            for (a = 0; a < dim; ++a) w->vel[a][i] += dt * (w->acc_p[a][i] + as[a] + g[a]);
+        }
         if (w->cons && w->cons[i] >= 0) {
             const sps__constraint* cn = &w->constraints[w->cons[i]];
             sps_real work = 0; /* the constraint's force m (v_set - v_free)/dt times v_set, over dt */
@@ -3971,6 +4059,37 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
         if (!(v2 <= vmax2)) vmax2 = v2 == v2 ? v2 : (sps_real)INFINITY;
     }
     return vmax2;
+}
+
+/* The kick of an elastic body's share, specialised per body (not per particle) for its
+   dimension and whether it is damped: an undamped body runs the loop it ran before damping
+   existed, bit for bit. */
+static sps_real sps__kick_body(sps_world* w, const sps__body* b, int i0, int i1, sps_real dt, const sps_real Hmean[9], sps_real vmax2) {
+    if (b->def.damping > 0)
+        return w->dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2, 1) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3, 1);
+    return w->dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2, 0) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3, 0);
+}
+
+/* The external acceleration of body b (sps_body_set_acceleration) for particles i0 .. i1-1,
+   added to the neighbour passes' acceleration that the kick reads: evaluated where the kick
+   acts, at the half-drifted position x and time t (the middle of the sub-step), with the
+   velocity before the kick. */
+static void sps__add_external_acceleration(sps_world* w, const sps__body* b, int i0, int i1, sps_real t, sps_real dt) {
+    int i, a;
+    for (i = i0; i < i1; ++i) {
+        sps_real x[3] = {0, 0, 0}, x0[3] = {0, 0, 0}, v[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, power = 0;
+        for (a = 0; a < w->dim; ++a) {
+            x[a] = w->pos[a][i];
+            x0[a] = w->ref[a][i];
+            v[a] = w->vel[a][i];
+        }
+        b->acceleration(x, x0, v, t, acc, b->acceleration_user);
+        for (a = 0; a < w->dim; ++a) {
+            w->acc_p[a][i] += acc[a];
+            power += acc[a] * v[a];
+        }
+        if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * power * dt; /* the energy watchdog's account */
+    }
 }
 
 /* Step 3 for the particles i0 .. i1-1 of a wall body: they keep their velocity (second half
@@ -4002,9 +4121,9 @@ static sps_real sps__move_range(sps_world* w, const sps__body* b, int i0, int i1
    sub-step, while this kick acts half a step (dt/2 of this sub-step) later: it is applied
    rotated by that half step's rotation H, which removes a spurious torque of order
    omega^2 dt (spinning plate, ENO-A: 2.1 % -> 1.1 % angular-momentum error; bench/VALIDATION.md). */
-static sps_real sps__kick(sps_world* w, sps_real dt) {
+static sps_real sps__kick(sps_world* w, sps_real t, sps_real dt) {
     sps_real vmax2 = 0;
-    int t, bi, nt, me;
+    int thread, bi, nt, me;
     const int dim = w->dim;
     sps__team_rank(&nt, &me);
     for (bi = 0; bi < w->nbodies; ++bi) {
@@ -4013,13 +4132,17 @@ static sps_real sps__kick(sps_world* w, sps_real dt) {
         int i0, i1;
         sps__thread_share(b, &i0, &i1);
         sps__rodrigues(b->mean_spin, SPS_R(0.5) * dt, dim, Hmean); /* half of this kick's turn */
-        if (b->model.material->kinematic) vmax2 = sps__move_range(w, b, i0, i1, dt, vmax2);
-        else vmax2 = dim == 2 ? sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 2) : sps__kick_range(w, b, i0, i1, dt, Hmean, vmax2, 3);
+        if (b->model.material->kinematic) {
+            vmax2 = sps__move_range(w, b, i0, i1, dt, vmax2);
+            continue;
+        }
+        if (b->acceleration) sps__add_external_acceleration(w, b, i0, i1, t + SPS_R(0.5) * dt, dt);
+        vmax2 = sps__kick_body(w, b, i0, i1, dt, Hmean, vmax2);
     }
     w->thread_max[me] = vmax2;
     SPS__PRAGMA(omp barrier)
-    for (t = 0; t < nt; ++t)
-        if (w->thread_max[t] > vmax2) vmax2 = w->thread_max[t];
+    for (thread = 0; thread < nt; ++thread)
+        if (w->thread_max[thread] > vmax2) vmax2 = w->thread_max[thread];
     return vmax2;
 }
 
@@ -4345,15 +4468,15 @@ static sps_result sps__watch_energy(sps_world* w) {
 
 /* >>stepping: configuration updates, the advection step and its acoustic sub-steps */
 
-/* One acoustic sub-step (steps 1-5), called by every thread of the step's team.
+/* One acoustic sub-step (steps 1-5) from time t, called by every thread of the step's team.
    Returns max |v|^2 after the kick. */
-static sps_real sps__acoustic_substep(sps_world* w, sps_real dt) {
+static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt) {
     int bi;
     sps_real vmax2;
     sps__half_drift(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
     sps__contact_pass(w);
-    vmax2 = sps__kick(w, dt);
+    vmax2 = sps__kick(w, t, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
         if (w->bodies[bi].model.pass.penalty) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
@@ -4494,7 +4617,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
         for (;;) {
             sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, dt_ad, t_limit), vmax2;
             if (!(dt > 0)) break;
-            vmax2 = sps__acoustic_substep(w, dt);
+            vmax2 = sps__acoustic_substep(w, t, dt);
             elapsed += dt;
             ++sub;
             if (!(vmax2 < (sps_real)INFINITY)) { blew_up = 1; break; } /* same in all threads */

@@ -82,6 +82,10 @@
        the table for ny = 2, 4, 8, ... up to N (default H 0.02, N 32); nx = ny L / H, so a
        thin plate needs a smaller N (--thickness 0.002 --max-ny 16: 211,000 equations, 0.2 GB).
        --max-ny 64: 1.4 GB and about a minute.
+     ./build/clamp_reference --sag G
+       instead of the period, the static sag under the plate's weight in gravity G (downwards)
+       for root conditions (a) and (b), against Timoshenko's (examples/cantilever_sag.c; the
+       output of --sag 1 is in bench/results/cantilever_sag.txt).
      Build: make build/clamp_reference (gcc -std=c99 -O2, libc and libm only, one thread).
 
    Expected output (default run, about 5 s on one core; all of it in
@@ -478,6 +482,63 @@ static mesh_result first_period(const plate_case* c, int ny, root_condition root
     return r;
 }
 
+/* ---- the static sag under the plate's own weight (--sag; examples/cantilever_sag.c) ----
+   K u = f, f the consistent load of a uniform acceleration g downwards (f = M (-g e_y), with
+   element_times' shift). The sag is the mean downward u_y over the free end face x = L
+   (Simpson weights): the deflection a beam theory computes. (a) held: K of the held face.
+   (b) beam clamp, as in the mass operator: u = v + t e_y with v in the space of condition (c)
+   and t = -(w . v) / H, so the potential energy 1/2 v.Kv - f.u is least where
+   K v = f - w F / H (F the total y load, held nodes included: the face takes it as a uniform
+   traction), and the sag adds t. */
+static double end_face_mean_uy(const mesh* m, const double* u, double hy, double thickness) {
+    static const double simpson[3] = {1.0 / 6, 4.0 / 6, 1.0 / 6};
+    double sum = 0;
+    int ey, b;
+    for (ey = 0; ey < m->ny; ey++)
+        for (b = 0; b < 3; b++) {
+            int e = m->equation[2 * node_index(m, 2 * m->nx, 2 * ey + b) + 1];
+            if (e >= 0) sum += simpson[b] * hy * u[e];
+        }
+    return sum / thickness;
+}
+
+static double static_sag(const plate_case* c, int ny, root_condition root, double g) {
+    mesh m = mesh_create(c, ny, root);
+    double hy = c->thickness / ny, load, sag;
+    const element_matrices e = element_create(c, c->length / m.nx, hy);
+    band_matrix k = assemble_stiffness(&m, &e);
+    double *zero = calloc(m.equations, sizeof(double)), *u = calloc(m.equations, sizeof(double));
+    int i;
+    if (!zero || !u) {
+        fprintf(stderr, "out of memory\n");
+        exit(1);
+    }
+    load = element_times(&m, e.mass, zero, -g, u); /* u = f, load its total y */
+    cholesky(&k);
+    if (root == ROOT_HELD) {
+        cholesky_solve(&k, u);
+        sag = -end_face_mean_uy(&m, u, hy, c->thickness);
+    } else {
+        double* w = root_face_weights(&m, hy);
+        for (i = 0; i < m.equations; i++) u[i] -= w[i] * load / c->thickness;
+        cholesky_solve(&k, u);
+        sag = -(end_face_mean_uy(&m, u, hy, c->thickness) - dot(w, u, m.equations) / c->thickness);
+        free(w);
+    }
+    free(zero);
+    free(u);
+    free(k.data);
+    free(m.equation);
+    return sag;
+}
+
+/* Timoshenko's tip deflection under the weight (plane strain, kappa 5/6; cf. plate2d_timoshenko_sag) */
+static double timoshenko_sag(const plate_case* c, double g) {
+    double q = c->density * g * c->thickness, L = c->length, H = c->thickness;
+    return q * pow(L, 4) / (8 * plane_strain_modulus(c) * H * H * H / 12)
+           + q * L * L / (2 * c->shear_coefficient * shear_modulus(c) * H);
+}
+
 /* ---- the exact linear Timoshenko cantilever (the check for root condition b): cantilever.h ---- */
 
 /* ---- the table ---- */
@@ -586,21 +647,51 @@ static void print_table(const plate_case* c, int max_ny) {
     printf("# CPU time %.1f s\n", (double)(clock() - start) / CLOCKS_PER_SEC);
 }
 
+/* the Richardson limit of a sag sequence (the finest mesh's if there is none), printed */
+static double sag_limit(const char* name, const double* sag, int count) {
+    extrapolation x = richardson(sag, count);
+    if (x.limit > 0) printf("#   %-28s observed order %.2f, sag = %.7e m\n", name, x.order, x.limit);
+    else printf("#   %-28s finest mesh (no monotone sequence of three), sag = %.7e m\n", name, sag[count - 1]);
+    return x.limit > 0 ? x.limit : sag[count - 1];
+}
+
+static void print_sag_table(const plate_case* c, int max_ny, double g) {
+    double held[MAX_MESHES], mean[MAX_MESHES], beam = timoshenko_sag(c, g), a, b;
+    int ny, count = 0;
+    printf("# Static sag under the plate's weight, g = %g m/s^2 downwards: mean u_y over the end face x = L [m]\n", g);
+    printf("# Timoshenko beam (kappa 5/6, plane strain): %.7e m\n", beam);
+    printf("#  ny  (a) held        (b) beam clamp\n");
+    for (ny = 2; ny <= max_ny && count < MAX_MESHES; ny *= 2, count++) {
+        held[count] = static_sag(c, ny, ROOT_HELD, g);
+        mean[count] = static_sag(c, ny, ROOT_MID_HEIGHT, g);
+        printf("  %3d %.7e   %.7e\n", ny, held[count], mean[count]);
+        fflush(stdout);
+    }
+    a = sag_limit("(a) held:", held, count);
+    b = sag_limit("(b) beam clamp, mean u_y:", mean, count);
+    printf("# (a) vs Timoshenko %+.3f%%;  (b) vs Timoshenko %+.3f%%;  (a) vs (b) %+.3f%%\n", 100 * (a / beam - 1),
+           100 * (b / beam - 1), 100 * (a / b - 1));
+}
+
 static void usage(void) {
-    fprintf(stderr, "usage: clamp_reference [--thickness H] [--max-ny N]\n"
-                    "  the table for ny = 2, 4, ... up to N (default H 0.02, N 32)\n");
+    fprintf(stderr, "usage: clamp_reference [--thickness H] [--max-ny N] [--sag G]\n"
+                    "  the table for ny = 2, 4, ... up to N (default H 0.02, N 32);\n"
+                    "  --sag G: the static sag under the plate's weight in gravity G [m/s^2] instead of the period\n");
     exit(2);
 }
 
 int main(int argc, char** argv) {
     plate_case c = benchmark_case();
     int max_ny = 32, i;
+    double sag_gravity = 0;
     for (i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--thickness")) c.thickness = number_argument(argc, argv, &i, usage);
+        else if (!strcmp(argv[i], "--sag")) sag_gravity = number_argument(argc, argv, &i, usage);
         else if (!strcmp(argv[i], "--max-ny")) max_ny = (int)number_argument(argc, argv, &i, usage);
         else usage();
     }
-    if (c.thickness <= 0 || c.thickness > c.length || max_ny < 2) usage();
-    print_table(&c, max_ny);
+    if (c.thickness <= 0 || c.thickness > c.length || max_ny < 2 || sag_gravity < 0) usage();
+    if (sag_gravity > 0) print_sag_table(&c, max_ny, sag_gravity);
+    else print_table(&c, max_ny);
     return 0;
 }

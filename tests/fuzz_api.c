@@ -134,6 +134,8 @@ typedef struct {
     sps_observer observers[MAX_HANDLES];
     int body_world[MAX_HANDLES];      /* the world slot each body was made in, -1 once destroyed */
     int nbodies, nobservers;
+    double load[MAX_HANDLES];         /* the scale of the external acceleration given to each body
+                                         (read by the step's threads at once: written only between steps) */
     const char* out_dir;
     long calls, errors, steps;
 } fuzz_state;
@@ -249,6 +251,7 @@ static sps_body_def random_body_def(void) {
     d.oas_epsilon = maybe_hostile(uniform(0, 1), p);
     d.oas_exponent = maybe_hostile(uniform(1, 12), p);
     d.track_stress = chance(p) ? hostile_int() : below(2);
+    d.damping = chance(0.7) ? 0 : maybe_hostile(exp(uniform(log(1e-2), log(1e6))), p);
     if (chance(0.01)) d.internal_cookie = 12345;
     return d;
 }
@@ -285,6 +288,15 @@ static void random_velocity(const sps_real x[3], sps_real v[3], void* user) {
     }
 }
 
+/* An external acceleration of every kind of argument: a spring to the reference position, a
+   drag, a pull growing with time, all scaled by *user (hostile scales included: NaN and
+   overflow must end in SPS_ERR_UNSTABLE, never a crash). Reads only its arguments. */
+static void random_acceleration(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3], void* user) {
+    const double scale = *(const double*)user;
+    int k;
+    for (k = 0; k < 3; ++k) a[k] = (sps_real)(scale * (-(x[k] - x0[k]) - 0.1 * v[k] + (k == 1 ? -1 - t : 0)));
+}
+
 static int stop_after_three(sps_world* w, void* user) {
     (void)w;
     return ++*(int*)user >= 3;
@@ -292,7 +304,7 @@ static int stop_after_three(sps_world* w, void* user) {
 
 /* ---- one random call on one of the case's worlds ---- */
 static int random_call(fuzz_state* s) {
-    int k = below(MAX_WORLDS), op = below(30);
+    int k = below(MAX_WORLDS), op = below(31);
     sps_world* w = s->w[k];
     sps_real lo[3], hi[3], x[3];
     double dp = s->dp[k];
@@ -465,6 +477,13 @@ static int random_call(fuzz_state* s) {
         for (a = 0; a < 3; ++a) v[a] = chance(0.03) ? hostile_real() : uniform(-1, 1);
         CALL(s, w, sps_world_set_particle(w, chance(0.9) ? below(sps_world_particle_count(w) + 2) - 1 : hostile_int(),
                                           chance(0.5) ? x : NULL, chance(0.5) ? v : NULL));
+    } break;
+    case 30: { /* an external acceleration, or none */
+        static const double scales[] = {0, 1, 10, 1e3, 1e300};
+        const int slot = s->nbodies ? below(s->nbodies) : 0;
+        sps_body b = s->nbodies && chance(0.95) ? s->bodies[slot] : any_body(s, k);
+        s->load[slot] = chance(0.03) ? hostile_real() : scales[below(5)];
+        CALL(s, w, sps_body_set_acceleration(w, b, chance(0.2) ? NULL : random_acceleration, &s->load[slot]));
     } break;
     default: /* 26: destroy and forget every world of the case */
         for (a = 0; a < MAX_WORLDS; ++a) {

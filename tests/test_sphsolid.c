@@ -795,6 +795,25 @@ static sps_world* plate2d_build(int res, sps_shear shear, sps_rotation rotation,
     return plate2d_create(wd, &bd, &p, &w, &plate, tip) == SPS_OK ? w : NULL;
 }
 
+/* The cantilever of plate2d_build at rest (v_f = 0), damping c [1/s], loaded downwards by g
+   through the world's gravity, or, with load non-NULL, by that acceleration callback instead. */
+static sps_world* plate2d_loaded(int res, double c, double g, sps_acceleration_fn load, void* user, int threads, sps_observer* tip) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    plate2d_params p = {res, 0, 0, 0};
+    sps_world* w;
+    sps_body plate;
+    wd.threads = threads; wd.log = quiet_log;
+    if (!load) wd.gravity[1] = (sps_real)-g;
+    bd.material.density = PLATE2D_RHO0;
+    bd.material.youngs_modulus = PLATE2D_E;
+    bd.material.poisson_ratio = PLATE2D_NU;
+    bd.damping = (sps_real)c;
+    if (plate2d_create(wd, &bd, &p, &w, &plate, tip) != SPS_OK) return NULL;
+    if (load && sps_body_set_acceleration(w, plate, load, user) != SPS_OK) { sps_world_destroy(w); return NULL; }
+    return w;
+}
+
 /* The simply supported 3D plate of examples/scenes/plate3d.h: L x W x H (rho0 1000, E 1e8,
    nu 0.3), v_z held at 0 on the mid-plane particles of the four sides (examples/plate3d.c
    --support edge, ENO 6.2's wording), mode (m, n) start, observer at the first antinode
@@ -884,6 +903,24 @@ static double* steps_then_snapshot(sps_world* w, int steps) {
     s = snapshot(w);
     sps_world_destroy(w);
     return s;
+}
+
+/* A load that depends on every argument of the callback: the reference position (heavier
+   towards the tip), the current position, the velocity (a drag) and the time. */
+static void varied_load(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3], void* user) {
+    (void)user;
+    a[0] = (sps_real)(0.1 * (x[1] - x0[1]));
+    a[1] = (sps_real)(-(1 + 10 * x0[0]) * (1 + t) - 0.1 * v[1]);
+}
+/* ... the cantilever at H/dp = 8, damped (c = 50/s) and under varied_load (both threads call it
+   at once), 4 advection steps: starting at rest, each holds max_substeps (100) sub-steps, so
+   about as many as the plate's 30 above */
+static double* run_plate2d_loaded_small(int threads, int* n) {
+    sps_observer tip;
+    sps_world* w = plate2d_loaded(8, 50, 0, varied_load, NULL, threads, &tip);
+    if (!w) return NULL;
+    *n = sps_world_particle_count(w);
+    return steps_then_snapshot(w, 4);
 }
 
 /* 3D: a free 9^3 block (729 particles) with random velocities, ENO-A mean rotation (lane-group
@@ -1003,9 +1040,10 @@ static int test_pair_forces_survive_adds(void) {
 /* Every pass is a gather and every sum uses fixed blocks, so 1 and 2 threads must give
    bit-identical states (memcmp, no tolerance), and so must two runs with 2 threads. */
 static int test_determinism_threads(void) {
-    double* (*runs[4])(int, int*) = {run_plate2d_small, run_block3d_small, run_plate2d_pair_small, run_block_with_strays};
+    double* (*runs[5])(int, int*) = {run_plate2d_small, run_block3d_small, run_plate2d_pair_small, run_block_with_strays,
+                                     run_plate2d_loaded_small};
     int k;
-    for (k = 0; k < 4; ++k) {
+    for (k = 0; k < 5; ++k) {
         int n1 = 0, n2 = 0, n3 = 0, same12, same23;
         double *s1 = runs[k](1, &n1), *s2 = runs[k](2, &n2), *s3 = runs[k](2, &n3);
         ENSURE(s1 && s2 && s3);
@@ -1149,6 +1187,11 @@ static int test_validation_body_def(void) {
     bad = d; bad.oas_exponent = 13;              ENSURE(rejects_body_def(w, &bad, "oas_exponent = 13") == 0);
     bad = d; bad.rotation = (sps_rotation)3;     ENSURE(rejects_body_def(w, &bad, "rotation = 3") == 0);
     bad = d; bad.track_stress = 2;               ENSURE(rejects_body_def(w, &bad, "track_stress = 2") == 0);
+    bad = d; bad.damping = -1;                   ENSURE(rejects_body_def(w, &bad, "damping = -1, allowed finite >= 0") == 0);
+    bad = d; bad.damping = NAN;                  ENSURE(rejects_body_def(w, &bad, "damping = nan") == 0);
+    bad = d; bad.damping = INFINITY;             ENSURE(rejects_body_def(w, &bad, "damping = inf") == 0);
+    bad = d; bad.damping = 1; bad.material.kind = SPS_MATERIAL_RIGID;
+    ENSURE(rejects_body_def(w, &bad, "damping > 0 with material.kind = rigid") == 0);
     /* each field in range, but c0 = sqrt(K/rho0) underflows to 0 or overflows to inf */
     bad = d; bad.material.youngs_modulus = 1e-300; bad.material.density = 1e300;
     ENSURE(rejects_body_def(w, &bad, "sound speed c0 = 0") == 0);
@@ -2534,6 +2577,96 @@ static int test_uniform_translation(void) {
     return 0;
 }
 
+/* A free block in uniform translation (as above) feels no internal force at all, so damping c
+   must give exactly the exact decay v = v0 e^(-c t) (the kick multiplies by e^(-c dt) each
+   sub-step; 1e-12: the round-off of some hundred factors) and a displacement v0 (1 - e^(-c t))/c
+   to the trapezoidal drift's error, (c dt)^2/12 = 3e-7 relative (1e-6). With c dt = 180 the
+   velocity only decays (the exact factor is stable for any c dt), where an explicit
+   v -= c dt v would blow up. */
+static int damped_block(double c, double t_end, sps_particle_state* ps, double* t) {
+    sps_world* w = new_world(2, 0.01);
+    sps_body_def bd = sps_default_body_def();
+    sps_real blo[3] = {0, 0, 0}, bhi[3] = {0.1, 0.05, 0};
+    sps_body b;
+    ENSURE(w);
+    bd.damping = (sps_real)c;
+    ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK && sps_body_add_box(w, b, blo, bhi, NULL) == SPS_OK);
+    ENSURE(sps_body_set_velocity(w, b, uniform_velocity, NULL) == SPS_OK);
+    ENSURE(sps_world_advance(w, (sps_real)t_end, NULL, NULL) == SPS_OK);
+    ENSURE(sps_world_particle(w, 7, ps) == SPS_OK);
+    *t = sps_world_time(w);
+    sps_world_destroy(w);
+    return 0;
+}
+static int test_damping_decays_velocity_exactly(void) {
+    sps_particle_state ps;
+    double t, decay;
+    ENSURE(damped_block(10, 0.05, &ps, &t) == 0);
+    decay = exp(-10 * t);
+    printf("    c = 10/s, t = %.3f s: v_x = %.15f, exact %.15f\n", t, (double)ps.velocity[0], 0.1 * decay);
+    ENSURE_NEAR(ps.velocity[0], 0.1 * decay, 1e-12 * 0.1);
+    ENSURE_NEAR(ps.velocity[1], -0.2 * decay, 1e-12 * 0.2);
+    ENSURE_NEAR(ps.displacement[0], 0.1 * (1 - decay) / 10, 1e-6 * 0.1 * (1 - decay) / 10); /* see above */
+    ENSURE_NEAR(ps.displacement[1], -0.2 * (1 - decay) / 10, 1e-6 * 0.2 * (1 - decay) / 10);
+    ENSURE(damped_block(1e6, 0.01, &ps, &t) == 0); /* c dt = 1e6 * 1.8e-4 */
+    ENSURE(fabs(ps.velocity[0]) < 1e-30 && fabs(ps.velocity[1]) < 1e-30);
+    ENSURE(fabs(ps.displacement[0]) < 0.1 * 2e-4); /* at most half a first sub-step's drift */
+    return 0;
+}
+
+/* sps_body_set_acceleration on the free block at rest (no internal force: every particle gets the
+   same acceleration): a(t) = (k t, -2) gives v = (k t^2/2, -2 t) to round-off, because the
+   callback is evaluated at the middle of each sub-step (the midpoint rule integrates a linear
+   a exactly; at the start of each sub-step v_x would be short by k t dt/2, 4e-3 relative here:
+   the test's 1e-9 sees that). x, x0, v and t reach the callback (it counts its calls and checks
+   x0 is a lattice point of the block). fn NULL removes it: v stays. Errors: invalid body, wall body. */
+typedef struct { double k; long calls; int bad_arguments; } ramp_load;
+static void ramp_acceleration(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3], void* user) {
+    ramp_load* r = (ramp_load*)user;
+    r->calls++; /* one thread (new_world) */
+    if (!(x0[0] > 0 && x0[0] < 0.1 && x0[1] > 0 && x0[1] < 0.05 && fabs(x[0] - x0[0]) < 0.01 && fabs(v[1]) < 1 && t >= 0 && a[0] == 0))
+        r->bad_arguments = 1;
+    a[0] = (sps_real)(r->k * t);
+    a[1] = -2;
+}
+static int test_external_acceleration(void) {
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.05, 0};
+    sps_world* w = new_world(2, 0.01);
+    sps_body_def wall_def = sps_default_body_def();
+    sps_body b, wall, none = {0};
+    sps_particle_state ps;
+    ramp_load ramp = {30, 0, 0};
+    double t;
+    sps_real wlo[3] = {0.3, 0, 0}, whi[3] = {0.4, 0.05, 0};
+    int n;
+    ENSURE(w);
+    b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
+    ENSURE(b.id && n == 50);
+    ENSURE(sps_body_set_acceleration(w, b, ramp_acceleration, &ramp) == SPS_OK);
+    ENSURE(sps_world_advance(w, 0.05, NULL, NULL) == SPS_OK);
+    ENSURE(sps_world_particle(w, 11, &ps) == SPS_OK);
+    t = sps_world_time(w);
+    printf("    t = %.3f s: v = (%.15f, %.15f), exact (%.15f, %.15f); %ld calls\n", t, (double)ps.velocity[0], (double)ps.velocity[1],
+           ramp.k * t * t / 2, -2 * t, ramp.calls);
+    ENSURE_NEAR(ps.velocity[0], ramp.k * t * t / 2, 1e-9 * ramp.k * t * t / 2); /* see above */
+    ENSURE_NEAR(ps.velocity[1], -2 * t, 1e-12 * 2 * t);
+    ENSURE(!ramp.bad_arguments && ramp.calls > 0 && ramp.calls % n == 0);
+    ENSURE(sps_body_set_acceleration(w, b, NULL, NULL) == SPS_OK); /* removed */
+    ENSURE(sps_world_advance(w, 0.06, NULL, NULL) == SPS_OK);
+    ENSURE(sps_world_particle(w, 11, &ps) == SPS_OK);
+    ENSURE_NEAR(ps.velocity[0], ramp.k * t * t / 2, 1e-9 * ramp.k * t * t / 2);
+    ENSURE(sps_body_set_acceleration(w, none, ramp_acceleration, &ramp) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(sps_world_last_error(w), "sps_body_set_acceleration: body handle 0"));
+    ENSURE(sps_body_set_acceleration(NULL, b, ramp_acceleration, &ramp) == SPS_ERR_INVALID_ARG);
+    wall_def.material.kind = SPS_MATERIAL_RIGID;
+    ENSURE(sps_world_add_body(w, &wall_def, &wall) == SPS_OK && sps_body_add_box(w, wall, wlo, whi, NULL) == SPS_OK);
+    ENSURE(sps_body_set_acceleration(w, wall, ramp_acceleration, &ramp) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(sps_world_last_error(w), "wall body"));
+    ENSURE(sps_body_set_acceleration(w, wall, NULL, NULL) == SPS_OK); /* nothing to remove: fine */
+    sps_world_destroy(w);
+    return 0;
+}
+
 /* Growing a world that has already stepped: a second body and more particles are added after
    some steps (every per-particle array grows and the particles are re-sorted by body), and
    the state of the old particles is kept by stable id (bit-exact: adding moves no data value).
@@ -2612,6 +2745,48 @@ static int test_plate2d_period_eno_a_pair(void) {
     ENSURE(plate2d_period(SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, &T_pair) == 0);
     printf("    ENO-A H/dp = 10: T = %.4f s (mean rotation), %.4f s (pair)\n", T_mean, T_pair);
     ENSURE_NEAR(T_pair, T_mean, 0.01 * T_mean); /* 1%, see above */
+    return 0;
+}
+
+/* Damping brings the cantilever to the beam's sag (examples/cantilever_sag.c): the A1 plate at
+   H/dp = 10, at rest, under its weight in g = 1 m/s^2 (sag 1.3 % of L: linear beam theory
+   holds) and damped at c = 2 omega_1 (thin plate: critical for the first mode), comes to rest
+   by t = 0.6 s (the sag changes by less than 1e-3 of itself from 0.5 s, measured 1.4e-4;
+   undamped it swings by its whole size) within 3 % of the Timoshenko beam's w at the end
+   column (x = L - dp/2), plane strain, free length L from the holder's face. 3 %: measured +2.7 %, the softness of the
+   plate's bending at 10 particles across, which its first period shows too ((0.2600 s /
+   0.2565 s)^2 = +2.7 %); at H/dp = 20 it is within 2 % (bench/VALIDATION.md). The same load
+   through sps_body_set_acceleration gives the same sag at t = 0.1 s, mid-swing (1e-9: only the
+   order of the sums differs). */
+static void downward_load(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3], void* user) {
+    (void)x, (void)x0, (void)v, (void)t;
+    a[1] = (sps_real)-*(const double*)user;
+}
+/* The sag of the damped, loaded cantilever (load NULL: gravity) at each of the n times t. */
+static int cantilever_sag(sps_acceleration_fn load, int n, const double* t, double* sag) {
+    const double g = 1, c = 2 * (2 * PI / plate2d_analytical_period(PLATE2D_E, PLATE2D_NU, PLATE2D_RHO0)), dp = PLATE2D_H / 10;
+    sps_observer tip;
+    sps_world* w = plate2d_loaded(10, c, g, load, (void*)&g, 2, &tip);
+    int k;
+    ENSURE(w);
+    for (k = 0; k < n; ++k) {
+        ENSURE(sps_world_advance(w, (sps_real)t[k], NULL, NULL) == SPS_OK);
+        sag[k] = plate2d_end_sag(w, dp);
+    }
+    sps_world_destroy(w);
+    return 0;
+}
+static int test_damped_cantilever_sag(void) {
+    const double dp = PLATE2D_H / 10, theory = plate2d_timoshenko_sag(PLATE2D_L - dp / 2, 1, PLATE2D_E, PLATE2D_NU, PLATE2D_RHO0, 1, 1);
+    static const double t[3] = {0.1, 0.5, 0.6};
+    double sag[3], sag_callback;
+    ENSURE(cantilever_sag(NULL, 3, t, sag) == 0);
+    printf("    H/dp = 10: sag %.6e m at t = 0.6 s (%.6e at 0.5 s), Timoshenko %.6e m: %+.2f%%\n", sag[2], sag[1], theory,
+           100 * (sag[2] / theory - 1));
+    ENSURE_NEAR(sag[2], sag[1], 1e-3 * sag[2]);   /* at rest, see above */
+    ENSURE_NEAR(sag[2], theory, 0.03 * theory);   /* 3 %, see above */
+    ENSURE(cantilever_sag(downward_load, 1, t, &sag_callback) == 0);
+    ENSURE_NEAR(sag_callback, sag[0], 1e-9 * sag[0]); /* the same load, see above */
     return 0;
 }
 
@@ -2897,6 +3072,8 @@ int main(int argc, char** argv) {
     RUN(test_translation_keeps_steps);
     RUN(test_momentum_conservation);
     RUN(test_uniform_translation);
+    RUN(test_damping_decays_velocity_exactly);
+    RUN(test_external_acceleration);
     RUN(test_add_after_step_and_constraints);
     RUN(test_determinism_threads);
     RUN(test_bodies_independent);
@@ -2946,6 +3123,7 @@ int main(int argc, char** argv) {
     RUN_LONG(test_plate2d_period_eno);
     RUN_LONG(test_plate2d_period_eno_a_pair);
     RUN_LONG(test_hourglass_og_breaks_others_do_not);
+    RUN_LONG(test_damped_cantilever_sag);
     RUN_LONG(test_plate3d_period_mode22);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);

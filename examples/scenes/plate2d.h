@@ -66,6 +66,34 @@ SCENE_UNUSED static sps_result plate2d_create(sps_world_def wd, const sps_body_d
     return SPS_OK;
 }
 
+/* The static deflection w(x) (downwards) of the plate as a Timoshenko beam clamped at x = 0
+   under its own weight in gravity g pointing down: q = rho0 g H per unit depth, plane strain
+   (E' = E/(1 - nu^2)), I = H^3/12, A = H, kappa = 5/6 (a rectangular section):
+       w(x) = q (x^4 - 4 L x^3 + 6 L^2 x^2)/(24 E' I) + q (L x - x^2/2)/(kappa G A),
+   at the tip q L^4/(8 E' I) + q L^2/(2 kappa G A). bending = 0 keeps only the shear part,
+   shear = 0 only the bending part (Euler-Bernoulli). */
+SCENE_UNUSED static double plate2d_timoshenko_sag(double x, double g, double E, double nu, double rho0, int bending, int shear) {
+    const double L = PLATE2D_L, H = PLATE2D_H, q = rho0 * g * H, E_plane = E / (1 - nu * nu), I = H * H * H / 12;
+    const double kappa_G_A = 5.0 / 6.0 * E / (2 * (1 + nu)) * H;
+    return bending * q * (x * x * x * x - 4 * L * x * x * x + 6 * L * L * x * x) / (24 * E_plane * I) + shear * q * (L * x - x * x / 2) / kappa_G_A;
+}
+
+/* The mean downward displacement of the particles of the plate's end column (reference
+   x > L - dp, at x = L - dp/2): the beam's w there (a Timoshenko deflection is the mean over the
+   section). */
+SCENE_UNUSED static double plate2d_end_sag(const sps_world* w, double dp) {
+    const sps_real *x0 = sps_world_field(w, SPS_FIELD_REFERENCE_X), *y0 = sps_world_field(w, SPS_FIELD_REFERENCE_Y);
+    const sps_real* y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    double sum = 0;
+    int i, n = 0;
+    for (i = 0; i < sps_world_particle_count(w); ++i)
+        if (x0[i] > PLATE2D_L - dp) {
+            sum += y0[i] - y[i];
+            ++n;
+        }
+    return n ? sum / n : 0;
+}
+
 /* Thin-plate theory's first period (ANG eq. 52), plane strain. */
 SCENE_UNUSED static double plate2d_analytical_period(double E, double nu, double rho0) {
     double omega = sqrt(E * PLATE2D_H * PLATE2D_H * pow(PLATE2D_KL / PLATE2D_L, 4) / (12 * rho0 * (1 - nu * nu)));
