@@ -2645,6 +2645,220 @@ static int test_frame_wall_budget(void) {
 }
 
 /* ============================================================================================ */
+/* >>restart                                                                                    */
+
+/* A small 2D scene for the restart tests (dp 5 mm, c0 = 28.9 m/s): a block of 40 x 20
+   particles swirling at random (0.3 m/s), clamped at its left end, with an observer; with
+   `contact`, a second block thrown at it at 2 m/s (they meet after about 8 advection steps)
+   and a floor wall under both, with gravity. */
+typedef struct restart_scene {
+    sps_shear shear;
+    sps_rotation rotation;
+    int frozen_geometry, keep_last_good_state, contact, threads;
+    double shift; /* [m] the first block moved along x */
+} restart_scene;
+
+static void velocity_minus_x(const sps_real x[3], sps_real v[3], void* user) {
+    (void)x; (void)user;
+    v[0] = -2; v[1] = 0; v[2] = 0;
+}
+
+static sps_world* restart_build(const restart_scene* sc, int threads, sps_observer* obs) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body a, b;
+    unsigned long long seed = 11;
+    const sps_real lo[3] = {sc->shift, 0, 0}, hi[3] = {0.2 + sc->shift, 0.1, 0}, clo[3] = {-1, -1, -1}, chi[3] = {0.01, 1, 1};
+    const sps_real blo[3] = {0.21, 0.03, 0}, bhi[3] = {0.3, 0.1, 0}, floor_point[3] = {0, -0.002, 0}, up[3] = {0, 1, 0};
+    const sps_real x_obs[3] = {0.15, 0.05, 0};
+    wd.dim = 2; wd.dp = 0.005; wd.threads = threads; wd.log = quiet_log;
+    wd.frozen_geometry = sc->frozen_geometry;
+    wd.keep_last_good_state = sc->keep_last_good_state;
+    if (sc->contact) wd.gravity[1] = -9.81;
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
+    bd.shear = sc->shear;
+    bd.rotation = sc->rotation;
+    bd.track_stress = 1;
+    if (sps_world_add_body(w, &bd, &a) != SPS_OK || sps_body_add_box(w, a, lo, hi, NULL) != SPS_OK ||
+        sps_body_set_velocity(w, a, random_velocity, &seed) != SPS_OK ||
+        sps_body_constrain_box(w, a, clo, chi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK || sps_world_add_observer(w, a, x_obs, obs) != SPS_OK)
+        goto fail;
+    if (sc->contact && (sps_world_add_body(w, &bd, &b) != SPS_OK || sps_body_add_box(w, b, blo, bhi, NULL) != SPS_OK ||
+                        sps_body_set_velocity(w, b, velocity_minus_x, NULL) != SPS_OK ||
+                        sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP) != SPS_OK))
+        goto fail;
+    return w;
+fail:
+    printf("    %s\n", sps_world_last_error(w));
+    sps_world_destroy(w);
+    return NULL;
+}
+
+/* Everything a run's result is: per particle by id its position, velocity, density, pressure and
+   von Mises stress (which holds the shear stress), then the time, the step counters and the
+   observer. Caller frees. */
+static double* restart_result(const sps_world* w, sps_observer obs) {
+    const int n = sps_world_particle_count(w);
+    double* s = (double*)malloc(sizeof(double) * (9 * (size_t)n + 9));
+    sps_diagnostics d;
+    sps_real u[3], v[3];
+    int id, a;
+    if (!s) return NULL;
+    for (id = 0; id < n; ++id) {
+        sps_particle_state ps;
+        sps_world_particle(w, id, &ps);
+        for (a = 0; a < 3; ++a) { s[9 * id + a] = ps.position[a]; s[9 * id + 3 + a] = ps.velocity[a]; }
+        s[9 * id + 6] = ps.density; s[9 * id + 7] = ps.pressure; s[9 * id + 8] = ps.von_mises;
+    }
+    sps_world_diagnostics((sps_world*)w, ALL_BODIES, &d); /* lists valid after a step: changes nothing */
+    sps_observer_read(w, obs, u, v);
+    s[9 * n] = sps_world_time(w); s[9 * n + 1] = (double)d.acoustic_steps; s[9 * n + 2] = (double)d.advection_steps;
+    for (a = 0; a < 3; ++a) { s[9 * n + 3 + a] = u[a]; s[9 * n + 6 + a] = v[a]; }
+    return s;
+}
+
+/* The diagnostics that read the neighbour lists and the state: bit for bit the same. */
+static int same_diagnostics(const sps_diagnostics* a, const sps_diagnostics* b) {
+    return a->time == b->time && a->kinetic_energy == b->kinetic_energy && a->strain_energy == b->strain_energy &&
+           a->hourglass == b->hourglass && a->min_spacing == b->min_spacing && a->angular_momentum[2] == b->angular_momentum[2] &&
+           a->acoustic_steps == b->acoustic_steps && a->advection_steps == b->advection_steps && a->dt_acoustic == b->dt_acoustic;
+}
+
+/* Runs `before` advection steps of the scene at 1 thread (sc->threads for the first run), saves,
+   runs `after` more; rebuilds the scene at sc->threads, restores, checks the diagnostics at the
+   restore point and runs `after` steps: the two results must be the same bit for bit. */
+static int restart_round_trip(const restart_scene* sc, int before, int after) {
+    char path[] = "/tmp/test_sphsolid_restart_XXXXXX";
+    sps_observer obs, obs2;
+    sps_diagnostics d_saved, d_restored;
+    sps_world *w = restart_build(sc, 1, &obs), *w2;
+    double *first, *second;
+    int fd, k, n, same;
+    ENSURE(w);
+    for (k = 0; k < before; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE((fd = mkstemp(path)) >= 0);
+    close(fd);
+    ENSURE(sps_world_save(w, path) == SPS_OK);
+    ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d_saved) == SPS_OK);
+    for (k = 0; k < after; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    n = sps_world_particle_count(w);
+    first = restart_result(w, obs);
+    sps_world_destroy(w);
+    ENSURE((w2 = restart_build(sc, sc->threads, &obs2)) != NULL);
+    if (sps_world_restore(w2, path) != SPS_OK) printf("    %s\n", sps_world_last_error(w2));
+    ENSURE(sps_world_time(w2) == d_saved.time && d_saved.time > 0);
+    ENSURE(sps_world_diagnostics(w2, ALL_BODIES, &d_restored) == SPS_OK);
+    ENSURE(same_diagnostics(&d_saved, &d_restored)); /* the lists came back too */
+    for (k = 0; k < after; ++k) ENSURE(sps_world_step(w2) == SPS_OK);
+    second = restart_result(w2, obs2);
+    sps_world_destroy(w2);
+    remove(path);
+    ENSURE(first && second);
+    same = memcmp(first, second, sizeof(double) * (9 * (size_t)n + 9)) == 0;
+    if (!same) printf("    the restored run differs from the uninterrupted one (t = %.17g vs %.17g)\n", first[9 * n], second[9 * n]);
+    free(first); free(second);
+    ENSURE(same);
+    return 0;
+}
+
+/* Save after some steps, go on; rebuild, restore, go on: the same result bit for bit, for the
+   formulations whose state differs (ENO-A's mean rotation and spin, GNO-A's velocity gradient,
+   the pair forces of SPS_ROTATION_PAIR), contact with a wall, frozen geometry and the last good
+   state; restored at 2 threads (saved at 1), and once saved at 2. */
+static int test_restart_round_trip(void) {
+    static const restart_scene scenes[] = {
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, 0, 0, 0, 2, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 1, 0, 1, 2, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0},
+    };
+    int k;
+    for (k = 0; k < (int)(sizeof scenes / sizeof scenes[0]); ++k) {
+        printf("    scene %d\n", k);
+        if (restart_round_trip(&scenes[k], 6, 6)) return 1;
+    }
+    return 0;
+}
+
+/* Copies the first `bytes` of from into to (all of it when bytes < 0), with the byte at `flip`
+   (if >= 0) changed. */
+static int copy_file_part(const char* from, const char* to, long bytes, long flip) {
+    FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
+    long k;
+    int c;
+    if (!in || !out) { if (in) fclose(in); if (out) fclose(out); return 1; }
+    for (k = 0; (bytes < 0 || k < bytes) && (c = fgetc(in)) != EOF; ++k) fputc(k == flip ? c ^ 0x5a : c, out);
+    fclose(in);
+    return fclose(out) != 0;
+}
+
+static int restore_refused(const restart_scene* sc, const char* path, sps_result expected, const char* needle) {
+    sps_observer obs;
+    sps_world* w = restart_build(sc, 1, &obs);
+    sps_result r;
+    ENSURE(w);
+    r = sps_world_restore(w, path);
+    if (r != expected || !strstr(sps_world_last_error(w), needle))
+        printf("    restore gave %d '%s', expected %d with '%s'\n", (int)r, sps_world_last_error(w), (int)expected, needle);
+    ENSURE(r == expected);
+    ENSURE(strstr(sps_world_last_error(w), needle) != NULL);
+    ENSURE(sps_world_time(w) == 0); /* the state is the rebuilt one: a step from it works */
+    ENSURE(sps_world_step(w) == SPS_OK);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* A restart file meets only the scene it was saved from, whole: another scene (a body's count,
+   its shear, its particles moved), a truncated or damaged file, a file of another kind and a
+   missing one are refused with a message, and the world is left as it was. */
+static int test_restart_refused(void) {
+    char path[] = "/tmp/test_sphsolid_restart_XXXXXX", part[] = "/tmp/test_sphsolid_part_XXXXXX";
+    restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0}, other = sc;
+    sps_observer obs;
+    sps_world* w = restart_build(&sc, 1, &obs);
+    long size;
+    FILE* f;
+    int fd, k;
+    ENSURE(w);
+    ENSURE((fd = mkstemp(path)) >= 0); close(fd);
+    ENSURE((fd = mkstemp(part)) >= 0); close(fd);
+    ENSURE(sps_world_save(w, path) == SPS_ERR_STATE && strstr(sps_world_last_error(w), "step first"));
+    ENSURE(sps_world_save(w, NULL) == SPS_ERR_INVALID_ARG && sps_world_save(NULL, path) == SPS_ERR_INVALID_ARG);
+    ENSURE(sps_world_restore(w, NULL) == SPS_ERR_INVALID_ARG && sps_world_restore(NULL, path) == SPS_ERR_INVALID_ARG);
+    for (k = 0; k < 3; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE(sps_world_save(w, "/nonexistent-dir/x.restart") == SPS_ERR_IO && strstr(sps_world_last_error(w), "/nonexistent-dir/x.restart"));
+    ENSURE(sps_world_save(w, path) == SPS_OK);
+    ENSURE(sps_world_restore(w, path) == SPS_OK); /* into the world it came from: nothing changes */
+    sps_world_destroy(w);
+    other.shear = SPS_SHEAR_GNO_A;
+    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "shear = 1 in the file, 5 in this world") == 0);
+    other = sc;
+    other.contact = 1;
+    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "particle count") == 0);
+    other = sc;
+    other.shift = 0.0005; /* the same counts and models, the particles a tenth of dp away */
+    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "reference positions") == 0);
+    f = fopen(path, "rb");
+    ENSURE(f && fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 1000);
+    fclose(f);
+    ENSURE(copy_file_part(path, part, size / 2, -1) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, "truncated") == 0);
+    ENSURE(copy_file_part(path, part, 20, -1) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, "truncated") == 0);
+    ENSURE(copy_file_part(path, part, -1, size - 100) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, "checksum") == 0);
+    ENSURE(copy_file_part(path, part, -1, 3) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_INVALID_ARG, "not a sphsolid restart file") == 0);
+    remove(part);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, part) == 0); /* missing */
+    remove(path);
+    return 0;
+}
+
+/* ============================================================================================ */
 
 int main(int argc, char** argv) {
     int i;
@@ -2722,6 +2936,8 @@ int main(int argc, char** argv) {
     RUN(test_memory_out_of_memory_everywhere);
     RUN(test_determinism_repeated_runs);
     RUN(test_vtk_writer);
+    RUN(test_restart_round_trip);
+    RUN(test_restart_refused);
     RUN(test_csv_row);
     RUN_LONG(test_plate2d_period_eno_a);
     RUN_LONG(test_plate2d_period_eno);
