@@ -699,8 +699,8 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
    sps_world_restore reads it into a world the program has built the same way (same defs,
    bodies, fills, velocities set, constraints, walls, contact settings, observers), and the run
    goes on bit for bit as the saved one would have, for any thread count.
-   save: SPS_ERR_INVALID_ARG (w or path NULL), SPS_ERR_STATE (no particles, or particles added
-   since the last step: step first), SPS_ERR_IO (cannot open or write). No allocation; O(N
+   save: SPS_ERR_INVALID_ARG (w or path NULL), SPS_ERR_STATE (a world that cannot step, or
+   particles added since the last step: step first), SPS_ERR_IO (cannot open or write). No allocation; O(N
    neighbours) (the file holds the neighbour lists); does not change the world.
    restore: SPS_ERR_INVALID_ARG (NULL, not a restart file, another format version, byte order
    or sps_real), SPS_ERR_STATE (the file's scene differs from the world's: the message names
@@ -4928,6 +4928,9 @@ SPSDEF sps_result sps_world_save(const sps_world* w, const char* path) {
                              w->n == 0 ? "the world has no particles" : "particles were added since the last step");
         return SPS_ERR_STATE;
     }
+    /* a world that cannot step (an empty body added since) has no state to go on from; the
+       check writes only the error message (see sps__set_error_const) */
+    if (sps__check_bodies_filled((sps_world*)w) != SPS_OK) return SPS_ERR_STATE;
     sps__put_state(w, &count);
     out.f = fopen(path, "wb");
     if (!out.f) { sps__set_error_const(w, "sps_world_save: cannot open '%s' for writing", path); return SPS_ERR_IO; }
