@@ -691,8 +691,24 @@ SPSDEF sps_real sps_riemann_pressure(sps_real rho_l, sps_real u_l, sps_real p_l,
                                      sps_real rho_r, sps_real u_r, sps_real p_r, sps_real c_r, int limiter);
 
 #ifndef SPHSOLID_NO_STDIO
-/* Legacy VTK (ASCII POLYDATA, vertices) of all particles with point data velocity,
-   displacement, pressure, density, von_mises, body, id. Opens in ParaView. */
+/* Options of sps_world_write_vtk_ex. sps_default_vtk_options() (all fields 0) gives what
+   sps_world_write_vtk writes. */
+typedef struct sps_vtk_options {
+    int binary; /* 0: ASCII, 9 significant digits. 1: binary legacy VTK, big-endian as the
+                   format requires, values exact in sps_real's precision; about a third of the
+                   ASCII size (bench/VALIDATION.md). Default 0. */
+    int stress; /* 1: also the Cauchy stress sigma = -p I + tau [Pa] ("stress", 9 components,
+                   row-major; tau = 0 where a body does not track it; the z row and column are
+                   0 in 2D). Default 0. */
+} sps_vtk_options;
+SPSDEF sps_vtk_options sps_default_vtk_options(void);
+/* Legacy VTK file (POLYDATA, one vertex per particle, in the current particle order) with the
+   point data velocity, displacement, pressure, density, von_mises (and stress), body and id in
+   one FIELD block, so that VTK's legacy reader (ParaView) shows every array with its default
+   settings. options NULL: the defaults. SPS_ERR_INVALID_ARG (w or path NULL, an option not 0
+   or 1), SPS_ERR_IO (cannot open or write; the message names the path). No allocation; O(N). */
+SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const sps_vtk_options* options);
+/* sps_world_write_vtk_ex with the default options (ASCII). */
 SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 
 /* Restart files (RESTART): sps_world_save writes the world's state between steps to path;
@@ -4387,17 +4403,25 @@ SPSDEF sps_result sps_world_validate(const sps_world* w, char* msg, size_t msg_s
 
 /* >>diagnostics */
 
-static sps_real sps__von_mises(const sps_world* w, int i) {
+/* Whether particle i has a value in its body's own arrays: they hold the body's particles of
+   the last commit (none before the first step); those added since have none yet. */
+static int sps__in_body_arrays(const sps__body* b, int i) { return i >= b->begin && i - b->begin < b->field_count; }
+
+/* The Cauchy stress sigma = -p I + tau of particle i (xx xy xz yy yz zz; tau = 0 where the body
+   does not track it). In 2D sigma_zz is not part of the state: 0. */
+static void sps__cauchy_stress(const sps_world* w, int i, sps_real s[6]) {
     const sps__body* b = &w->bodies[w->body[i]];
-    sps_real s[6] = {0, 0, 0, 0, 0, 0}, p = w->p[i];
     int a;
-    /* the body's tau holds its particles of the last commit (none before the first step);
-       those added since have no stress yet */
-    if (b->tau && i - b->begin < b->field_count)
-        for (a = 0; a < 6; ++a) s[a] = b->tau[(size_t)6 * (i - b->begin) + a];
-    s[0] -= p; s[3] -= p; /* sigma = -p I + tau */
+    for (a = 0; a < 6; ++a) s[a] = b->tau && sps__in_body_arrays(b, i) ? b->tau[(size_t)6 * (i - b->begin) + a] : 0;
+    s[0] -= w->p[i]; s[3] -= w->p[i];
+    if (w->dim == 3) s[5] -= w->p[i];
+    else s[5] = 0;
+}
+
+static sps_real sps__von_mises(const sps_world* w, int i) {
+    sps_real s[6];
+    sps__cauchy_stress(w, i, s);
     if (w->dim == 2) return SPS__SQRT(s[0] * s[0] + s[3] * s[3] - s[0] * s[3] + 3 * s[1] * s[1]);
-    s[5] -= p;
     return SPS__SQRT(SPS_R(0.5) * ((s[0] - s[3]) * (s[0] - s[3]) + (s[3] - s[5]) * (s[3] - s[5]) + (s[5] - s[0]) * (s[5] - s[0])) +
                      3 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
 }
@@ -4724,42 +4748,167 @@ SPSDEF sps_result sps_observer_read(const sps_world* w, sps_observer o, sps_real
 /* >>output */
 
 #ifndef SPHSOLID_NO_STDIO
-SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) {
+/* The point-data arrays of the VTK files, one row each: an array is either a row of sps__fields
+   (a per-body one is 0 for the bodies without it), or computed per particle by value. A new
+   output is one row. */
+typedef struct sps__vtk_array {
+    const char* name;
+    int components; /* per point (a per-axis field: 3, z = 0 in 2D) */
+    int is_int;
+    const char* field; /* the sps__fields row it shows, or NULL */
+    void (*value)(const sps_world* w, int i, sps_real* out); /* for field NULL */
+    int stress_option; /* written only with sps_vtk_options.stress */
+} sps__vtk_array;
+
+static void sps__vtk_displacement(const sps_world* w, int i, sps_real* out) {
+    int a;
+    for (a = 0; a < 3; ++a) out[a] = a < w->dim ? w->pos[a][i] - w->ref[a][i] : 0;
+}
+static void sps__vtk_von_mises(const sps_world* w, int i, sps_real* out) { out[0] = sps__von_mises(w, i); }
+static void sps__vtk_stress(const sps_world* w, int i, sps_real* out) { /* the full tensor, row-major */
+    static const int of[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+    sps_real s[6];
+    int k;
+    sps__cauchy_stress(w, i, s);
+    for (k = 0; k < 9; ++k) out[k] = s[of[k]];
+}
+
+static const sps__vtk_array sps__vtk_arrays[] = {
+    {"velocity", 3, 0, "velocity", NULL, 0},
+    {"displacement", 3, 0, NULL, sps__vtk_displacement, 0},
+    {"pressure", 1, 0, "pressure", NULL, 0},
+    {"density", 1, 0, "density", NULL, 0},
+    {"von_mises", 1, 0, NULL, sps__vtk_von_mises, 0},
+    {"stress", 9, 0, NULL, sps__vtk_stress, 1},
+    {"body", 1, 1, "body", NULL, 0},
+    {"id", 1, 1, "id", NULL, 0},
+};
+#define SPS__VTK_ARRAYS ((int)(sizeof sps__vtk_arrays / sizeof sps__vtk_arrays[0]))
+
+/* The values of registry field f for particle i into out (components of the VTK array). */
+static void sps__vtk_field_values(const sps_world* w, const sps__field_info* f, int i, int components, double* out) {
+    const sps__body* b = &w->bodies[w->body[i]];
+    const int owned = !f->per_body || sps__in_body_arrays(b, i), at = f->per_body ? i - b->begin : i;
+    int a, m;
+    for (m = 0; m < components; ++m) out[m] = 0;
+    if (!owned) return;
+    if (f->is_int) {
+        out[0] = sps__int_array(w, f, 0)[at];
+        return;
+    }
+    for (a = 0; a < (f->axes ? w->dim : 1); ++a) {
+        const sps_real* x = sps__real_array(w, b, f, a);
+        for (m = 0; x && m < f->components && a + m < components; ++m) out[a + m] = x[(size_t)at * f->components + m];
+    }
+}
+
+/* Writes the values of a legacy VTK file: ASCII text (9 significant digits, a point per line),
+   or binary, big-endian as the format requires, through a buffer. */
+typedef struct sps__vtk_out {
     FILE* f;
-    int i, a;
+    int binary, little_endian, fresh;
+    size_t used;
+    unsigned char buf[8192];
+} sps__vtk_out;
+static void sps__vtk_flush(sps__vtk_out* o) {
+    if (o->used) fwrite(o->buf, 1, o->used, o->f);
+    o->used = 0;
+}
+static void sps__vtk_bytes(sps__vtk_out* o, const void* v, size_t size) {
+    const unsigned char* c = (const unsigned char*)v;
+    size_t k;
+    if (o->used + size > sizeof o->buf) sps__vtk_flush(o);
+    for (k = 0; k < size; ++k) o->buf[o->used++] = c[o->little_endian ? size - 1 - k : k];
+}
+static void sps__vtk_value(sps__vtk_out* o, double v, int is_int) {
+    if (o->binary && is_int) {
+        const int32_t x = (int32_t)v;
+        sps__vtk_bytes(o, &x, sizeof x);
+    } else if (o->binary) {
+        const sps_real x = (sps_real)v;
+        sps__vtk_bytes(o, &x, sizeof x);
+    } else {
+        fprintf(o->f, is_int ? "%s%.0f" : "%s%.9g", o->fresh ? "" : " ", v);
+        o->fresh = 0;
+    }
+}
+static void sps__vtk_end_point(sps__vtk_out* o) {
+    if (!o->binary) fputc('\n', o->f);
+    o->fresh = 1;
+}
+static void sps__vtk_end_block(sps__vtk_out* o) { /* a binary block ends with a newline */
+    sps__vtk_flush(o);
+    if (o->binary) fputc('\n', o->f);
+}
+
+static void sps__vtk_write_array(const sps_world* w, const sps__vtk_array* row, sps__vtk_out* o) {
+    const sps__field_info* f = row->field ? sps__field_named(row->field) : NULL;
+    double v[9];
+    sps_real r[9];
+    int i, m;
+    fprintf(o->f, "%s %d %d %s\n", row->name, row->components, w->n, row->is_int ? "int" : sizeof(sps_real) == sizeof(double) ? "double" : "float");
+    SPS_ASSERT(!row->field || f); /* a row names a field of sps__fields */
+    for (i = 0; i < w->n; ++i) {
+        if (f) sps__vtk_field_values(w, f, i, row->components, v);
+        else {
+            row->value(w, i, r);
+            for (m = 0; m < row->components; ++m) v[m] = (double)r[m];
+        }
+        for (m = 0; m < row->components; ++m) sps__vtk_value(o, v[m], row->is_int);
+        sps__vtk_end_point(o);
+    }
+    sps__vtk_end_block(o);
+}
+
+SPSDEF sps_vtk_options sps_default_vtk_options(void) {
+    sps_vtk_options o;
+    memset(&o, 0, sizeof o);
+    return o;
+}
+
+SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const sps_vtk_options* options) {
+    const sps_vtk_options opt = options ? *options : sps_default_vtk_options();
+    const uint16_t one = 1;
     const char* type = sizeof(sps_real) == sizeof(double) ? "double" : "float";
+    sps__vtk_out o;
+    int i, k, arrays = 0, a;
     if (!w) return SPS_ERR_INVALID_ARG;
     if (!path) { sps__set_error(w, 0, "sps_world_write_vtk: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
-    f = fopen(path, "w");
-    if (!f) { sps__set_error(w, 0, "sps_world_write_vtk: cannot open '%s' for writing", path); return SPS_ERR_IO; }
-    fprintf(f, "# vtk DataFile Version 3.0\nsphsolid %s t=%.9g\nASCII\nDATASET POLYDATA\nPOINTS %d %s\n",
-            SPHSOLID_VERSION_STRING, (double)w->time, w->n, type);
-    for (i = 0; i < w->n; ++i)
-        fprintf(f, "%.9g %.9g %.9g\n", (double)w->pos[0][i], (double)w->pos[1][i], w->dim == 3 ? (double)w->pos[2][i] : 0.0);
-    fprintf(f, "VERTICES %d %d\n", w->n, 2 * w->n);
-    for (i = 0; i < w->n; ++i) fprintf(f, "1 %d\n", i);
-    fprintf(f, "POINT_DATA %d\nVECTORS velocity %s\n", w->n, type);
-    for (i = 0; i < w->n; ++i)
-        fprintf(f, "%.9g %.9g %.9g\n", (double)w->vel[0][i], (double)w->vel[1][i], w->dim == 3 ? (double)w->vel[2][i] : 0.0);
-    fprintf(f, "VECTORS displacement %s\n", type);
-    for (i = 0; i < w->n; ++i) {
-        sps_real u[3] = {0, 0, 0};
-        for (a = 0; a < w->dim; ++a) u[a] = w->pos[a][i] - w->ref[a][i];
-        fprintf(f, "%.9g %.9g %.9g\n", (double)u[0], (double)u[1], (double)u[2]);
+    if ((opt.binary != 0 && opt.binary != 1) || (opt.stress != 0 && opt.stress != 1)) {
+        sps__set_error(w, 0, "sps_world_write_vtk_ex: options binary = %d, stress = %d, allowed 0 or 1", opt.binary, opt.stress);
+        return SPS_ERR_INVALID_ARG;
     }
-    fprintf(f, "SCALARS pressure %s 1\nLOOKUP_TABLE default\n", type);
-    for (i = 0; i < w->n; ++i) fprintf(f, "%.9g\n", (double)w->p[i]);
-    fprintf(f, "SCALARS density %s 1\nLOOKUP_TABLE default\n", type);
-    for (i = 0; i < w->n; ++i) fprintf(f, "%.9g\n", (double)w->rho[i]);
-    fprintf(f, "SCALARS von_mises %s 1\nLOOKUP_TABLE default\n", type);
-    for (i = 0; i < w->n; ++i) fprintf(f, "%.9g\n", (double)sps__von_mises(w, i));
-    fprintf(f, "SCALARS body int 1\nLOOKUP_TABLE default\n");
-    for (i = 0; i < w->n; ++i) fprintf(f, "%d\n", w->body[i]);
-    fprintf(f, "SCALARS id int 1\nLOOKUP_TABLE default\n");
-    for (i = 0; i < w->n; ++i) fprintf(f, "%d\n", w->id[i]);
-    if (fclose(f) != 0) { sps__set_error(w, 0, "sps_world_write_vtk: error writing '%s'", path); return SPS_ERR_IO; }
+    o.f = fopen(path, opt.binary ? "wb" : "w");
+    if (!o.f) { sps__set_error(w, 0, "sps_world_write_vtk: cannot open '%s' for writing", path); return SPS_ERR_IO; }
+    o.binary = opt.binary;
+    o.little_endian = *(const unsigned char*)&one == 1;
+    o.fresh = 1;
+    o.used = 0;
+    fprintf(o.f, "# vtk DataFile Version 3.0\nsphsolid %s t=%.9g\n%s\nDATASET POLYDATA\nPOINTS %d %s\n", SPHSOLID_VERSION_STRING,
+            (double)w->time, opt.binary ? "BINARY" : "ASCII", w->n, type);
+    for (i = 0; i < w->n; ++i) {
+        for (a = 0; a < 3; ++a) sps__vtk_value(&o, a < w->dim ? (double)w->pos[a][i] : 0, 0);
+        sps__vtk_end_point(&o);
+    }
+    sps__vtk_end_block(&o);
+    fprintf(o.f, "VERTICES %d %d\n", w->n, 2 * w->n);
+    for (i = 0; i < w->n; ++i) {
+        sps__vtk_value(&o, 1, 1);
+        sps__vtk_value(&o, i, 1);
+        sps__vtk_end_point(&o);
+    }
+    sps__vtk_end_block(&o);
+    for (k = 0; k < SPS__VTK_ARRAYS; ++k) arrays += !sps__vtk_arrays[k].stress_option || opt.stress;
+    /* a FIELD block: the legacy reader shows every array of it (with SCALARS and VECTORS it
+       shows only the first of each) */
+    fprintf(o.f, "POINT_DATA %d\nFIELD FieldData %d\n", w->n, arrays);
+    for (k = 0; k < SPS__VTK_ARRAYS; ++k)
+        if (!sps__vtk_arrays[k].stress_option || opt.stress) sps__vtk_write_array(w, &sps__vtk_arrays[k], &o);
+    if (ferror(o.f) | (fclose(o.f) != 0)) { sps__set_error(w, 0, "sps_world_write_vtk: error writing '%s'", path); return SPS_ERR_IO; }
     return SPS_OK;
 }
+
+SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) { return sps_world_write_vtk_ex(w, path, NULL); }
 #endif
 
 /* >>restart: sps_world_save and sps_world_restore (RESTART in the manual)

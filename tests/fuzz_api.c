@@ -410,7 +410,14 @@ static int random_call(fuzz_state* s) {
         snprintf(path, sizeof path, "%s/fuzz_%d.vtk", s->out_dir, k);
         if (chance(0.1)) p = "/nonexistent-dir/fuzz.vtk";
         if (chance(0.05)) p = NULL;
-        CALL(s, w, sps_world_write_vtk(w, p));
+        if (chance(0.5)) {
+            CALL(s, w, sps_world_write_vtk(w, p));
+        } else { /* binary or ASCII, with or without the stress tensor; sometimes an option out of range */
+            sps_vtk_options o = sps_default_vtk_options();
+            o.binary = chance(0.05) ? hostile_int() : below(2);
+            o.stress = chance(0.05) ? hostile_int() : below(2);
+            CALL(s, w, sps_world_write_vtk_ex(w, p, chance(0.1) ? NULL : &o));
+        }
     } break;
     case 18: { /* queries */
         sps_particle_state ps;
