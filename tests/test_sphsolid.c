@@ -2036,16 +2036,18 @@ static long file_size(const char* path) {
     return size;
 }
 
-/* Whether a file value equals the state's: exactly for binary (the reals as stored), to the 9
-   significant digits of ASCII otherwise (5e-9 relative, plus 1e-300 for zeros). */
-static int vtk_same(double file, double state, int binary) {
+/* Whether a file value equals the state's (rounded to float with single precision): exactly
+   for binary (the reals as stored), to the 9 significant digits of ASCII otherwise (5e-9
+   relative, plus 1e-300 for zeros). */
+static int vtk_same(double file, double state, int binary, int single) {
+    if (single) state = (float)state;
     return binary ? file == state : fabs(file - state) <= 5e-9 * fabs(state) + 1e-300;
 }
 
 /* Checks a file against the world: the points, the vertices, and every array (names and order
    of the table, sizes, values by particle id; the stress tensor, when written, against the
    von Mises stress it implies). */
-static int vtk_matches_world(const vtk_file* v, const sps_world* w, int with_stress) {
+static int vtk_matches_world(const vtk_file* v, const sps_world* w, int with_stress, int single) {
     static const char* names[] = {"velocity", "displacement", "pressure", "density", "von_mises", "stress", "body", "id"};
     static const int comps[] = {3, 3, 1, 1, 1, 9, 1, 1};
     const int* ids = sps_world_particle_ids(w);
@@ -2055,7 +2057,7 @@ static int vtk_matches_world(const vtk_file* v, const sps_world* w, int with_str
     for (k = 0; k < 8; ++k) {
         if (k == 5 && !with_stress) continue;
         ENSURE(strcmp(v->array[a].name, names[k]) == 0 && v->array[a].components == comps[k]);
-        ENSURE(strcmp(v->array[a].type, k >= 6 ? "int" : "double") == 0);
+        ENSURE(strcmp(v->array[a].type, k >= 6 ? "int" : single ? "float" : "double") == 0);
         for (i = 0; i < v->n; ++i) {
             sps_particle_state ps;
             const double* x = v->array[a].v + (size_t)comps[k] * i;
@@ -2073,13 +2075,13 @@ static int vtk_matches_world(const vtk_file* v, const sps_world* w, int with_str
             if (k == 5) { /* symmetric, and the von Mises stress of it is the von_mises array's */
                 const double s6[6] = {x[0], x[1], x[2], x[4], x[5], x[8]};
                 ENSURE(x[1] == x[3] && x[2] == x[6] && x[5] == x[7]);
-                /* round-off of the formula; ASCII: its 9 digits */
-                ENSURE_NEAR(von_mises(s6, 3), ps.von_mises, (v->binary ? 1e-12 : 1e-8) * (fabs(ps.von_mises) + fabs(ps.pressure)));
+                /* round-off of the formula; ASCII: its 9 digits; single precision: float's 6e-8 */
+                ENSURE_NEAR(von_mises(s6, 3), ps.von_mises, (single ? 1e-6 : v->binary ? 1e-12 : 1e-8) * (fabs(ps.von_mises) + fabs(ps.pressure)));
                 continue;
             }
-            for (m = 0; m < comps[k]; ++m) ENSURE(vtk_same(x[m], want[m], v->binary));
+            for (m = 0; m < comps[k]; ++m) ENSURE(vtk_same(x[m], want[m], v->binary, single && k < 6));
             if (k == 0) /* the points are the positions */
-                for (c = 0; c < 3; ++c) ENSURE(vtk_same(v->points[3 * i + c], ps.position[c], v->binary));
+                for (c = 0; c < 3; ++c) ENSURE(vtk_same(v->points[3 * i + c], ps.position[c], v->binary, single));
         }
         ++a;
     }
@@ -2087,10 +2089,11 @@ static int vtk_matches_world(const vtk_file* v, const sps_world* w, int with_str
     return 0;
 }
 
-/* The VTK writer, ASCII and binary: every array in one FIELD block (what VTK's legacy reader
-   shows with its default settings), read back by the reader above and compared with the state;
-   the binary file decodes to the state exactly and is smaller. Two bodies, one tracking the
-   stress (the stress tensor holds its tau) and one not (-p I). */
+/* The VTK writer, ASCII and binary, double and single precision, with and without the stress
+   tensor: every array in one FIELD block (what VTK's legacy reader shows with its default
+   settings), read back by the reader above and compared with the state; the binary file
+   decodes to the state exactly and is smaller. Two bodies, one tracking the stress (the stress
+   tensor holds its tau) and one not (-p I). */
 static int test_vtk_writer(void) {
     sps_world* w = new_world(3, 0.01);
     static const double lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.04, 0.03}, lo2[3] = {0.06, 0, 0}, hi2[3] = {0.09, 0.04, 0.03};
@@ -2102,7 +2105,7 @@ static int test_vtk_writer(void) {
     vtk_file v;
     sps_real blo[3], bhi[3];
     long ascii_size, binary_size;
-    int n, fd, k, stress;
+    int n, fd, k, variant;
     ENSURE(w);
     b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
     ENSURE(b.id != 0 && n == 60);
@@ -2114,25 +2117,27 @@ static int test_vtk_writer(void) {
     for (k = 0; k < 3; ++k) ENSURE(sps_world_step(w) == SPS_OK);
     ENSURE((fd = mkstemp(ascii)) >= 0); close(fd);
     ENSURE((fd = mkstemp(binary)) >= 0); close(fd);
-    for (stress = 0; stress <= 1; ++stress) {
-        opt.stress = stress;
+    for (variant = 0; variant < 4; ++variant) {
+        opt.stress = variant & 1;
+        opt.single_precision = variant >> 1;
         opt.binary = 0;
         ENSURE(sps_world_write_vtk_ex(w, ascii, &opt) == SPS_OK);
         ENSURE(vtk_read(ascii, &v) == 0 && !v.binary);
-        ENSURE(vtk_matches_world(&v, w, stress) == 0);
+        ENSURE(vtk_matches_world(&v, w, opt.stress, opt.single_precision) == 0);
         vtk_free(&v);
         opt.binary = 1;
         ENSURE(sps_world_write_vtk_ex(w, binary, &opt) == SPS_OK);
         ENSURE(vtk_read(binary, &v) == 0 && v.binary);
-        ENSURE(vtk_matches_world(&v, w, stress) == 0);
+        ENSURE(vtk_matches_world(&v, w, opt.stress, opt.single_precision) == 0);
         vtk_free(&v);
         ascii_size = file_size(ascii);
         binary_size = file_size(binary);
-        printf("    stress %d: ASCII %ld bytes, binary %ld bytes (%.2f)\n", stress, ascii_size, binary_size, (double)binary_size / ascii_size);
+        printf("    stress %d, single %d: ASCII %ld bytes, binary %ld bytes (%.2f)\n", opt.stress, opt.single_precision, ascii_size,
+               binary_size, (double)binary_size / ascii_size);
         ENSURE(binary_size > 0 && binary_size < ascii_size);
     }
     ENSURE(sps_world_write_vtk(w, ascii) == SPS_OK); /* the plain call: the default options */
-    ENSURE(vtk_read(ascii, &v) == 0 && !v.binary && vtk_matches_world(&v, w, 0) == 0);
+    ENSURE(vtk_read(ascii, &v) == 0 && !v.binary && vtk_matches_world(&v, w, 0, 0) == 0);
     vtk_free(&v);
     remove(ascii);
     remove(binary);
