@@ -695,7 +695,7 @@ SPSDEF sps_real sps_riemann_pressure(sps_real rho_l, sps_real u_l, sps_real p_l,
    sps_world_write_vtk writes. */
 typedef struct sps_vtk_options {
     int binary;           /* 0: ASCII, 9 significant digits. 1: binary legacy VTK, big-endian as
-                             the format requires, values exact; about 20x faster to write than
+                             the format requires, values exact; 8-15x faster to write than
                              ASCII, 0.9x its size in double, 0.5x with single_precision (2D
                              plate, bench/VALIDATION.md). Default 0. */
     int single_precision; /* 1: reals written as 32-bit floats (type float; what ParaView

@@ -263,7 +263,7 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"tend", OPT_REAL, &(c).t_end, "end time [s]", 0, 1e4, NULL},                                       \
     {"out", OPT_STRING, &(c).out, "output folder", 0, 0, NULL},                                         \
     {"vtk-every", OPT_REAL, &(c).vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},       \
-    {"vtk-binary", OPT_FLAG, &(c).vtk_binary, "VTK files in binary (20x faster to write, exact values)", 0, 0, NULL}, \
+    {"vtk-binary", OPT_FLAG, &(c).vtk_binary, "VTK files in binary (8-15x faster to write, exact values)", 0, 0, NULL}, \
     {"vtk-single", OPT_FLAG, &(c).vtk_single, "VTK reals as 32-bit floats (binary: half the size)", 0, 0, NULL}, \
     {"csv-every", OPT_REAL, &(c).csv_every, "CSV row interval [s]", 1e-7, 1e4, NULL},                   \
     {"threads", OPT_INT, &(c).threads, "OpenMP threads, 0 = all", 0, 1024, NULL},                       \
