@@ -4985,6 +4985,24 @@ static uint64_t sps__scene_hash(const sps_world* w) {
     return hash;
 }
 
+/* Block m of the last good state of good_n particles that holds values, in
+   sps__save_good_state's layout (field by field, one block per axis up to dim, each
+   good_n * components values from its start), and its length in reals; NULL past the last. */
+static sps_real* sps__good_block(const sps_world* w, int good_n, int m, size_t* length) {
+    size_t base = 0;
+    int k, a;
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (!(f->care & SPS__GOOD)) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a, base += (size_t)f->components)
+            if (!(f->axes && a >= w->dim) && m-- == 0) {
+                *length = (size_t)good_n * (size_t)f->components;
+                return w->good + base * (size_t)w->good_cap;
+            }
+    }
+    return NULL;
+}
+
 /* Where the state goes: a file (hashed as written), or nowhere (f NULL: only counts the bytes). */
 typedef struct sps__writer {
     FILE* f;
@@ -5054,9 +5072,11 @@ static void sps__put_state(const sps_world* w, sps__writer* s) {
     }
     sps__put_int(s, good_n);
     if (good_n) {
+        sps_real* block;
+        size_t length;
         sps__put(s, &w->good_time, sizeof w->good_time);
         sps__put(s, w->good_id, sizeof(int) * (size_t)good_n);
-        for (m = 0; m < (int)sps__good_reals(); ++m) sps__put(s, w->good + (size_t)m * (size_t)w->good_cap, sizeof(sps_real) * (size_t)good_n);
+        for (m = 0; (block = sps__good_block(w, good_n, m, &length)) != NULL; ++m) sps__put(s, block, sizeof(sps_real) * length);
     }
 }
 
@@ -5206,10 +5226,12 @@ static int sps__get_state(sps_world* w, sps__reader* r) {
     if (kept) sps__get_kept_forces(w, kept, r);
     good_n = sps__get_count(r, w->good ? w->n : 0, "last good state");
     if (good_n) {
+        sps_real* block;
+        size_t length;
         sps__get(r, &w->good_time, sizeof w->good_time, "last good time");
         sps__get(r, w->good_id, sizeof(int) * (size_t)good_n, "last good ids");
-        for (m = 0; m < (int)sps__good_reals(); ++m)
-            sps__get(r, w->good + (size_t)m * (size_t)w->good_cap, sizeof(sps_real) * (size_t)good_n, "last good state");
+        for (m = 0; (block = sps__good_block(w, good_n, m, &length)) != NULL; ++m)
+            sps__get(r, block, sizeof(sps_real) * length, "last good state");
     }
     if (r->apply && !r->bad) {
         w->stopped = stopped;
