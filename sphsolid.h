@@ -238,8 +238,8 @@
       velocities, constraints, walls, contact settings, observers) and calls
       sps_world_restore(w, path) instead of stepping up to the saved time; the run then goes on
       bit for bit as the saved one would have, for any thread count (tested: ENO-A, GNO-A, pair
-      rotation, contact with a wall, frozen geometry, the last good state; saved at 1 thread,
-      restored at 2). sps_world_save(w, path) writes the state between steps: time, step
+      rotation, contact with a wall, frozen geometry, the last good state; saved at 1 thread
+      and restored at 2, and the other way round). sps_world_save(w, path) writes the state between steps: time, step
       counters, every per-particle array the step carries from one configuration update to the
       next (sps__fields rows marked SPS__CARRIED, so a new field is saved without changing the
       restart code) in the current particle order, each body's mean rotation and spin, the
