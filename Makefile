@@ -85,14 +85,16 @@ $(FLOAT)/%: examples/%.c $(EXAMPLE_HEADERS) $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
 float-examples: $(addprefix $(FLOAT)/,$(EXAMPLES))
 
-# ---- bench programs: the real-time loop (double and float) and the SVG plotter ----
+# ---- bench programs: the real-time loop (double and float), the SVG plotter, the file costs ----
 $(BUILD)/realtime: bench/realtime.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(FLOAT)/realtime: bench/realtime.c $(EXAMPLE_HEADERS) $(HEADER) $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
 $(BUILD)/svgplot: bench/svgplot.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/svgplot
+$(BUILD)/io_cost: bench/io_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/svgplot $(BUILD)/io_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh

@@ -3,7 +3,7 @@
    Each case builds tiny worlds from random, often hostile defs (NaN, inf, negative, huge, zero,
    out-of-range enums, broken cookies, failing allocators) and calls the API in a random order:
    bodies, boxes, SDF fills, particles, velocities, constraints, observers, a few steps,
-   diagnostics, VTK output, validation, destruction; with handles of other or destroyed worlds
+   diagnostics, VTK output, restart files, validation, destruction; with handles of other or destroyed worlds
    and NULL arguments. Properties checked after every call:
      - no crash, no hang (an alarm stops a case that runs too long), no sanitizer report;
      - every error result is a known code and comes with a fresh, non-empty message (the world's
@@ -304,7 +304,7 @@ static int stop_after_three(sps_world* w, void* user) {
 
 /* ---- one random call on one of the case's worlds ---- */
 static int random_call(fuzz_state* s) {
-    int k = below(MAX_WORLDS), op = below(31);
+    int k = below(MAX_WORLDS), op = below(33);
     sps_world* w = s->w[k];
     sps_real lo[3], hi[3], x[3];
     double dp = s->dp[k];
@@ -425,7 +425,14 @@ static int random_call(fuzz_state* s) {
         snprintf(path, sizeof path, "%s/fuzz_%d.vtk", s->out_dir, k);
         if (chance(0.1)) p = "/nonexistent-dir/fuzz.vtk";
         if (chance(0.05)) p = NULL;
-        CALL(s, w, sps_world_write_vtk(w, p));
+        if (chance(0.5)) {
+            CALL(s, w, sps_world_write_vtk(w, p));
+        } else { /* binary or ASCII, with or without the stress tensor; sometimes an option out of range */
+            sps_vtk_options o = sps_default_vtk_options();
+            o.binary = chance(0.05) ? hostile_int() : below(2);
+            o.stress = chance(0.05) ? hostile_int() : below(2);
+            CALL(s, w, sps_world_write_vtk_ex(w, p, chance(0.1) ? NULL : &o));
+        }
     } break;
     case 18: { /* queries */
         sps_particle_state ps;
@@ -484,6 +491,32 @@ static int random_call(fuzz_state* s) {
         sps_body b = s->nbodies && chance(0.95) ? s->bodies[slot] : any_body(s, k);
         s->load[slot] = chance(0.03) ? hostile_real() : scales[below(5)];
         CALL(s, w, sps_body_set_acceleration(w, b, chance(0.2) ? NULL : random_acceleration, &s->load[slot]));
+    } break;
+    case 31: { /* save; then restore the world's own save, which must give back the same state */
+        char path[512];
+        const char* p = path;
+        long before = g_log_count;
+        sps_result r;
+        if (!chance(0.3)) break; /* files are slow: 30 % of the draws */
+        snprintf(path, sizeof path, "%s/fuzz_%d.restart", s->out_dir, k);
+        if (chance(0.1)) p = "/nonexistent-dir/fuzz.restart";
+        if (chance(0.05)) p = NULL;
+        r = sps_world_save(w, p);
+        if (check_result(s, w, r, before, "sps_world_save")) return 1;
+        if (w && r == SPS_OK && p == path) {
+            const double t = sps_world_time(w);
+            before = g_log_count;
+            r = sps_world_restore(w, path);
+            if (check_result(s, w, r, before, "sps_world_restore")) return 1;
+            if (r != SPS_OK && r != SPS_ERR_OUT_OF_MEMORY) FAIL("sps_world_restore of the world's own save returned %d: %s", (int)r, sps_world_last_error(w));
+            if (r == SPS_OK && sps_world_time(w) != t) FAIL("sps_world_restore of the world's own save moved the time from %g to %g", t, sps_world_time(w));
+        }
+    } break;
+    case 32: { /* restore from the save of any world of the case (or of none: no file) */
+        char path[512];
+        if (!chance(0.3)) break;
+        snprintf(path, sizeof path, "%s/fuzz_%d.restart", s->out_dir, below(MAX_WORLDS));
+        CALL(s, w, sps_world_restore(w, chance(0.05) ? NULL : path));
     } break;
     default: /* 26: destroy and forget every world of the case */
         for (a = 0; a < MAX_WORLDS; ++a) {

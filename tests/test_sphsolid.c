@@ -2197,8 +2197,24 @@ static int test_determinism_repeated_runs(void) {
 /* ============================================================================================ */
 /* >>output                                                                                     */
 
-/* Reads a line into buf without the newline; 0 at end of file. */
-static int read_line(FILE* f, char* buf, int size) {
+/* A minimal reader of the legacy VTK files the library writes, after the format's spec: four
+   header lines (version, title of at most 255 characters, ASCII or BINARY, DATASET POLYDATA),
+   POINTS n type, VERTICES n 2n, POINT_DATA n, FIELD FieldData k and k arrays `name components
+   tuples type`. Each keyword line is followed by its values: ASCII numbers, or big-endian binary
+   right after the line's newline, with a newline after the block. */
+#define VTK_MAX_ARRAYS 16
+typedef struct vtk_array {
+    char name[64], type[16];
+    int components, tuples;
+    double* v; /* components * tuples */
+} vtk_array;
+typedef struct vtk_file {
+    int binary, n, arrays;
+    double *points, *vertices; /* 3 n and 2 n values */
+    vtk_array array[VTK_MAX_ARRAYS];
+} vtk_file;
+
+static int vtk_line(FILE* f, char* buf, int size) {
     size_t len;
     if (!fgets(buf, size, f)) return 0;
     len = strlen(buf);
@@ -2206,71 +2222,186 @@ static int read_line(FILE* f, char* buf, int size) {
     return 1;
 }
 
-/* Skips count data lines, each of which must hold `fields` numbers. */
-static int skip_data(FILE* f, int count, int fields) {
-    char line[512];
-    int i, k;
-    for (i = 0; i < count; ++i) {
-        char* p = line;
-        ENSURE(read_line(f, line, sizeof line));
-        for (k = 0; k < fields; ++k) {
-            char* end;
-            strtod(p, &end);
-            ENSURE(end != p);
-            p = end;
+/* count values of type ("double", "float" or "int") into v. */
+static int vtk_values(FILE* f, int binary, const char* type, long count, double* v) {
+    const int size = strcmp(type, "double") == 0 ? 8 : 4;
+    long k;
+    ENSURE(strcmp(type, "double") == 0 || strcmp(type, "float") == 0 || strcmp(type, "int") == 0);
+    for (k = 0; k < count; ++k) {
+        unsigned char be[8], host[8];
+        int b;
+        if (!binary) {
+            ENSURE(fscanf(f, "%lf", &v[k]) == 1);
+            continue;
         }
-        while (*p == ' ') ++p;
-        ENSURE(*p == 0);
+        ENSURE(fread(be, 1, (size_t)size, f) == (size_t)size);
+        for (b = 0; b < size; ++b) { /* big-endian to the host's order */
+            const uint16_t one = 1;
+            host[b] = *(const unsigned char*)&one ? be[size - 1 - b] : be[b];
+        }
+        if (size == 8) { double d; memcpy(&d, host, 8); v[k] = d; }
+        else if (strcmp(type, "float") == 0) { float x; memcpy(&x, host, 4); v[k] = x; }
+        else { int32_t x; memcpy(&x, host, 4); v[k] = x; }
     }
+    ENSURE(fgetc(f) == '\n'); /* the end of the last ASCII line, or the newline after a binary block */
     return 0;
 }
 
-/* The legacy VTK file has exactly the header lines of the format (version 3.0, ASCII, POLYDATA,
-   POINTS n double, VERTICES n 2n, POINT_DATA n), n = the particle count, and every data block
-   (velocity, displacement, pressure, density, von_mises, body, id) holds n rows. */
+static void vtk_free(vtk_file* v) {
+    int k;
+    free(v->points); free(v->vertices);
+    for (k = 0; k < v->arrays; ++k) free(v->array[k].v);
+    memset(v, 0, sizeof *v);
+}
+
+static int vtk_read(const char* path, vtk_file* v) {
+    char line[512], type[16], expect[128];
+    FILE* f = fopen(path, "rb");
+    int n2, k;
+    memset(v, 0, sizeof *v);
+    ENSURE(f);
+    ENSURE(vtk_line(f, line, sizeof line) && strcmp(line, "# vtk DataFile Version 3.0") == 0);
+    ENSURE(vtk_line(f, line, sizeof line) && strlen(line) < 256);
+    ENSURE(vtk_line(f, line, sizeof line) && (strcmp(line, "ASCII") == 0 || strcmp(line, "BINARY") == 0));
+    v->binary = strcmp(line, "BINARY") == 0;
+    ENSURE(vtk_line(f, line, sizeof line) && strcmp(line, "DATASET POLYDATA") == 0);
+    ENSURE(vtk_line(f, line, sizeof line) && sscanf(line, "POINTS %d %15s", &v->n, type) == 2 && v->n > 0);
+    ENSURE((v->points = (double*)malloc(sizeof(double) * 3 * (size_t)v->n)) != NULL);
+    ENSURE(vtk_values(f, v->binary, type, 3L * v->n, v->points) == 0);
+    ENSURE(vtk_line(f, line, sizeof line) && sscanf(line, "VERTICES %d %d", &k, &n2) == 2 && k == v->n && n2 == 2 * v->n);
+    ENSURE((v->vertices = (double*)malloc(sizeof(double) * 2 * (size_t)v->n)) != NULL);
+    ENSURE(vtk_values(f, v->binary, "int", 2L * v->n, v->vertices) == 0);
+    snprintf(expect, sizeof expect, "POINT_DATA %d", v->n);
+    ENSURE(vtk_line(f, line, sizeof line) && strcmp(line, expect) == 0);
+    ENSURE(vtk_line(f, line, sizeof line) && sscanf(line, "FIELD FieldData %d", &v->arrays) == 1);
+    ENSURE(v->arrays > 0 && v->arrays <= VTK_MAX_ARRAYS);
+    for (k = 0; k < v->arrays; ++k) {
+        vtk_array* a = &v->array[k];
+        ENSURE(vtk_line(f, line, sizeof line) && sscanf(line, "%63s %d %d %15s", a->name, &a->components, &a->tuples, a->type) == 4);
+        ENSURE(a->components >= 1 && a->components <= 9 && a->tuples == v->n);
+        ENSURE((a->v = (double*)malloc(sizeof(double) * (size_t)a->components * (size_t)v->n)) != NULL);
+        ENSURE(vtk_values(f, v->binary, a->type, (long)a->components * v->n, a->v) == 0);
+    }
+    ENSURE(fgetc(f) == EOF); /* nothing after the last array */
+    fclose(f);
+    return 0;
+}
+
+static long file_size(const char* path) {
+    FILE* f = fopen(path, "rb");
+    long size = -1;
+    if (f && fseek(f, 0, SEEK_END) == 0) size = ftell(f);
+    if (f) fclose(f);
+    return size;
+}
+
+/* Whether a file value equals the state's (rounded to float with single precision): exactly
+   for binary (the reals as stored), to the 9 significant digits of ASCII otherwise (5e-9
+   relative, plus 1e-300 for zeros). */
+static int vtk_same(double file, double state, int binary, int single) {
+    if (single) state = (float)state;
+    return binary ? file == state : fabs(file - state) <= 5e-9 * fabs(state) + 1e-300;
+}
+
+/* Checks a file against the world: the points, the vertices, and every array (names and order
+   of the table, sizes, values by particle id; the stress tensor, when written, against the
+   von Mises stress it implies). */
+static int vtk_matches_world(const vtk_file* v, const sps_world* w, int with_stress, int single) {
+    static const char* names[] = {"velocity", "displacement", "pressure", "density", "von_mises", "stress", "body", "id"};
+    static const int comps[] = {3, 3, 1, 1, 1, 9, 1, 1};
+    const int* ids = sps_world_particle_ids(w);
+    int i, k, c, a = 0, m;
+    ENSURE(v->n == sps_world_particle_count(w));
+    ENSURE(v->arrays == 7 + with_stress);
+    for (k = 0; k < 8; ++k) {
+        if (k == 5 && !with_stress) continue;
+        ENSURE(strcmp(v->array[a].name, names[k]) == 0 && v->array[a].components == comps[k]);
+        ENSURE(strcmp(v->array[a].type, k >= 6 ? "int" : single ? "float" : "double") == 0);
+        for (i = 0; i < v->n; ++i) {
+            sps_particle_state ps;
+            const double* x = v->array[a].v + (size_t)comps[k] * i;
+            double want[9] = {0};
+            ENSURE(sps_world_particle(w, ids[i], &ps) == SPS_OK);
+            for (c = 0; c < 3; ++c) {
+                if (k == 0) want[c] = ps.velocity[c];
+                if (k == 1) want[c] = ps.displacement[c];
+            }
+            if (k == 2) want[0] = ps.pressure;
+            if (k == 3) want[0] = ps.density;
+            if (k == 4) want[0] = ps.von_mises;
+            if (k == 6) want[0] = ps.body_index;
+            if (k == 7) want[0] = ids[i];
+            if (k == 5) { /* symmetric, and the von Mises stress of it is the von_mises array's */
+                const double s6[6] = {x[0], x[1], x[2], x[4], x[5], x[8]};
+                ENSURE(x[1] == x[3] && x[2] == x[6] && x[5] == x[7]);
+                /* round-off of the formula; ASCII: its 9 digits; single precision: float's 6e-8 */
+                ENSURE_NEAR(von_mises(s6, 3), ps.von_mises, (single ? 1e-6 : v->binary ? 1e-12 : 1e-8) * (fabs(ps.von_mises) + fabs(ps.pressure)));
+                continue;
+            }
+            for (m = 0; m < comps[k]; ++m) ENSURE(vtk_same(x[m], want[m], v->binary, single && k < 6));
+            if (k == 0) /* the points are the positions */
+                for (c = 0; c < 3; ++c) ENSURE(vtk_same(v->points[3 * i + c], ps.position[c], v->binary, single));
+        }
+        ++a;
+    }
+    for (i = 0; i < v->n; ++i) ENSURE(v->vertices[2 * i] == 1 && v->vertices[2 * i + 1] == i);
+    return 0;
+}
+
+/* The VTK writer, ASCII and binary, double and single precision, with and without the stress
+   tensor: every array in one FIELD block (what VTK's legacy reader shows with its default
+   settings), read back by the reader above and compared with the state; the binary file
+   decodes to the state exactly and is smaller. Two bodies, one tracking the stress (the stress
+   tensor holds its tau) and one not (-p I). */
 static int test_vtk_writer(void) {
     sps_world* w = new_world(3, 0.01);
-    static const double lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.04, 0.03};
-    static const char* scalars[5] = {"pressure", "density", "von_mises", "body", "id"};
-    char path[] = "/tmp/test_sphsolid_vtk_XXXXXX", line[512], expect[128];
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.04, 0.03}, lo2[3] = {0.06, 0, 0}, hi2[3] = {0.09, 0.04, 0.03};
+    char ascii[] = "/tmp/test_sphsolid_vtk_XXXXXX", binary[] = "/tmp/test_sphsolid_vtkb_XXXXXX";
     unsigned long long seed = 3;
-    sps_body b;
-    FILE* f;
-    int n, fd, k;
+    sps_vtk_options opt = sps_default_vtk_options();
+    sps_body_def bd = sps_default_body_def();
+    sps_body b, b2;
+    vtk_file v;
+    sps_real blo[3], bhi[3];
+    long ascii_size, binary_size;
+    int n, fd, k, variant;
     ENSURE(w);
     b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
     ENSURE(b.id != 0 && n == 60);
+    bd.track_stress = 1;
+    for (k = 0; k < 3; ++k) { blo[k] = lo2[k]; bhi[k] = hi2[k]; }
+    ENSURE(sps_world_add_body(w, &bd, &b2) == SPS_OK && sps_body_add_box(w, b2, blo, bhi, NULL) == SPS_OK);
     ENSURE(sps_body_set_velocity(w, b, random_velocity, &seed) == SPS_OK);
-    ENSURE(sps_world_step(w) == SPS_OK);
-    ENSURE((fd = mkstemp(path)) >= 0);
-    close(fd);
-    ENSURE(sps_world_write_vtk(w, path) == SPS_OK);
-    ENSURE((f = fopen(path, "r")) != NULL);
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, "# vtk DataFile Version 3.0") == 0);
-    ENSURE(read_line(f, line, sizeof line) && strlen(line) < 256); /* title line, at most 255 chars */
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, "ASCII") == 0);
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, "DATASET POLYDATA") == 0);
-    snprintf(expect, sizeof expect, "POINTS %d double", n);
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, expect) == 0);
-    ENSURE(skip_data(f, n, 3) == 0);
-    snprintf(expect, sizeof expect, "VERTICES %d %d", n, 2 * n);
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, expect) == 0);
-    ENSURE(skip_data(f, n, 2) == 0);
-    snprintf(expect, sizeof expect, "POINT_DATA %d", n);
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, expect) == 0);
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, "VECTORS velocity double") == 0);
-    ENSURE(skip_data(f, n, 3) == 0);
-    ENSURE(read_line(f, line, sizeof line) && strcmp(line, "VECTORS displacement double") == 0);
-    ENSURE(skip_data(f, n, 3) == 0);
-    for (k = 0; k < 5; ++k) {
-        snprintf(expect, sizeof expect, "SCALARS %s %s 1", scalars[k], k < 3 ? "double" : "int");
-        ENSURE(read_line(f, line, sizeof line) && strcmp(line, expect) == 0);
-        ENSURE(read_line(f, line, sizeof line) && strcmp(line, "LOOKUP_TABLE default") == 0);
-        ENSURE(skip_data(f, n, 1) == 0);
+    ENSURE(sps_body_set_velocity(w, b2, random_velocity, &seed) == SPS_OK);
+    for (k = 0; k < 3; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE((fd = mkstemp(ascii)) >= 0); close(fd);
+    ENSURE((fd = mkstemp(binary)) >= 0); close(fd);
+    for (variant = 0; variant < 4; ++variant) {
+        opt.stress = variant & 1;
+        opt.single_precision = variant >> 1;
+        opt.binary = 0;
+        ENSURE(sps_world_write_vtk_ex(w, ascii, &opt) == SPS_OK);
+        ENSURE(vtk_read(ascii, &v) == 0 && !v.binary);
+        ENSURE(vtk_matches_world(&v, w, opt.stress, opt.single_precision) == 0);
+        vtk_free(&v);
+        opt.binary = 1;
+        ENSURE(sps_world_write_vtk_ex(w, binary, &opt) == SPS_OK);
+        ENSURE(vtk_read(binary, &v) == 0 && v.binary);
+        ENSURE(vtk_matches_world(&v, w, opt.stress, opt.single_precision) == 0);
+        vtk_free(&v);
+        ascii_size = file_size(ascii);
+        binary_size = file_size(binary);
+        printf("    stress %d, single %d: ASCII %ld bytes, binary %ld bytes (%.2f)\n", opt.stress, opt.single_precision, ascii_size,
+               binary_size, (double)binary_size / ascii_size);
+        ENSURE(binary_size > 0 && binary_size < ascii_size);
     }
-    ENSURE(!read_line(f, line, sizeof line)); /* nothing after the last block */
-    fclose(f);
-    remove(path);
+    ENSURE(sps_world_write_vtk(w, ascii) == SPS_OK); /* the plain call: the default options */
+    ENSURE(vtk_read(ascii, &v) == 0 && !v.binary && vtk_matches_world(&v, w, 0, 0) == 0);
+    vtk_free(&v);
+    remove(ascii);
+    remove(binary);
+    opt.binary = 2;
+    ENSURE(sps_world_write_vtk_ex(w, ascii, &opt) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "binary = 2"));
     ENSURE(sps_world_write_vtk(w, "/nonexistent-dir/x.vtk") == SPS_ERR_IO);
     ENSURE(strstr(sps_world_last_error(w), "/nonexistent-dir/x.vtk") != NULL);
     sps_world_destroy(w);
@@ -3036,6 +3167,257 @@ static int test_frame_wall_budget(void) {
 }
 
 /* ============================================================================================ */
+/* >>restart                                                                                    */
+
+/* A small 2D scene for the restart tests (dp 5 mm, c0 = 28.9 m/s): a block of 40 x 20
+   particles swirling at random (0.3 m/s), clamped at its left end, with an observer; with
+   `contact`, a second block thrown at it at 2 m/s, within the contact range from the start,
+   and a floor wall under both, with gravity. */
+typedef struct restart_scene {
+    sps_shear shear;
+    sps_rotation rotation;
+    int frozen_geometry, keep_last_good_state, contact, threads;
+    double shift; /* [m] the first block moved along x */
+} restart_scene;
+
+static void velocity_minus_x(const sps_real x[3], sps_real v[3], void* user) {
+    (void)x; (void)user;
+    v[0] = -2; v[1] = 0; v[2] = 0;
+}
+
+static sps_world* restart_build(const restart_scene* sc, int threads, sps_observer* obs) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body a, b;
+    unsigned long long seed = 11;
+    const sps_real lo[3] = {sc->shift, 0, 0}, hi[3] = {0.2 + sc->shift, 0.1, 0}, clo[3] = {-1, -1, -1}, chi[3] = {0.01, 1, 1};
+    const sps_real blo[3] = {0.21, 0.03, 0}, bhi[3] = {0.3, 0.1, 0}, floor_point[3] = {0, -0.002, 0}, up[3] = {0, 1, 0};
+    const sps_real x_obs[3] = {0.15, 0.05, 0};
+    wd.dim = 2; wd.dp = 0.005; wd.threads = threads; wd.log = quiet_log;
+    wd.max_substeps = 20; /* more configuration updates (sorts, list rebuilds) per sub-step: cheaper */
+    wd.frozen_geometry = sc->frozen_geometry;
+    wd.keep_last_good_state = sc->keep_last_good_state;
+    if (sc->contact) wd.gravity[1] = -9.81;
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
+    bd.shear = sc->shear;
+    bd.rotation = sc->rotation;
+    bd.track_stress = 1;
+    if (sps_world_add_body(w, &bd, &a) != SPS_OK || sps_body_add_box(w, a, lo, hi, NULL) != SPS_OK ||
+        sps_body_set_velocity(w, a, random_velocity, &seed) != SPS_OK ||
+        sps_body_constrain_box(w, a, clo, chi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK || sps_world_add_observer(w, a, x_obs, obs) != SPS_OK)
+        goto fail;
+    if (sc->contact && (sps_world_add_body(w, &bd, &b) != SPS_OK || sps_body_add_box(w, b, blo, bhi, NULL) != SPS_OK ||
+                        sps_body_set_velocity(w, b, velocity_minus_x, NULL) != SPS_OK ||
+                        sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP) != SPS_OK))
+        goto fail;
+    return w;
+fail:
+    printf("    %s\n", sps_world_last_error(w));
+    sps_world_destroy(w);
+    return NULL;
+}
+
+/* Everything a run's result is: per particle by id its position, velocity, density, pressure and
+   von Mises stress (which holds the shear stress), then the time, the step counters and the
+   observer. Caller frees. */
+static double* restart_result(const sps_world* w, sps_observer obs) {
+    const int n = sps_world_particle_count(w);
+    double* s = (double*)malloc(sizeof(double) * (9 * (size_t)n + 9));
+    sps_diagnostics d;
+    sps_real u[3], v[3];
+    int id, a;
+    if (!s) return NULL;
+    for (id = 0; id < n; ++id) {
+        sps_particle_state ps;
+        sps_world_particle(w, id, &ps);
+        for (a = 0; a < 3; ++a) { s[9 * id + a] = ps.position[a]; s[9 * id + 3 + a] = ps.velocity[a]; }
+        s[9 * id + 6] = ps.density; s[9 * id + 7] = ps.pressure; s[9 * id + 8] = ps.von_mises;
+    }
+    sps_world_diagnostics((sps_world*)w, ALL_BODIES, &d); /* lists valid after a step: changes nothing */
+    sps_observer_read(w, obs, u, v);
+    s[9 * n] = sps_world_time(w); s[9 * n + 1] = (double)d.acoustic_steps; s[9 * n + 2] = (double)d.advection_steps;
+    for (a = 0; a < 3; ++a) { s[9 * n + 3 + a] = u[a]; s[9 * n + 6 + a] = v[a]; }
+    return s;
+}
+
+/* The diagnostics that read the neighbour lists and the state: bit for bit the same. */
+static int same_diagnostics(const sps_diagnostics* a, const sps_diagnostics* b) {
+    return a->time == b->time && a->kinetic_energy == b->kinetic_energy && a->strain_energy == b->strain_energy &&
+           a->hourglass == b->hourglass && a->min_spacing == b->min_spacing && a->angular_momentum[2] == b->angular_momentum[2] &&
+           a->acoustic_steps == b->acoustic_steps && a->advection_steps == b->advection_steps && a->dt_acoustic == b->dt_acoustic;
+}
+
+/* Runs `before` advection steps of the scene at 3 - sc->threads threads, saves, runs `after`
+   more; rebuilds the scene at sc->threads, restores, checks the diagnostics at the restore
+   point and runs `after` steps: the two results must be the same bit for bit. */
+static int restart_round_trip(const restart_scene* sc, int before, int after) {
+    char path[] = "/tmp/test_sphsolid_restart_XXXXXX";
+    sps_observer obs, obs2;
+    sps_diagnostics d_saved, d_restored;
+    sps_world *w = restart_build(sc, 3 - sc->threads, &obs), *w2;
+    double *first, *second;
+    int fd, k, n, same;
+    ENSURE(w);
+    for (k = 0; k < before; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE((fd = mkstemp(path)) >= 0);
+    close(fd);
+    ENSURE(sps_world_save(w, path) == SPS_OK);
+    ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d_saved) == SPS_OK);
+    for (k = 0; k < after; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    n = sps_world_particle_count(w);
+    first = restart_result(w, obs);
+    sps_world_destroy(w);
+    ENSURE((w2 = restart_build(sc, sc->threads, &obs2)) != NULL);
+    if (sps_world_restore(w2, path) != SPS_OK) printf("    %s\n", sps_world_last_error(w2));
+    ENSURE(sps_world_time(w2) == d_saved.time && d_saved.time > 0);
+    ENSURE(sps_world_diagnostics(w2, ALL_BODIES, &d_restored) == SPS_OK);
+    ENSURE(same_diagnostics(&d_saved, &d_restored)); /* the lists came back too */
+    for (k = 0; k < after; ++k) ENSURE(sps_world_step(w2) == SPS_OK);
+    second = restart_result(w2, obs2);
+    sps_world_destroy(w2);
+    remove(path);
+    ENSURE(first && second);
+    same = memcmp(first, second, sizeof(double) * (9 * (size_t)n + 9)) == 0;
+    if (!same) printf("    the restored run differs from the uninterrupted one (t = %.17g vs %.17g)\n", first[9 * n], second[9 * n]);
+    free(first); free(second);
+    ENSURE(same);
+    return 0;
+}
+
+/* Save after some steps, go on; rebuild, restore, go on: the same result bit for bit, for the
+   formulations whose state differs (ENO-A's mean rotation and spin, GNO-A's velocity gradient,
+   the pair forces of SPS_ROTATION_PAIR), contact with a wall, frozen geometry and the last good
+   state; saved at 1 thread and restored at 2, and once the other way round. */
+static int test_restart_round_trip(void) {
+    static const restart_scene scenes[] = {
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, 0, 0, 0, 2, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 1, 0, 1, 2, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0},
+    };
+    int k;
+    for (k = 0; k < (int)(sizeof scenes / sizeof scenes[0]); ++k) {
+        printf("    scene %d\n", k);
+        if (restart_round_trip(&scenes[k], 5, 5)) return 1;
+    }
+    return 0;
+}
+
+/* keep_last_good_state: the copy of the last configuration update comes back too. A particle
+   thrown beyond the escape distance right after the save stops the next step at its
+   configuration update, and the world is rolled back to that copy: the same state, bit for
+   bit, in the saved world and in the restored one. */
+static int test_restart_last_good_state(void) {
+    char path[] = "/tmp/test_sphsolid_restart_XXXXXX";
+    const restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0};
+    const sps_real far[3] = {1e3, 0, 0};
+    sps_observer obs, obs2;
+    sps_world *w = restart_build(&sc, 1, &obs), *w2;
+    double *first, *second;
+    int fd, k, n, same;
+    ENSURE(w);
+    for (k = 0; k < 4; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE((fd = mkstemp(path)) >= 0);
+    close(fd);
+    ENSURE(sps_world_save(w, path) == SPS_OK);
+    ENSURE(sps_world_set_particle(w, 7, far, NULL) == SPS_OK);
+    ENSURE(sps_world_step(w) == SPS_ERR_UNSTABLE && strstr(sps_world_last_error(w), "escaped"));
+    n = sps_world_particle_count(w);
+    first = restart_result(w, obs);
+    sps_world_destroy(w);
+    ENSURE((w2 = restart_build(&sc, 2, &obs2)) != NULL);
+    ENSURE(sps_world_restore(w2, path) == SPS_OK);
+    ENSURE(sps_world_set_particle(w2, 7, far, NULL) == SPS_OK);
+    ENSURE(sps_world_step(w2) == SPS_ERR_UNSTABLE);
+    second = restart_result(w2, obs2);
+    sps_world_destroy(w2);
+    remove(path);
+    ENSURE(first && second);
+    same = memcmp(first, second, sizeof(double) * (9 * (size_t)n + 9)) == 0;
+    free(first); free(second);
+    ENSURE(same);
+    return 0;
+}
+
+/* Copies the first `bytes` of from into to (all of it when bytes < 0), with the byte at `flip`
+   (if >= 0) changed. */
+static int copy_file_part(const char* from, const char* to, long bytes, long flip) {
+    FILE *in = fopen(from, "rb"), *out = fopen(to, "wb");
+    long k;
+    int c;
+    if (!in || !out) { if (in) fclose(in); if (out) fclose(out); return 1; }
+    for (k = 0; (bytes < 0 || k < bytes) && (c = fgetc(in)) != EOF; ++k) fputc(k == flip ? c ^ 0x5a : c, out);
+    fclose(in);
+    return fclose(out) != 0;
+}
+
+static int restore_refused(const restart_scene* sc, const char* path, sps_result expected, const char* needle) {
+    sps_observer obs;
+    sps_world* w = restart_build(sc, 1, &obs);
+    sps_result r;
+    ENSURE(w);
+    r = sps_world_restore(w, path);
+    if (r != expected || !strstr(sps_world_last_error(w), needle))
+        printf("    restore gave %d '%s', expected %d with '%s'\n", (int)r, sps_world_last_error(w), (int)expected, needle);
+    ENSURE(r == expected);
+    ENSURE(strstr(sps_world_last_error(w), needle) != NULL);
+    ENSURE(sps_world_time(w) == 0); /* the state is the rebuilt one: a step from it works */
+    ENSURE(sps_world_step(w) == SPS_OK);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* A restart file meets only the scene it was saved from, whole: another scene (a body's count,
+   its shear, its particles moved), a truncated or damaged file, a file of another kind and a
+   missing one are refused with a message, and the world is left as it was. */
+static int test_restart_refused(void) {
+    char path[] = "/tmp/test_sphsolid_restart_XXXXXX", part[] = "/tmp/test_sphsolid_part_XXXXXX";
+    restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0}, other = sc;
+    sps_observer obs;
+    sps_world* w = restart_build(&sc, 1, &obs);
+    long size;
+    FILE* f;
+    int fd, k;
+    ENSURE(w);
+    ENSURE((fd = mkstemp(path)) >= 0); close(fd);
+    ENSURE((fd = mkstemp(part)) >= 0); close(fd);
+    ENSURE(sps_world_save(w, path) == SPS_ERR_STATE && strstr(sps_world_last_error(w), "step first"));
+    ENSURE(sps_world_save(w, NULL) == SPS_ERR_INVALID_ARG && sps_world_save(NULL, path) == SPS_ERR_INVALID_ARG);
+    ENSURE(sps_world_restore(w, NULL) == SPS_ERR_INVALID_ARG && sps_world_restore(NULL, path) == SPS_ERR_INVALID_ARG);
+    for (k = 0; k < 3; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE(sps_world_save(w, "/nonexistent-dir/x.restart") == SPS_ERR_IO && strstr(sps_world_last_error(w), "/nonexistent-dir/x.restart"));
+    ENSURE(sps_world_save(w, path) == SPS_OK);
+    ENSURE(sps_world_restore(w, path) == SPS_OK); /* into the world it came from: nothing changes */
+    sps_world_destroy(w);
+    other.shear = SPS_SHEAR_GNO_A;
+    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "shear = 1 in the file, 5 in this world") == 0);
+    other = sc;
+    other.contact = 1;
+    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "particle count") == 0);
+    other = sc;
+    other.shift = 0.0005; /* the same counts and models, the particles a tenth of dp away */
+    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "reference positions") == 0);
+    f = fopen(path, "rb");
+    ENSURE(f && fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 1000);
+    fclose(f);
+    ENSURE(copy_file_part(path, part, size / 2, -1) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, "truncated") == 0);
+    ENSURE(copy_file_part(path, part, 20, -1) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, "truncated") == 0);
+    ENSURE(copy_file_part(path, part, -1, size - 100) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, "checksum") == 0);
+    ENSURE(copy_file_part(path, part, -1, 3) == 0);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_INVALID_ARG, "not a sphsolid restart file") == 0);
+    remove(part);
+    ENSURE(restore_refused(&sc, part, SPS_ERR_IO, part) == 0); /* missing */
+    remove(path);
+    return 0;
+}
+
+/* ============================================================================================ */
 
 int main(int argc, char** argv) {
     int i;
@@ -3118,6 +3500,9 @@ int main(int argc, char** argv) {
     RUN(test_memory_out_of_memory_everywhere);
     RUN(test_determinism_repeated_runs);
     RUN(test_vtk_writer);
+    RUN(test_restart_round_trip);
+    RUN(test_restart_last_good_state);
+    RUN(test_restart_refused);
     RUN(test_csv_row);
     RUN_LONG(test_plate2d_period_eno_a);
     RUN_LONG(test_plate2d_period_eno);
