@@ -154,6 +154,16 @@ static int first_guess_substeps(const sps_world* w, double fps) {
 }
 
 
+/* The library's warnings (an impact faster than 0.2 c0, the energy watchdog): printed when
+   headless, shown in the hint line in the terminal, where a printed line would scroll the
+   picture away. */
+static int g_in_terminal;
+static char g_warning[256];
+static void demo_log(int level, const char* message, void* user) {
+    if (level == 0 || !g_in_terminal) ex_log(level, message, user);
+    else snprintf(g_warning, sizeof g_warning, "%s", message);
+}
+
 int main(int argc, char** argv) {
     int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, substeps, frame, shear = 0, paused = 0, resets = 0;
     double fps = 30, start, physics = 0, drawing = 0, slowest = 0, next, shown_fps = 0, fps_clock;
@@ -174,7 +184,8 @@ int main(int argc, char** argv) {
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "jelly in the terminal, in real time (scenes/jelly.h)", opts, (int)(sizeof opts / sizeof *opts));
     if (!headless) terminal_size(size);
-    ex_check(NULL, jelly_create(threads, ex_log, &scene));
+    g_in_terminal = !headless;
+    ex_check(NULL, jelly_create(threads, demo_log, &scene));
     screen_open(&scr, size[0], size[1]);
     substeps = first_guess_substeps(scene.w, fps);
     if (!headless) terminal_raw();
@@ -191,7 +202,7 @@ int main(int argc, char** argv) {
         if (key == ' ') {
             if (scene.n_drops == JELLY_MAX_DROPS) { /* particles cannot be removed: start afresh */
                 sps_world_destroy(scene.w);
-                ex_check(NULL, jelly_create(threads, ex_log, &scene));
+                ex_check(NULL, jelly_create(threads, demo_log, &scene));
                 snprintf(hint, sizeof hint, "scene reset after %d blocks: particles cannot be removed yet", JELLY_MAX_DROPS);
             }
             ex_check(scene.w, jelly_drop_block(&scene, formulations[shear]));
@@ -202,7 +213,7 @@ int main(int argc, char** argv) {
             if (r == SPS_ERR_UNSTABLE && !headless) { /* an OG block may break down: show it and start afresh */
                 snprintf(hint, sizeof hint, "%.*s: scene reset", (int)sizeof hint - 16, sps_world_last_error(scene.w));
                 sps_world_destroy(scene.w);
-                ex_check(NULL, jelly_create(threads, ex_log, &scene));
+                ex_check(NULL, jelly_create(threads, demo_log, &scene));
                 ++resets;
             } else {
                 ex_check(scene.w, r);
@@ -210,6 +221,10 @@ int main(int argc, char** argv) {
             }
         }
         t1 = wall_seconds();
+        if (*g_warning) { /* the last warning, until the next */
+            snprintf(hint, sizeof hint, "%s", g_warning);
+            *g_warning = 0;
+        }
         snprintf(status, sizeof status, "t = %6.2f s  %5d particles  %5.1f fps  new blocks: %s%s", (double)sps_world_time(scene.w),
                  sps_world_particle_count(scene.w), shown_fps, shear_name(formulations[shear]), paused ? "  (paused)" : "");
         screen_draw(&scr, scene.w, status, hint);
