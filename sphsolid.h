@@ -3931,17 +3931,21 @@ static sps_real sps__wall_sigma(const sps_world* w, sps_real d) {
     return d >= 0 ? sps__plane_table_at(w, w->wall_sigma, SPS__WALL_TABLE, d) : 1 - sps__plane_table_at(w, w->wall_sigma, SPS__WALL_TABLE, -d);
 }
 
-/* Contact density of particle i (its pairs and the walls). */
-static sps_real sps__contact_density(const sps_world* w, int i) {
+/* Contact density of particle i from the other bodies' particles (its contact pairs). */
+static sps_real sps__pair_contact_density(const sps_world* w, int i) {
     sps_real sigma = 0;
     int k, a;
-    if (w->contact_bodies)
-        for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
-            const int j = w->ct_j[k];
-            sps_real r2 = 0;
-            for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
-            sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
-        }
+    for (k = w->ct_first[i]; w->contact_bodies && k < w->ct_first[i + 1]; ++k) {
+        const int j = w->ct_j[k];
+        sps_real r2 = 0;
+        for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+        sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
+    }
+    return sigma;
+}
+/* sigma plus the contact density of particle i from the walls. */
+static sps_real sps__wall_contact_density(const sps_world* w, int i, sps_real sigma) {
+    int k, a;
     for (k = 0; k < w->nwalls; ++k) {
         const sps__wall* wl = &w->walls[k];
         sps_real d = 0;
@@ -3950,6 +3954,8 @@ static sps_real sps__contact_density(const sps_world* w, int i) {
     }
     return sigma;
 }
+/* Contact density of particle i (its pairs and the walls). */
+static sps_real sps__contact_density(const sps_world* w, int i) { return sps__wall_contact_density(w, i, sps__pair_contact_density(w, i)); }
 
 /* Harmonic mean of two bulk moduli: the stiffness of a contact between two bodies. */
 static sps_real sps__contact_stiffness(sps_real ka, sps_real kb) { return 2 * ka * kb / (ka + kb); }
@@ -3962,22 +3968,9 @@ static sps_real sps__contact_stiffness(sps_real ka, sps_real kb) { return 2 * ka
    Volumes are taken as fixed, as in the force. */
 static sps_real sps__contact_energy(const sps_world* w, int i) {
     const sps__body* bi = &w->bodies[w->body[i]];
-    sps_real sigma = 0, sigma_wall = 0, k_pair = 0;
-    int k, a;
-    if (w->contact_bodies)
-        for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
-            const int j = w->ct_j[k];
-            sps_real r2 = 0;
-            for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
-            sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
-            if (k == w->ct_first[i]) k_pair = sps__contact_stiffness(bi->mat.K, w->bodies[w->body[j]].mat.K);
-        }
-    for (k = 0; k < w->nwalls; ++k) {
-        const sps__wall* wl = &w->walls[k];
-        sps_real d = 0;
-        for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
-        if (d < w->support) sigma_wall += sps__wall_sigma(w, d);
-    }
+    const sps_real sigma = sps__pair_contact_density(w, i), sigma_wall = sps__wall_contact_density(w, i, 0);
+    const sps_real k_pair = w->contact_bodies && w->ct_first[i + 1] > w->ct_first[i]
+                            ? sps__contact_stiffness(bi->mat.K, w->bodies[w->body[w->ct_j[w->ct_first[i]]]].mat.K) : 0;
     return w->vol[i] * (SPS_R(0.5) * k_pair * sigma * sigma + bi->mat.K * sigma_wall * sigma_wall);
 }
 
