@@ -3935,7 +3935,8 @@ static sps_real sps__wall_sigma(const sps_world* w, sps_real d) {
 static sps_real sps__pair_contact_density(const sps_world* w, int i) {
     sps_real sigma = 0;
     int k, a;
-    for (k = w->ct_first[i]; w->contact_bodies && k < w->ct_first[i + 1]; ++k) {
+    if (!w->contact_bodies) return 0; /* no contact lists */
+    for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
         const int j = w->ct_j[k];
         sps_real r2 = 0;
         for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
