@@ -405,9 +405,15 @@ typedef struct sps_world_def {
 /* The constitutive model of a body (MATERIALS). */
 typedef enum sps_material_kind {
     SPS_MATERIAL_ELASTIC = 0, /* linear elastic: p = c0^2 (rho - rho0), Jaumann-rate shear stress */
-    SPS_MATERIAL_RIGID = 1    /* a wall body: its particles keep the velocity given to them
+    SPS_MATERIAL_RIGID = 1,   /* a wall body: its particles keep the velocity given to them
                                  (sps_body_set_velocity, constraints) and push the other bodies
                                  by contact; density, E and nu set its mass and contact stiffness */
+    SPS_MATERIAL_J2 = 2       /* von Mises elastic-plastic: the linear elastic law, and the shear
+                                 stress returned radially onto the yield surface
+                                 sqrt(2 J2) = sqrt(2/3)(yield_stress + hardening_modulus alpha),
+                                 alpha the equivalent plastic strain (ANG eqs. 11, 14; MATERIALS).
+                                 Needs a stress-based shear formulation: OG, OAS, GNO or GNO-A
+                                 (GNO-A is ANG's choice; ENO and ENO-A are refused) */
 } sps_material_kind;
 
 /* The solver of a body. */
@@ -426,6 +432,10 @@ typedef struct sps_material_def {
     sps_real youngs_modulus; /* E [Pa], > 0. Default 1e6. */
     sps_real poisson_ratio;  /* nu, in (-1, 0.5). Default 0.3. */
     sps_material_kind kind;  /* Default SPS_MATERIAL_ELASTIC. */
+    sps_real yield_stress;   /* J2: initial yield stress sigma_Y [Pa], finite > 0 (must be set for
+                                J2; ignored by the other kinds). Default 0. */
+    sps_real hardening_modulus; /* J2: linear isotropic hardening modulus kappa [Pa], finite >= 0
+                                   (0: perfect plasticity); ignored by the other kinds. Default 0. */
 } sps_material_def;
 
 /* Body definition: a material, a shear formulation and which outputs the body needs. */
@@ -456,6 +466,10 @@ typedef struct sps_diagnostics {
     sps_real time;                /* simulated time [s] */
     sps_real kinetic_energy;      /* [J] (J/m in 2D) */
     sps_real strain_energy;       /* [J] (J/m in 2D) */
+    sps_real plastic_work;        /* [J] (J/m in 2D) work dissipated by plastic flow since the start
+                                     (J2 bodies; 0 for the others): kinetic + strain + plastic work
+                                     is the energy account */
+    sps_real max_plastic_strain;  /* largest equivalent plastic strain alpha (J2 bodies; else 0) */
     sps_real linear_momentum[3];  /* [kg m/s] */
     sps_real angular_momentum[3]; /* [kg m^2/s], about the origin */
     sps_real max_speed;           /* [m/s] */
@@ -472,6 +486,7 @@ typedef struct sps_particle_state {
     sps_real position[3], velocity[3], displacement[3];
     sps_real density, pressure, von_mises; /* von_mises is 0 unless the body tracks stress */
     int body_index;
+    sps_real plastic_strain;  /* equivalent plastic strain alpha (0 unless the body is J2) */
 } sps_particle_state;
 
 /* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
@@ -775,6 +790,7 @@ typedef struct sps__material_model {
     /* stored-energy density [J/m^3] from tau:tau of the shear stress (0 when not tracked) and p */
     sps_real (*energy_density)(const sps__material_constants* c, sps_real tau_tau, sps_real p);
     int kinematic; /* its particles move as prescribed: no passes, no forces (a wall body) */
+    int plastic;   /* its shear stress is returned onto a yield surface (sps__j2_stress_lanes) */
 } sps__material_model;
 
 /* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
@@ -815,6 +831,8 @@ typedef struct sps__model {
     int stress;   /* the shear stress tau is integrated (stress force, or track_stress) */
     int gradient; /* the velocity gradient L is needed (stress, or a turned rotation) */
     int artificial_stress; /* Gray's artificial stress is computed (OAS) */
+    int plastic;  /* J2 radial return after the Jaumann update; plastic strain and work fields */
+    int scaled_penalty; /* the GNO penalty scaled per pair by the particles' return factors */
     sps__passes pass;
 } sps__model;
 
@@ -836,6 +854,7 @@ typedef struct sps__body {
        when its model needs them, else NULL: particle begin + k at [components k], with
        SPS__LANES zeroed slots of lane padding after the last */
     sps_real *acc_d[3], *tau, *art, *grad;
+    sps_real *plastic_strain, *plastic_work, *return_factor; /* J2 bodies */
     int field_count; /* particles they hold: its count at the last commit */
 } sps__body;
 
@@ -950,6 +969,8 @@ typedef enum {
     SPS__NEED_STRESS,      /* a body integrates the shear stress (model.stress) */
     SPS__NEED_MEAN_TURN,   /* a body turns its increments by the mean rotation */
     SPS__NEED_ARTIFICIAL,  /* a body has Gray's artificial stress (OAS) */
+    SPS__NEED_PLASTIC,     /* a body's material is plastic (J2) */
+    SPS__NEED_SCALED_PENALTY, /* a plastic body's GNO penalty is scaled by its return factors */
     SPS__NEED_CONSTRAINTS  /* allocated by the first sps_body_constrain_box */
 } sps__need;
 
@@ -992,6 +1013,10 @@ static const sps__field_info sps__fields[] = {
     {"artificial_stress", "artificial stress", 1, SPS__BOFF(art), 0, 3, 0, SPS__NEED_ARTIFICIAL, 0},
     /* carried: the next kick reads it (the per-particle half-step rotation) */
     {"velocity_gradient", "velocity gradient", 1, SPS__BOFF(grad), 0, 9, 0, SPS__NEED_GRADIENT, SPS__CARRIED},
+    {"plastic_strain", "plastic strain", 1, SPS__BOFF(plastic_strain), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"plastic_work", "plastic work", 1, SPS__BOFF(plastic_work), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD},
+    /* written by the continuity pass, read by the penalty pass of the same sub-step */
+    {"return_factor", "return factor", 1, SPS__BOFF(return_factor), 0, 1, 0, SPS__NEED_SCALED_PENALTY, 0},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
@@ -1259,11 +1284,28 @@ static sps_real sps__rigid_energy_density(const sps__material_constants* c, sps_
     return 0;
 }
 
+/* >>material: J2 plasticity (von Mises, linear isotropic hardening; ANG section 2.2) */
+
+/* The elastic constants and checks, and the yield stress and hardening modulus. The return map
+   itself is sps__j2_stress_lanes (chapter >>solver), where the Jaumann update is. */
+static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
+    int broken = 0;
+    sps__elastic_check(m, msg, msg_size, &broken);
+    SPS__CHECK(m->yield_stress > 0 && sps__finite(m->yield_stress), "material.yield_stress = %g, allowed finite > 0 Pa for J2",
+               (double)m->yield_stress);
+    SPS__CHECK(m->hardening_modulus >= 0 && sps__finite(m->hardening_modulus),
+               "material.hardening_modulus = %g, allowed finite >= 0 Pa for J2 (0: perfect plasticity)", (double)m->hardening_modulus);
+    *broken_out += broken;
+}
+
 /* >>model (continued): the rows */
 
 static const sps__material_model sps__materials[] = {
-    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0},
-    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1},
+    /* kind               name       check               constants               energy density               kinematic plastic */
+    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0, 0},
+    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1, 0},
+    /* the stored energy of a J2 body is its elastic part; the return map's share is plastic work */
+    {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density, 0, 1},
 };
 #define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
@@ -1299,15 +1341,24 @@ typedef struct sps__combination_rule {
     const char* message;
 } sps__combination_rule;
 static int sps__oas_outside_2d(int dim, const sps_body_def* def) { return def->shear == SPS_SHEAR_OAS && dim != 2; }
+static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.kind == SPS_MATERIAL_J2 && (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
+}
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
+    /* ANG sections 4.1 and 5.2: ENO's shear force is an accumulated Laplacian of velocity, not
+       the divergence of the stress, so a return map on tau would not limit it */
+    {sps__plastic_without_stress_force, "material.kind = J2 with shear = ENO or ENO-A: their shear force is an accumulated "
+                                        "Laplacian of velocity, not the divergence of the stress, so the yield surface cannot "
+                                        "limit it (ANG 5.2: ENO-A is for elastic materials); use GNO-A (or OG, OAS, GNO)"},
 };
 
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
-    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic) or 1 (rigid)", (int)def->material.kind);
+    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid) or 2 (J2)", (int)def->material.kind);
     if (material) material->check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN, "solver = %d, allowed 0 (updated Lagrangian)", (int)def->solver);
@@ -1340,6 +1391,8 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.stress = m.stabilisation->stress_force || def->track_stress;
     m.gradient = m.turn != SPS__TURN_NONE || m.stress;
     m.artificial_stress = m.stabilisation->artificial_stress;
+    m.plastic = m.material->plastic; /* a plastic body is of the OG family (combination rules): m.stress is set */
+    m.scaled_penalty = m.plastic && m.stabilisation->penalty;
     if (m.material->kinematic) { /* a wall body runs no pass and needs no field of its own */
         m.paired = m.stress = m.gradient = m.artificial_stress = 0;
         m.turn = SPS__TURN_NONE;
@@ -2659,7 +2712,8 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
     const sps__model* m = &b->model;
     return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
-           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress);
+           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
+           (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -3137,6 +3191,71 @@ SPS__INLINE void sps__stress_lanes(const sps__body* b, sps__group q, const int d
     }
 }
 
+/* Radial return (J2 plasticity, ANG section 2.2) of one trial stress t (the Jaumann update,
+   entries xx xy xz yy yz zz, those of dim): with |t| = sqrt(t:t) = sqrt(2 J2) and the yield
+   radius y = sqrt(2/3)(sigma_Y + kappa alpha), a trial outside (f = |t| - y > 0, ANG eq. 11)
+   flows by d_gamma = f / (2G + 2 kappa/3) along t/|t|, alpha grows by sqrt(2/3) d_gamma and t is
+   scaled by r = sqrt(2/3)(sigma_Y + kappa alpha_new)/|t| (ANG eq. 14 with the hardened radius),
+   which puts it exactly on the new surface: r |t| = |t| - 2G d_gamma. Inside, r = 1. Returns r;
+   *alpha is updated and *dissipated gets the elastic energy density the return removed,
+   (t:t)(1 - r^2)/(4G) = d_gamma (|t| + r |t|)/2: the trapezoidal rule for the plastic work
+   sigma : d_eps_p of the step. Branch-free (selects) so that lane loops vectorise it. */
+SPS__INLINE sps_real sps__radial_return(sps_real t[6], const int dim, sps_real G, sps_real yield_stress, sps_real hardening,
+                                        sps_real* alpha, sps_real* dissipated) {
+    const sps_real sqrt_2_3 = SPS_R(0.81649658092772603273); /* sqrt(2/3) */
+    const sps_real tt = t[0] * t[0] + t[3] * t[3] + 2 * t[1] * t[1] +
+                        (dim == 3 ? t[5] * t[5] + 2 * (t[2] * t[2] + t[4] * t[4]) : 0);
+    const sps_real norm = SPS__SQRT(tt), over = norm - sqrt_2_3 * (yield_stress + hardening * *alpha);
+    const int yielding = over > 0;
+    const sps_real d_gamma = yielding ? over / (2 * G + SPS_R(2.0) / 3 * hardening) : 0;
+    const sps_real alpha_new = *alpha + sqrt_2_3 * d_gamma;
+    const sps_real r = yielding ? sqrt_2_3 * (yield_stress + hardening * alpha_new) / (yielding ? norm : 1) : 1;
+    int a;
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) t[a] *= r;
+    *alpha = alpha_new;
+    *dissipated = tt * (1 - r * r) / (4 * G);
+    return r;
+}
+
+/* The Jaumann update of a J2 body's lane group q followed by the radial return
+   (sps__radial_return): the stress, the equivalent plastic strain, the plastic work of each
+   particle (its current volume m/rho times the dissipated energy density) and, for a body
+   with the scaled GNO penalty (literal scaled), its return factor r (the reference code's
+   per-particle penalty scale). Padding lanes compute and do not store. */
+SPS__INLINE void sps__j2_stress_lanes(const sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
+                                      sps_real L[9][SPS__LANES], const int scaled) {
+    const size_t k0 = (size_t)(q.i0 - b->begin);
+    sps_real* SPS__RESTRICT tau = b->tau + 6 * k0;
+    sps_real* SPS__RESTRICT alpha = b->plastic_strain + k0;
+    sps_real* SPS__RESTRICT work = b->plastic_work + k0;
+    sps_real* SPS__RESTRICT factor = scaled ? b->return_factor + k0 : NULL;
+    const sps_real *SPS__RESTRICT mass = w->mass + q.i0, *SPS__RESTRICT rho = w->rho + q.i0;
+    const sps_real G = b->mat.G, yield_stress = b->def.material.yield_stress, hardening = b->def.material.hardening_modulus;
+    const int end = b->end;
+    int l;
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l) {
+        const sps_real rho_l = q.i0 + l < end ? rho[l] : 1; /* padding lanes: no 1/0 */
+        sps_real next[6] = {0, 0, 0, 0, 0, 0}, a = alpha[l], dissipated, r;
+        sps__next_stress(tau + 6 * l, 1, &L[0][l], SPS__LANES, G, dt, dim, next);
+        r = sps__radial_return(next, dim, G, yield_stress, hardening, &a, &dissipated);
+        if (q.i0 + l < end) {
+            tau[6 * l + 0] = next[0];
+            tau[6 * l + 1] = next[1];
+            tau[6 * l + 3] = next[3];
+            if (dim == 3) {
+                tau[6 * l + 2] = next[2];
+                tau[6 * l + 4] = next[4];
+                tau[6 * l + 5] = next[5];
+            }
+            alpha[l] = a;
+            work[l] += mass[l] / rho_l * dissipated;
+            if (scaled) factor[l] = r;
+        }
+    }
+}
+
 /* The Rodrigues matrix of each particle of lane group q from its velocity gradient: from the
    lane arrays L when given (the continuity pass has them at hand; contiguous, so the lanes
    vectorise), else from the body's velocity gradients. Lanes that turned more than 0.01 rad are redone by sin and cos. */
@@ -3288,6 +3407,7 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
     /* the turn this pass applies: ENO's increments, and the mean rotation's sum for GNO-A too */
     const sps__turn turn = eno == SPS__ENO_PARTICLES || b->model.turn == SPS__TURN_MEAN ? b->model.turn : SPS__TURN_NONE;
     const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
+    const int plastic_possible = gradient && eno == SPS__ENO_NONE;
     sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
     sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     int l, t, a;
@@ -3295,7 +3415,10 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
     sps__continuity_pairs(w, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, shear_rate, sum);
     sps__continuity_lanes(w, b, q, dim, gradient, shear_rate, sum, da, L);
-    if (b->model.stress) sps__stress_lanes(b, q, dim, dt, L);
+    /* a plastic body is never ENO (combination rules): ENO kernels carry no return map */
+    if (plastic_possible && b->model.scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1);
+    else if (plastic_possible && b->model.plastic) sps__j2_stress_lanes(w, b, q, dim, dt, L, 0);
+    else if (b->model.stress) sps__stress_lanes(b, q, dim, dt, L);
     if (turn != SPS__TURN_NONE) sps__rotation_lanes(b, q, dt, dim, L, R);
     if (turn == SPS__TURN_MEAN) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
@@ -3340,12 +3463,16 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
    With r_ij = r e_ij: v^_ij / r_ij dW = v_ij dW/r - 1/2 (L_i + L_j) e_ij dW.
    paired (SPS_ROTATION_PAIR): GNO-A's increment goes to the pair's force,
    g_ij += xi G dt (v^_ij . e_ij) / r_ij dW V_i V_j (symmetric in i, j bit for bit).
-   projected, paired and turn are literals (SPS__PENALTY_VARIANTS). */
+   scaled (J2 bodies): each pair's term is weighted by 1/2 (r_i + r_j), the mean of the two
+   particles' radial-return factors of this sub-step (1 while elastic): the reference code's
+   xi_i = xi r_i, so that the penalty, an elastic stiffness G, softens where the stress is held
+   on the yield surface. projected, paired, turn and scaled are literals (SPS__PENALTY_VARIANTS). */
 SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                              const int projected, const int paired, const int turn) {
+                              const int projected, const int paired, const int turn, const int scaled) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real* SPS__RESTRICT L = b->grad; /* the body's own: particle begin + k at 9 k */
+    const sps_real* SPS__RESTRICT factor = b->return_factor; /* likewise, J2 bodies only */
     const int begin = b->begin;
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
     sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES];
@@ -3354,6 +3481,7 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
         for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real dir[3] = {e.ex, e.ey, e.ez}, dw = e.dw, dw_r = e.dw_r;
+            const sps_real pair_scale = scaled ? SPS_R(0.5) * (factor[i - begin] + factor[j - begin]) : 1;
             sps_real vhat[3], u = 0, u_pair = 0;
             SPS__UNROLL
             for (a = 0; a < dim; ++a) {
@@ -3361,6 +3489,7 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
                 SPS__UNROLL
                 for (c = 0; c < dim; ++c) le += (L[(size_t)9 * (i - begin) + 3 * a + c] + L[(size_t)9 * (j - begin) + 3 * a + c]) * dir[c];
                 v_r = (w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
+                if (scaled) v_r *= pair_scale;
                 vhat[a] = v_r * vol[j];
                 u += vhat[a] * dir[a];
                 if (paired) u_pair += v_r * dir[a];
@@ -3383,13 +3512,17 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     sps__add_increments(w, b, q, dim, da, R, turn);
 }
 
-/* The penalty pass's variants: (projected, pair forces, turn). */
-#define SPS__PENALTY_VARIANTS(X)                    \
-    X(gno, 0, 0, SPS__TURN_NONE)                    \
-    X(gno_a_mean, 1, 0, SPS__TURN_MEAN)             \
-    X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE)     \
-    X(gno_a_pairs, 1, 1, SPS__TURN_NONE)
-#define SPS__PENALTY_INSTANCES(variant, projected, paired, turn) SPS__INSTANCES(penalty, variant, projected, paired, turn)
+/* The penalty pass's variants: (projected, pair forces, turn, scaled by the return factors). */
+#define SPS__PENALTY_VARIANTS(X)                              \
+    X(gno, 0, 0, SPS__TURN_NONE, 0)                           \
+    X(gno_a_mean, 1, 0, SPS__TURN_MEAN, 0)                    \
+    X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE, 0)            \
+    X(gno_a_pairs, 1, 1, SPS__TURN_NONE, 0)                   \
+    X(gno_j2, 0, 0, SPS__TURN_NONE, 1)                        \
+    X(gno_a_mean_j2, 1, 0, SPS__TURN_MEAN, 1)                 \
+    X(gno_a_particle_j2, 1, 0, SPS__TURN_PARTICLE, 1)         \
+    X(gno_a_pairs_j2, 1, 1, SPS__TURN_NONE, 1)
+#define SPS__PENALTY_INSTANCES(variant, projected, paired, turn, scaled) SPS__INSTANCES(penalty, variant, projected, paired, turn, scaled)
 SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
 
 /* The pass kernels of a model in the world's mode: each pass's variant table searched for the
@@ -3400,7 +3533,7 @@ typedef struct sps__variant_row {
 } sps__variant_row;
 #define SPS__ROW3(variant, a, b, c) {{a, b, c, 0}, sps__pressure_##variant},
 #define SPS__ROW_CONTINUITY(variant, a, b) {{a, b, 0, 0}, sps__continuity_##variant},
-#define SPS__ROW_PENALTY(variant, a, b, c) {{a, b, c, 0}, sps__penalty_##variant},
+#define SPS__ROW_PENALTY(variant, a, b, c, d) {{a, b, c, d}, sps__penalty_##variant},
 static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW3)};
 static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
 static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
@@ -3419,7 +3552,7 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     const int eno = !st->eno ? SPS__ENO_NONE : m->paired ? SPS__ENO_PAIRS : SPS__ENO_PARTICLES;
     const int pressure_key[4] = {st->stress_force, st->artificial_stress, m->paired, 0};
     const int continuity_key[4] = {m->gradient, eno, 0, 0};
-    const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, 0};
+    const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, m->scaled_penalty};
     sps__passes p;
     if (m->material->kinematic) {
         memset(&p, 0, sizeof p);
@@ -4354,6 +4487,13 @@ static sps_real sps__von_mises(const sps_world* w, int i) {
                      3 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
 }
 
+/* The equivalent plastic strain of particle i (0 unless its body is plastic, and for particles
+   added since the last commit). */
+static sps_real sps__plastic_strain(const sps_world* w, int i) {
+    const sps__body* b = &w->bodies[w->body[i]];
+    return b->plastic_strain && i - b->begin < b->field_count ? b->plastic_strain[i - b->begin] : 0;
+}
+
 /* Hourglass indicator (see DIAGNOSTICS): displacement gradients with B from current positions. */
 static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing) {
     sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, num = 0, den = 0, rmin2 = -1;
@@ -4446,6 +4586,11 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
             tt = t[0] * t[0] + t[3] * t[3] + t[5] * t[5] + 2 * (t[1] * t[1] + t[2] * t[2] + t[4] * t[4]);
         }
         out->strain_energy += vol * b->model.material->energy_density(&b->mat, tt, w->p[i]);
+        if (b->model.plastic && i - b->begin < b->field_count) { /* particles added since the last commit have none yet */
+            const sps_real alpha = b->plastic_strain[i - b->begin];
+            out->plastic_work += b->plastic_work[i - b->begin];
+            if (alpha > out->max_plastic_strain) out->max_plastic_strain = alpha;
+        }
         if (SPS__SQRT(v2) > out->max_speed) out->max_speed = SPS__SQRT(v2);
         if (w->rho[i] < out->min_density) out->min_density = w->rho[i];
         if (w->rho[i] > out->max_density) out->max_density = w->rho[i];
@@ -4457,18 +4602,19 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
 SPSDEF const char* sps_diagnostics_csv_header(void) {
     return "time,kinetic_energy,strain_energy,total_energy,momentum_x,momentum_y,momentum_z,"
            "angular_momentum_x,angular_momentum_y,angular_momentum_z,max_speed,min_density,max_density,"
-           "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic";
+           "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic,plastic_work,max_plastic_strain";
 }
 
 SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t size) {
     if (!d || (!buf && size)) return -1;
-    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g",
+    /* total_energy: the account kinetic + strain + plastic work */
+    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.6g",
                     (double)d->time, (double)d->kinetic_energy, (double)d->strain_energy,
-                    (double)(d->kinetic_energy + d->strain_energy), (double)d->linear_momentum[0],
+                    (double)(d->kinetic_energy + d->strain_energy + d->plastic_work), (double)d->linear_momentum[0],
                     (double)d->linear_momentum[1], (double)d->linear_momentum[2], (double)d->angular_momentum[0],
                     (double)d->angular_momentum[1], (double)d->angular_momentum[2], (double)d->max_speed,
                     (double)d->min_density, (double)d->max_density, (double)d->hourglass, (double)d->min_spacing, d->acoustic_steps,
-                    d->advection_steps, (double)d->dt_acoustic);
+                    d->advection_steps, (double)d->dt_acoustic, (double)d->plastic_work, (double)d->max_plastic_strain);
 }
 
 /* >>access */
@@ -4568,6 +4714,7 @@ SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_st
     out->pressure = w->p[i];
     out->von_mises = sps__von_mises(w, i);
     out->body_index = w->body[i];
+    out->plastic_strain = sps__plastic_strain(w, i);
     return SPS_OK;
 }
 
@@ -4705,6 +4852,11 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) {
     for (i = 0; i < w->n; ++i) fprintf(f, "%.9g\n", (double)w->rho[i]);
     fprintf(f, "SCALARS von_mises %s 1\nLOOKUP_TABLE default\n", type);
     for (i = 0; i < w->n; ++i) fprintf(f, "%.9g\n", (double)sps__von_mises(w, i));
+    for (a = 0; a < w->nbodies && !w->bodies[a].model.plastic; ++a) {}
+    if (a < w->nbodies) { /* a scene with a plastic body */
+        fprintf(f, "SCALARS plastic_strain %s 1\nLOOKUP_TABLE default\n", type);
+        for (i = 0; i < w->n; ++i) fprintf(f, "%.9g\n", (double)sps__plastic_strain(w, i));
+    }
     fprintf(f, "SCALARS body int 1\nLOOKUP_TABLE default\n");
     for (i = 0; i < w->n; ++i) fprintf(f, "%d\n", w->body[i]);
     fprintf(f, "SCALARS id int 1\nLOOKUP_TABLE default\n");
