@@ -1,6 +1,7 @@
 /* sphsolid.h - v0.5.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
-   An stb-style single-file C99 library for simulating elastic solids with updated-Lagrangian
+   An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
+   with updated-Lagrangian
    smoothed particle hydrodynamics (UL-SPH): Wendland C2 kernel, cell-linked-list neighbour search,
    low-dissipation Riemann solver, six shear formulations (SPH-OG, SPH-OAS, SPH-ENO, SPH-ENO-A,
    SPH-GNO, SPH-GNO-A; Rodrigues rotation for the -A variants), position-based Verlet with
@@ -131,9 +132,28 @@
       The shear stress tau (Jaumann rate, ENO eqs. 6-8) is integrated for the OG family always,
       for ENO bodies only with track_stress = 1 (von Mises output, strain energy).
 
+   PLASTICITY (material.kind = SPS_MATERIAL_J2; ANG section 2.2)
+      von Mises plasticity with linear isotropic hardening: after the Jaumann update (the trial
+      stress tau*) a particle whose |tau*| = sqrt(2 J2) exceeds the yield radius
+      sqrt(2/3)(sigma_Y + kappa alpha) (ANG eq. 11; sigma_Y = material.yield_stress, kappa =
+      material.hardening_modulus) flows by d_gamma = f/(2G + 2 kappa/3), its equivalent plastic
+      strain alpha grows by sqrt(2/3) d_gamma, and tau = r tau* with r = sqrt(2/3)(sigma_Y +
+      kappa alpha)/|tau*| (radial return, ANG eq. 14): exactly on the hardened surface. The
+      particle's plastic work grows by V (tau*:tau* - tau:tau)/(4G), the elastic energy the return
+      removed (per particle, so sums are deterministic); kinetic + strain + plastic work is the
+      energy account (diagnostics plastic_work; total_energy in the CSV). The equation of state
+      and c0 are the elastic ones. J2 bodies need a stress-based shear formulation: GNO-A is
+      ANG's (xi_G = 2), with the reference code's per-particle penalty scale: each pair's
+      penalty term weighted by 1/2 (r_i + r_j) of the sub-step; OG, OAS and GNO work too.
+      ENO and ENO-A are refused (their shear force is not the divergence of tau, so the yield
+      surface cannot limit it). Fields "plastic_strain" (alpha) and "plastic_work" [J] belong to
+      J2 bodies only (VTK: plastic_strain; sps_particle_state.plastic_strain); an elastic body
+      carries neither, and its kernels contain no return map.
+
    MODELS AND FIELDS
-      A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic; the
-      material gives c0, G, K, its checks and its stored energy), its solver (solver:
+      A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic;
+      SPS_MATERIAL_J2, elastic-plastic (PLASTICITY); the material gives c0, G, K, its checks and
+      its stored energy), its solver (solver:
       SPS_SOLVER_UPDATED_LAGRANGIAN), its stabilisation (shear and rotation) and its transport
       correction (transport: SPS_TRANSPORT_NONE). sps_world_add_body checks each field's range
       and the table of allowed combinations (OAS only in 2D) and resolves the model once into
@@ -171,6 +191,9 @@
    DIAGNOSTICS (sps_world_diagnostics)
       kinetic energy     sum 1/2 m |v|^2
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.
+      plastic work       sum over J2 particles of the energy their return maps dissipated
+                         (PLASTICITY); max_plastic_strain the largest alpha. Contact energy
+                         (CONTACT) is in no term: the account dips while bodies press together.
       linear momentum    sum m v;  angular momentum sum m x X v (about the origin; z in 2D)
       hourglass          sum_pairs |u_ij - 1/2 (Gu_i + Gu_j) r_ij| / sum_pairs r_ij, where u is the
                          displacement from the reference position and Gu_i its B-corrected
@@ -193,7 +216,8 @@
       threads [0, 1024], escape_distance >= 0 (INFINITY allowed), keep_last_good_state 0/1,
       allocator (both or neither). Body def: cookie, material.density and .youngs_modulus
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
-      c0 > 0), shear (0..5; OAS only in 2D), rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon
+      c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
+      material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D), rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon
       [0, 1], oas_exponent [1, 12], track_stress 0/1. Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
@@ -215,8 +239,8 @@
       state is the one at the error (it may hold NaN; diagnostics need the neighbour lists and
       return the error if the failure was theirs). With keep_last_good_state = 1 the world is
       rolled back to the last configuration update before the failure (positions, velocities,
-      densities, pressures, stresses and the time; measured cost of the copy: ~0.05 % of the
-      step time, 14 reals per particle), so diagnostics, sps_world_particle and
+      densities, pressures, stresses, plastic strains and work, and the time; measured cost of
+      the copy: ~0.05 % of the step time, 16 reals per particle), so diagnostics, sps_world_particle and
       sps_world_write_vtk show the last good state, and sps_world_time() tells its time.
       sps_world_validate(w, msg, size) checks a whole world at any time (debugging): the defs,
       empty bodies, every particle's state, constraints, observers and the stopped flag, and
@@ -244,7 +268,8 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, plasticity, fluids, granular media, total-Lagrangian SPH, removing particles.
+      self-contact, Drucker-Prager plasticity, fluids, granular media, total-Lagrangian SPH,
+      removing particles.
 
    REVISION HISTORY
       0.5.0 (2026-12-01) a body's model as data (material, stabilisation, solver and transport
@@ -393,7 +418,7 @@ typedef struct sps_world_def {
     int keep_last_good_state;         /* 1: copy positions, velocities, densities, pressures and
                                          stresses at every configuration update, and on
                                          SPS_ERR_UNSTABLE roll the world back to that copy (see
-                                         ERRORS). Costs 14 reals per particle and ~0.05 % of
+                                         ERRORS). Costs 16 reals per particle and ~0.05 % of
                                          the step time (measured, 2D plate). Default 0. */
     sps_allocator allocator;          /* Default: SPHSOLID_MALLOC / SPHSOLID_FREE. */
     sps_log_fn log;                   /* Default: errors to stderr (NULL with SPHSOLID_NO_STDIO). */
@@ -627,8 +652,9 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    "reference_x" .. (per axis, up to dim), "density", "pressure", "mass", "volume",
    "density_rate" and the solver's "pressure_acceleration_x" .., "shear_acceleration_x" ..; a
    body has "shear_stress" (6: xx xy xz yy yz zz) and "velocity_gradient" (9, row-major) only
-   if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation) and
-   "artificial_stress" (3: xx xy yy, OAS).
+   if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation),
+   "artificial_stress" (3: xx xy yy, OAS), and for J2 bodies "plastic_strain" (alpha),
+   "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
@@ -684,7 +710,8 @@ SPSDEF sps_real sps_riemann_pressure(sps_real rho_l, sps_real u_l, sps_real p_l,
 
 #ifndef SPHSOLID_NO_STDIO
 /* Legacy VTK (ASCII POLYDATA, vertices) of all particles with point data velocity,
-   displacement, pressure, density, von_mises, body, id. Opens in ParaView. */
+   displacement, pressure, density, von_mises, (plastic_strain when a body is J2,) body, id.
+   Opens in ParaView. */
 SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
 #endif
 
@@ -4120,7 +4147,7 @@ static sps_result sps__check_bodies_filled(sps_world* w) {
 }
 
 /* Reals per particle in the last good state: the components of the fields marked SPS__GOOD
-   (14: position 3, velocity 3, density, pressure, shear stress 6). */
+   (16: position 3, velocity 3, density, pressure, shear stress 6, plastic strain and work). */
 static size_t sps__good_reals(void) {
     size_t total = 0;
     int k;
