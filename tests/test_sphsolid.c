@@ -2176,14 +2176,14 @@ static int test_j2_uniaxial_strain_closed_form(void) {
     return 0;
 }
 
-/* The square Taylor bar of ANG 5.2.2 (B2) at L/dp = 4 (320 particles), GNO-A, the set-up of
+/* The square Taylor bar of ANG 5.2.2 (B2) at L/dp = 6 (1080 particles), GNO-A, the set-up of
    examples/taylor_square.c (lowest particles 2h above a free-slip wall, v0 = 227 m/s), to 60 us
    after the impact: the bar stops by plastic flow and mushrooms. Bounds, not figures: the
-   kinetic energy left is below 3 % of the start (the coarse bar still rings elastically with
-   ~1.4 %); the plastic work is above 80 % of the impact energy (the strain energy left is ~3 %);
-   the account kinetic + strain + plastic work is within 15 % of the start (at L/dp = 4 every
+   kinetic energy left is below 1 % of the start (0.3 % is left ringing elastically); the
+   plastic work is above 80 % of the impact energy (the strain energy left is ~3 %); the account
+   kinetic + strain + plastic work is within 10 % of the start (at L/dp = 6 nearly every
    particle is within 2h of a surface, where the corrected velocity gradient feeds the stress
-   more than the stress force takes from the motion: +9 % here, +2 % at L/dp = 6); the bar
+   more than the stress force takes from the motion: +5 % here, +14 % at L/dp = 4); the bar
    shortens to between 0.6 and 0.9 of its length (Taylor's rigid-plastic estimate with
    rho v^2/sigma_Y = 1.15 gives 0.7-0.75); and the observation point s = (0.003, 0, 0) moves out
    beyond 3.3 mm (10 % spread) but not past Haider et al.'s converged 6.93 mm + 3 % (coarse SPH
@@ -2194,7 +2194,7 @@ static void taylor_velocity(const sps_real x[3], sps_real v[3], void* user) {
     v[2] = -227;
 }
 static int test_j2_taylor_bar_coarse(void) {
-    const double dp = 0.006 / 4, gap = (2 * 1.3 - 0.5) * dp, t_contact = gap / 227;
+    const double dp = 0.006 / 6, gap = (2 * 1.3 - 0.5) * dp, t_contact = gap / 227;
     sps_world* w = new_world(3, dp);
     sps_body_def bd = sps_default_body_def();
     sps_body bar;
@@ -2215,7 +2215,7 @@ static int test_j2_taylor_bar_coarse(void) {
     bd.material.yield_stress = (sps_real)4e8;
     bd.material.hardening_modulus = (sps_real)1e8;
     ENSURE(sps_world_add_body(w, &bd, &bar) == SPS_OK);
-    ENSURE(sps_body_add_box(w, bar, lo, hi, &n) == SPS_OK && n == 320);
+    ENSURE(sps_body_add_box(w, bar, lo, hi, &n) == SPS_OK && n == 1080);
     ENSURE(sps_body_set_velocity(w, bar, taylor_velocity, NULL) == SPS_OK);
     ENSURE(sps_world_add_wall(w, wall_point, up, SPS_WALL_FREE_SLIP) == SPS_OK);
     ENSURE(sps_world_add_observer(w, bar, obs, &s) == SPS_OK);
@@ -2233,9 +2233,9 @@ static int test_j2_taylor_bar_coarse(void) {
     printf("    kinetic %.3g of %.4g J, plastic work %.4g J, account %+.2f%%, length %.2f of 30 mm, x_s %.3f mm, alpha max %.3f\n",
            (double)d.kinetic_energy, (double)d0.kinetic_energy, (double)d.plastic_work, 100 * (account / (double)d0.kinetic_energy - 1),
            1e3 * (top - bottom + dp), 1e3 * x_obs, (double)d.max_plastic_strain);
-    ENSURE(d.kinetic_energy < 0.03 * d0.kinetic_energy);
+    ENSURE(d.kinetic_energy < 0.01 * d0.kinetic_energy);
     ENSURE(d.plastic_work > 0.8 * d0.kinetic_energy);
-    ENSURE(fabs(account - (double)d0.kinetic_energy) < 0.15 * (double)d0.kinetic_energy);
+    ENSURE(fabs(account - (double)d0.kinetic_energy) < 0.1 * (double)d0.kinetic_energy);
     ENSURE(top - bottom + dp > 0.6 * 0.03 && top - bottom + dp < 0.9 * 0.03);
     ENSURE(x_obs > 0.0033 && x_obs < 1.03 * 0.00693);
     sps_world_destroy(w);
