@@ -144,7 +144,10 @@
       energy account (diagnostics plastic_work; total_energy in the CSV). The equation of state
       and c0 are the elastic ones. J2 bodies need a stress-based shear formulation: GNO-A is
       ANG's (xi_G = 2), with the reference code's per-particle penalty scale: each pair's
-      penalty term weighted by 1/2 (r_i + r_j) of the sub-step; OG, OAS and GNO work too.
+      penalty term weighted by 1/2 (r_i + r_j) of the sub-step, and (our extension) the stored
+      penalty relaxed by the same factors, as the stress is: scaled increments alone left a
+      spring against plastic flow that created energy (the round Taylor bar at R/9 gained five
+      times its impact energy; bench/VALIDATION.md, B). OG, OAS and GNO work too.
       ENO and ENO-A are refused (their shear force is not the divergence of tau, so the yield
       surface cannot limit it). Fields "plastic_strain" (alpha) and "plastic_work" [J] belong to
       J2 bodies only (VTK: plastic_strain; sps_particle_state.plastic_strain); an elastic body
