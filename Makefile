@@ -25,7 +25,8 @@ CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
 SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 BUILD    = build
-EXAMPLES = plate2d cantilever_sag plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d
+EXAMPLES = plate2d cantilever_sag plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
+           taylor_square taylor_round impact2d
 HEADER   = sphsolid.h
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
@@ -73,6 +74,11 @@ $(BUILD)/ball_plate3d: examples/ball_plate2d.c $(EXAMPLE_HEADERS) $(BUILD)/impl.
 	$(CC) $(CFLAGS) -DBALL_PLATE_DIM=3 $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 $(FLOAT)/ball_plate3d: examples/ball_plate2d.c $(EXAMPLE_HEADERS) $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -DBALL_PLATE_DIM=3 $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
+# taylor_round (B1) is examples/taylor_square.c (B2) built for the round bar
+$(BUILD)/taylor_round: examples/taylor_square.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
+	$(CC) $(CFLAGS) -DTAYLOR_ROUND $< $(BUILD)/impl.o -o $@ $(LDLIBS)
+$(FLOAT)/taylor_round: examples/taylor_square.c $(EXAMPLE_HEADERS) $(FLOAT)/impl.o
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -DTAYLOR_ROUND $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
 # the terminal demo (built like the examples)
 demo: $(BUILD)/demo
 
@@ -118,7 +124,8 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "rings2d --dp 0.001 --tend 0.005 --png-field von-mises" \
                "punch2d --dp 0.05 --tend 0.004 --png-field pressure" "balls3d --dp 0.004 --tend 0.005 --png-view iso" \
                "tensile2d --dp 0.025 --tend 0.001" "ball_plate2d --dp 0.005 --v0 0.06 --tend 0.006" \
-               "ball_plate3d --dp 0.01 --v0 0.12 --tend 0.003"
+               "ball_plate3d --dp 0.01 --v0 0.12 --tend 0.003" \
+               "taylor_square --res 8" "taylor_round --res 6" "impact2d"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \
@@ -150,7 +157,8 @@ SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 -
              "rings2d --dp 0.004 --tend 0.002 --iterations 20" \
              "punch2d --dp 0.1 --tend 0.0005" "balls3d --dp 0.008 --tend 0.0002 --iterations 50" \
              "tensile2d --dp 0.1 --tend 0.0002 --report-every 0.0001" "ball_plate2d --dp 0.01 --v0 0.12 --tend 0.0015" \
-             "ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015"
+             "ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015" \
+             "taylor_square --res 4 --tend 2e-6" "taylor_round --res 3 --tend 2e-6" "impact2d --dp 0.0008 --tend 5e-7"
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@
 examples-smoke: examples $(BUILD)/check_picture

@@ -1,6 +1,7 @@
 /* sphsolid.h - v0.5.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
-   An stb-style single-file C99 library for simulating elastic solids with updated-Lagrangian
+   An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
+   with updated-Lagrangian
    smoothed particle hydrodynamics (UL-SPH): Wendland C2 kernel, cell-linked-list neighbour search,
    low-dissipation Riemann solver, six shear formulations (SPH-OG, SPH-OAS, SPH-ENO, SPH-ENO-A,
    SPH-GNO, SPH-GNO-A; Rodrigues rotation for the -A variants), position-based Verlet with
@@ -141,9 +142,31 @@
       The shear stress tau (Jaumann rate, ENO eqs. 6-8) is integrated for the OG family always,
       for ENO bodies only with track_stress = 1 (von Mises output, strain energy).
 
+   PLASTICITY (material.kind = SPS_MATERIAL_J2; ANG section 2.2)
+      von Mises plasticity with linear isotropic hardening: after the Jaumann update (the trial
+      stress tau*) a particle whose |tau*| = sqrt(2 J2) exceeds the yield radius
+      sqrt(2/3)(sigma_Y + kappa alpha) (ANG eq. 11; sigma_Y = material.yield_stress, kappa =
+      material.hardening_modulus) flows by d_gamma = f/(2G + 2 kappa/3), its equivalent plastic
+      strain alpha grows by sqrt(2/3) d_gamma, and tau = r tau* with r = sqrt(2/3)(sigma_Y +
+      kappa alpha)/|tau*| (radial return, ANG eq. 14): exactly on the hardened surface. The
+      particle's plastic work grows by V (tau*:tau* - tau:tau)/(4G), the elastic energy the return
+      removed (per particle, so sums are deterministic); kinetic + strain + plastic work is the
+      energy account (diagnostics plastic_work; total_energy in the CSV). The equation of state
+      and c0 are the elastic ones. J2 bodies need a stress-based shear formulation: GNO-A is
+      ANG's (xi_G = 2), with the reference code's per-particle penalty scale: each pair's
+      penalty term weighted by 1/2 (r_i + r_j) of the sub-step, and (our extension) the stored
+      penalty relaxed by the same factors, as the stress is: scaled increments alone left a
+      spring against plastic flow that created energy (the round Taylor bar at R/9 gained five
+      times its impact energy; bench/VALIDATION.md, B). OG, OAS and GNO work too.
+      ENO and ENO-A are refused (their shear force is not the divergence of tau, so the yield
+      surface cannot limit it). Fields "plastic_strain" (alpha) and "plastic_work" [J] belong to
+      J2 bodies only (VTK: plastic_strain; sps_particle_state.plastic_strain); an elastic body
+      carries neither, and its kernels contain no return map.
+
    MODELS AND FIELDS
-      A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic; the
-      material gives c0, G, K, its checks and its stored energy), its solver (solver:
+      A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic;
+      SPS_MATERIAL_J2, elastic-plastic (PLASTICITY); the material gives c0, G, K, its checks and
+      its stored energy), its solver (solver:
       SPS_SOLVER_UPDATED_LAGRANGIAN), its stabilisation (shear and rotation) and its transport
       correction (transport: SPS_TRANSPORT_NONE). sps_world_add_body checks each field's range
       and the table of allowed combinations (OAS only in 2D) and resolves the model once into
@@ -216,8 +239,10 @@
       prescribed work    work done on the deformable bodies by moving velocity constraints, rigid
                          bodies and external accelerations (counted while the energy watchdog
                          is on).
-      The account kinetic + strain + contact + potential - prescribed work is conserved by the
-      continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
+      plastic work       sum over J2 particles of the energy their return maps dissipated
+                         (PLASTICITY); max_plastic_strain the largest alpha.
+      The account kinetic + strain + contact + potential + plastic work - prescribed work is
+      conserved by the continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
       numerical: the energy watchdog (ERRORS) reports it. The shear part of the strain energy,
       from the Jaumann-rate stress, is not conserved under large rotations (it over-reads by
       5-24 % in a cantilever's large bending), so the watchdog leaves it out.
@@ -244,9 +269,10 @@
       report_fragments 0/1, energy_growth_limit > 0 (INFINITY: off), energy_growth_stops 0/1,
       allocator (both or neither). Body def: cookie, material.density and .youngs_modulus
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
-      c0 > 0), shear (0..5; OAS only in 2D), rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon
-      [0, 1], oas_exponent [1, 12], track_stress 0/1, damping finite >= 0 (0 for a wall body).
-      Calls: NULL pointers (defs, outputs,
+      c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
+      material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
+      rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
+      track_stress 0/1, damping finite >= 0 (0 for a wall body). Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
       at most 2e8), coordinates, volumes, points and velocities (finite, volumes > 0),
@@ -284,8 +310,8 @@
       state is the one at the error (it may hold NaN; diagnostics need the neighbour lists and
       return the error if the failure was theirs). With keep_last_good_state = 1 the world is
       rolled back to the last configuration update before the failure (positions, velocities,
-      densities, pressures, stresses and the time; measured cost of the copy: ~0.05 % of the
-      step time, 14 reals per particle), so diagnostics, sps_world_particle and
+      densities, pressures, stresses, plastic strains and work, and the time; measured cost of
+      the copy: ~0.05 % of the step time, 16 reals per particle), so diagnostics, sps_world_particle and
       sps_world_write_vtk show the last good state, and sps_world_time() tells its time.
       sps_world_validate(w, msg, size) checks a whole world at any time (debugging): the defs,
       empty bodies, every particle's state, constraints, observers and the stopped flag, and
@@ -346,7 +372,8 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, plasticity, fluids, granular media, total-Lagrangian SPH, removing particles.
+      self-contact, Drucker-Prager plasticity, fluids, granular media, total-Lagrangian SPH,
+      removing particles.
 
    REVISION HISTORY
       0.5.0 (2026-12-01) a body's model as data (material, stabilisation, solver and transport
@@ -508,7 +535,7 @@ typedef struct sps_world_def {
     int keep_last_good_state;         /* 1: copy positions, velocities, densities, pressures and
                                          stresses at every configuration update, and on
                                          SPS_ERR_UNSTABLE roll the world back to that copy (see
-                                         ERRORS). Costs 14 reals per particle and ~0.05 % of
+                                         ERRORS). Costs 16 reals per particle and ~0.05 % of
                                          the step time (measured, 2D plate). Default 0. */
     sps_allocator allocator;          /* Default: SPHSOLID_MALLOC / SPHSOLID_FREE. */
     sps_log_fn log;                   /* Default: errors to stderr (NULL with SPHSOLID_NO_STDIO). */
@@ -520,9 +547,15 @@ typedef struct sps_world_def {
 /* The constitutive model of a body (MATERIALS). */
 typedef enum sps_material_kind {
     SPS_MATERIAL_ELASTIC = 0, /* linear elastic: p = c0^2 (rho - rho0), Jaumann-rate shear stress */
-    SPS_MATERIAL_RIGID = 1    /* a wall body: its particles keep the velocity given to them
+    SPS_MATERIAL_RIGID = 1,   /* a wall body: its particles keep the velocity given to them
                                  (sps_body_set_velocity, constraints) and push the other bodies
                                  by contact; density, E and nu set its mass and contact stiffness */
+    SPS_MATERIAL_J2 = 2       /* von Mises elastic-plastic: the linear elastic law, and the shear
+                                 stress returned radially onto the yield surface
+                                 sqrt(2 J2) = sqrt(2/3)(yield_stress + hardening_modulus alpha),
+                                 alpha the equivalent plastic strain (ANG eqs. 11, 14; MATERIALS).
+                                 Needs a stress-based shear formulation: OG, OAS, GNO or GNO-A
+                                 (GNO-A is ANG's choice; ENO and ENO-A are refused) */
 } sps_material_kind;
 
 /* The solver of a body. */
@@ -541,6 +574,10 @@ typedef struct sps_material_def {
     sps_real youngs_modulus; /* E [Pa], > 0. Default 1e6. */
     sps_real poisson_ratio;  /* nu, in (-1, 0.5). Default 0.3. */
     sps_material_kind kind;  /* Default SPS_MATERIAL_ELASTIC. */
+    sps_real yield_stress;   /* J2: initial yield stress sigma_Y [Pa], finite > 0 (must be set for
+                                J2; ignored by the other kinds). Default 0. */
+    sps_real hardening_modulus; /* J2: linear isotropic hardening modulus kappa [Pa], finite >= 0
+                                   (0: perfect plasticity); ignored by the other kinds. Default 0. */
 } sps_material_def;
 
 /* Body definition: a material, a shear formulation and which outputs the body needs. */
@@ -581,6 +618,10 @@ typedef struct sps_diagnostics {
                                      (moving velocity constraints, rigid bodies) and external
                                      accelerations since they were set; counted while the
                                      energy watchdog is on */
+    sps_real plastic_work;        /* [J] (J/m in 2D) work dissipated by plastic flow since the start
+                                     (J2 bodies; 0 for the others): kinetic + strain + plastic work
+                                     is the energy account */
+    sps_real max_plastic_strain;  /* largest equivalent plastic strain alpha (J2 bodies; else 0) */
     sps_real linear_momentum[3];  /* [kg m/s] */
     sps_real angular_momentum[3]; /* [kg m^2/s], about the origin */
     sps_real max_speed;           /* [m/s] */
@@ -597,6 +638,7 @@ typedef struct sps_particle_state {
     sps_real position[3], velocity[3], displacement[3];
     sps_real density, pressure, von_mises; /* von_mises is 0 unless the body tracks stress */
     int body_index;
+    sps_real plastic_strain;  /* equivalent plastic strain alpha (0 unless the body is J2) */
 } sps_particle_state;
 
 /* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
@@ -749,8 +791,9 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    "density_rate" and the solver's "pressure_acceleration_x" .. (with contact and the external
    acceleration), "shear_acceleration_x" ..; a
    body has "shear_stress" (6: xx xy xz yy yz zz) and "velocity_gradient" (9, row-major) only
-   if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation) and
-   "artificial_stress" (3: xx xy yy, OAS).
+   if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation),
+   "artificial_stress" (3: xx xy yy, OAS), and for J2 bodies "plastic_strain" (alpha),
+   "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
@@ -820,8 +863,8 @@ typedef struct sps_vtk_options {
 } sps_vtk_options;
 SPSDEF sps_vtk_options sps_default_vtk_options(void);
 /* Legacy VTK file (POLYDATA, one vertex per particle, in the current particle order) with the
-   point data velocity, displacement, pressure, density, von_mises (and stress), body and id in
-   one FIELD block, so that VTK's legacy reader (ParaView) shows every array with its default
+   point data velocity, displacement, pressure, density, von_mises (and stress; plastic_strain
+   when a body is J2), body and id in one FIELD block, so that VTK's legacy reader (ParaView) shows every array with its default
    settings. options NULL: the defaults. SPS_ERR_INVALID_ARG (w or path NULL, an option not 0
    or 1), SPS_ERR_IO (cannot open or write; the message names the path). No allocation; O(N). */
 SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const sps_vtk_options* options);
@@ -950,6 +993,7 @@ typedef struct sps__material_model {
     /* stored-energy density [J/m^3] from tau:tau of the shear stress (0 when not tracked) and p */
     sps_real (*energy_density)(const sps__material_constants* c, sps_real tau_tau, sps_real p);
     int kinematic; /* its particles move as prescribed: no passes, no forces (a wall body) */
+    int plastic;   /* its shear stress is returned onto a yield surface (sps__j2_stress_lanes) */
 } sps__material_model;
 
 /* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
@@ -991,6 +1035,8 @@ typedef struct sps__model {
     int stress;   /* the shear stress tau is integrated (stress force, or track_stress) */
     int gradient; /* the velocity gradient L is needed (stress, or a turned rotation) */
     int artificial_stress; /* Gray's artificial stress is computed (OAS) */
+    int plastic;  /* J2 radial return after the Jaumann update; plastic strain and work fields */
+    int scaled_penalty; /* the GNO penalty scaled per pair by the particles' return factors */
     sps__passes pass;
 } sps__model;
 
@@ -1026,6 +1072,7 @@ typedef struct sps__body {
        SPS__LANES zeroed slots of lane padding after the last */
     sps_real *acc_d[3], *tau, *art, *grad;
     sps_real* driven_work; /* driven: work done by its prescribed motion through each particle */
+    sps_real *plastic_strain, *plastic_work, *return_factor; /* J2 bodies */
     int field_count; /* particles they hold: its count at the last commit */
 } sps__body;
 
@@ -1148,6 +1195,8 @@ typedef enum {
     SPS__NEED_STRESS,      /* a body integrates the shear stress (model.stress) */
     SPS__NEED_MEAN_TURN,   /* a body turns its increments by the mean rotation */
     SPS__NEED_ARTIFICIAL,  /* a body has Gray's artificial stress (OAS) */
+    SPS__NEED_PLASTIC,     /* a body's material is plastic (J2) */
+    SPS__NEED_SCALED_PENALTY, /* a plastic body's GNO penalty is scaled by its return factors */
     SPS__NEED_CONSTRAINTS, /* allocated by the first sps_body_constrain_box */
     SPS__NEED_DRIVEN       /* a body whose prescribed motion does work (sps__body.driven) */
 } sps__need;
@@ -1192,6 +1241,10 @@ static const sps__field_info sps__fields[] = {
     /* carried: the next kick reads it (the per-particle half-step rotation) */
     {"velocity_gradient", "velocity gradient", 1, SPS__BOFF(grad), 0, 9, 0, SPS__NEED_GRADIENT, SPS__CARRIED},
     {"prescribed_work", "prescribed work", 1, SPS__BOFF(driven_work), 0, 1, 0, SPS__NEED_DRIVEN, SPS__CARRIED},
+    {"plastic_strain", "plastic strain", 1, SPS__BOFF(plastic_strain), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    {"plastic_work", "plastic work", 1, SPS__BOFF(plastic_work), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD},
+    /* written by the continuity pass, read by the penalty pass of the same sub-step */
+    {"return_factor", "return factor", 1, SPS__BOFF(return_factor), 0, 1, 0, SPS__NEED_SCALED_PENALTY, 0},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
@@ -1485,11 +1538,28 @@ static sps_real sps__rigid_energy_density(const sps__material_constants* c, sps_
     return 0;
 }
 
+/* >>material: J2 plasticity (von Mises, linear isotropic hardening; ANG section 2.2) */
+
+/* The elastic constants and checks, and the yield stress and hardening modulus. The return map
+   itself is sps__j2_stress_lanes (chapter >>solver), where the Jaumann update is. */
+static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
+    int broken = 0;
+    sps__elastic_check(m, msg, msg_size, &broken);
+    SPS__CHECK(m->yield_stress > 0 && sps__finite(m->yield_stress), "material.yield_stress = %g, allowed finite > 0 Pa for J2",
+               (double)m->yield_stress);
+    SPS__CHECK(m->hardening_modulus >= 0 && sps__finite(m->hardening_modulus),
+               "material.hardening_modulus = %g, allowed finite >= 0 Pa for J2 (0: perfect plasticity)", (double)m->hardening_modulus);
+    *broken_out += broken;
+}
+
 /* >>model (continued): the rows */
 
 static const sps__material_model sps__materials[] = {
-    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0},
-    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1},
+    /* kind               name       check               constants               energy density               kinematic plastic */
+    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0, 0},
+    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1, 0},
+    /* the stored energy of a J2 body is its elastic part; the return map's share is plastic work */
+    {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density, 0, 1},
 };
 #define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
@@ -1526,16 +1596,25 @@ typedef struct sps__combination_rule {
 } sps__combination_rule;
 static int sps__oas_outside_2d(int dim, const sps_body_def* def) { return def->shear == SPS_SHEAR_OAS && dim != 2; }
 static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
+static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.kind == SPS_MATERIAL_J2 && (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
+}
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
     {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
+    /* ANG sections 4.1 and 5.2: ENO's shear force is an accumulated Laplacian of velocity, not
+       the divergence of the stress, so a return map on tau would not limit it */
+    {sps__plastic_without_stress_force, "material.kind = J2 with shear = ENO or ENO-A: their shear force is an accumulated "
+                                        "Laplacian of velocity, not the divergence of the stress, so the yield surface cannot "
+                                        "limit it (ANG 5.2: ENO-A is for elastic materials); use GNO-A (or OG, OAS, GNO)"},
 };
 
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
-    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic) or 1 (rigid)", (int)def->material.kind);
+    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid) or 2 (J2)", (int)def->material.kind);
     if (material) material->check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN, "solver = %d, allowed 0 (updated Lagrangian)", (int)def->solver);
@@ -1569,6 +1648,8 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.stress = m.stabilisation->stress_force || def->track_stress;
     m.gradient = m.turn != SPS__TURN_NONE || m.stress;
     m.artificial_stress = m.stabilisation->artificial_stress;
+    m.plastic = m.material->plastic; /* a plastic body is of the OG family (combination rules): m.stress is set */
+    m.scaled_penalty = m.plastic && m.stabilisation->penalty;
     if (m.material->kinematic) { /* a wall body runs no pass and needs no field of its own */
         m.paired = m.stress = m.gradient = m.artificial_stress = 0;
         m.turn = SPS__TURN_NONE;
@@ -2934,7 +3015,8 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
     const sps__model* m = &b->model;
     return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
-           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_DRIVEN && b->driven);
+           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
+           (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -3412,6 +3494,78 @@ SPS__INLINE void sps__stress_lanes(const sps__body* b, sps__group q, const int d
     }
 }
 
+/* Radial return (J2 plasticity, ANG section 2.2) of one trial stress t (the Jaumann update,
+   entries xx xy xz yy yz zz, those of dim): with |t| = sqrt(t:t) = sqrt(2 J2) and the yield
+   radius y = sqrt(2/3)(sigma_Y + kappa alpha), a trial outside (f = |t| - y > 0, ANG eq. 11)
+   flows by d_gamma = f / (2G + 2 kappa/3) along t/|t|, alpha grows by sqrt(2/3) d_gamma and t is
+   scaled by r = sqrt(2/3)(sigma_Y + kappa alpha_new)/|t| (ANG eq. 14 with the hardened radius),
+   which puts it exactly on the new surface: r |t| = |t| - 2G d_gamma. Inside, r = 1. Returns r;
+   *alpha is updated and *dissipated gets the elastic energy density the return removed,
+   (t:t)(1 - r^2)/(4G) = d_gamma (|t| + r |t|)/2: the trapezoidal rule for the plastic work
+   sigma : d_eps_p of the step. Branch-free (selects) so that lane loops vectorise it. */
+SPS__INLINE sps_real sps__radial_return(sps_real t[6], const int dim, sps_real G, sps_real yield_stress, sps_real hardening,
+                                        sps_real* alpha, sps_real* dissipated) {
+    const sps_real sqrt_2_3 = SPS_R(0.81649658092772603273); /* sqrt(2/3) */
+    const sps_real tt = t[0] * t[0] + t[3] * t[3] + 2 * t[1] * t[1] +
+                        (dim == 3 ? t[5] * t[5] + 2 * (t[2] * t[2] + t[4] * t[4]) : 0);
+    const sps_real norm = SPS__SQRT(tt), over = norm - sqrt_2_3 * (yield_stress + hardening * *alpha);
+    const int yielding = over > 0;
+    const sps_real d_gamma = yielding ? over / (2 * G + SPS_R(2.0) / 3 * hardening) : 0;
+    const sps_real alpha_new = *alpha + sqrt_2_3 * d_gamma;
+    const sps_real r = yielding ? sqrt_2_3 * (yield_stress + hardening * alpha_new) / (yielding ? norm : 1) : 1;
+    int a;
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) t[a] *= r;
+    *alpha = alpha_new;
+    *dissipated = tt * (1 - r * r) / (4 * G);
+    return r;
+}
+
+/* The Jaumann update of a J2 body's lane group q followed by the radial return
+   (sps__radial_return): the stress, the equivalent plastic strain, the plastic work of each
+   particle (its current volume m/rho times the dissipated energy density) and, for a body
+   with the scaled GNO penalty (literal scaled), its return factor r (the reference code's
+   per-particle penalty scale) and, with relax (a literal: the penalty is stored per particle,
+   not per pair), the stored penalty acceleration a_s scaled by r too (sps__penalty explains
+   why). Padding lanes compute and do not store. */
+SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
+                                      sps_real L[9][SPS__LANES], const int scaled, const int relax) {
+    const size_t k0 = (size_t)(q.i0 - b->begin);
+    sps_real* SPS__RESTRICT tau = b->tau + 6 * k0;
+    sps_real* SPS__RESTRICT alpha = b->plastic_strain + k0;
+    sps_real* SPS__RESTRICT work = b->plastic_work + k0;
+    sps_real* SPS__RESTRICT factor = scaled ? b->return_factor + k0 : NULL;
+    const sps_real *SPS__RESTRICT mass = w->mass + q.i0, *SPS__RESTRICT rho = w->rho + q.i0;
+    const sps_real G = b->mat.G, yield_stress = b->def.material.yield_stress, hardening = b->def.material.hardening_modulus;
+    const int end = b->end;
+    int l;
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l) {
+        const sps_real rho_l = q.i0 + l < end ? rho[l] : 1; /* padding lanes: no 1/0 */
+        sps_real next[6] = {0, 0, 0, 0, 0, 0}, a = alpha[l], dissipated, r;
+        sps__next_stress(tau + 6 * l, 1, &L[0][l], SPS__LANES, G, dt, dim, next);
+        r = sps__radial_return(next, dim, G, yield_stress, hardening, &a, &dissipated);
+        if (q.i0 + l < end) {
+            tau[6 * l + 0] = next[0];
+            tau[6 * l + 1] = next[1];
+            tau[6 * l + 3] = next[3];
+            if (dim == 3) {
+                tau[6 * l + 2] = next[2];
+                tau[6 * l + 4] = next[4];
+                tau[6 * l + 5] = next[5];
+            }
+            alpha[l] = a;
+            work[l] += mass[l] / rho_l * dissipated;
+            if (scaled) factor[l] = r;
+            if (relax) {
+                int c;
+                SPS__UNROLL
+                for (c = 0; c < dim; ++c) w->acc_s[c][q.i0 + l] *= r;
+            }
+        }
+    }
+}
+
 /* The Rodrigues matrix of each particle of lane group q from its velocity gradient: from the
    lane arrays L when given (the continuity pass has them at hand; contiguous, so the lanes
    vectorise), else from the body's velocity gradients. Lanes that turned more than 0.01 rad are redone by sin and cos. */
@@ -3563,6 +3717,7 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
     /* the turn this pass applies: ENO's increments, and the mean rotation's sum for GNO-A too */
     const sps__turn turn = eno == SPS__ENO_PARTICLES || b->model.turn == SPS__TURN_MEAN ? b->model.turn : SPS__TURN_NONE;
     const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
+    const int plastic_possible = gradient && eno == SPS__ENO_NONE;
     sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
     sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     int l, t, a;
@@ -3570,7 +3725,11 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
     sps__continuity_pairs(w, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, shear_rate, sum);
     sps__continuity_lanes(w, b, q, dim, gradient, shear_rate, sum, da, L);
-    if (b->model.stress) sps__stress_lanes(b, q, dim, dt, L);
+    /* a plastic body is never ENO (combination rules): ENO kernels carry no return map */
+    if (plastic_possible && b->model.scaled_penalty && !b->model.paired) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
+    else if (plastic_possible && b->model.scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
+    else if (plastic_possible && b->model.plastic) sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);
+    else if (b->model.stress) sps__stress_lanes(b, q, dim, dt, L);
     if (turn != SPS__TURN_NONE) sps__rotation_lanes(b, q, dt, dim, L, R);
     if (turn == SPS__TURN_MEAN) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
@@ -3615,12 +3774,23 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
    With r_ij = r e_ij: v^_ij / r_ij dW = v_ij dW/r - 1/2 (L_i + L_j) e_ij dW.
    paired (SPS_ROTATION_PAIR): GNO-A's increment goes to the pair's force,
    g_ij += xi G dt (v^_ij . e_ij) / r_ij dW V_i V_j (symmetric in i, j bit for bit).
-   projected, paired and turn are literals (SPS__PENALTY_VARIANTS). */
+   scaled (J2 bodies): each pair's term is weighted by 1/2 (r_i + r_j), the mean of the two
+   particles' radial-return factors of this sub-step (1 while elastic): the reference code's
+   xi_i = xi r_i, so that the penalty, an elastic stiffness G, softens where the stress is held
+   on the yield surface. Our extension: the stored penalty is relaxed by the same factors (a_s_i
+   by r_i in sps__j2_stress_lanes; a pair force g_ij by 1/2 (r_i + r_j) here), as the return
+   map relaxes the stress. r is within O(dt) of 1 in a sub-step, so scaling only the increments
+   leaves the stored penalty an elastic spring of stiffness xi G against the non-affine part of
+   a plastic flow, which grows without bound and, once the particles have rearranged, does
+   work: measured, the square Taylor bar gained 27 % (L/dp 16) and 54 % (L/dp 20) of its
+   impact energy and the round bar (R/9) five times it (bench/VALIDATION.md, B). projected,
+   paired, turn and scaled are literals (SPS__PENALTY_VARIANTS). */
 SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                              const int projected, const int paired, const int turn) {
+                              const int projected, const int paired, const int turn, const int scaled) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real* SPS__RESTRICT L = b->grad; /* the body's own: particle begin + k at 9 k */
+    const sps_real* SPS__RESTRICT factor = b->return_factor; /* likewise, J2 bodies only */
     const int begin = b->begin;
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
     sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES];
@@ -3629,6 +3799,7 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
         for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real dir[3] = {e.ex, e.ey, e.ez}, dw = e.dw, dw_r = e.dw_r;
+            const sps_real pair_scale = scaled ? SPS_R(0.5) * (factor[i - begin] + factor[j - begin]) : 1;
             sps_real vhat[3], u = 0, u_pair = 0;
             SPS__UNROLL
             for (a = 0; a < dim; ++a) {
@@ -3636,11 +3807,13 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
                 SPS__UNROLL
                 for (c = 0; c < dim; ++c) le += (L[(size_t)9 * (i - begin) + 3 * a + c] + L[(size_t)9 * (j - begin) + 3 * a + c]) * dir[c];
                 v_r = (w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
+                if (scaled) v_r *= pair_scale;
                 vhat[a] = v_r * vol[j];
                 u += vhat[a] * dir[a];
                 if (paired) u_pair += v_r * dir[a];
             }
             if (paired) {
+                if (scaled) w->pair_force[s] *= pair_scale;
                 w->pair_force[s] += penalty_rate * u_pair * (vol[i] * vol[j]);
             } else {
                 SPS__UNROLL
@@ -3658,13 +3831,17 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     sps__add_increments(w, b, q, dim, da, R, turn);
 }
 
-/* The penalty pass's variants: (projected, pair forces, turn). */
-#define SPS__PENALTY_VARIANTS(X)                    \
-    X(gno, 0, 0, SPS__TURN_NONE)                    \
-    X(gno_a_mean, 1, 0, SPS__TURN_MEAN)             \
-    X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE)     \
-    X(gno_a_pairs, 1, 1, SPS__TURN_NONE)
-#define SPS__PENALTY_INSTANCES(variant, projected, paired, turn) SPS__INSTANCES(penalty, variant, projected, paired, turn)
+/* The penalty pass's variants: (projected, pair forces, turn, scaled by the return factors). */
+#define SPS__PENALTY_VARIANTS(X)                              \
+    X(gno, 0, 0, SPS__TURN_NONE, 0)                           \
+    X(gno_a_mean, 1, 0, SPS__TURN_MEAN, 0)                    \
+    X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE, 0)            \
+    X(gno_a_pairs, 1, 1, SPS__TURN_NONE, 0)                   \
+    X(gno_j2, 0, 0, SPS__TURN_NONE, 1)                        \
+    X(gno_a_mean_j2, 1, 0, SPS__TURN_MEAN, 1)                 \
+    X(gno_a_particle_j2, 1, 0, SPS__TURN_PARTICLE, 1)         \
+    X(gno_a_pairs_j2, 1, 1, SPS__TURN_NONE, 1)
+#define SPS__PENALTY_INSTANCES(variant, projected, paired, turn, scaled) SPS__INSTANCES(penalty, variant, projected, paired, turn, scaled)
 SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
 
 /* The pass kernels of a model in the world's mode: each pass's variant table searched for the
@@ -3675,7 +3852,7 @@ typedef struct sps__variant_row {
 } sps__variant_row;
 #define SPS__ROW3(variant, a, b, c) {{a, b, c, 0}, sps__pressure_##variant},
 #define SPS__ROW_CONTINUITY(variant, a, b) {{a, b, 0, 0}, sps__continuity_##variant},
-#define SPS__ROW_PENALTY(variant, a, b, c) {{a, b, c, 0}, sps__penalty_##variant},
+#define SPS__ROW_PENALTY(variant, a, b, c, d) {{a, b, c, d}, sps__penalty_##variant},
 static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW3)};
 static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
 static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
@@ -3694,7 +3871,7 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     const int eno = !st->eno ? SPS__ENO_NONE : m->paired ? SPS__ENO_PAIRS : SPS__ENO_PARTICLES;
     const int pressure_key[4] = {st->stress_force, st->artificial_stress, m->paired, 0};
     const int continuity_key[4] = {m->gradient, eno, 0, 0};
-    const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, 0};
+    const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, m->scaled_penalty};
     sps__passes p;
     if (m->material->kinematic) {
         memset(&p, 0, sizeof p);
@@ -4373,7 +4550,7 @@ static sps_result sps__check_bodies_filled(sps_world* w) {
 }
 
 /* Reals per particle in the last good state: the components of the fields marked SPS__GOOD
-   (14: position 3, velocity 3, density, pressure, shear stress 6). */
+   (16: position 3, velocity 3, density, pressure, shear stress 6, plastic strain and work). */
 static size_t sps__good_reals(void) {
     size_t total = 0;
     int k;
@@ -4422,10 +4599,10 @@ static void sps__save_good_state(sps_world* w) {
 /* ---- the energy watchdog ----
    A run can go wrong and stay finite: past its stable time step or formulation the energy grows
    while every guard above stays quiet. The account E = kinetic + strain + contact + gravity
-   potential - work of the prescribed motions is conserved by the continuous equations (the
-   Riemann dissipation and no-slip walls only take energy away), so its growth above its start
-   is numerical. The shear strain energy is left out (sps__body_energies): the account is a
-   lower bound, judged by its kinetic energy. Checked at the configuration
+   potential + plastic work - work of the prescribed motions is conserved by the continuous
+   equations (the Riemann dissipation and no-slip walls only take energy away), so its growth
+   above its start is numerical. The shear strain energy is left out (sps__body_energies): the
+   account is a lower bound, judged by its kinetic energy. Checked at the configuration
    updates, at most every 10 acoustic sub-steps (one serial O(N) sum, ~1 % of a sub-step's cost
    spread over 10). */
 
@@ -4444,16 +4621,16 @@ static void sps__particle_energies(const sps_world* w, const sps__body* b, int i
 }
 
 /* The energies of body b [J]: kinetic + volumetric strain, contact, gravity potential
-   -sum m g.x, and the work its prescribed motion has done (serial sums: a fixed order). The
+   -sum m g.x, the work its plastic flow dissipated (J2), and the work its prescribed motion has done (serial sums: a fixed order). The
    shear strain energy tau:tau/(4G) is left out: with the Jaumann rate it is not conserved under
    large rotations (3D cantilever at tip speed 0.05 c0: it reads 5 % (GNO-A) to 24 % (ENO) above
    the start at the largest bending, while the peaks of the kinetic energy stay below it), so the
    account is a lower bound of the energy, judged by its kinetic part. */
-typedef struct { sps_real motion, contact, potential, work; } sps__energies;
+typedef struct { sps_real motion, contact, potential, plastic, work; } sps__energies;
 static sps__energies sps__body_energies(const sps_world* w, const sps__body* b) {
     const sps_real* g = w->def.gravity;
     const int contacts = w->contact_bodies || w->nwalls > 0;
-    sps__energies e = {0, 0, 0, 0};
+    sps__energies e = {0, 0, 0, 0, 0};
     int i, a;
     for (i = b->begin; i < b->end; ++i) {
         sps_real kinetic, strain;
@@ -4463,6 +4640,7 @@ static sps__energies sps__body_energies(const sps_world* w, const sps__body* b) 
         for (a = 0; a < w->dim; ++a) e.potential -= w->mass[i] * g[a] * w->pos[a][i];
     }
     for (i = 0; b->driven_work && i < b->end - b->begin; ++i) e.work += b->driven_work[i];
+    for (i = 0; b->plastic_work && i < b->end - b->begin && i < b->field_count; ++i) e.plastic += b->plastic_work[i];
     return e;
 }
 
@@ -4472,11 +4650,11 @@ static sps__energies sps__body_energies(const sps_world* w, const sps__body* b) 
 static void sps__body_account(const sps_world* w, const sps__body* b, sps_real* account, sps_real* mechanical) {
     const sps__energies e = sps__body_energies(w, b);
     *mechanical = b->model.material->kinematic ? e.contact : e.motion + e.contact;
-    *account = *mechanical + (b->model.material->kinematic ? 0 : e.potential) - e.work;
+    *account = *mechanical + (b->model.material->kinematic ? 0 : e.potential) + e.plastic - e.work;
 }
 
-/* The world's account E (kinetic + strain + contact + gravity potential - work of the
-   prescribed motions) and its mechanical energy. */
+/* The world's account E (kinetic + strain + contact + gravity potential + plastic work - work
+   of the prescribed motions) and its mechanical energy. */
 static void sps__energy_account(const sps_world* w, sps_real* account, sps_real* mechanical) {
     int bi;
     *account = *mechanical = 0;
@@ -4520,8 +4698,8 @@ static sps_result sps__watch_energy(sps_world* w) {
         if (bi == 0 || m - w->bodies[bi].energy_start > gain) { gain = m - w->bodies[bi].energy_start; most = bi; }
     }
     snprintf(msg, sizeof msg,
-             "energy watchdog at t = %g: the energy (kinetic + volumetric strain + contact + gravity potential - work of prescribed "
-             "motions) "
+             "energy watchdog at t = %g: the energy (kinetic + volumetric strain + contact + gravity potential + plastic work - work of "
+             "prescribed motions) "
              "grew from %g J to %g J since t = %g, by %.3g %% of the largest mechanical energy %g J (energy_growth_limit = %g %%); "
              "body '%s' gained most (%g J). The time step (cfl_acoustic = %g) or the shear formulation is beyond its stable "
              "range for this scene (bench/VALIDATION.md, stability map)",
@@ -4929,6 +5107,13 @@ static sps_real sps__von_mises(const sps_world* w, int i) {
                      3 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
 }
 
+/* The equivalent plastic strain of particle i (0 unless its body is plastic, and for particles
+   added since the last commit). */
+static sps_real sps__plastic_strain(const sps_world* w, int i) {
+    const sps__body* b = &w->bodies[w->body[i]];
+    return b->plastic_strain && i - b->begin < b->field_count ? b->plastic_strain[i - b->begin] : 0;
+}
+
 /* Hourglass indicator (see DIAGNOSTICS): displacement gradients with B from current positions. */
 static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing) {
     sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, num = 0, den = 0, rmin2 = -1;
@@ -5021,6 +5206,11 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
         if (!b->model.material->kinematic)
             for (a = 0; a < w->dim; ++a) out->potential_energy -= m * w->def.gravity[a] * x[a];
         if (w->contact_bodies || w->nwalls > 0) out->contact_energy += sps__contact_energy(w, i);
+        if (b->model.plastic && i - b->begin < b->field_count) { /* particles added since the last commit have none yet */
+            const sps_real alpha = b->plastic_strain[i - b->begin];
+            out->plastic_work += b->plastic_work[i - b->begin];
+            if (alpha > out->max_plastic_strain) out->max_plastic_strain = alpha;
+        }
         if (SPS__SQRT(v2) > out->max_speed) out->max_speed = SPS__SQRT(v2);
         if (w->rho[i] < out->min_density) out->min_density = w->rho[i];
         if (w->rho[i] > out->max_density) out->max_density = w->rho[i];
@@ -5036,19 +5226,21 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
 SPSDEF const char* sps_diagnostics_csv_header(void) {
     return "time,kinetic_energy,strain_energy,total_energy,momentum_x,momentum_y,momentum_z,"
            "angular_momentum_x,angular_momentum_y,angular_momentum_z,max_speed,min_density,max_density,"
-           "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic,contact_energy,potential_energy,prescribed_work";
+           "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic,contact_energy,potential_energy,prescribed_work,"
+           "plastic_work,max_plastic_strain";
 }
 
 SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t size) {
     if (!d || (!buf && size)) return -1;
-    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g",
+    /* total_energy: kinetic + strain + plastic work */
+    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g,%.9g,%.6g",
                     (double)d->time, (double)d->kinetic_energy, (double)d->strain_energy,
-                    (double)(d->kinetic_energy + d->strain_energy), (double)d->linear_momentum[0],
+                    (double)(d->kinetic_energy + d->strain_energy + d->plastic_work), (double)d->linear_momentum[0],
                     (double)d->linear_momentum[1], (double)d->linear_momentum[2], (double)d->angular_momentum[0],
                     (double)d->angular_momentum[1], (double)d->angular_momentum[2], (double)d->max_speed,
                     (double)d->min_density, (double)d->max_density, (double)d->hourglass, (double)d->min_spacing, d->acoustic_steps,
                     d->advection_steps, (double)d->dt_acoustic, (double)d->contact_energy, (double)d->potential_energy,
-                    (double)d->prescribed_work);
+                    (double)d->prescribed_work, (double)d->plastic_work, (double)d->max_plastic_strain);
 }
 
 /* >>access */
@@ -5148,6 +5340,7 @@ SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_st
     out->pressure = w->p[i];
     out->von_mises = sps__von_mises(w, i);
     out->body_index = w->body[i];
+    out->plastic_strain = sps__plastic_strain(w, i);
     return SPS_OK;
 }
 
@@ -5270,7 +5463,8 @@ typedef struct sps__vtk_array {
     int is_int;
     const char* field; /* the sps__fields row it shows, or NULL */
     void (*value)(const sps_world* w, int i, sps_real* out); /* for field NULL */
-    int stress_option; /* written only with sps_vtk_options.stress */
+    enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC } shown; /* written always, with
+                      sps_vtk_options.stress, or when a body is plastic (J2) */
 } sps__vtk_array;
 
 static void sps__vtk_displacement(const sps_world* w, int i, sps_real* out) {
@@ -5278,6 +5472,7 @@ static void sps__vtk_displacement(const sps_world* w, int i, sps_real* out) {
     for (a = 0; a < 3; ++a) out[a] = a < w->dim ? w->pos[a][i] - w->ref[a][i] : 0;
 }
 static void sps__vtk_von_mises(const sps_world* w, int i, sps_real* out) { out[0] = sps__von_mises(w, i); }
+static void sps__vtk_plastic_strain(const sps_world* w, int i, sps_real* out) { out[0] = sps__plastic_strain(w, i); }
 static void sps__vtk_stress(const sps_world* w, int i, sps_real* out) { /* the full tensor, row-major */
     static const int of[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
     sps_real s[6];
@@ -5287,16 +5482,26 @@ static void sps__vtk_stress(const sps_world* w, int i, sps_real* out) { /* the f
 }
 
 static const sps__vtk_array sps__vtk_arrays[] = {
-    {"velocity", 3, 0, "velocity", NULL, 0},
-    {"displacement", 3, 0, NULL, sps__vtk_displacement, 0},
-    {"pressure", 1, 0, "pressure", NULL, 0},
-    {"density", 1, 0, "density", NULL, 0},
-    {"von_mises", 1, 0, NULL, sps__vtk_von_mises, 0},
-    {"stress", 9, 0, NULL, sps__vtk_stress, 1},
-    {"body", 1, 1, "body", NULL, 0},
-    {"id", 1, 1, "id", NULL, 0},
+    {"velocity", 3, 0, "velocity", NULL, SPS__VTK_ALWAYS},
+    {"displacement", 3, 0, NULL, sps__vtk_displacement, SPS__VTK_ALWAYS},
+    {"pressure", 1, 0, "pressure", NULL, SPS__VTK_ALWAYS},
+    {"density", 1, 0, "density", NULL, SPS__VTK_ALWAYS},
+    {"von_mises", 1, 0, NULL, sps__vtk_von_mises, SPS__VTK_ALWAYS},
+    {"stress", 9, 0, NULL, sps__vtk_stress, SPS__VTK_WITH_STRESS},
+    {"plastic_strain", 1, 0, NULL, sps__vtk_plastic_strain, SPS__VTK_IF_PLASTIC},
+    {"body", 1, 1, "body", NULL, SPS__VTK_ALWAYS},
+    {"id", 1, 1, "id", NULL, SPS__VTK_ALWAYS},
 };
 #define SPS__VTK_ARRAYS ((int)(sizeof sps__vtk_arrays / sizeof sps__vtk_arrays[0]))
+
+/* Whether a row of sps__vtk_arrays is written for world w with options opt. */
+static int sps__vtk_shown(const sps_world* w, const sps__vtk_array* row, const sps_vtk_options* opt) {
+    int bi;
+    if (row->shown == SPS__VTK_WITH_STRESS) return opt->stress;
+    for (bi = 0; row->shown == SPS__VTK_IF_PLASTIC && bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.plastic) return 1;
+    return row->shown == SPS__VTK_ALWAYS;
+}
 
 /* The values of registry field f for particle i into out (components of the VTK array). */
 static void sps__vtk_field_values(const sps_world* w, const sps__field_info* f, int i, int components, double* out) {
@@ -5417,12 +5622,12 @@ SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const s
         sps__vtk_end_point(&o);
     }
     sps__vtk_end_block(&o);
-    for (k = 0; k < SPS__VTK_ARRAYS; ++k) arrays += !sps__vtk_arrays[k].stress_option || opt.stress;
+    for (k = 0; k < SPS__VTK_ARRAYS; ++k) arrays += sps__vtk_shown(w, &sps__vtk_arrays[k], &opt);
     /* a FIELD block: the legacy reader shows every array of it (with SCALARS and VECTORS it
        shows only the first of each) */
     fprintf(o.f, "POINT_DATA %d\nFIELD FieldData %d\n", w->n, arrays);
     for (k = 0; k < SPS__VTK_ARRAYS; ++k)
-        if (!sps__vtk_arrays[k].stress_option || opt.stress) sps__vtk_write_array(w, &sps__vtk_arrays[k], &o);
+        if (sps__vtk_shown(w, &sps__vtk_arrays[k], &opt)) sps__vtk_write_array(w, &sps__vtk_arrays[k], &o);
     if (ferror(o.f) | (fclose(o.f) != 0)) { sps__set_error(w, 0, "sps_world_write_vtk: error writing '%s'", path); return SPS_ERR_IO; }
     return SPS_OK;
 }

@@ -34,14 +34,16 @@ RENDER_UNUSED static double render_pressure(const sps_particle_state* s) { retur
 RENDER_UNUSED static double render_von_mises(const sps_particle_state* s) { return s->von_mises; } /* 0 unless the body tracks stress */
 RENDER_UNUSED static double render_displacement(const sps_particle_state* s) { return render_norm3(s->displacement); }
 RENDER_UNUSED static double render_body(const sps_particle_state* s) { return s->body_index; }
+RENDER_UNUSED static double render_plastic_strain(const sps_particle_state* s) { return s->plastic_strain; } /* 0 unless J2 */
 
-/* More fields (plastic strain, once the library has plasticity) are more rows here. */
+/* More fields are more rows here. */
 static const render_field render_fields[] = {
     {"velocity", "velocity [m/s]", render_speed},
     {"pressure", "pressure [Pa]", render_pressure},
     {"von-mises", "von Mises [Pa]", render_von_mises},
     {"displacement", "displacement [m]", render_displacement},
     {"body", "body index", render_body},
+    {"plastic-strain", "equivalent plastic strain", render_plastic_strain},
 };
 #define RENDER_FIELD_COUNT ((int)(sizeof render_fields / sizeof *render_fields))
 

@@ -244,7 +244,10 @@ static sps_body_def random_body_def(void) {
     d.material.poisson_ratio = chance(p) ? (chance(0.5) ? 0.5 : hostile_real()) : uniform(-0.5, 0.4999);
     d.shear = (sps_shear)(chance(p) ? hostile_int() : below(6));
     d.rotation = (sps_rotation)(chance(p) ? hostile_int() : below(3));
-    d.material.kind = (sps_material_kind)(chance(p) ? hostile_int() : chance(0.15)); /* sometimes a wall body */
+    d.material.kind = (sps_material_kind)(chance(p) ? hostile_int() /* sometimes a wall body, sometimes plastic */
+                                                    : chance(0.15) ? SPS_MATERIAL_RIGID : chance(0.2) ? SPS_MATERIAL_J2 : SPS_MATERIAL_ELASTIC);
+    d.material.yield_stress = maybe_hostile(d.material.youngs_modulus * exp(uniform(log(1e-4), log(1e-2))), p);
+    d.material.hardening_modulus = chance(0.5) ? 0 : maybe_hostile(d.material.youngs_modulus * uniform(0, 0.01), p);
     d.contact = chance(p) ? hostile_int() : !chance(0.1);
     d.zeta = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);
     d.xi = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);

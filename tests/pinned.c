@@ -1,10 +1,11 @@
 /* pinned.c - pinned results: the library's answers, bit for bit, across commits.
 
    Runs short cases over dimension x shear formulation x rotation x pair geometry x kernel (and
-   single stepping, tracked stress, several bodies in one world), each at 1 and 2 threads, and
-   compares a 64-bit FNV-1a hash of every particle's position, velocity, density, pressure and
-   von Mises stress (in id order), and of the world's diagnostics (energies, momenta, hourglass
-   indicator, smallest spacing), after a few advection steps with the value stored below.
+   single stepping, tracked stress, several bodies in one world, J2 plasticity), each at 1 and 2
+   threads, and compares a 64-bit FNV-1a hash of every particle's position, velocity, density,
+   pressure and von Mises stress (and plastic strain: J2 cases) in id order, and of the world's
+   diagnostics (energies, momenta, hourglass indicator, smallest spacing; plastic work and
+   largest plastic strain: J2 cases), after a few advection steps with the value stored below.
    A change that moves any result by one bit fails here: a commit that changes results on
    purpose regenerates the table (--print) and says why in its message.
 
@@ -34,6 +35,7 @@ typedef struct pinned_case {
     int single;            /* single stepping */
     int track_stress;
     int all_shears;        /* one body of every formulation the dimension allows, side by side */
+    int plastic;           /* J2 material (yields within the run); its plastic strain and work are hashed too */
 } pinned_case;
 
 #define W SPS_KERNEL_WENDLAND_C2
@@ -46,10 +48,10 @@ typedef struct pinned_case {
    both kernels; the -A rotations where they apply (the others ignore the rotation). */
 static const pinned_case g_cases[] = {
 #define GEOMETRIES(nm, d, sh, rot)                              \
-    {nm "/wendland", d, sh, rot, 0, W, 0, 0, 0},                \
-    {nm "/spline", d, sh, rot, 0, S, 0, 0, 0},                  \
-    {nm "/frozen", d, sh, rot, 1, W, 0, 0, 0},                  \
-    {nm "/frozen-spline", d, sh, rot, 1, S, 0, 0, 0}
+    {nm "/wendland", d, sh, rot, 0, W, 0, 0, 0, 0},             \
+    {nm "/spline", d, sh, rot, 0, S, 0, 0, 0, 0},               \
+    {nm "/frozen", d, sh, rot, 1, W, 0, 0, 0, 0},               \
+    {nm "/frozen-spline", d, sh, rot, 1, S, 0, 0, 0, 0}
     GEOMETRIES("2d/eno", 2, SPS_SHEAR_ENO, MEAN),
     GEOMETRIES("2d/eno-a-mean", 2, SPS_SHEAR_ENO_A, MEAN),
     GEOMETRIES("2d/eno-a-particle", 2, SPS_SHEAR_ENO_A, PART),
@@ -70,12 +72,18 @@ static const pinned_case g_cases[] = {
     GEOMETRIES("3d/gno-a-particle", 3, SPS_SHEAR_GNO_A, PART),
     GEOMETRIES("3d/gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR),
 #undef GEOMETRIES
-    {"2d/eno-a-mean/single", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 1, 0, 0},
-    {"2d/eno/stress", 2, SPS_SHEAR_ENO, MEAN, 0, W, 0, 1, 0},
-    {"2d/eno-a-pair/stress", 2, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 1, 0},
-    {"3d/eno-a-mean/stress", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 1, 0},
-    {"2d/all-shears", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1},
-    {"3d/all-shears", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1},
+    {"2d/eno-a-mean/single", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 1, 0, 0, 0},
+    {"2d/eno/stress", 2, SPS_SHEAR_ENO, MEAN, 0, W, 0, 1, 0, 0},
+    {"2d/eno-a-pair/stress", 2, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 1, 0, 0},
+    {"3d/eno-a-mean/stress", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 1, 0, 0},
+    {"2d/all-shears", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0},
+    {"3d/all-shears", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0},
+    {"2d/j2-og", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1},
+    {"2d/j2-gno-a-mean", 2, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1},
+    {"3d/j2-og", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1},
+    {"3d/j2-gno-a-mean", 3, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1},
+    {"3d/j2-gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1},
+    {"3d/j2-gno", 3, SPS_SHEAR_GNO, MEAN, 0, W, 0, 0, 0, 1},
 };
 #define NCASES ((int)(sizeof g_cases / sizeof g_cases[0]))
 
@@ -125,6 +133,11 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
     bd.rotation = c->rotation;
     bd.track_stress = c->track_stress;
     bd.material.youngs_modulus = (sps_real)(1e6 * (1 + 0.25 * index)); /* bodies differ */
+    if (c->plastic) { /* a yield stress a quarter of the shear stress the motion builds in the run: it yields */
+        bd.material.kind = SPS_MATERIAL_J2;
+        bd.material.yield_stress = (sps_real)5e3;
+        bd.material.hardening_modulus = (sps_real)1e5;
+    }
     if (sps_world_add_body(w, &bd, &b) != SPS_OK) return -1;
     lo[0] = (sps_real)x0; lo[1] = 0; lo[2] = 0;
     hi[0] = (sps_real)(x0 + len); hi[1] = (sps_real)hgt; hi[2] = (sps_real)dep;
@@ -168,6 +181,10 @@ static uint64_t run_case(const pinned_case* c, int threads) {
         for (k = 0; k < 3; ++k) { v[k] = (double)ps.position[k]; v[3 + k] = (double)ps.velocity[k]; }
         v[6] = (double)ps.density; v[7] = (double)ps.pressure; v[8] = (double)ps.von_mises;
         h = fnv_bytes(h, v, sizeof v);
+        if (c->plastic) {
+            const double alpha = (double)ps.plastic_strain;
+            h = fnv_bytes(h, &alpha, sizeof alpha);
+        }
     }
     h = fnv_bytes(h, &n, sizeof n);
     {   /* the diagnostics too: energies, momenta, the hourglass indicator (its B_i) and spacing */
@@ -179,6 +196,11 @@ static uint64_t run_case(const pinned_case* c, int threads) {
         v[3] = (double)d.min_spacing;
         for (k = 0; k < 3; ++k) { v[4 + k] = (double)d.linear_momentum[k]; v[7 + k] = (double)d.angular_momentum[k]; }
         h = fnv_bytes(h, v, sizeof v);
+        if (c->plastic) {
+            const double p[2] = {(double)d.plastic_work, (double)d.max_plastic_strain};
+            if (!(d.max_plastic_strain > 0)) { printf("    %s: the body did not yield\n", c->name); goto fail; }
+            h = fnv_bytes(h, p, sizeof p);
+        }
     }
     sps_world_destroy(w);
     return h;
