@@ -5457,14 +5457,16 @@ SPSDEF sps_result sps_observer_read(const sps_world* w, sps_observer o, sps_real
 /* The point-data arrays of the VTK files, one row each: an array is either a row of sps__fields
    (a per-body one is 0 for the bodies without it), or computed per particle by value. A new
    output is one row. */
+/* When a row of sps__vtk_arrays is written: always, with sps_vtk_options.stress, or when a
+   body is plastic (J2). */
+typedef enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC } sps__vtk_shown_when;
 typedef struct sps__vtk_array {
     const char* name;
     int components; /* per point (a per-axis field: 3, z = 0 in 2D) */
     int is_int;
     const char* field; /* the sps__fields row it shows, or NULL */
     void (*value)(const sps_world* w, int i, sps_real* out); /* for field NULL */
-    enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC } shown; /* written always, with
-                      sps_vtk_options.stress, or when a body is plastic (J2) */
+    sps__vtk_shown_when shown;
 } sps__vtk_array;
 
 static void sps__vtk_displacement(const sps_world* w, int i, sps_real* out) {
