@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.5.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.6.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -376,6 +376,13 @@
       removing particles.
 
    REVISION HISTORY
+      0.6.0 (2026-12-02) J2 plasticity (SPS_MATERIAL_J2); guards that judge the body: time steps
+                         in each body's frame, the escape guard around each body's centre of
+                         mass, the energy watchdog, warnings for CFL above the measured stable
+                         value and impacts above 0.2 c0; damping, external accelerations,
+                         restart files (sps_world_save, sps_world_restore), binary VTK with
+                         every array in a FIELD block. Results of moving scenes change with the
+                         frame speeds (tests/pinned.c regenerated).
       0.5.0 (2026-12-01) a body's model as data (material, stabilisation, solver and transport
                          rows, a table of allowed combinations; material.kind, solver and
                          transport in the defs), pass kernels chosen once per body, a field
@@ -411,9 +418,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 5
+#define SPHSOLID_VERSION_MINOR 6
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.5.0"
+#define SPHSOLID_VERSION_STRING "0.6.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
