@@ -218,9 +218,11 @@ $(BUILD)/fuzz_sanitize: tests/fuzz_api.c $(HEADER) | $(BUILD)
 	$(CC) -std=c99 -O1 -g $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
 # passive OpenMP waits, as the test runner sets for itself: spinning threads crawl on a busy machine
 fuzz: $(BUILD)/fuzz_api
-	OMP_WAIT_POLICY=passive ./$(BUILD)/fuzz_api --cases $(FUZZ_CASES) --out $(BUILD)
+	mkdir -p $(BUILD)/fuzz_plain
+	OMP_WAIT_POLICY=passive ./$(BUILD)/fuzz_api --cases $(FUZZ_CASES) --out $(BUILD)/fuzz_plain
 fuzz-sanitize: $(BUILD)/fuzz_sanitize
-	OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_sanitize --cases 1000 --out $(BUILD)
+	mkdir -p $(BUILD)/fuzz_sanitized
+	OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_sanitize --cases 1000 --out $(BUILD)/fuzz_sanitized
 
 # ---- valgrind: serial builds (no OpenMP runtime and its thread caches to suppress) ----
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect
@@ -233,7 +235,8 @@ $(BUILD)/fuzz_memcheck: tests/fuzz_api.c $(HEADER) | $(BUILD)
 # valgrind it alone takes over 5 minutes.
 memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 	OMP_WAIT_POLICY=passive $(VALGRIND) ./$(BUILD)/test_memcheck --quick --exclude determinism_threads
-	$(VALGRIND) ./$(BUILD)/fuzz_memcheck --cases 300 --out $(BUILD)
+	mkdir -p $(BUILD)/fuzz_memcheck_out
+	$(VALGRIND) ./$(BUILD)/fuzz_memcheck --cases 300 --out $(BUILD)/fuzz_memcheck_out
 
 # ---- bench ----
 bench: examples

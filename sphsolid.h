@@ -3476,6 +3476,19 @@ SPS__INLINE void sps__next_stress(const sps_real* t6, int ts, const sps_real* L,
         }
 }
 
+/* Stores a lane's updated shear stress next (xx xy xz yy yz zz) into tau: in 2D only the
+   in-plane components, the others stay 0. */
+SPS__INLINE void sps__store_stress(sps_real* tau, const sps_real next[6], const int dim) {
+    tau[0] = next[0];
+    tau[1] = next[1];
+    tau[3] = next[3];
+    if (dim == 3) {
+        tau[2] = next[2];
+        tau[4] = next[4];
+        tau[5] = next[5];
+    }
+}
+
 /* The Jaumann update of the particles of lane group q from their velocity gradients in the
    lane arrays L (contiguous per entry: the lanes vectorise; measured 6% of a 2D plate run as a
    scalar loop). Padding lanes compute and do not store. */
@@ -3488,16 +3501,7 @@ SPS__INLINE void sps__stress_lanes(const sps__body* b, sps__group q, const int d
     for (l = 0; l < SPS__LANES; ++l) {
         sps_real next[6];
         sps__next_stress(tau + 6 * l, 1, &L[0][l], SPS__LANES, G, dt, dim, next);
-        if (q.i0 + l < end) {
-            tau[6 * l + 0] = next[0];
-            tau[6 * l + 1] = next[1];
-            tau[6 * l + 3] = next[3];
-            if (dim == 3) {
-                tau[6 * l + 2] = next[2];
-                tau[6 * l + 4] = next[4];
-                tau[6 * l + 5] = next[5];
-            }
-        }
+        if (q.i0 + l < end) sps__store_stress(tau + 6 * l, next, dim);
     }
 }
 
@@ -3553,14 +3557,7 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
         sps__next_stress(tau + 6 * l, 1, &L[0][l], SPS__LANES, G, dt, dim, next);
         r = sps__radial_return(next, dim, G, yield_stress, hardening, &a, &dissipated);
         if (q.i0 + l < end) {
-            tau[6 * l + 0] = next[0];
-            tau[6 * l + 1] = next[1];
-            tau[6 * l + 3] = next[3];
-            if (dim == 3) {
-                tau[6 * l + 2] = next[2];
-                tau[6 * l + 4] = next[4];
-                tau[6 * l + 5] = next[5];
-            }
+            sps__store_stress(tau + 6 * l, next, dim);
             alpha[l] = a;
             work[l] += mass[l] / rho_l * dissipated;
             if (scaled) factor[l] = r;
