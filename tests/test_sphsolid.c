@@ -32,7 +32,8 @@
 
 static int g_quick;             /* --quick: skip the long physics regressions */
 static const char* g_filter;    /* substring filter on test names, or NULL */
-static const char* g_exclude;   /* --exclude: skip the tests whose names contain it, or NULL */
+static const char* g_exclude[8]; /* --exclude (repeatable): skip the tests whose names contain one */
+static int g_excluded;
 static int g_passed, g_failed, g_skipped;
 
 #include "ensure.h"
@@ -46,7 +47,10 @@ static void run_test(const char* name, int (*fn)(void), int is_long) {
     double t0;
     int failed, status = 0;
     pid_t pid;
-    if ((g_filter && !strstr(name, g_filter)) || (g_exclude && strstr(name, g_exclude))) return;
+    int k;
+    for (k = 0; k < g_excluded; ++k)
+        if (strstr(name, g_exclude[k])) return;
+    if (g_filter && !strstr(name, g_filter)) return;
     if (is_long == 2 && !g_filter) {
         printf("%-40s skipped (run it by name: about a minute)\n", name);
         ++g_skipped;
@@ -3685,12 +3689,12 @@ int main(int argc, char** argv) {
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) g_quick = 1;
         else if (strcmp(argv[i], "--no-fork") == 0) g_no_fork = 1;
-        else if (strcmp(argv[i], "--exclude") == 0 && i + 1 < argc) g_exclude = argv[++i];
+        else if (strcmp(argv[i], "--exclude") == 0 && i + 1 < argc && g_excluded < 8) g_exclude[g_excluded++] = argv[++i];
         else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("usage: %s [--quick] [--no-fork] [--exclude text] [name-filter]\n"
+            printf("usage: %s [--quick] [--no-fork] [--exclude text]... [name-filter]\n"
                    "  --quick         skip the long physics regressions\n"
                    "  --no-fork       run the tests in this process (for a debugger)\n"
-                   "  --exclude text  skip the tests whose names contain text\n", argv[0]);
+                   "  --exclude text  skip the tests whose names contain text (up to 8 times)\n", argv[0]);
             return 0;
         } else g_filter = argv[i];
     }
