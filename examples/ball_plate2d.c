@@ -119,14 +119,7 @@ int main(int argc, char** argv) {
                 ",ball_kinetic,ball_strain,ball_total,plate_kinetic,plate_strain,plate_total,min_gap_dp,ball_momentum_y");
     ex_check(w, sps_world_diagnostics(w, s.ball, &db0));
     py0 = db0.linear_momentum[1];
-    s.wall0 = wall_seconds();
-    on_step(w, &s);
-    {
-        sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
-        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
-    }
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
     {
         sps_body all = {0};
         double e_end;

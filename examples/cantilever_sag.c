@@ -88,14 +88,7 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end;
     s.drift_from = c.t_end - 0.1;
     output_open(&s.output, &c, "cantilever_sag", "displacement", ",sag");
-    s.wall0 = wall_seconds();
-    on_step(w, &s); /* t = 0 row and snapshot */
-    {
-        sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
-        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
-    }
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
 
     sag = plate2d_end_sag(w, s.dp);
     x_end = PLATE2D_L - s.dp / 2;

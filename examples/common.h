@@ -459,6 +459,21 @@ EX_UNUSED static void ex_step_failed(sps_world* w, sps_result r, const output_pl
     exit(2);
 }
 
+/* Runs w to t_end: on_step once at the start (the t = 0 row and snapshot) and after every step,
+   a library error ending the program (ex_step_failed), then closes the output. *wall0 is set to
+   the start (the progress line reads it); returns the wall time of the run, the output's
+   closing left out. */
+EX_UNUSED static double ex_run(sps_world* w, double t_end, sps_step_fn on_step, void* state, double* wall0, output_plan* o) {
+    sps_result r;
+    double wall;
+    *wall0 = wall_seconds();
+    on_step(w, state);
+    if ((r = sps_world_advance(w, (sps_real)t_end, on_step, state)) != SPS_OK) ex_step_failed(w, r, o);
+    wall = wall_seconds() - *wall0;
+    output_close(w, o);
+    return wall;
+}
+
 /* Advances w to the time of CSV row *row + 1 (csv_every apart, at most t_end) and counts the
    row; a library error ends the program (ex_step_failed). */
 EX_UNUSED static void ex_advance_row(sps_world* w, int* row, const common_options* c, const output_plan* o) {

@@ -157,14 +157,7 @@ int main(int argc, char** argv) {
     memset(&s, 0, sizeof s);
     s.quiet = c.quiet; s.t_end = c.t_end; s.t_contact = gap / IM_SPEED;
     output_open(&s.output, &c, "impact2d", "plastic-strain", ",t_impact");
-    s.wall0 = wall_seconds();
-    on_step(w, &s);
-    {
-        sps_result r = sps_world_advance(w, (sps_real)(s.t_contact + c.t_end), on_step, &s);
-        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
-    }
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = ex_run(w, s.t_contact + c.t_end, on_step, &s, &s.wall0, &s.output);
     f = measure(w, sps_body_index(w, projectile), sps_body_index(w, plate), dp);
     {
         sps_body all = {0};

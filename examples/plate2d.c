@@ -79,14 +79,7 @@ int main(int argc, char** argv) {
 
     s.quiet = c.quiet; s.t_end = c.t_end;
     output_open(&s.output, &c, "plate2d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",deflection");
-    s.wall0 = wall_seconds();
-    on_step(w, &s); /* t = 0 row and snapshot */
-    {
-        sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
-        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
-    }
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
 
     analytical = plate2d_analytical_period(c.E, c.nu, c.rho0);
     paper = paper_period(c.shear, p.vf);

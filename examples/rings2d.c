@@ -97,14 +97,7 @@ int main(int argc, char** argv) {
 
     s.quiet = c.quiet; s.t_end = c.t_end;
     output_open(&s.output, &c, "rings2d", "velocity", ",kinetic_left,strain_left,kinetic_right,strain_right,gap_dp");
-    s.wall0 = wall_seconds();
-    on_step(w, &s); /* t = 0: the start energies, the first row and snapshot */
-    {
-        sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
-        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
-    }
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
     {
         sps_diagnostics d, dl;
         sps_body all = {0};

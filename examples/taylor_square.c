@@ -196,14 +196,7 @@ int main(int argc, char** argv) {
     s.t_contact = gap / TB_SPEED;
     output_open(&s.output, &c, TB_NAME, "plastic-strain", ",t_impact,x_observation");
     start = measure_bar(w, dp, gap);
-    s.wall0 = wall_seconds();
-    on_step(w, &s);
-    {
-        sps_result r = sps_world_advance(w, (sps_real)(s.t_contact + c.t_end), on_step, &s);
-        if (r != SPS_OK) ex_step_failed(w, r, &s.output);
-    }
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = ex_run(w, s.t_contact + c.t_end, on_step, &s, &s.wall0, &s.output);
     end = measure_bar(w, dp, gap);
     {
         sps_body all = {0};
