@@ -8,40 +8,31 @@ set -u
 BIN=${BIN:-./build/rings2d}
 BALL=${BALL:-./build/ball_plate2d}
 OUT=${OUT:-/tmp/contact_map}
-echo "| rings2d, dp 0.002 | 0.06 c0 | 0.10 c0 | 0.15 c0 | 0.20 c0 |"
-echo "|---|---|---|---|---|"
-for shear in og oas eno eno-a gno gno-a; do
-  row="| $shear |"
-  for v in 0.06 0.10 0.15 0.20; do
-    line=$($BIN --dp 0.002 --v0 $v --shear $shear --tend 0.012 --vtk-every 0 --png-every 0 --quiet --out $OUT/$shear-$v 2>&1 | tail -n 1)
-    case "$line" in
-      RESULT*)
-        hg=$(echo "$line" | sed 's/.*hourglass_max=\([^ ]*\).*/\1/')
-        sp=$(echo "$line" | sed 's/.*min_spacing=\([^ ]*\).*/\1/')
-        rise=$(echo "$line" | sed 's/.*energy_rise_max=\([^ ]*\).*/\1/')
-        verdict=$(awk -v h="$hg" -v s="$sp" 'BEGIN { print (h < 0.01 && s > 0.7) ? "stable" : "degraded" }')
-        row="$row $verdict (hourglass $hg, spacing $sp, energy rise $rise) |";;
-      *) row="$row error: $(echo "$line" | cut -c1-80) |";;
-    esac
+# map TITLE PROGRAM DP TEND KEY LABEL PREFIX SPEEDS...: one table, a row per shear formulation and
+# a cell per impact speed (in c0), each run's verdict with its hourglass and spacing maxima and
+# the RESULT value KEY (shown as LABEL)
+map() {
+  title=$1 program=$2 dp=$3 tend=$4 key=$5 label=$6 prefix=$7
+  shift 7
+  printf '| %s |' "$title"; for v in "$@"; do printf ' %s c0 |' "$v"; done; printf '\n'
+  printf '|---|'; for v in "$@"; do printf -- '---|'; done; printf '\n'
+  for shear in og oas eno eno-a gno gno-a; do
+    row="| $shear |"
+    for v in "$@"; do
+      line=$($program --dp $dp --v0 $v --shear $shear --tend $tend --vtk-every 0 --png-every 0 --quiet --out $OUT/$prefix$shear-$v 2>&1 | tail -n 1)
+      case "$line" in
+        RESULT*)
+          hg=$(echo "$line" | sed 's/.*hourglass_max=\([^ ]*\).*/\1/')
+          sp=$(echo "$line" | sed 's/.* min_spacing=\([^ ]*\).*/\1/')
+          value=$(echo "$line" | sed "s/.*$key=\([^ ]*\).*/\1/")
+          verdict=$(awk -v h="$hg" -v s="$sp" 'BEGIN { print (h < 0.01 && s > 0.7) ? "stable" : "degraded" }')
+          row="$row $verdict (hourglass $hg, spacing $sp, $label $value) |";;
+        *) row="$row error: $(echo "$line" | cut -c1-80) |";;
+      esac
+    done
+    echo "$row"
   done
-  echo "$row"
-done
+}
+map "rings2d, dp 0.002" "$BIN" 0.002 0.012 energy_rise_max "energy rise" "" 0.06 0.10 0.15 0.20
 echo
-echo "| ball_plate2d, dp 0.005 | 0.02 c0 | 0.06 c0 | 0.12 c0 | 0.20 c0 |"
-echo "|---|---|---|---|---|"
-for shear in og oas eno eno-a gno gno-a; do
-  row="| $shear |"
-  for v in 0.02 0.06 0.12 0.20; do
-    line=$($BALL --dp 0.005 --v0 $v --shear $shear --tend 0.015 --vtk-every 0 --png-every 0 --quiet --out $OUT/ball-$shear-$v 2>&1 | tail -n 1)
-    case "$line" in
-      RESULT*)
-        hg=$(echo "$line" | sed 's/.*hourglass_max=\([^ ]*\).*/\1/')
-        sp=$(echo "$line" | sed 's/.* min_spacing=\([^ ]*\).*/\1/')
-        ke=$(echo "$line" | sed 's/.*kinetic_max_rel=\([^ ]*\).*/\1/')
-        verdict=$(awk -v h="$hg" -v s="$sp" 'BEGIN { print (h < 0.01 && s > 0.7) ? "stable" : "degraded" }')
-        row="$row $verdict (hourglass $hg, spacing $sp, kinetic max/start $ke) |";;
-      *) row="$row error: $(echo "$line" | cut -c1-80) |";;
-    esac
-  done
-  echo "$row"
-done
+map "ball_plate2d, dp 0.005" "$BALL" 0.005 0.015 kinetic_max_rel "kinetic max/start" ball- 0.02 0.06 0.12 0.20
