@@ -163,9 +163,43 @@
       J2 bodies only (VTK: plastic_strain; sps_particle_state.plastic_strain); an elastic body
       carries neither, and its kernels contain no return map.
 
+   FLUIDS (material.kind = SPS_MATERIAL_FLUID; UTVF sections 2.1, 3.1.1)
+      A weakly compressible fluid: p = c0^2 (rho - rho0) with c0 = material.sound_speed (about
+      10 times the largest flow speed keeps the density within ~1 %), no shear stress (shear,
+      rotation and track_stress are not used), and the Riemann solver of UTVF eqs. 16-20: the
+      momentum equation's dissipation Z beta (v_ij . e_ij), Z = rho0 c0, with the limiter beta =
+      min(3 max(-v_ij . e_ij / c0, 0), 1) (none while particles separate), and the continuity
+      equation's pressure term (p_i - p_j)/(rho0 c0) dW V_j, which diffuses the density. The
+      velocity divergence is tr L of the corrected velocity gradient L = -sum v_ij (x) B_i grad
+      W_ij V_j instead of UTVF eq. 16's sum (v_ij . e_ij) dW V_j: exact for a linear flow also
+      where a free surface cuts the kernel (the elliptical drop's semi-axis a at dp = 0.02 was
+      3.5 % off with the plain sum, 0.5 % with tr L; bench/VALIDATION.md, C1). With
+      material.viscosity = mu > 0 the viscous force (2 mu/rho_i) sum_j v_ij dW/(r_ij + 0.01 h)
+      V_j (Morris et al. 1997) joins, and the advection step keeps nu/h below its speed.
+      Free surfaces need nothing (particles carry their density). Walls: analytic walls
+      (CONTACT) act on a fluid through mirror particles, the images of its particles across each
+      wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), so
+      a column stands on its floor at its hydrostatic pressure; a backstop (the solids' contact
+      pressure counted from dp/2) keeps particles out of corners, where the image across both
+      walls is missing. sps_body_set_pressure gives an initial pressure field (hydrostatic,
+      or one that goes with an initial flow). Stored energy: p^2/(2 K), K = rho0 c0^2. Contact
+      between a fluid and another body uses the solids' penalty (no fluid-structure coupling
+      beyond it).
+
+   TRANSPORT (transport = SPS_TRANSPORT_TVF or SPS_TRANSPORT_UTVF; UTVF sections 3.2-3.3)
+      After every advection step each particle is shifted by dr = -2 alpha h^2 sum_j grad W_ij V_j
+      (alpha = transport_coefficient, default 0.2), towards a uniform spacing, against the
+      clustering and voids of tensile instability; velocities are untouched, so linear momentum
+      is exact. Surface particles (position divergence -sum r_ij . grad W_ij V_j below 0.75 d, or
+      within h of one) are not moved by TVF and are moved along the surface only by UTVF (normal
+      B_i g_i / |B_i g_i|); none with a divergence below 0.6 d. For fluids and solids alike (not
+      wall bodies). Costs two neighbour passes per advection step; the diagnostics'
+      surface_particles counts the particles below 0.75 d, which voids and cracks raise.
+
    MODELS AND FIELDS
       A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic;
-      SPS_MATERIAL_J2, elastic-plastic (PLASTICITY); the material gives c0, G, K, its checks and
+      SPS_MATERIAL_J2, elastic-plastic (PLASTICITY); SPS_MATERIAL_FLUID (FLUIDS); the material
+      gives c0, G, K, its checks and
       its stored energy), its solver (solver:
       SPS_SOLVER_UPDATED_LAGRANGIAN), its stabilisation (shear and rotation) and its transport
       correction (transport: SPS_TRANSPORT_NONE). sps_world_add_body checks each field's range
@@ -376,6 +410,12 @@
       removing particles.
 
    REVISION HISTORY
+      0.7.0 (2026-12-02) fluids (SPS_MATERIAL_FLUID: weakly compressible, Riemann solver with
+                         its limiter, viscosity, mirror particles at walls), the transport
+                         corrections TVF and UTVF for any body (transport), sps_body_set_pressure,
+                         the surface_particles diagnostic (a CSV column appended). The
+                         continuity pass of the GNO family no longer sums ENO's unused Laplacian.
+                         Results of earlier scenes unchanged (tests/pinned.c).
       0.6.0 (2026-12-02) J2 plasticity (SPS_MATERIAL_J2); guards that judge the body: time steps
                          in each body's frame, the escape guard around each body's centre of
                          mass, the energy watchdog, warnings for CFL above the measured stable
@@ -418,9 +458,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 6
+#define SPHSOLID_VERSION_MINOR 7
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.6.0"
+#define SPHSOLID_VERSION_STRING "0.7.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
@@ -557,12 +597,17 @@ typedef enum sps_material_kind {
     SPS_MATERIAL_RIGID = 1,   /* a wall body: its particles keep the velocity given to them
                                  (sps_body_set_velocity, constraints) and push the other bodies
                                  by contact; density, E and nu set its mass and contact stiffness */
-    SPS_MATERIAL_J2 = 2       /* von Mises elastic-plastic: the linear elastic law, and the shear
+    SPS_MATERIAL_J2 = 2,      /* von Mises elastic-plastic: the linear elastic law, and the shear
                                  stress returned radially onto the yield surface
                                  sqrt(2 J2) = sqrt(2/3)(yield_stress + hardening_modulus alpha),
                                  alpha the equivalent plastic strain (ANG eqs. 11, 14; MATERIALS).
                                  Needs a stress-based shear formulation: OG, OAS, GNO or GNO-A
                                  (GNO-A is ANG's choice; ENO and ENO-A are refused) */
+    SPS_MATERIAL_FLUID = 3    /* weakly compressible fluid (UTVF section 2.1; FLUIDS): p = c0^2 (rho
+                                 - rho0) with c0 = sound_speed, no shear stress (the body's shear
+                                 formulation is not used), the Riemann solver with its
+                                 dissipation limiter in the momentum and continuity equations
+                                 (UTVF eqs. 16-20), and a Newtonian viscosity if viscosity > 0 */
 } sps_material_kind;
 
 /* The solver of a body. */
@@ -572,7 +617,12 @@ typedef enum sps_solver {
 
 /* The transport-velocity correction of a body (particles advected by a shifted velocity). */
 typedef enum sps_transport {
-    SPS_TRANSPORT_NONE = 0 /* particles move with their own velocity */
+    SPS_TRANSPORT_NONE = 0, /* particles move with their own velocity */
+    SPS_TRANSPORT_TVF = 1,  /* after every advection step the inner particles are shifted by
+                               -2 alpha h^2 sum_j grad W_ij V_j towards zero-order consistency
+                               (UTVF eq. 30); the free-surface particles are not (TRANSPORT) */
+    SPS_TRANSPORT_UTVF = 2  /* TVF, and the free-surface particles shifted along the surface only
+                               (UTVF eqs. 31-37) */
 } sps_transport;
 
 /* Material: its kind and constants. */
@@ -585,6 +635,12 @@ typedef struct sps_material_def {
                                 J2; ignored by the other kinds). Default 0. */
     sps_real hardening_modulus; /* J2: linear isotropic hardening modulus kappa [Pa], finite >= 0
                                    (0: perfect plasticity); ignored by the other kinds. Default 0. */
+    sps_real sound_speed;    /* fluid: the artificial sound speed c0 [m/s], finite > 0 (must be set
+                                for a fluid; about 10 times the largest flow speed keeps the
+                                density within 1 %, UTVF section 2.1); ignored by the other
+                                kinds, whose c0 follows from E and nu. Default 0. */
+    sps_real viscosity;      /* fluid: the dynamic viscosity mu [Pa s], finite >= 0 (0: inviscid);
+                                ignored by the other kinds. Default 0. */
 } sps_material_def;
 
 /* Body definition: a material, a shear formulation and which outputs the body needs. */
@@ -602,6 +658,8 @@ typedef struct sps_body_def {
     sps_transport transport;   /* Default SPS_TRANSPORT_NONE. */
     int contact;               /* 1: touches the other bodies with contact = 1 (CONTACT; pairs can be
                                   turned off by sps_world_set_contact). Default 1. */
+    sps_real transport_coefficient; /* alpha of the transport correction (UTVF eq. 30), in
+                                  [0, 1]; 0 selects 0.2 (the paper's). Default 0. */
     sps_real damping;          /* c [1/s], finite >= 0: every particle's velocity decays as
                                   dv/dt = a - c v (DAMPING; numerical, not a physical material
                                   damping: for reaching a static equilibrium). 0 = off. Not for
@@ -629,6 +687,10 @@ typedef struct sps_diagnostics {
                                      (J2 bodies; 0 for the others): kinetic + strain + plastic work
                                      is the energy account */
     sps_real max_plastic_strain;  /* largest equivalent plastic strain alpha (J2 bodies; else 0) */
+    int surface_particles;        /* particles whose position divergence sum_j -r_ij . grad W_ij V_j
+                                     is below 0.75 dim (UTVF eq. 31): the free surface, and any
+                                     void or crack inside (a body keeps about its perimeter's
+                                     count while it stays whole) */
     sps_real linear_momentum[3];  /* [kg m/s] */
     sps_real angular_momentum[3]; /* [kg m^2/s], about the origin */
     sps_real max_speed;           /* [m/s] */
@@ -650,6 +712,8 @@ typedef struct sps_particle_state {
 
 /* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
 typedef void (*sps_velocity_fn)(const sps_real x[3], sps_real v[3], void* user);
+/* Callback of sps_body_set_pressure: the pressure [Pa] at the reference position x (length 3). */
+typedef sps_real (*sps_pressure_fn)(const sps_real x[3], void* user);
 /* Callback of sps_body_set_acceleration: the external acceleration a [m/s^2] (length 3, zeroed
    before the call; z ignored in 2D) of one particle at time t [s] from its current position x,
    its reference position x0 and its velocity v (see EXTERNAL ACCELERATION for when and by which
@@ -734,6 +798,11 @@ SPSDEF sps_result sps_body_add_particles(sps_world* w, sps_body b, int n, const 
 
 /* Sets the velocity of every particle of the body from fn(reference position). */
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user);
+/* Sets the pressure of every particle of the body from fn(reference position) [Pa], and its
+   density from the body's equation of state, rho = rho0 + p / c0^2 (its mass is kept, so its
+   volume becomes m / rho): an initial pressure field such as the hydrostatic one. p must be
+   finite and above -rho0 c0^2 (a positive density). Not for wall bodies. */
+SPSDEF sps_result sps_body_set_pressure(sps_world* w, sps_body b, sps_pressure_fn fn, void* user);
 /* Gives every particle of body b the external acceleration fn(x, x0, v, t, a, user) on top of
    the world's gravity, from the next sub-step on (EXTERNAL ACCELERATION); fn NULL removes it.
    SPS_ERR_INVALID_ARG for an invalid body or a wall body (its particles keep their velocity).
@@ -1001,6 +1070,15 @@ typedef struct sps__material_model {
     sps_real (*energy_density)(const sps__material_constants* c, sps_real tau_tau, sps_real p);
     int kinematic; /* its particles move as prescribed: no passes, no forces (a wall body) */
     int plastic;   /* its shear stress is returned onto a yield surface (sps__j2_stress_lanes) */
+    int shear;     /* it has a shear stress: 0 for a fluid, whose body then runs no shear
+                      formulation (sps__no_shear) */
+    /* The Riemann solver's terms (UTVF eqs. 16-20). limiter: the coefficient eta of the
+       dissipation limiter beta = min(eta max(-v_ij . e_ij / c0, 0), 1) of the momentum
+       equation, or 0 for beta = 1 (the reference code's choice for solids); riemann_density:
+       the continuity equation's pressure term (p_i - p_j) / (rho0 c0), which the reference
+       code leaves out for solids (DESIGN: facts from the reference implementation). */
+    sps_real limiter;
+    int riemann_density;
 } sps__material_model;
 
 /* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
@@ -1044,6 +1122,10 @@ typedef struct sps__model {
     int artificial_stress; /* Gray's artificial stress is computed (OAS) */
     int plastic;  /* J2 radial return after the Jaumann update; plastic strain and work fields */
     int scaled_penalty; /* the GNO penalty scaled per pair by the particles' return factors */
+    int limited;  /* the Riemann dissipation limited (material limiter > 0: fluids) */
+    int viscous;  /* a Newtonian viscous force (a fluid with viscosity > 0) */
+    int riemann_density; /* the continuity equation's Riemann pressure term (fluids) */
+    sps_transport transport; /* the transport correction after each advection step (>>transport) */
     sps__passes pass;
 } sps__model;
 
@@ -1080,8 +1162,14 @@ typedef struct sps__body {
     sps_real *acc_d[3], *tau, *art, *grad;
     sps_real* driven_work; /* driven: work done by its prescribed motion through each particle */
     sps_real *plastic_strain, *plastic_work, *return_factor; /* J2 bodies */
+    sps_real* transport;   /* TVF, UTVF: SPS__TRANSPORT_VALUES per particle (>>transport) */
+    sps_real transport_alpha; /* alpha of UTVF eq. 30 */
     int field_count; /* particles they hold: its count at the last commit */
 } sps__body;
+
+/* The transport correction's values per particle (chapter >>transport): the consistency sum
+   g = sum_j grad W_ij V_j (then the shift), the position divergence, the unit surface normal. */
+enum { SPS__TR_G, SPS__TR_DIVR = 3, SPS__TR_NORMAL = 4, SPS__TRANSPORT_VALUES = 7 };
 
 /* An analytic rigid wall (chapter >>contact): the half-space (x - point) . normal < 0 is solid. */
 typedef struct sps__wall {
@@ -1160,7 +1248,7 @@ struct sps_world {
     int cell_cap;
     void* scratch; /* permutation buffer: cap reals */
     sps_real* group_sum; /* per lane group: its sum of Rodrigues matrices (mean rotation, fixed order) */
-    sps_real* diag_scratch; /* 2 * 9 * cap reals: B and displacement gradient */
+    sps_real* diag_scratch; /* 19 * cap reals: B, displacement gradient, position divergence */
     int diag_cap;
     int grid_wrap[3], grid_n[3];
     sps_real grid_lo[3];
@@ -1180,6 +1268,8 @@ struct sps_world {
 
     /* time */
     sps_real time, dt, c0_max;
+    sps_real viscous_speed; /* the largest nu / h of the viscous fluids: the advection step's
+                               speed when the flow is slower (sps__step_until) */
     sps_real vmax;     /* the time-step speed: the largest particle speed in its body's frame, or
                           approach if larger (sps__frame_speeds) */
     int impact_warned; /* sps__warn_impact has spoken */
@@ -1205,7 +1295,8 @@ typedef enum {
     SPS__NEED_PLASTIC,     /* a body's material is plastic (J2) */
     SPS__NEED_SCALED_PENALTY, /* a plastic body's GNO penalty is scaled by its return factors */
     SPS__NEED_CONSTRAINTS, /* allocated by the first sps_body_constrain_box */
-    SPS__NEED_DRIVEN       /* a body whose prescribed motion does work (sps__body.driven) */
+    SPS__NEED_DRIVEN,      /* a body whose prescribed motion does work (sps__body.driven) */
+    SPS__NEED_TRANSPORT    /* a body with a transport correction (TVF, UTVF) */
 } sps__need;
 
 enum {
@@ -1250,6 +1341,8 @@ static const sps__field_info sps__fields[] = {
     {"prescribed_work", "prescribed work", 1, SPS__BOFF(driven_work), 0, 1, 0, SPS__NEED_DRIVEN, SPS__CARRIED},
     {"plastic_strain", "plastic strain", 1, SPS__BOFF(plastic_strain), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
     {"plastic_work", "plastic work", 1, SPS__BOFF(plastic_work), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD},
+    /* rebuilt at the end of every advection step (>>transport) */
+    {"transport", "transport correction", 1, SPS__BOFF(transport), 0, SPS__TRANSPORT_VALUES, 0, SPS__NEED_TRANSPORT, 0},
     /* written by the continuity pass, read by the penalty pass of the same sub-step */
     {"return_factor", "return factor", 1, SPS__BOFF(return_factor), 0, 1, 0, SPS__NEED_SCALED_PENALTY, 0},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
@@ -1559,14 +1652,47 @@ static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size,
     *broken_out += broken;
 }
 
+/* >>material: weakly compressible fluid (UTVF sections 2.1, 3.1.1) */
+
+/* c0 is given (sound_speed), K = rho0 c0^2 and no shear modulus: a fluid's pressure is its only
+   stress, besides the viscous force when viscosity > 0 (sps__pressure). */
+static sps__material_constants sps__fluid_constants(const sps_material_def* m) {
+    sps__material_constants c;
+    c.c0 = m->sound_speed;
+    c.K = m->density * m->sound_speed * m->sound_speed;
+    c.G = 0;
+    return c;
+}
+static void sps__fluid_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
+    int broken = 0;
+    SPS__CHECK(m->density > 0 && sps__finite(m->density), "material.density = %g, allowed finite > 0", (double)m->density);
+    SPS__CHECK(m->sound_speed > 0 && sps__finite(m->sound_speed),
+               "material.sound_speed = %g, allowed finite > 0 m/s for a fluid (about 10 times the largest flow speed)", (double)m->sound_speed);
+    SPS__CHECK(m->viscosity >= 0 && sps__finite(m->viscosity), "material.viscosity = %g, allowed finite >= 0 Pa s (0: inviscid)",
+               (double)m->viscosity);
+    if (!broken) {
+        const sps__material_constants c = sps__fluid_constants(m);
+        SPS__CHECK(sps__finite(c.K) && c.K > 0, "material: bulk modulus rho0 c0^2 = %g Pa from density = %g and sound_speed = %g, allowed finite > 0",
+                   (double)c.K, (double)m->density, (double)m->sound_speed);
+    }
+    *broken_out += broken;
+}
+/* p^2/(2K): a fluid stores energy in its compression only */
+static sps_real sps__fluid_energy_density(const sps__material_constants* c, sps_real tau_tau, sps_real p) {
+    (void)tau_tau;
+    return p * p / (2 * c->K);
+}
+
 /* >>model (continued): the rows */
 
 static const sps__material_model sps__materials[] = {
-    /* kind               name       check               constants               energy density               kinematic plastic */
-    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0, 0},
-    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1, 0},
+    /* kind               name       check               constants               energy density            kinematic plastic shear limiter riemann density */
+    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0, 0, 1, 0, 0},
+    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1, 0, 1, 0, 0},
     /* the stored energy of a J2 body is its elastic part; the return map's share is plastic work */
-    {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density, 0, 1},
+    {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density, 0, 1, 1, 0, 0},
+    /* eta = 3 for fluids (UTVF section 3.1.1, after Zhang et al. 2017) */
+    {SPS_MATERIAL_FLUID, "fluid", sps__fluid_check, sps__fluid_constants, sps__fluid_energy_density, 0, 0, 0, 3, 1},
 };
 #define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
@@ -1581,6 +1707,9 @@ static const sps__stabilisation sps__stabilisations[] = {
     {SPS_SHEAR_GNO_A, "GNO-A", 1,    0,   1,   1,   0,   1,       {0.8, 0.8}},
 };
 #define SPS__NSTABILISATIONS ((int)(sizeof sps__stabilisations / sizeof sps__stabilisations[0]))
+/* The stabilisation of a body without shear stress (a fluid): no shear term at all. The stable
+   CFL is the papers' 0.4 with margin (ENO eq. 26, UTVF eq. 38). */
+static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid)", 0, 0, 0, 0, 0, 0, {0.6, 0.6}};
 
 static const sps__material_model* sps__material_of(sps_material_kind kind) {
     int k;
@@ -1607,7 +1736,12 @@ static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
     (void)dim;
     return def->material.kind == SPS_MATERIAL_J2 && (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
 }
+static int sps__moving_wall_particles(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->transport != SPS_TRANSPORT_NONE && def->material.kind == SPS_MATERIAL_RIGID;
+}
 static const sps__combination_rule sps__combination_rules[] = {
+    {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
     {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
     /* ANG sections 4.1 and 5.2: ENO's shear force is an accumulated Laplacian of velocity, not
@@ -1621,11 +1755,14 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
-    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid) or 2 (J2)", (int)def->material.kind);
+    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid), 2 (J2) or 3 (fluid)", (int)def->material.kind);
     if (material) material->check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN, "solver = %d, allowed 0 (updated Lagrangian)", (int)def->solver);
-    SPS__CHECK(def->transport == SPS_TRANSPORT_NONE, "transport = %d, allowed 0 (none)", (int)def->transport);
+    SPS__CHECK(def->transport == SPS_TRANSPORT_NONE || def->transport == SPS_TRANSPORT_TVF || def->transport == SPS_TRANSPORT_UTVF,
+               "transport = %d, allowed 0 (none), 1 (TVF) or 2 (UTVF)", (int)def->transport);
+    SPS__CHECK(def->transport_coefficient >= 0 && def->transport_coefficient <= 1,
+               "transport_coefficient = %g, allowed 0 (default 0.2) or (0, 1]", (double)def->transport_coefficient);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
@@ -1648,7 +1785,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     sps__model m;
     memset(&m, 0, sizeof m);
     m.material = sps__material_of(def->material.kind);
-    m.stabilisation = sps__stabilisation_of(def->shear);
+    m.stabilisation = m.material->shear ? sps__stabilisation_of(def->shear) : &sps__no_shear;
     m.paired = m.stabilisation->rotated && def->rotation == SPS_ROTATION_PAIR;
     m.turn = !m.stabilisation->rotated || m.paired ? SPS__TURN_NONE
              : def->rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
@@ -1657,6 +1794,12 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.artificial_stress = m.stabilisation->artificial_stress;
     m.plastic = m.material->plastic; /* a plastic body is of the OG family (combination rules): m.stress is set */
     m.scaled_penalty = m.plastic && m.stabilisation->penalty;
+    if (!m.material->shear) m.stress = 0; /* nothing to track (track_stress is moot) */
+    if (!m.material->shear) m.gradient = 1; /* a fluid's density rate is -rho tr L (FLUIDS) */
+    m.limited = m.material->limiter > 0;
+    m.viscous = !m.material->shear && def->material.viscosity > 0;
+    m.riemann_density = m.material->riemann_density;
+    m.transport = def->transport;
     if (m.material->kinematic) { /* a wall body runs no pass and needs no field of its own */
         m.paired = m.stress = m.gradient = m.artificial_stress = 0;
         m.turn = SPS__TURN_NONE;
@@ -1919,10 +2062,13 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->oas_eps = def->oas_epsilon;
     b->oas_n = def->oas_exponent;
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
+    b->transport_alpha = def->transport_coefficient > 0 ? def->transport_coefficient : SPS_R(0.2); /* UTVF section 3.2 */
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
     b->driven = b->model.material->kinematic && sps__watchdog_on(w);
 
     if (!b->model.material->kinematic && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0; /* wall bodies: no waves */
+    if (b->model.viscous && def->material.viscosity / (b->rho0 * w->h) > w->viscous_speed)
+        w->viscous_speed = def->material.viscosity / (b->rho0 * w->h);
     if (!b->model.material->kinematic && w->def.cfl_acoustic > b->model.stabilisation->stable_cfl[w->dim - 2])
         sps__warn(w, "body '%s': cfl_acoustic = %g is above %g, the largest value measured stable for %s in %dD (bench/VALIDATION.md, "
                   "stability map): the run may blow up, which the energy watchdog reports", b->name, (double)w->def.cfl_acoustic,
@@ -2096,6 +2242,36 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
         before = sps__kinetic(w, i);
         for (a = 0; a < w->dim; ++a) w->vel[a][i] = v[a];
         sps__watch_adjust(w, k, sps__kinetic(w, i) - before, 0);
+    }
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_set_pressure(sps_world* w, sps_body b, sps_pressure_fn fn, void* user) {
+    const sps__body* body;
+    int k, i, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, "sps_body_set_pressure")) < 0) return SPS_ERR_INVALID_ARG;
+    if (!fn) { sps__set_error(w, 0, "sps_body_set_pressure: fn must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    body = &w->bodies[k];
+    if (body->model.material->kinematic) {
+        sps__set_error(w, 0, "sps_body_set_pressure: body '%s' is a wall body (material.kind = rigid): it has no pressure", body->name);
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (i = 0; i < w->n; ++i) {
+        sps_real x[3], p, before;
+        if (w->body[i] != k) continue;
+        for (a = 0; a < 3; ++a) x[a] = w->ref[a][i];
+        p = fn(x, user);
+        if (!sps__finite(p) || !(p > -body->mat.K)) {
+            sps__set_error(w, 0, "sps_body_set_pressure: pressure = %g Pa at particle %d, allowed finite and > -rho0 c0^2 = %g Pa (a positive density)",
+                           (double)p, w->id[i], (double)-body->mat.K);
+            return SPS_ERR_INVALID_ARG;
+        }
+        before = w->vol[i] * body->model.material->energy_density(&body->mat, 0, w->p[i]);
+        w->p[i] = p;
+        w->rho[i] = body->rho0 + p / (body->mat.c0 * body->mat.c0);
+        w->vol[i] = w->mass[i] / w->rho[i];
+        sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, 0, p) - before, 0);
     }
     return SPS_OK;
 }
@@ -3023,7 +3199,8 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
     return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
            (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
-           (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven);
+           (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven) ||
+           (need == SPS__NEED_TRANSPORT && m->transport != SPS_TRANSPORT_NONE);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -3179,8 +3356,9 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
 }
 
 /* Correction matrices B_i (ANG eq. 21) from the current positions into out (9 per particle,
-   row-major), summed and inverted as in the continuity pass (sps__add_moment). */
-static void sps__correction_matrices(sps_world* w, sps_real* out) {
+   row-major), summed and inverted as in the continuity pass (sps__add_moment), and the trace of
+   B_i^-1, the position divergence (UTVF eq. 31), into divr. */
+static void sps__correction_matrices(sps_world* w, sps_real* out, sps_real* divr) {
     const int geo = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
     int i;
     SPS__PARALLEL_FOR(w, w->n)
@@ -3195,6 +3373,7 @@ static void sps__correction_matrices(sps_world* w, sps_real* out) {
         }
         if (w->dim == 2) sps__blended_inverse(A, 1, B, 1, 2);
         else sps__blended_inverse(A, 1, B, 1, 3);
+        divr[i] = A[0] + A[3] + (w->dim == 3 ? A[5] : 0);
     }
 }
 
@@ -3287,13 +3466,18 @@ static void sps__run_groups(sps_world* w, const sps__body* b, sps__group_kernel 
    beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of the shear stress
    (ENO eq. 17); with art (OAS) Gray et al.'s artificial stress
    sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp); with paired (SPS_ROTATION_PAIR)
-   the accumulated shear forces (1/m_i) sum_j g_ij e_ij along the current e_ij. stress, art and
-   paired are literals at every call so each variant's loop is branch-free. Each lane sums its
-   own particle's neighbours in list order, so the result does not depend on the vector width. */
+   the accumulated shear forces (1/m_i) sum_j g_ij e_ij along the current e_ij. For fluids,
+   with limited, the dissipation Z beta with the limiter beta = min(eta max(-v_ij . e_ij / c0, 0), 1)
+   (UTVF eq. 20: only approaching pairs, fully from a 1/eta of c0 on), and with viscous the
+   Newtonian viscous force (2 mu / rho_i) sum_j v_ij dW / (r_ij + 0.01 h) V_j (Morris et al. 1997;
+   0.01 h keeps it finite for coinciding particles). stress, art, paired, limited and viscous are
+   literals at every call so each variant's loop is branch-free. Each lane sums its own
+   particle's neighbours in list order, so the result does not depend on the vector width. */
 SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                               const int stress, const int art, const int paired) {
+                               const int stress, const int art, const int paired, const int limited, const int viscous) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real z = b->z_riemann;
+    const sps_real z = b->z_riemann, eta_c0 = limited ? b->model.material->limiter / b->mat.c0 : 0;
+    const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h;
     const int begin = b->begin; /* the body's own arrays (tau, art) hold particle begin + k at k */
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
@@ -3305,12 +3489,23 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
         acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
-            sps_real u, f2;
+            sps_real u, f2, beta = 1;
             u = (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
-            f2 = (p[i] + p[j] - z * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
+            if (limited) {
+                beta = -u * eta_c0;
+                beta = beta > 0 ? beta : 0;
+                beta = beta < 1 ? beta : 1;
+            }
+            f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
             acc[0][l] -= f2 * ex;
             acc[1][l] -= f2 * ey;
             if (dim == 3) acc[2][l] -= f2 * ez;
+            if (viscous) {
+                const sps_real fv = two_mu * dw * vol[j] / (rij + soft);
+                acc[0][l] += fv * (vx[i] - vx[j]);
+                acc[1][l] += fv * (vy[i] - vy[j]);
+                if (dim == 3) acc[2][l] += fv * (vz[i] - vz[j]);
+            }
             if (paired) {
                 const sps_real f = pair_force[s];
                 shear[0][l] += f * ex;
@@ -3351,14 +3546,17 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     }
 }
 
-/* The pressure pass's variants: (stress force, artificial stress, pair forces). */
-#define SPS__PRESSURE_VARIANTS(X) \
-    X(plain, 0, 0, 0)             \
-    X(pairs, 0, 0, 1)             \
-    X(stress, 1, 0, 0)            \
-    X(stress_pairs, 1, 0, 1)      \
-    X(oas, 1, 1, 0)
-#define SPS__PRESSURE_INSTANCES(variant, stress, art, paired) SPS__INSTANCES(pressure, variant, stress, art, paired)
+/* The pressure pass's variants: (stress force, artificial stress, pair forces, limited, viscous). */
+#define SPS__PRESSURE_VARIANTS(X)   \
+    X(plain, 0, 0, 0, 0, 0)         \
+    X(pairs, 0, 0, 1, 0, 0)         \
+    X(stress, 1, 0, 0, 0, 0)        \
+    X(stress_pairs, 1, 0, 1, 0, 0)  \
+    X(oas, 1, 1, 0, 0, 0)           \
+    X(fluid, 0, 0, 0, 1, 0)         \
+    X(fluid_viscous, 0, 0, 0, 1, 1)
+#define SPS__PRESSURE_INSTANCES(variant, stress, art, paired, limited, viscous) \
+    SPS__INSTANCES(pressure, variant, stress, art, paired, limited, viscous)
 SPS__PRESSURE_VARIANTS(SPS__PRESSURE_INSTANCES)
 
 /* Gray et al.'s artificial stress R_i (2D): in the principal frame of sigma = -p I + tau each
@@ -3634,8 +3832,8 @@ enum {
    gradient L = M B^T (ANG eq. 20; B from this pass's A, also with frozen geometry: a B kept
    from the configuration update would lag a rotating body). */
 SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, const int gradient,
-                                       sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES], sps_real da[3][SPS__LANES],
-                                       sps_real L[9][SPS__LANES]) {
+                                       const int corrected, sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES],
+                                       sps_real da[3][SPS__LANES], sps_real L[9][SPS__LANES]) {
     const sps_real* SPS__RESTRICT rho = w->rho + q.i0;
     sps_real* SPS__RESTRICT drho = w->drho + q.i0;
     sps_real* SPS__RESTRICT grad = gradient ? b->grad + (size_t)9 * (q.i0 - b->begin) : NULL;
@@ -3648,7 +3846,7 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__gr
         const sps_real rho_read = rho[l], rho_l = mine ? rho_read : 1; /* padding lanes: no 1/0 */
         SPS__UNROLL
         for (a = 0; a < dim; ++a) da[a][l] = shear_rate / rho_l * sum[SPS__LX + a][l];
-        if (mine) drho[l] = rho_l * sum[SPS__DRHO][l];
+        if (mine && !corrected) drho[l] = rho_l * sum[SPS__DRHO][l];
         if (gradient) { /* L = M B^T, i.e. -sum v_ij (x) (B grad W) V_j */
             sps__blended_inverse(&sum[SPS__A00][l], SPS__LANES, &B[0][l], SPS__LANES, dim);
             SPS__UNROLL
@@ -3661,7 +3859,151 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__gr
                     L[3 * a + c][l] = s;
                     if (mine) grad[9 * l + 3 * a + c] = s;
                 }
+            if (mine && corrected) drho[l] = rho_l * (sum[SPS__DRHO][l] - L[0][l] - L[4][l] - (dim == 3 ? L[8][l] : 0));
         }
+    }
+}
+
+/* >>walls for fluids: mirror particles (chapter >>contact has the solids' walls)
+
+   A fluid next to an analytic wall sees, for every neighbour j (and itself) within 2h of the
+   wall, its mirror image j' across the wall: at the reflected position, with the reflected
+   velocity (its normal component reversed; in the viscous force of a no-slip wall all of it:
+   no slip is a viscous condition, after Adami et al. 2012) and the pressure
+   p_j + rho0 g . (x_j' - x_j) (the hydrostatic continuation: the ghost particles of Libersky
+   et al. 1993 and Colagrossi and Landrini 2003). The images complete the particle's kernel, so
+   a fluid at rest stands on its floor at dp/2 with its hydrostatic pressure; they enter the
+   pressure force (sps__mirror_force, in the contact pass) and the continuity sums, the velocity
+   gradient and B (sps__mirror_continuity) as neighbours would. Only the neighbours' images
+   count (an image is never nearer than its particle); in a corner the image across both walls
+   is missing. The solids' penalty contact with walls (sigma) is not applied to a fluid. */
+
+/* The image of particle j across wall wl: position x, velocity v, viscous velocity vv and
+   pressure *p. */
+static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall* wl, int j, sps_real x[3], sps_real v[3], sps_real vv[3],
+                        sps_real* p) {
+    sps_real d = 0, vn = 0, gd = 0;
+    int a;
+    for (a = 0; a < w->dim; ++a) {
+        d += (w->pos[a][j] - wl->point[a]) * wl->normal[a];
+        vn += w->vel[a][j] * wl->normal[a];
+    }
+    for (a = 0; a < 3; ++a) {
+        x[a] = a < w->dim ? w->pos[a][j] - 2 * d * wl->normal[a] : 0;
+        v[a] = a < w->dim ? w->vel[a][j] - 2 * vn * wl->normal[a] : 0;
+        vv[a] = a < w->dim && wl->slip == SPS_WALL_NO_SLIP ? -w->vel[a][j] : v[a];
+        gd += a < w->dim ? w->def.gravity[a] * (x[a] - w->pos[a][j]) : 0;
+    }
+    *p = w->p[j] + b->rho0 * gd;
+}
+
+/* The distance of particle i from wall wl along its normal. */
+static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int i) {
+    sps_real d = 0;
+    int a;
+    for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+    return d;
+}
+
+/* Calls visit(w, b, i, image position, velocity, pressure, V_j, user) for every image within 2h
+   of particle i of fluid body b. */
+typedef void (*sps__image_fn)(sps_world* w, const sps__body* b, int i, const sps_real x[3], const sps_real v[3], const sps_real vv[3],
+                              sps_real p, sps_real vol, void* user);
+static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_fn visit, void* user) {
+    int k, m;
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps__wall* wl = &w->walls[k];
+        if (!(sps__wall_distance(w, wl, i) < w->support)) continue;
+        for (m = -1; m < w->nb_count[i]; ++m) {
+            const int j = m < 0 ? i : sps__neighbor(w, i, m);
+            sps_real x[3], v[3], vv[3], p;
+            if (!(sps__wall_distance(w, wl, j) < w->support)) continue;
+            sps__mirror(w, b, wl, j, x, v, vv, &p);
+            visit(w, b, i, x, v, vv, p, w->vol[j], user);
+        }
+    }
+}
+
+/* An image pair's geometry: e = (x_i - x') / r, dW/dr; 0 if beyond the support. */
+static sps_real sps__image_geometry(const sps_world* w, int i, const sps_real x[3], sps_real e[3], sps_real* r_out) {
+    sps_real r2 = 0, r;
+    int a;
+    for (a = 0; a < 3; ++a) {
+        e[a] = a < w->dim ? w->pos[a][i] - x[a] : 0;
+        r2 += e[a] * e[a];
+    }
+    r = SPS__SQRT(r2);
+    *r_out = r;
+    if (!(r > 0) || !(r < w->support)) return 0;
+    for (a = 0; a < 3; ++a) e[a] /= r;
+    return sps__dwdr(w, r);
+}
+
+/* The pressure pass's terms (sps__pressure) of one image, added to acc (per unit mass * rho_i). */
+static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_real x[3], const sps_real v[3], const sps_real vv[3],
+                             sps_real p, sps_real vol, void* user) {
+    sps_real* acc = (sps_real*)user, e[3], r, u = 0, beta, f2;
+    const sps_real dw = sps__image_geometry(w, i, x, e, &r);
+    int a;
+    if (dw == 0) return;
+    for (a = 0; a < w->dim; ++a) u += (w->vel[a][i] - v[a]) * e[a];
+    beta = -u * b->model.material->limiter / b->mat.c0;
+    beta = beta > 0 ? (beta < 1 ? beta : 1) : 0;
+    f2 = (w->p[i] + p - b->z_riemann * beta * u) * dw * vol;
+    for (a = 0; a < w->dim; ++a) {
+        acc[a] -= f2 * e[a];
+        if (b->model.viscous) acc[a] += 2 * b->def.material.viscosity * dw * vol / (r + SPS_R(0.01) * w->h) * (w->vel[a][i] - vv[a]);
+    }
+}
+
+/* Adds the images' pressure (and viscous) force to particle i's acc_p (contact pass), and a
+   backstop: closer to a wall than dp/2, where no particle of a lattice fill stands, the solids'
+   contact pressure K sigma counted from sigma(dp/2) on, which holds the particles that the
+   corners' missing images would let through. */
+static sps_real sps__wall_sigma(const sps_world* w, sps_real d);
+static void sps__mirror_force(sps_world* w, const sps__body* b, int i) {
+    const sps_real sigma_half = sps__wall_sigma(w, SPS_R(0.5) * w->def.dp);
+    sps_real acc[3] = {0, 0, 0};
+    int a, k;
+    sps__each_image(w, b, i, sps__image_force, acc);
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps__wall* wl = &w->walls[k];
+        const sps_real d = sps__wall_distance(w, wl, i);
+        if (!(d < SPS_R(0.5) * w->def.dp)) continue;
+        for (a = 0; a < w->dim; ++a)
+            acc[a] += 2 * b->mat.K * (sps__wall_sigma(w, d) - sigma_half) * sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d) * wl->normal[a];
+    }
+    for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += acc[a] / w->rho[i];
+}
+
+/* The continuity pass's sums (sps__continuity_pairs with gradient and riemann) of one image. */
+typedef struct {
+    sps_real (*sum)[SPS__LANES];
+    int lane;
+} sps__image_sums;
+static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const sps_real x[3], const sps_real v[3],
+                                  const sps_real vv[3], sps_real p, sps_real vol, void* user) {
+    const sps__image_sums* s = (const sps__image_sums*)user;
+    (void)vv;
+    sps_real e[3], r, dv[3];
+    const sps_real dw = sps__image_geometry(w, i, x, e, &r), dwv = dw * vol;
+    int a, c;
+    if (dw == 0) return;
+    for (a = 0; a < 3; ++a) dv[a] = a < w->dim ? w->vel[a][i] - v[a] : 0;
+    s->sum[SPS__DRHO][s->lane] += (w->p[i] - p) / b->z_riemann * dwv;
+    for (a = 0; a < w->dim; ++a)
+        for (c = 0; c < w->dim; ++c) s->sum[SPS__M00 + 3 * a + c][s->lane] -= dv[a] * dwv * e[c];
+    sps__add_moment(&s->sum[SPS__A00][s->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
+}
+
+/* Adds the images' terms to the continuity sums of lane group q of fluid body b. */
+static void sps__mirror_continuity(sps_world* w, const sps__body* b, sps__group q, sps_real sum[SPS__NSUM][SPS__LANES]) {
+    sps__image_sums s;
+    int l;
+    s.sum = sum;
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        s.lane = l;
+        sps__each_image(w, b, q.i0 + l, sps__image_continuity, &s);
     }
 }
 
@@ -3669,10 +4011,15 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__gr
    gradient adds the sums of M and A; paired (SPS_ROTATION_PAIR) adds each ENO increment to its
    pair's force g_ij += 2 zeta G dt (v_ij . e_ij) dW/r V_i V_j instead of the particle's
    Laplacian: every factor is symmetric in i, j bit for bit, so g_ij = g_ji and the shear
-   forces stay exactly antisymmetric. Both are literals at every call (branch-free loops). */
-SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim, const int geo, const int gradient,
-                                       const int paired, sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES]) {
-    const sps_real* SPS__RESTRICT vol = w->vol;
+   forces stay exactly antisymmetric; laplacian sums ENO's per-particle Laplacian. riemann (a
+   fluid) adds the Riemann solver's pressure term to the density rate, drho += (p_i - p_j) /
+   (rho0 c0) dW V_j (UTVF eqs. 16, 18: 2 (v_i - v*) . e_ij with the acoustic U*), which diffuses
+   the density. All are literals at every call (branch-free loops). */
+SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, sps__group q, const int dim, const int geo,
+                                       const int gradient, const int paired, const int laplacian, const int riemann,
+                                       sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES]) {
+    const sps_real inv_z = riemann ? 1 / b->z_riemann : 0;
+    const sps_real *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT p = w->p;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     sps_real* SPS__RESTRICT pair_force = w->pair_force;
     int k, l;
@@ -3680,10 +4027,10 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, sps__group q, const int dim
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;
             const sps_real dvx = vx[i] - vx[j], dvy = vy[i] - vy[j], dvz = dim == 3 ? vz[i] - vz[j] : 0;
             const sps_real u = dvx * ex + dvy * ey + dvz * ez, dwv = dw * vol[j];
-            sum[SPS__DRHO][l] += u * dwv;
+            sum[SPS__DRHO][l] += riemann ? (p[i] - p[j]) * inv_z * dwv : u * dwv; /* a fluid's u: in tr L */
             if (paired) {
                 pair_force[s] += shear_rate * (u * dw_r) * (vol[i] * vol[j]);
-            } else {
+            } else if (laplacian) {
                 const sps_real lv = u * dw_r * vol[j];
                 sum[SPS__LX][l] += lv * ex;
                 sum[SPS__LY][l] += lv * ey;
@@ -3715,7 +4062,7 @@ enum { SPS__ENO_NONE, SPS__ENO_PARTICLES, SPS__ENO_PAIRS };
    are literals (SPS__CONTINUITY_VARIANTS); the once-per-group choices after it (stress, turn)
    are read from the body's model. */
 SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                                 const int gradient, const int eno) {
+                                 const int gradient, const int eno, const int riemann) {
     const sps__group q = sps__group_of(w, b, g);
     const int end = b->end;
     /* the turn this pass applies: ENO's increments, and the mean rotation's sum for GNO-A too */
@@ -3727,8 +4074,9 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
     int l, t, a;
     for (t = 0; t < SPS__NSUM; ++t)
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
-    sps__continuity_pairs(w, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, shear_rate, sum);
-    sps__continuity_lanes(w, b, q, dim, gradient, shear_rate, sum, da, L);
+    sps__continuity_pairs(w, b, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, eno == SPS__ENO_PARTICLES, riemann, shear_rate, sum);
+    if (riemann && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
+    sps__continuity_lanes(w, b, q, dim, gradient, riemann, shear_rate, sum, da, L);
     /* a plastic body is never ENO (combination rules): ENO kernels carry no return map */
     if (plastic_possible && b->model.scaled_penalty && !b->model.paired) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
     else if (plastic_possible && b->model.scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
@@ -3746,14 +4094,15 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
     else sps__add_increments(w, b, q, dim, da, R, SPS__TURN_PARTICLE);
 }
 
-/* The continuity pass's variants: (gradient, eno). */
+/* The continuity pass's variants: (gradient, eno, Riemann density term). */
 #define SPS__CONTINUITY_VARIANTS(X)                  \
-    X(eno, 0, SPS__ENO_PARTICLES)                    \
-    X(eno_gradient, 1, SPS__ENO_PARTICLES)           \
-    X(eno_pairs, 0, SPS__ENO_PAIRS)                  \
-    X(eno_pairs_gradient, 1, SPS__ENO_PAIRS)         \
-    X(gradient, 1, SPS__ENO_NONE)
-#define SPS__CONTINUITY_INSTANCES(variant, gradient, eno) SPS__INSTANCES(continuity, variant, gradient, eno)
+    X(eno, 0, SPS__ENO_PARTICLES, 0)                 \
+    X(eno_gradient, 1, SPS__ENO_PARTICLES, 0)        \
+    X(eno_pairs, 0, SPS__ENO_PAIRS, 0)               \
+    X(eno_pairs_gradient, 1, SPS__ENO_PAIRS, 0)      \
+    X(gradient, 1, SPS__ENO_NONE, 0)                 \
+    X(fluid, 1, SPS__ENO_NONE, 1)
+#define SPS__CONTINUITY_INSTANCES(variant, gradient, eno, riemann) SPS__INSTANCES(continuity, variant, gradient, eno, riemann)
 SPS__CONTINUITY_VARIANTS(SPS__CONTINUITY_INSTANCES)
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
@@ -3851,17 +4200,17 @@ SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
 /* The pass kernels of a model in the world's mode: each pass's variant table searched for the
    row whose literals are the model's choices (every resolvable model has exactly one). */
 typedef struct sps__variant_row {
-    int key[4];
+    int key[5];
     const sps__group_kernel* modes;
 } sps__variant_row;
-#define SPS__ROW3(variant, a, b, c) {{a, b, c, 0}, sps__pressure_##variant},
-#define SPS__ROW_CONTINUITY(variant, a, b) {{a, b, 0, 0}, sps__continuity_##variant},
-#define SPS__ROW_PENALTY(variant, a, b, c, d) {{a, b, c, d}, sps__penalty_##variant},
-static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW3)};
+#define SPS__ROW_PRESSURE(variant, a, b, c, d, e) {{a, b, c, d, e}, sps__pressure_##variant},
+#define SPS__ROW_CONTINUITY(variant, a, b, c) {{a, b, c, 0, 0}, sps__continuity_##variant},
+#define SPS__ROW_PENALTY(variant, a, b, c, d) {{a, b, c, d, 0}, sps__penalty_##variant},
+static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW_PRESSURE)};
 static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
 static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
 
-static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[4], int mode) {
+static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[5], int mode) {
     int r;
     for (r = 0; r < nrows; ++r)
         if (memcmp(rows[r].key, key, sizeof rows[r].key) == 0) return rows[r].modes[mode];
@@ -3873,9 +4222,9 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     const sps__stabilisation* st = m->stabilisation;
     const int mode = sps__mode(w);
     const int eno = !st->eno ? SPS__ENO_NONE : m->paired ? SPS__ENO_PAIRS : SPS__ENO_PARTICLES;
-    const int pressure_key[4] = {st->stress_force, st->artificial_stress, m->paired, 0};
-    const int continuity_key[4] = {m->gradient, eno, 0, 0};
-    const int penalty_key[4] = {st->projected, m->paired, (int)m->turn, m->scaled_penalty};
+    const int pressure_key[5] = {st->stress_force, st->artificial_stress, m->paired, m->limited, m->viscous};
+    const int continuity_key[5] = {m->gradient, eno, m->riemann_density, 0, 0};
+    const int penalty_key[5] = {st->projected, m->paired, (int)m->turn, m->scaled_penalty, 0};
     sps__passes p;
     if (m->material->kinematic) {
         memset(&p, 0, sizeof p);
@@ -4153,7 +4502,8 @@ static sps_real sps__contact_energy(const sps_world* w, int i) {
     const sps_real sigma = sps__pair_contact_density(w, i), sigma_wall = sps__wall_contact_density(w, i, 0);
     const sps_real k_pair = w->contact_bodies && w->ct_first[i + 1] > w->ct_first[i]
                             ? sps__contact_stiffness(bi->mat.K, w->bodies[w->body[w->ct_j[w->ct_first[i]]]].mat.K) : 0;
-    return w->vol[i] * (SPS_R(0.5) * k_pair * sigma * sigma + bi->mat.K * sigma_wall * sigma_wall);
+    const sps_real k_wall = bi->model.material->shear ? bi->mat.K : 0; /* a fluid's wall force is its pressure's */
+    return w->vol[i] * (SPS_R(0.5) * k_pair * sigma * sigma + k_wall * sigma_wall * sigma_wall);
 }
 
 /* Adds the contact accelerations of particle i to acc_p (see the chapter's head). */
@@ -4173,7 +4523,7 @@ static void sps__contact_force(sps_world* w, int i) {
             s = -kij * (si + w->sigma[j]) * sps_world_kernel_derivative(w, r) / r * w->vol[j];
             for (a = 0; a < w->dim; ++a) f[a] += s * d[a];
         }
-    for (k = 0; k < w->nwalls; ++k) {
+    for (k = 0; k < w->nwalls && bi->model.material->shear; ++k) { /* a fluid's walls: sps__mirror_force */
         const sps__wall* wl = &w->walls[k];
         sps_real d = 0, plane, vn = 0;
         for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
@@ -4186,6 +4536,7 @@ static void sps__contact_force(sps_world* w, int i) {
         }
     }
     for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += vi_mi * f[a];
+    if (!bi->model.material->shear && w->nwalls > 0) sps__mirror_force(w, bi, i);
 }
 
 /* The contact pass of a sub-step (after the pressure pass, before the kick): the contact
@@ -4719,6 +5070,112 @@ static sps_result sps__watch_energy(sps_world* w) {
     return SPS_ERR_UNSTABLE;
 }
 
+/* >>transport: the transport-velocity corrections TVF and UTVF (UTVF sections 3.2-3.3)
+
+   After every advection step each particle of a body with transport = TVF or UTVF is moved by
+   dr = -2 alpha h^2 g_i, g_i = sum_j grad W_ij V_j (UTVF eq. 30; grad W_ij = dW/dr e_ij, so the
+   shift points away from where the neighbours crowd), which drives the particles towards
+   zero-order consistency (sum_j W_ij V_j = 1) and so against the clustering of tensile
+   instability. Velocities are untouched: linear momentum is kept exactly, angular momentum
+   and the kinetic energy are not changed either (only positions move).
+   Free-surface particles, whose kernel is cut, would be pushed out of the body: a particle is
+   on the surface if its position divergence div r_i = -sum_j r_ij . grad W_ij V_j (UTVF eq. 31,
+   trace of B_i^-1; d inside) is below 0.75 d, or if one with is within h of it (the second
+   layer). TVF leaves them where they are (the earlier formulations, Zhang et al. 2025);
+   UTVF moves them along the surface only, dr - (dr . n) n with the normal n = B_i g_i / |B_i g_i|
+   (UTVF eqs. 35-37). Neither moves a particle with div r below 0.6 d (too few neighbours for a
+   normal: a splash). The reference code's rule, which is DESIGN's; the paper's further rule for
+   splashed particles (no near-surface particle around) is not applied.
+   Two passes (the sums; the flags and shifts) and a per-particle move, in every thread. */
+
+/* Transport pass 1 for lane group g: g_i, div r_i and, with normal (UTVF), the normal. */
+SPS__INLINE void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
+                                     const int normal) {
+    const sps__group q = sps__group_of(w, b, g);
+    const sps_real* SPS__RESTRICT vol = w->vol;
+    sps_real sum[3][SPS__LANES], A[6][SPS__LANES], B[9][SPS__LANES];
+    int k, l, a, c;
+    (void)dt;
+    for (l = 0; l < SPS__LANES; ++l)
+        for (a = 0; a < 6; ++a) A[a][l] = a < 3 ? (sum[a][l] = 0) : 0;
+    SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
+            const sps_real dwv = e.dw * vol[j];
+            sum[0][l] += dwv * e.ex;
+            sum[1][l] += dwv * e.ey;
+            if (dim == 3) sum[2][l] += dwv * e.ez;
+            sps__add_moment(&A[0][l], SPS__LANES, e.ex, e.ey, e.ez, e.r * dwv, dim);
+    })
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        sps_real* t = b->transport + (size_t)SPS__TRANSPORT_VALUES * (q.i0 + l - b->begin);
+        sps_real n[3] = {0, 0, 0}, n2 = 0;
+        if (normal) sps__blended_inverse(&A[0][l], SPS__LANES, &B[0][l], SPS__LANES, dim);
+        for (a = 0; a < dim && normal; ++a) {
+            for (c = 0; c < dim; ++c) n[a] += B[3 * a + c][l] * sum[c][l];
+            n2 += n[a] * n[a];
+        }
+        for (a = 0; a < 3; ++a) {
+            t[SPS__TR_G + a] = a < dim ? sum[a][l] : 0;
+            t[SPS__TR_NORMAL + a] = n2 > 0 ? n[a] / SPS__SQRT(n2) : 0;
+        }
+        t[SPS__TR_DIVR] = A[0][l] + A[3][l] + (dim == 3 ? A[5][l] : 0);
+    }
+}
+
+/* Transport pass 2 for lane group g: the surface flags (div r of the particle and of its
+   neighbours within h) and the shift, into the particle's first values. utvf is a literal. */
+SPS__INLINE void sps__transport_shift(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
+                                      const int utvf) {
+    const sps__group q = sps__group_of(w, b, g);
+    const sps_real* SPS__RESTRICT t = b->transport;
+    const int begin = b->begin;
+    const sps_real surface_divr = SPS_R(0.75) * dim, splash_divr = SPS_R(0.6) * dim;
+    const sps_real scale = -2 * b->transport_alpha * w->h * w->h;
+    sps_real near[SPS__LANES];
+    int k, l, a;
+    (void)dt;
+    for (l = 0; l < SPS__LANES; ++l) near[l] = 0;
+    SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
+            const int outer_j = t[(size_t)SPS__TRANSPORT_VALUES * (j - begin) + SPS__TR_DIVR] < surface_divr;
+            near[l] += outer_j && e.r < w->h && e.dw != 0 ? 1 : 0; /* padding (j = i, dW = 0) counts not */
+    })
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        sps_real* ti = b->transport + (size_t)SPS__TRANSPORT_VALUES * (q.i0 + l - begin);
+        const sps_real divr = ti[SPS__TR_DIVR], *n = ti + SPS__TR_NORMAL;
+        const int surface = divr < surface_divr || near[l] > 0;
+        sps_real dr[3], dn = 0;
+        for (a = 0; a < 3; ++a) {
+            dr[a] = scale * ti[SPS__TR_G + a];
+            dn += dr[a] * n[a];
+        }
+        for (a = 0; a < 3; ++a) {
+            if (divr < splash_divr || (surface && !utvf)) dr[a] = 0;
+            else if (surface) dr[a] -= dn * n[a]; /* UTVF eq. 36 */
+            ti[SPS__TR_G + a] = dr[a];
+        }
+    }
+}
+SPS__INSTANCES(transport_sums, tvf, 0)
+SPS__INSTANCES(transport_sums, utvf, 1)
+SPS__INSTANCES(transport_shift, tvf, 0)
+SPS__INSTANCES(transport_shift, utvf, 1)
+
+/* The transport correction of every body that has one, by every thread of the step's team. */
+static void sps__transport(sps_world* w) {
+    const int mode = sps__mode(w);
+    int bi, i, i0, i1, a;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        const sps__body* b = &w->bodies[bi];
+        const int utvf = b->model.transport == SPS_TRANSPORT_UTVF;
+        if (b->model.transport == SPS_TRANSPORT_NONE || b->end == b->begin) continue;
+        sps__run_groups(w, b, utvf ? sps__transport_sums_utvf[mode] : sps__transport_sums_tvf[mode], 0);
+        sps__run_groups(w, b, utvf ? sps__transport_shift_utvf[mode] : sps__transport_shift_tvf[mode], 0);
+        sps__thread_share(b, &i0, &i1);
+        for (i = i0; i < i1; ++i)
+            for (a = 0; a < w->dim; ++a) w->pos[a][i] += b->transport[(size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G + a];
+        SPS__PRAGMA(omp barrier)
+    }
+}
+
 /* >>stepping: configuration updates, the advection step and its acoustic sub-steps */
 
 /* One acoustic sub-step (steps 1-5) from time t, called by every thread of the step's team.
@@ -4864,6 +5321,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
        grows within it, so particles never move more than CFL_ad h between list updates */
     travel_max = w->def.cfl_advection * w->h;
     dt_ad = w->vmax > 0 ? travel_max / w->vmax : (sps_real)INFINITY;
+    if (w->viscous_speed > w->vmax) dt_ad = travel_max / w->viscous_speed; /* momentum diffuses h in h / (nu / h) */
     max_sub = w->def.stepping == SPS_STEPPING_SINGLE ? 1 : w->def.max_substeps;
     steps_before = w->acoustic_steps;
     /* One thread team for the whole advection step: the passes are work-shared loops. Every
@@ -4890,6 +5348,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || t >= t_limit) break;
         }
         SPS__PRAGMA(omp barrier) /* every thread has left the loop before the shared state changes */
+        if (!blew_up) sps__transport(w); /* same in all threads */
         SPS__PRAGMA(omp master)
         {
             unstable = blew_up;
@@ -5121,11 +5580,15 @@ static sps_real sps__plastic_strain(const sps_world* w, int i) {
     return b->plastic_strain && i - b->begin < b->field_count ? b->plastic_strain[i - b->begin] : 0;
 }
 
-/* Hourglass indicator (see DIAGNOSTICS): displacement gradients with B from current positions. */
-static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing) {
-    sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, num = 0, den = 0, rmin2 = -1;
+/* Hourglass indicator (see DIAGNOSTICS): displacement gradients with B from current positions;
+   also the smallest spacing and the count of surface particles of [begin, end). */
+static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing, int* surface) {
+    sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, *divr = w->diag_scratch + (size_t)18 * w->cap;
+    sps_real num = 0, den = 0, rmin2 = -1;
     int i;
-    sps__correction_matrices(w, B);
+    sps__correction_matrices(w, B, divr);
+    *surface = 0;
+    for (i = begin; i < end; ++i) *surface += divr[i] < SPS_R(0.75) * w->dim;
     SPS__PARALLEL_FOR(w, w->n)
     for (i = 0; i < w->n; ++i) {
         sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -5184,7 +5647,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
     if (k >= 0) { begin = w->bodies[k].begin; end = w->bodies[k].end; }
     if (w->diag_cap < w->cap) {
         sps__free(w, w->diag_scratch);
-        w->diag_scratch = (sps_real*)sps__alloc(w, sizeof(sps_real) * 18 * (size_t)w->cap);
+        w->diag_scratch = (sps_real*)sps__alloc(w, sizeof(sps_real) * 19 * (size_t)w->cap);
         if (!w->diag_scratch) { w->diag_cap = 0; return sps__oom(w, "sps_world_diagnostics: the scratch"); }
         w->diag_cap = w->cap;
     }
@@ -5226,7 +5689,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
         const sps__body* b = &w->bodies[bi];
         for (i = 0; b->driven_work && (k < 0 || bi == k) && i < b->end - b->begin; ++i) out->prescribed_work += b->driven_work[i];
     }
-    out->hourglass = sps__hourglass(w, begin, end, &out->min_spacing);
+    out->hourglass = sps__hourglass(w, begin, end, &out->min_spacing, &out->surface_particles);
     return SPS_OK;
 }
 
@@ -5234,20 +5697,20 @@ SPSDEF const char* sps_diagnostics_csv_header(void) {
     return "time,kinetic_energy,strain_energy,total_energy,momentum_x,momentum_y,momentum_z,"
            "angular_momentum_x,angular_momentum_y,angular_momentum_z,max_speed,min_density,max_density,"
            "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic,contact_energy,potential_energy,prescribed_work,"
-           "plastic_work,max_plastic_strain";
+           "plastic_work,max_plastic_strain,surface_particles";
 }
 
 SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t size) {
     if (!d || (!buf && size)) return -1;
     /* total_energy: kinetic + strain + plastic work */
-    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g,%.9g,%.6g",
+    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g,%.9g,%.6g,%d",
                     (double)d->time, (double)d->kinetic_energy, (double)d->strain_energy,
                     (double)(d->kinetic_energy + d->strain_energy + d->plastic_work), (double)d->linear_momentum[0],
                     (double)d->linear_momentum[1], (double)d->linear_momentum[2], (double)d->angular_momentum[0],
                     (double)d->angular_momentum[1], (double)d->angular_momentum[2], (double)d->max_speed,
                     (double)d->min_density, (double)d->max_density, (double)d->hourglass, (double)d->min_spacing, d->acoustic_steps,
                     d->advection_steps, (double)d->dt_acoustic, (double)d->contact_energy, (double)d->potential_energy,
-                    (double)d->prescribed_work, (double)d->plastic_work, (double)d->max_plastic_strain);
+                    (double)d->prescribed_work, (double)d->plastic_work, (double)d->max_plastic_strain, d->surface_particles);
 }
 
 /* >>access */

@@ -217,6 +217,7 @@ EX_UNUSED static const char* rotation_name(int r) {
 /* ---- the options every example shares ---- */
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, stress, threads, quiet; /* choice indices and flags */
+    int transport; /* sps_transport: none, TVF, UTVF */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
     double png_every;   /* > 0: a PNG every png_every s; 0: none; < 0: one PNG at the end */
     int svg;            /* 1: the final picture as SVG too (one circle per particle: large for big 3D runs) */
@@ -254,6 +255,7 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"geometry", OPT_CHOICE, &(c).geometry, "pair geometry in sub-steps", 0, 0, "recomputed|frozen"},   \
     {"kernel", OPT_CHOICE, &(c).kernel, "smoothing kernel", 0, 0, "wendland|spline"},                    \
     {"stress", OPT_CHOICE, &(c).stress, "ENO bodies: integrate the shear stress (von Mises, strain energy)", 0, 0, "on|off"}, \
+    {"transport", OPT_CHOICE, &(c).transport, "transport-velocity correction (UTVF sections 3.2-3.3)", 0, 0, "none|tvf|utvf"}, \
     {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number CFL_ac", 0.01, 1, NULL},                            \
     {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
     {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
@@ -291,6 +293,7 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->zeta = c->zeta;
     bd->xi = c->xi;
     bd->rotation = (sps_rotation)c->rotation; /* choices in enum order */
+    bd->transport = (sps_transport)c->transport; /* likewise */
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
@@ -362,6 +365,7 @@ EX_UNUSED static const char* common_result_fields(const common_options* c) {
                      c->kernel ? "spline" : "wendland", c->cfl, c->geometry ? "frozen" : "recomputed", c->threads,
                      sps_is_double() ? "double" : "float");
     if (c->stress) n += snprintf(fields + n, sizeof fields - (size_t)n, " stress=off");
+    if (c->transport) n += snprintf(fields + n, sizeof fields - (size_t)n, " transport=%s", c->transport == 1 ? "tvf" : "utvf");
     if (c->zeta > 0) n += snprintf(fields + n, sizeof fields - (size_t)n, " zeta=%g", c->zeta); /* only when not the papers' */
     if (c->xi > 0) snprintf(fields + n, sizeof fields - (size_t)n, " xi=%g", c->xi);
     return fields;

@@ -36,6 +36,8 @@ typedef struct pinned_case {
     int track_stress;
     int all_shears;        /* one body of every formulation the dimension allows, side by side */
     int plastic;           /* J2 material (yields within the run); its plastic strain and work are hashed too */
+    int fluid;             /* 1: a fluid in a tank of walls (mirror particles); 2: also viscous */
+    sps_transport transport;
 } pinned_case;
 
 #define W SPS_KERNEL_WENDLAND_C2
@@ -48,10 +50,10 @@ typedef struct pinned_case {
    both kernels; the -A rotations where they apply (the others ignore the rotation). */
 static const pinned_case g_cases[] = {
 #define GEOMETRIES(nm, d, sh, rot)                              \
-    {nm "/wendland", d, sh, rot, 0, W, 0, 0, 0, 0},             \
-    {nm "/spline", d, sh, rot, 0, S, 0, 0, 0, 0},               \
-    {nm "/frozen", d, sh, rot, 1, W, 0, 0, 0, 0},               \
-    {nm "/frozen-spline", d, sh, rot, 1, S, 0, 0, 0, 0}
+    {nm "/wendland", d, sh, rot, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE},      \
+    {nm "/spline", d, sh, rot, 0, S, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE},        \
+    {nm "/frozen", d, sh, rot, 1, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE},        \
+    {nm "/frozen-spline", d, sh, rot, 1, S, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE}
     GEOMETRIES("2d/eno", 2, SPS_SHEAR_ENO, MEAN),
     GEOMETRIES("2d/eno-a-mean", 2, SPS_SHEAR_ENO_A, MEAN),
     GEOMETRIES("2d/eno-a-particle", 2, SPS_SHEAR_ENO_A, PART),
@@ -72,18 +74,24 @@ static const pinned_case g_cases[] = {
     GEOMETRIES("3d/gno-a-particle", 3, SPS_SHEAR_GNO_A, PART),
     GEOMETRIES("3d/gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR),
 #undef GEOMETRIES
-    {"2d/eno-a-mean/single", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 1, 0, 0, 0},
-    {"2d/eno/stress", 2, SPS_SHEAR_ENO, MEAN, 0, W, 0, 1, 0, 0},
-    {"2d/eno-a-pair/stress", 2, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 1, 0, 0},
-    {"3d/eno-a-mean/stress", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 1, 0, 0},
-    {"2d/all-shears", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0},
-    {"3d/all-shears", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0},
-    {"2d/j2-og", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1},
-    {"2d/j2-gno-a-mean", 2, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1},
-    {"3d/j2-og", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1},
-    {"3d/j2-gno-a-mean", 3, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1},
-    {"3d/j2-gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1},
-    {"3d/j2-gno", 3, SPS_SHEAR_GNO, MEAN, 0, W, 0, 0, 0, 1},
+    {"2d/eno-a-mean/single", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 1, 0, 0, 0, 0, SPS_TRANSPORT_NONE},
+    {"2d/eno/stress", 2, SPS_SHEAR_ENO, MEAN, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE},
+    {"2d/eno-a-pair/stress", 2, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE},
+    {"3d/eno-a-mean/stress", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE},
+    {"2d/all-shears", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE},
+    {"3d/all-shears", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE},
+    {"2d/j2-og", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE},
+    {"2d/j2-gno-a-mean", 2, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE},
+    {"3d/j2-og", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE},
+    {"3d/j2-gno-a-mean", 3, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE},
+    {"3d/j2-gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE},
+    {"3d/j2-gno", 3, SPS_SHEAR_GNO, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE},
+    {"2d/fluid", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_NONE},
+    {"2d/fluid-viscous-tvf", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 2, SPS_TRANSPORT_TVF},
+    {"2d/fluid-utvf", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_UTVF},
+    {"3d/fluid-utvf", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_UTVF},
+    {"2d/og-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_UTVF},
+    {"3d/og-tvf", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_TVF},
 };
 #define NCASES ((int)(sizeof g_cases / sizeof g_cases[0]))
 
@@ -138,12 +146,23 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
         bd.material.yield_stress = (sps_real)5e3;
         bd.material.hardening_modulus = (sps_real)1e5;
     }
+    bd.transport = c->transport;
+    if (c->fluid) {
+        bd.material.kind = SPS_MATERIAL_FLUID;
+        bd.material.sound_speed = 20;
+        bd.material.viscosity = c->fluid == 2 ? (sps_real)0.5 : 0;
+    }
     if (sps_world_add_body(w, &bd, &b) != SPS_OK) return -1;
     lo[0] = (sps_real)x0; lo[1] = 0; lo[2] = 0;
     hi[0] = (sps_real)(x0 + len); hi[1] = (sps_real)hgt; hi[2] = (sps_real)dep;
     if (sps_body_add_box(w, b, lo, hi, &added) != SPS_OK || added == 0) return -1;
     ctx.centre[0] = x0 + 0.5 * len; ctx.centre[1] = 0.5 * hgt; ctx.centre[2] = 0.5 * dep;
     if (sps_body_set_velocity(w, b, case_velocity, &ctx) != SPS_OK) return -1;
+    if (c->fluid) { /* a tank with an open top: the walls' mirror particles */
+        sps_real tank_hi[3];
+        tank_hi[0] = hi[0]; tank_hi[1] = 2 * hi[1]; tank_hi[2] = hi[2];
+        return sps_world_add_box_walls(w, lo, tank_hi, c->dim == 2 ? SPS_FACE_Y_HI : SPS_FACE_Z_HI, SPS_WALL_NO_SLIP) == SPS_OK ? added : -1;
+    }
     clo[0] = lo[0] - 1; clo[1] = -1; clo[2] = -1;
     chi[0] = (sps_real)(x0 + 0.021); chi[1] = 1; chi[2] = 1;
     if (sps_body_constrain_box(w, b, clo, chi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK) return -1;
