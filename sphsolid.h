@@ -187,13 +187,13 @@
       beyond it).
 
    TRANSPORT (transport = SPS_TRANSPORT_TVF or SPS_TRANSPORT_UTVF; UTVF sections 3.2-3.3)
-      After every advection step each particle is shifted by dr = -2 alpha h^2 sum_j grad W_ij V_j
+      After every acoustic sub-step each particle is shifted by dr = -2 alpha h^2 sum_j grad W_ij V_j
       (alpha = transport_coefficient, default 0.2), towards a uniform spacing, against the
       clustering and voids of tensile instability; velocities are untouched, so linear momentum
       is exact. Surface particles (position divergence -sum r_ij . grad W_ij V_j below 0.75 d, or
       within h of one) are not moved by TVF and are moved along the surface only by UTVF (normal
       B_i g_i / |B_i g_i|); none with a divergence below 0.6 d. For fluids and solids alike (not
-      wall bodies). Costs two neighbour passes per advection step; the diagnostics'
+      wall bodies). Costs two neighbour passes per sub-step; the diagnostics'
       surface_particles counts the particles below 0.75 d, which voids and cracks raise.
 
    MODELS AND FIELDS
@@ -1341,7 +1341,7 @@ static const sps__field_info sps__fields[] = {
     {"prescribed_work", "prescribed work", 1, SPS__BOFF(driven_work), 0, 1, 0, SPS__NEED_DRIVEN, SPS__CARRIED},
     {"plastic_strain", "plastic strain", 1, SPS__BOFF(plastic_strain), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
     {"plastic_work", "plastic work", 1, SPS__BOFF(plastic_work), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD},
-    /* rebuilt at the end of every advection step (>>transport) */
+    /* rebuilt at every sub-step (>>transport) */
     {"transport", "transport correction", 1, SPS__BOFF(transport), 0, SPS__TRANSPORT_VALUES, 0, SPS__NEED_TRANSPORT, 0},
     /* written by the continuity pass, read by the penalty pass of the same sub-step */
     {"return_factor", "return factor", 1, SPS__BOFF(return_factor), 0, 1, 0, SPS__NEED_SCALED_PENALTY, 0},
@@ -5072,7 +5072,7 @@ static sps_result sps__watch_energy(sps_world* w) {
 
 /* >>transport: the transport-velocity corrections TVF and UTVF (UTVF sections 3.2-3.3)
 
-   After every advection step each particle of a body with transport = TVF or UTVF is moved by
+   After every acoustic sub-step each particle of a body with transport = TVF or UTVF is moved by
    dr = -2 alpha h^2 g_i, g_i = sum_j grad W_ij V_j (UTVF eq. 30; grad W_ij = dW/dr e_ij, so the
    shift points away from where the neighbours crowd), which drives the particles towards
    zero-order consistency (sum_j W_ij V_j = 1) and so against the clustering of tensile
@@ -5086,7 +5086,10 @@ static sps_result sps__watch_energy(sps_world* w) {
    (UTVF eqs. 35-37). Neither moves a particle with div r below 0.6 d (too few neighbours for a
    normal: a splash). The reference code's rule, which is DESIGN's; the paper's further rule for
    splashed particles (no near-surface particle around) is not applied.
-   Two passes (the sums; the flags and shifts) and a per-particle move, in every thread. */
+   Two passes (the sums; the flags and shifts) and a per-particle move, in every thread. Once
+   per sub-step, as UTVF eq. 42 stands after the time integration: once per advection step
+   (the reference code's fluids) was measured too weak to hold OG's zigzag modes (the plate of
+   C3 at H/dp 20 broke within 0.1 s; per sub-step it swings with min spacing 0.83 dp). */
 
 /* Transport pass 1 for lane group g: g_i, div r_i and, with normal (UTVF), the normal. */
 SPS__INLINE void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
@@ -5339,6 +5342,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             elapsed += dt;
             ++sub;
             if (!(vmax2 < (sps_real)INFINITY)) { blew_up = 1; break; } /* same in all threads */
+            sps__transport(w); /* UTVF eq. 42, after the step's eqs. 39-41 */
             t += dt; /* the time of the last finished sub-step */
             dt_last = dt;
             ++done;
@@ -5348,7 +5352,6 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || t >= t_limit) break;
         }
         SPS__PRAGMA(omp barrier) /* every thread has left the loop before the shared state changes */
-        if (!blew_up) sps__transport(w); /* same in all threads */
         SPS__PRAGMA(omp master)
         {
             unstable = blew_up;
