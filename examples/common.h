@@ -486,6 +486,18 @@ EX_UNUSED static void ex_advance_row(sps_world* w, int* row, const common_option
     if (r != SPS_OK) ex_step_failed(w, r, o);
 }
 
+/* The mean pressure of the particles within 2.5 dp of the origin (2D; one particle's is noisy):
+   the centre pressure of the fluid examples. */
+EX_UNUSED static double ex_centre_pressure(const sps_world* w, double dp) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    const sps_real* p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    double sum = 0;
+    int i, n = sps_world_particle_count(w), near = 0;
+    for (i = 0; i < n; ++i)
+        if (x[i] * x[i] + y[i] * y[i] < 6.25 * dp * dp) { sum += p[i]; ++near; }
+    return near ? sum / near : 0;
+}
+
 /* ---- period of an oscillation from the zero crossings of a signal starting at zero ---- */
 typedef struct {
     double t_prev, s_prev, crossing[64]; /* the first 64 crossing times */

@@ -64,25 +64,24 @@ typedef struct {
     double a_moment, b_moment, a_edge, b_edge, centre_pressure;
 } drop_shape;
 
-/* The semi-axes from the second moments and from the outermost particles, and the mean
-   pressure of the particles within 2.5 dp of the centre (one particle's is noisy). */
+/* The semi-axes from the second moments and from the outermost particles, and the centre
+   pressure. */
 static drop_shape measure(const sps_world* w, double dp) {
     const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
-    const sps_real *m = sps_world_field_by_name(w, "mass", NULL), *p = sps_world_field(w, SPS_FIELD_PRESSURE);
-    double mx = 0, my = 0, msum = 0, xmax = 0, ymax = 0, p_sum = 0, near = 0;
+    const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
+    double mx = 0, my = 0, msum = 0, xmax = 0, ymax = 0;
     drop_shape s;
     int i, n = sps_world_particle_count(w);
     memset(&s, 0, sizeof s);
     for (i = 0; i < n; ++i) {
-        const double xi = x[i], yi = y[i], r2 = xi * xi + yi * yi;
+        const double xi = x[i], yi = y[i];
         msum += m[i];
         mx += m[i] * xi * xi;
         my += m[i] * yi * yi;
         if (fabs(xi) > xmax) xmax = fabs(xi);
         if (fabs(yi) > ymax) ymax = fabs(yi);
-        if (r2 < 6.25 * dp * dp) { p_sum += p[i]; near += 1; }
     }
-    s.centre_pressure = near > 0 ? p_sum / near : 0;
+    s.centre_pressure = ex_centre_pressure(w, dp);
     s.a_moment = 2 * sqrt(mx / msum);
     s.b_moment = 2 * sqrt(my / msum);
     /* the outer particles sit dp/2 inside the disc; the stretch scales that offset */
@@ -163,7 +162,7 @@ int main(int argc, char** argv) {
     s.l0 = d0.angular_momentum[2];
     {
         const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
-        const sps_real* m = sps_world_field_by_name(w, "mass", NULL);
+        const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
         n = sps_world_particle_count(w);
         for (i = 0; i < n; ++i) {
             const double r = sqrt((double)(x[i] * x[i] + y[i] * y[i]));

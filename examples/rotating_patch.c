@@ -49,22 +49,11 @@ typedef struct {
     int quiet;
 } run_state;
 
-/* The mean pressure of the particles within 2.5 dp of the centre. */
-static double centre_pressure(const sps_world* w, double dp) {
-    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
-    const sps_real* p = sps_world_field(w, SPS_FIELD_PRESSURE);
-    double sum = 0;
-    int i, n = sps_world_particle_count(w), near = 0;
-    for (i = 0; i < n; ++i)
-        if (x[i] * x[i] + y[i] * y[i] < 6.25 * dp * dp) { sum += p[i]; ++near; }
-    return near ? sum / near : 0;
-}
-
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
     char extra[64];
-    snprintf(extra, sizeof extra, ",%.9g", centre_pressure(w, s->dp));
+    snprintf(extra, sizeof extra, ",%.9g", ex_centre_pressure(w, s->dp));
     output_tick(w, &s->output, extra, &d);
     progress(sps_world_time(w), s->t_end, s->wall0, s->quiet);
     return 0;
@@ -120,7 +109,7 @@ int main(int argc, char** argv) {
            "advection_steps=%ld wall_s=%.2f out=%s\n",
            dp, c0, c.rho0, g_omega, (double)d.time, (double)d0.kinetic_energy, (double)d.kinetic_energy,
            100 * (d.kinetic_energy / d0.kinetic_energy - 1), reference_ke[0] * scale, reference_ke[1] * scale,
-           100 * (reference_ke[1] / reference_ke[0] - 1), patch_pressure(0, 0), centre_pressure(w, dp), d0.surface_particles,
+           100 * (reference_ke[1] / reference_ke[0] - 1), patch_pressure(0, 0), ex_centre_pressure(w, dp), d0.surface_particles,
            d.surface_particles, s.output.min_spacing, fmax(fabs((double)d.linear_momentum[0]), fabs((double)d.linear_momentum[1])),
            common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
     sps_world_destroy(w);
