@@ -245,7 +245,12 @@ static sps_body_def random_body_def(void) {
     d.shear = (sps_shear)(chance(p) ? hostile_int() : below(6));
     d.rotation = (sps_rotation)(chance(p) ? hostile_int() : below(3));
     d.material.kind = (sps_material_kind)(chance(p) ? hostile_int() /* sometimes a wall body, sometimes plastic */
-                                                    : chance(0.15) ? SPS_MATERIAL_RIGID : chance(0.2) ? SPS_MATERIAL_J2 : SPS_MATERIAL_ELASTIC);
+                                                    : chance(0.15) ? SPS_MATERIAL_RIGID : chance(0.2) ? SPS_MATERIAL_J2
+                                                    : chance(0.2) ? SPS_MATERIAL_FLUID : SPS_MATERIAL_ELASTIC);
+    d.material.sound_speed = maybe_hostile(exp(uniform(log(1), log(1e3))), p);
+    d.material.viscosity = chance(0.6) ? 0 : maybe_hostile(exp(uniform(log(1e-3), log(10))), p);
+    d.transport = (sps_transport)(chance(p) ? hostile_int() : below(3));
+    d.transport_coefficient = chance(0.7) ? 0 : maybe_hostile(uniform(0, 1), p);
     d.material.yield_stress = maybe_hostile(d.material.youngs_modulus * exp(uniform(log(1e-4), log(1e-2))), p);
     d.material.hardening_modulus = chance(0.5) ? 0 : maybe_hostile(d.material.youngs_modulus * uniform(0, 0.01), p);
     d.contact = chance(p) ? hostile_int() : !chance(0.1);
