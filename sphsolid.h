@@ -557,17 +557,23 @@ typedef enum sps_material_kind {
     SPS_MATERIAL_RIGID = 1,   /* a wall body: its particles keep the velocity given to them
                                  (sps_body_set_velocity, constraints) and push the other bodies
                                  by contact; density, E and nu set its mass and contact stiffness */
-    SPS_MATERIAL_J2 = 2       /* von Mises elastic-plastic: the linear elastic law, and the shear
+    SPS_MATERIAL_J2 = 2,      /* von Mises elastic-plastic: the linear elastic law, and the shear
                                  stress returned radially onto the yield surface
                                  sqrt(2 J2) = sqrt(2/3)(yield_stress + hardening_modulus alpha),
                                  alpha the equivalent plastic strain (ANG eqs. 11, 14; MATERIALS).
                                  Needs a stress-based shear formulation: OG, OAS, GNO or GNO-A
                                  (GNO-A is ANG's choice; ENO and ENO-A are refused) */
+    SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF = 4, /* hyperelastic S = lambda tr(E) I + 2 mu E, E the
+                                 Green-Lagrange strain (TL eq. 19); total-Lagrangian bodies only */
+    SPS_MATERIAL_NEO_HOOKEAN = 5 /* compressible Neo-Hookean S = mu (I - C^-1) + lambda ln(J) C^-1
+                                 (TL eq. 44); total-Lagrangian bodies only */
 } sps_material_kind;
 
 /* The solver of a body. */
 typedef enum sps_solver {
-    SPS_SOLVER_UPDATED_LAGRANGIAN = 0 /* neighbours and kernel gradients from the current positions */
+    SPS_SOLVER_UPDATED_LAGRANGIAN = 0, /* neighbours and kernel gradients from the current positions */
+    SPS_SOLVER_TOTAL_LAGRANGIAN = 1    /* neighbours, corrected kernel gradients and the deformation
+                                          gradient in the reference configuration (TOTAL-LAGRANGIAN) */
 } sps_solver;
 
 /* The transport-velocity correction of a body (particles advected by a shifted velocity). */
@@ -606,6 +612,8 @@ typedef struct sps_body_def {
                                   dv/dt = a - c v (DAMPING; numerical, not a physical material
                                   damping: for reaching a static equilibrium). 0 = off. Not for
                                   wall bodies. Default 0. */
+    sps_real hourglass_alpha;  /* total-Lagrangian bodies: the hourglass coefficient alpha of TL
+                                  eq. 32, [0, 1000] (0: no hourglass control). Default 50. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -959,6 +967,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #define SPS__FLOOR floorf
 #define SPS__ATAN2 atan2f
 #define SPS__EXPM1 expm1f
+#define SPS__LOG logf
 #else
 #define SPS__SQRT sqrt
 #define SPS__SIN sin
@@ -966,6 +975,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #define SPS__FLOOR floor
 #define SPS__ATAN2 atan2
 #define SPS__EXPM1 expm1
+#define SPS__LOG log
 #endif
 #define SPS__PI SPS_R(3.14159265358979323846)
 #define SPS__COOKIE 0x5350531
@@ -1028,9 +1038,10 @@ struct sps__body;
 typedef void (*sps__group_kernel)(sps_world* w, const struct sps__body* b, int g, sps_real dt);
 
 /* The pass kernels of a body, fully specialised (dimension, pair geometry, terms); penalty is
-   NULL when the body has no penalty pass. */
+   NULL when the body has no penalty pass, stress (run before the pressure pass) for all but
+   total-Lagrangian bodies, continuity for those. */
 typedef struct sps__passes {
-    sps__group_kernel pressure, continuity, penalty;
+    sps__group_kernel pressure, continuity, penalty, stress;
 } sps__passes;
 
 /* What the step runs for a body, resolved once from its def. */
@@ -1044,6 +1055,7 @@ typedef struct sps__model {
     int artificial_stress; /* Gray's artificial stress is computed (OAS) */
     int plastic;  /* J2 radial return after the Jaumann update; plastic strain and work fields */
     int scaled_penalty; /* the GNO penalty scaled per pair by the particles' return factors */
+    int total_lagrangian; /* reference neighbours and gradients (chapter >>solver: total Lagrangian) */
     sps__passes pass;
 } sps__model;
 
@@ -1080,7 +1092,10 @@ typedef struct sps__body {
     sps_real *acc_d[3], *tau, *art, *grad;
     sps_real* driven_work; /* driven: work done by its prescribed motion through each particle */
     sps_real *plastic_strain, *plastic_work, *return_factor; /* J2 bodies */
+    sps_real *tl_correction, *tl_deformation, *tl_stress; /* total-Lagrangian bodies: B_i, F_i, P_i B_i */
     int field_count; /* particles they hold: its count at the last commit */
+    int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
+                            are rebuilt only when a commit re-sorts the particles) */
 } sps__body;
 
 /* An analytic rigid wall (chapter >>contact): the half-space (x - point) . normal < 0 is solid. */
@@ -1205,7 +1220,8 @@ typedef enum {
     SPS__NEED_PLASTIC,     /* a body's material is plastic (J2) */
     SPS__NEED_SCALED_PENALTY, /* a plastic body's GNO penalty is scaled by its return factors */
     SPS__NEED_CONSTRAINTS, /* allocated by the first sps_body_constrain_box */
-    SPS__NEED_DRIVEN       /* a body whose prescribed motion does work (sps__body.driven) */
+    SPS__NEED_DRIVEN,      /* a body whose prescribed motion does work (sps__body.driven) */
+    SPS__NEED_TOTAL_LAGRANGIAN /* a total-Lagrangian body */
 } sps__need;
 
 enum {
@@ -1252,6 +1268,11 @@ static const sps__field_info sps__fields[] = {
     {"plastic_work", "plastic work", 1, SPS__BOFF(plastic_work), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD},
     /* written by the continuity pass, read by the penalty pass of the same sub-step */
     {"return_factor", "return factor", 1, SPS__BOFF(return_factor), 0, 1, 0, SPS__NEED_SCALED_PENALTY, 0},
+    /* total Lagrangian: B_i = -L_i^-1 (TL eq. 15) of the reference configuration, F_i (TL eq. 17)
+       and P_i B_i, written by the stress pass and read by the force pass of the same sub-step */
+    {"reference_correction", "reference correction", 1, SPS__BOFF(tl_correction), 0, 9, 0, SPS__NEED_TOTAL_LAGRANGIAN, 0},
+    {"deformation_gradient", "deformation gradient", 1, SPS__BOFF(tl_deformation), 0, 9, 0, SPS__NEED_TOTAL_LAGRANGIAN, SPS__CARRIED | SPS__CHECKED},
+    {"corrected_piola_stress", "corrected Piola stress", 1, SPS__BOFF(tl_stress), 0, 9, 0, SPS__NEED_TOTAL_LAGRANGIAN, 0},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
@@ -1448,6 +1469,7 @@ SPSDEF sps_body_def sps_default_body_def(void) {
     d.oas_epsilon = SPS_R(0.3);
     d.oas_exponent = 4;
     d.contact = 1;
+    d.hourglass_alpha = 50; /* TL section 4.2, Table 1 */
     d.internal_cookie = SPS__COOKIE;
     return d;
 }
@@ -1559,6 +1581,19 @@ static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size,
     *broken_out += broken;
 }
 
+/* >>material: Saint Venant-Kirchhoff (total Lagrangian; TL eqs. 18-20) */
+/* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
+
+/* The hyperelastic laws of total-Lagrangian bodies take the linear elastic checks; their
+   signal speed is the P-wave speed c_p = sqrt((K + 4G/3)/rho0) of the linearised law, since
+   the full stress tensor, not only its pressure, carries waves (the time step, chapter
+   >>stepping). Stress and stored energy: sps__tl_law (chapter >>solver: total Lagrangian). */
+static sps__material_constants sps__hyperelastic_constants(const sps_material_def* m) {
+    sps__material_constants c = sps__elastic_constants(m);
+    c.c0 = SPS__SQRT((c.K + c.G * 4 / 3) / m->density);
+    return c;
+}
+
 /* >>model (continued): the rows */
 
 static const sps__material_model sps__materials[] = {
@@ -1567,6 +1602,9 @@ static const sps__material_model sps__materials[] = {
     {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1, 0},
     /* the stored energy of a J2 body is its elastic part; the return map's share is plastic work */
     {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density, 0, 1},
+    /* total-Lagrangian bodies only: their stored energy comes from F (sps__tl_energy) */
+    {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", sps__elastic_check, sps__hyperelastic_constants, NULL, 0, 0},
+    {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", sps__elastic_check, sps__hyperelastic_constants, NULL, 0, 0},
 };
 #define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
@@ -1581,6 +1619,9 @@ static const sps__stabilisation sps__stabilisations[] = {
     {SPS_SHEAR_GNO_A, "GNO-A", 1,    0,   1,   1,   0,   1,       {0.8, 0.8}},
 };
 #define SPS__NSTABILISATIONS ((int)(sizeof sps__stabilisations / sizeof sps__stabilisations[0]))
+/* A total-Lagrangian body's stabilisation is the hourglass force of TL eq. 32 (its def's shear
+   is not used); its stable CFL is measured on the patch test and the plate (bench/VALIDATION.md). */
+static const sps__stabilisation sps__tl_hourglass = {SPS_SHEAR_OG, "TL hourglass", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
 
 static const sps__material_model* sps__material_of(sps_material_kind kind) {
     int k;
@@ -1607,7 +1648,21 @@ static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
     (void)dim;
     return def->material.kind == SPS_MATERIAL_J2 && (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
 }
+static int sps__total_lagrangian_law(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.kind == SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF || def->material.kind == SPS_MATERIAL_NEO_HOOKEAN;
+}
+static int sps__hyperelastic_updated(int dim, const sps_body_def* def) {
+    return sps__total_lagrangian_law(dim, def) && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
+}
+static int sps__total_lagrangian_other_law(int dim, const sps_body_def* def) {
+    return def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN && !sps__total_lagrangian_law(dim, def);
+}
 static const sps__combination_rule sps__combination_rules[] = {
+    {sps__hyperelastic_updated, "material.kind = Saint Venant-Kirchhoff or Neo-Hookean with solver = updated Lagrangian: these laws "
+                                "take the deformation gradient of the reference configuration; use solver = total Lagrangian"},
+    {sps__total_lagrangian_other_law, "solver = total Lagrangian with material.kind other than Saint Venant-Kirchhoff (4) or Neo-Hookean "
+                                      "(5): a total-Lagrangian body needs a law of the deformation gradient"},
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
     {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
     /* ANG sections 4.1 and 5.2: ENO's shear force is an accumulated Laplacian of velocity, not
@@ -1621,10 +1676,14 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
-    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid) or 2 (J2)", (int)def->material.kind);
+    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid), 2 (J2), 4 (Saint Venant-Kirchhoff) or 5 (Neo-Hookean)",
+               (int)def->material.kind);
     if (material) material->check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
-    SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN, "solver = %d, allowed 0 (updated Lagrangian)", (int)def->solver);
+    SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN || def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN,
+               "solver = %d, allowed 0 (updated Lagrangian) or 1 (total Lagrangian)", (int)def->solver);
+    SPS__CHECK(def->hourglass_alpha >= 0 && def->hourglass_alpha <= 1000, "hourglass_alpha = %g, allowed [0, 1000]",
+               (double)def->hourglass_alpha);
     SPS__CHECK(def->transport == SPS_TRANSPORT_NONE, "transport = %d, allowed 0 (none)", (int)def->transport);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
@@ -1659,6 +1718,12 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.scaled_penalty = m.plastic && m.stabilisation->penalty;
     if (m.material->kinematic) { /* a wall body runs no pass and needs no field of its own */
         m.paired = m.stress = m.gradient = m.artificial_stress = 0;
+        m.turn = SPS__TURN_NONE;
+    }
+    if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) { /* its stress comes from F: tau holds its Cauchy stress + p I */
+        m.stabilisation = &sps__tl_hourglass;
+        m.total_lagrangian = m.stress = 1;
+        m.paired = m.gradient = m.artificial_stress = m.scaled_penalty = 0;
         m.turn = SPS__TURN_NONE;
     }
     return m;
@@ -2628,18 +2693,19 @@ static void sps__sort_body(sps_world* w, const sps__body* b, const int* key, int
     for (i = b->begin; i < b->end; ++i) w->slot_of_id[w->id[i]] = i;
 }
 
-/* Cell grid of one body: cell size = support; dims capped near 4 cells per particle, each at
+/* Cell grid of particles [begin, end) at positions x (the current ones, or a total-Lagrangian
+   body's reference ones): cell size = support; dims capped near 4 cells per particle, each at
    least 3 so the 3^d neighbour cells of a cell are distinct even when the grid wraps. */
-static int sps__setup_grid(sps_world* w, int begin, int end) {
+static int sps__setup_grid(sps_world* w, sps_real* const x[3], int begin, int end) {
     int a, i;
     double total = 1, cap = 4.0 * (end - begin) + 64;
     sps_real lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (a = 0; a < w->dim; ++a) {
-        lo[a] = hi[a] = w->pos[a][begin];
+        lo[a] = hi[a] = x[a][begin];
         for (i = begin + 1; i < end; ++i) {
-            sps_real x = w->pos[a][i];
-            if (x < lo[a]) lo[a] = x;
-            if (x > hi[a]) hi[a] = x;
+            const sps_real xa = x[a][i];
+            if (xa < lo[a]) lo[a] = xa;
+            if (xa > hi[a]) hi[a] = xa;
         }
     }
     for (a = 0; a < 3; ++a) {
@@ -2685,13 +2751,14 @@ SPS__INLINE int sps__neighbor(const sps_world* w, int i, int k) { return w->nb_j
 
 /* The neighbours of particle gi of the body starting at begin, in cell c of the body's grid,
    into list (at most width; returns the count): the particles of the 3^d cells around c within
-   the support. Where an axis does not wrap, the three cells of a row are adjacent in the sorted
-   order, so each row is one contiguous run of candidates. */
-SPS__INLINE int sps__collect_neighbors(const sps_world* w, int begin, int gi, int c, int* list, int width, const int dim) {
+   the support at positions x. Where an axis does not wrap, the three cells of a row are adjacent
+   in the sorted order, so each row is one contiguous run of candidates. */
+SPS__INLINE int sps__collect_neighbors(const sps_world* w, sps_real* const x[3], int begin, int gi, int c, int* list, int width,
+                                       const int dim) {
     const int gx = w->grid_n[0], gy = w->grid_n[1], gz = w->grid_n[2];
     const int cx = c % gx, cy = c / gx % gy, cz = c / (gx * gy);
-    const sps_real cut2 = w->support * w->support, xi = w->pos[0][gi], yi = w->pos[1][gi];
-    const sps_real zi = dim == 3 ? w->pos[2][gi] : 0;
+    const sps_real cut2 = w->support * w->support, xi = x[0][gi], yi = x[1][gi];
+    const sps_real zi = dim == 3 ? x[2][gi] : 0;
     int m = 0, dy, dz, cell[3], ncell, k, x0, x1;
     if (!w->grid_wrap[0]) { /* one run per row: cells x0..x1 */
         x0 = cx > 0 ? cx - 1 : 0;
@@ -2720,7 +2787,7 @@ SPS__INLINE int sps__collect_neighbors(const sps_world* w, int begin, int gi, in
                 int s;
                 for (s = s0; s < s1; ++s) {
                     const int gj = begin + s;
-                    const sps_real dx = xi - w->pos[0][gj], dyy = yi - w->pos[1][gj], dzz = dim == 3 ? zi - w->pos[2][gj] : 0;
+                    const sps_real dx = xi - x[0][gj], dyy = yi - x[1][gj], dzz = dim == 3 ? zi - x[2][gj] : 0;
                     const sps_real r2 = dx * dx + dyy * dyy + dzz * dzz;
                     /* itself and coincident particles (r = 0, no direction) do not interact. Branch-free:
                        about half the candidates pass, a branch on it would miss half the time
@@ -2735,22 +2802,28 @@ SPS__INLINE int sps__collect_neighbors(const sps_world* w, int begin, int gi, in
     return m;
 }
 
-/* Sorts each body's particles by cell and builds the neighbour lists (same body only). */
+static void sps__tl_reference(sps_world* w, sps__body* b);
+
+/* Sorts each body's particles by cell and builds the neighbour lists (same body only). A
+   total-Lagrangian body's lists are those of its reference positions, built once (after each
+   commit) and then kept with its particle order: neither is touched again. */
 static sps_result sps__build_neighbors(sps_world* w) {
     int bi, i;
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
         int begin = b->begin, count = b->end - b->begin, ncell, c, overflow = -1;
         const int dim = w->dim, width = w->ell_width;
+        sps_real* const* x = b->model.total_lagrangian ? w->ref : w->pos;
         if (count == 0) continue;
         if (b->model.material->kinematic) { /* no pass reads a wall body's own neighbours */
             for (i = begin; i < b->end; ++i) w->nb_count[i] = 0;
             continue;
         }
-        ncell = sps__setup_grid(w, begin, b->end);
+        if (b->model.total_lagrangian && b->reference_built) continue;
+        ncell = sps__setup_grid(w, x, begin, b->end);
         for (i = 0; i < count; ++i) {
             int a;
-            for (c = 0, a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, w->pos[a][begin + i]);
+            for (c = 0, a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, x[a][begin + i]);
             w->cell_of[i] = c;
         }
         sps__sort_body(w, b, w->cell_of, ncell);
@@ -2764,8 +2837,8 @@ static sps_result sps__build_neighbors(sps_world* w) {
         for (i = 0; i < count; ++i) {
             const int gi = begin + i;
             int* list = w->nb_ell + (size_t)gi * width;
-            const int m = dim == 2 ? sps__collect_neighbors(w, begin, gi, w->cell_of[i], list, width, 2)
-                                   : sps__collect_neighbors(w, begin, gi, w->cell_of[i], list, width, 3);
+            const int m = dim == 2 ? sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 2)
+                                   : sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 3);
             w->nb_count[gi] = m;
             if (m > width && gi > overflow) overflow = gi;
         }
@@ -2775,6 +2848,7 @@ static sps_result sps__build_neighbors(sps_world* w) {
                            (double)w->time, w->id[overflow], b->name, w->nb_count[overflow], width);
             return SPS_ERR_UNSTABLE;
         }
+        if (b->model.total_lagrangian) sps__tl_reference(w, b);
     }
     return sps__fill_lane_slots(w);
 }
@@ -3023,7 +3097,8 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
     return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
            (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
-           (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven);
+           (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven) ||
+           (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -3057,6 +3132,7 @@ static sps_result sps__commit(sps_world* w) {
                 return SPS_ERR_OUT_OF_MEMORY;
         b->field_count = b->count;
     }
+    for (bi = 0; bi < w->nbodies; ++bi) w->bodies[bi].reference_built = 0; /* the sort by body moves their ranges */
     w->allocated_for = w->cap;
     /* group particles by body (stable), then set ranges */
     sps__sort_by_body(w);
@@ -3869,6 +3945,7 @@ static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrow
     return NULL;
 }
 
+static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m);
 static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     const sps__stabilisation* st = m->stabilisation;
     const int mode = sps__mode(w);
@@ -3881,10 +3958,302 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
         memset(&p, 0, sizeof p);
         return p;
     }
+    if (m->total_lagrangian) return sps__tl_passes(w, m);
     p.pressure = sps__find_kernel(sps__pressure_rows, (int)(sizeof sps__pressure_rows / sizeof sps__pressure_rows[0]), pressure_key, mode);
     p.continuity = sps__find_kernel(sps__continuity_rows, (int)(sizeof sps__continuity_rows / sizeof sps__continuity_rows[0]), continuity_key, mode);
     p.penalty = st->penalty ? sps__find_kernel(sps__penalty_rows, (int)(sizeof sps__penalty_rows / sizeof sps__penalty_rows[0]), penalty_key, mode) : NULL;
+    p.stress = NULL;
     return p;
+}
+
+/* >>solver: total Lagrangian (TL sections 2-3; TOTAL-LAGRANGIAN in the manual)
+
+   A total-Lagrangian body keeps the neighbour lists of its reference positions X (built once by
+   sps__build_neighbors, which never re-sorts its particles after that) and the correction
+   matrices B_i = -L_i^-1 of TL eq. 15 (sps__tl_reference). With the reference pair direction
+   E_ij = (X_i - X_j)/R_ij and dW = dW/dR (< 0), the corrected kernel gradient of TL eq. 14 is
+   L_i^-1 grad W_i(X_ij) = dW B_i E_ij, and the other side's L_j^-1 grad W_j(X_ji) = -dW B_j E_ij.
+   Each sub-step runs two passes after the half drift: the stress pass (F_i by TL eq. 17, P_i by
+   the body's law, Q_i = P_i B_i, the Cauchy stress and density for output) and, after a barrier,
+   the force pass in the pressure pass's place (TL eq. 24 and the hourglass force of TL eq. 32),
+   whose acceleration the kick applies. No continuity pass: the density is rho0/J. */
+
+/* The reference geometry of pair (i, j): E_ij, R_ij, W(R_ij) and dW/dR. */
+typedef struct sps__ref_pair {
+    sps_real ex, ey, ez, r, w, dw;
+} sps__ref_pair;
+SPS__INLINE sps__ref_pair sps__tl_pair(const sps_world* w, int i, int j, const int dim) {
+    sps__ref_pair q;
+    const sps_real dx = w->ref[0][i] - w->ref[0][j], dy = w->ref[1][i] - w->ref[1][j], dz = dim == 3 ? w->ref[2][i] - w->ref[2][j] : 0;
+    const sps_real inv = 1 / SPS__SQRT(dx * dx + dy * dy + dz * dz); /* the lists hold no coincident pair */
+    q.r = (dx * dx + dy * dy + dz * dz) * inv;
+    q.ex = dx * inv;
+    q.ey = dy * inv;
+    q.ez = dz * inv;
+    q.w = w->kernel_norm * sps__kernel_f(w->def.kernel, q.r * w->inv_h);
+    q.dw = w->dw_scale * sps__kernel_df(w->def.kernel, q.r * w->inv_h);
+    return q;
+}
+
+/* The reference volume V0 = m/rho0 of particle i of body b (TL eq. 7). */
+#define SPS__V0(w, b, i) ((w)->mass[i] / (b)->rho0)
+
+/* One Newton step B <- B (2 I - A B) towards A^-1 (A symmetric: xx xy xz yy yz zz; B row-major). */
+static void sps__newton_inverse_step(const sps_real A6[6], sps_real B[9], const int dim) {
+    const sps_real A[9] = {A6[0], A6[1], A6[2], A6[1], A6[3], A6[4], A6[2], A6[4], A6[5]};
+    sps_real R[9], N[9];
+    int a, c, k;
+    for (a = 0; a < dim; ++a)
+        for (c = 0; c < dim; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < dim; ++k) s += A[3 * a + k] * B[3 * k + c];
+            R[3 * a + c] = 2 * (a == c) - s;
+        }
+    for (a = 0; a < dim; ++a)
+        for (c = 0; c < dim; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < dim; ++k) s += B[3 * a + k] * R[3 * k + c];
+            N[3 * a + c] = s;
+        }
+    for (a = 0; a < dim; ++a)
+        for (c = 0; c < dim; ++c) B[3 * a + c] = N[3 * a + c];
+}
+
+/* B_i of every particle of body b from its reference lists (still the per-particle lists
+   nb_ell: called by sps__build_neighbors before the lane slots are filled), summed and inverted
+   as the updated-Lagrangian B (sps__add_moment, sps__blended_inverse), then refined by two
+   Newton steps B <- B (2 I - A B): the blend's relative error (1e-6 / det^2, larger at corners)
+   is squared twice, so that F is exact for affine motions to round-off (TL eq. 16; the blend
+   alone gave |F - F_exact| = 7e-6 for a 20 % stretch, one step 2.4e-10) while an isolated
+   particle's B stays bounded; and the body's signal
+   speed for the time step. The hourglass force of TL eq. 32 is a spring between i and j of
+   stiffness alpha E V0_i V0_j W_ij / R_ij^2, so a particle carries the extra stiffness
+   alpha E V0_i S_i / d per axis, S_i = sum_j V0_j W_ij / R_ij^2; with its elastic P-wave speed
+   c_p the body's signal speed is sqrt(c_p^2 + alpha E h^2 max_i S_i / (d rho0)), so that
+   CFL_ac h / c resolves the stiffest spring too (without the hourglass term, alpha = 50 blew
+   up the 2D plate at cfl_acoustic = 0.4 within 0.04 s). An irregular reference set (close
+   pairs) has a larger S and a shorter step. */
+static void sps__tl_reference(sps_world* w, sps__body* b) {
+    const int dim = w->dim, width = w->ell_width;
+    sps_real s_max = 0, c2;
+    int i;
+    SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (b->end - b->begin > 256) reduction(max : s_max))
+    for (i = b->begin; i < b->end; ++i) {
+        sps_real A[6] = {0, 0, 0, 0, 0, 0}, *B = b->tl_correction + (size_t)9 * (i - b->begin), S = 0;
+        int k;
+        for (k = 0; k < 9; ++k) B[k] = 0;
+        for (k = 0; k < w->nb_count[i]; ++k) {
+            const int j = w->nb_ell[(size_t)i * width + k];
+            const sps__ref_pair e = dim == 2 ? sps__tl_pair(w, i, j, 2) : sps__tl_pair(w, i, j, 3);
+            sps__add_moment(A, 1, e.ex, e.ey, e.ez, e.r * e.dw * SPS__V0(w, b, j), dim);
+            S += SPS__V0(w, b, j) * e.w / (e.r * e.r);
+        }
+        if (dim == 2) sps__blended_inverse(A, 1, B, 1, 2);
+        else sps__blended_inverse(A, 1, B, 1, 3);
+        sps__newton_inverse_step(A, B, dim);
+        sps__newton_inverse_step(A, B, dim);
+        if (S > s_max) s_max = S;
+    }
+    c2 = (b->mat.K + b->mat.G * 4 / 3 + b->def.hourglass_alpha * b->def.material.youngs_modulus * w->h * w->h * s_max / dim) / b->rho0;
+    b->mat.c0 = SPS__SQRT(c2);
+    if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
+    b->reference_built = 1;
+}
+
+/* The hyperelastic laws, a literal in the stress pass. */
+enum { SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN };
+
+/* The first Piola-Kirchhoff stress P (row-major 3 x 3) of the deformation gradient F (row-major
+   3 x 3; in 2D, plane strain, F_zz = 1 and the out-of-plane entries 0) and the stored energy per
+   reference volume, returned; J = det F. Saint Venant-Kirchhoff (TL eqs. 18-20):
+   S = lambda tr(E) I + 2 mu E, E = (F^T F - I)/2, P = F S, psi = lambda/2 tr(E)^2 + mu E:E.
+   Neo-Hookean (TL eq. 44): P = F S = mu (F - F^-T) + lambda ln(J) F^-T,
+   psi = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2. */
+SPS__INLINE sps_real sps__tl_law(const int law, sps_real lambda, sps_real mu, const sps_real F[9], sps_real J, sps_real P[9]) {
+    int a, c, k;
+    if (law == SPS__LAW_SAINT_VENANT_KIRCHHOFF) {
+        sps_real E[9], S[9], tr = 0, ee = 0;
+        for (a = 0; a < 3; ++a)
+            for (c = 0; c < 3; ++c) {
+                sps_real C = 0;
+                for (k = 0; k < 3; ++k) C += F[3 * k + a] * F[3 * k + c];
+                E[3 * a + c] = SPS_R(0.5) * (C - (a == c));
+            }
+        for (a = 0; a < 3; ++a) tr += E[4 * a];
+        for (k = 0; k < 9; ++k) {
+            S[k] = 2 * mu * E[k] + (k % 4 == 0 ? lambda * tr : 0);
+            ee += E[k] * E[k];
+        }
+        for (a = 0; a < 3; ++a)
+            for (c = 0; c < 3; ++c) {
+                sps_real s = 0;
+                for (k = 0; k < 3; ++k) s += F[3 * a + k] * S[3 * k + c];
+                P[3 * a + c] = s;
+            }
+        return SPS_R(0.5) * lambda * tr * tr + mu * ee;
+    } else {
+        /* F^-T from the cofactors: (F^-T)_ac = cof(F)_ac / J */
+        const sps_real lnJ = SPS__LOG(J), inv_J = 1 / J;
+        sps_real cof[9], trC = 0;
+        cof[0] = F[4] * F[8] - F[5] * F[7];
+        cof[1] = F[5] * F[6] - F[3] * F[8];
+        cof[2] = F[3] * F[7] - F[4] * F[6];
+        cof[3] = F[2] * F[7] - F[1] * F[8];
+        cof[4] = F[0] * F[8] - F[2] * F[6];
+        cof[5] = F[1] * F[6] - F[0] * F[7];
+        cof[6] = F[1] * F[5] - F[2] * F[4];
+        cof[7] = F[2] * F[3] - F[0] * F[5];
+        cof[8] = F[0] * F[4] - F[1] * F[3];
+        for (k = 0; k < 9; ++k) {
+            P[k] = mu * F[k] + (lambda * lnJ - mu) * cof[k] * inv_J;
+            trC += F[k] * F[k];
+        }
+        return SPS_R(0.5) * mu * (trC - 3) - mu * lnJ + SPS_R(0.5) * lambda * lnJ * lnJ;
+    }
+}
+
+/* det F of a row-major 3 x 3 matrix. */
+SPS__INLINE sps_real sps__det3(const sps_real F[9]) {
+    return F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
+}
+
+/* Lame constants of a total-Lagrangian body: mu = G, lambda = K - 2G/3. */
+#define SPS__LAME_LAMBDA(b) ((b)->mat.K - (b)->mat.G * 2 / 3)
+
+/* Deformation gradient of particle i (TL eq. 17): F_i = I + sum_j V0_j (u_j - u_i) (x) dW B_i E_ij,
+   u = x - X, into F (row-major 3 x 3, F_zz = 1 in 2D). */
+SPS__INLINE void sps__tl_deformation(const sps_world* w, const sps__body* b, int i, int first, const int dim, sps_real F[9]) {
+    const sps_real* B = b->tl_correction + (size_t)9 * (i - b->begin);
+    sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; /* sum_j V0_j dW (u_j - u_i) (x) E_ij */
+    int k, a, c;
+    for (k = 0; k < w->nb_count[i]; ++k) {
+        const int j = w->nb_j[first + k * SPS__LANES];
+        const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
+        const sps_real dir[3] = {e.ex, e.ey, e.ez}, c0 = SPS__V0(w, b, j) * e.dw;
+        for (a = 0; a < dim; ++a) {
+            const sps_real du = (w->pos[a][j] - w->ref[a][j]) - (w->pos[a][i] - w->ref[a][i]);
+            for (c = 0; c < dim; ++c) M[3 * a + c] += c0 * du * dir[c];
+        }
+    }
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = a == c;
+            for (k = 0; k < dim; ++k) s += M[3 * a + k] * B[3 * k + c];
+            F[3 * a + c] = a < dim && c < dim ? s : (sps_real)(a == c);
+        }
+}
+
+/* Stress pass of lane group g: F_i, P_i by the body's law, Q_i = P_i B_i (for the force pass),
+   the Cauchy stress sigma = P F^T / J stored as tau = sigma + p I (so that -p I + tau, what the
+   output reads, is sigma) and the density rho0/J (TL eq. 3). law and dim are literals. */
+SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int law) {
+    const sps__group q = sps__group_of(w, b, g);
+    const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b);
+    int l, a, c, k;
+    (void)dt;
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        const int i = q.i0 + l, o = i - b->begin;
+        const sps_real* B = b->tl_correction + (size_t)9 * o;
+        sps_real *F = b->tl_deformation + (size_t)9 * o, *Q = b->tl_stress + (size_t)9 * o, *tau = b->tau + (size_t)6 * o;
+        sps_real P[9], sigma[9], J;
+        sps__tl_deformation(w, b, i, q.s0 + l, dim, F);
+        J = sps__det3(F);
+        sps__tl_law(law, lambda, mu, F, J, P);
+        for (a = 0; a < 3; ++a)
+            for (c = 0; c < 3; ++c) {
+                sps_real s = 0, t = 0;
+                for (k = 0; k < dim; ++k) s += P[3 * a + k] * B[3 * k + c];
+                for (k = 0; k < 3; ++k) t += P[3 * a + k] * F[3 * c + k];
+                Q[3 * a + c] = s;
+                sigma[3 * a + c] = t / J;
+            }
+        tau[0] = sigma[0] + w->p[i];
+        tau[1] = sigma[1];
+        tau[2] = sigma[2];
+        tau[3] = sigma[4] + w->p[i];
+        tau[4] = sigma[5];
+        tau[5] = dim == 3 ? sigma[8] + w->p[i] : 0;
+        w->rho[i] = b->rho0 / J;
+    }
+}
+
+/* Force pass of lane group g (in the pressure pass's place): the stress force of TL eq. 24,
+   f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji))
+       = sum_j V0_i V0_j dW (Q_i + Q_j) E_ij,
+   and the hourglass force of TL eq. 32,
+   f_i += sum_j -1/2 alpha V0_i V0_j W_ij / R_ij^2 (E_Y delta^i_ij + E_Y delta^j_ji) x_ij/|x_ij|,
+   delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij| (TL eqs. 25-27, X_ij = X_j - X_i, x_ij = x_j - x_i;
+   delta^j_ji = (F_j X_ij - x_ij) . x_ij/|x_ij| by the same algebra), E_Y Young's modulus.
+   Both are antisymmetric in i, j (the hourglass force also central), so the pair sums conserve
+   linear momentum, the hourglass force also angular momentum. acc_p = f_i / m_i. */
+SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim) {
+    const sps__group q = sps__group_of(w, b, g);
+    const sps_real hourglass = -SPS_R(0.5) * b->def.hourglass_alpha * b->def.material.youngs_modulus;
+    int l, a, c, k;
+    (void)dt;
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
+        const sps_real *Qi = b->tl_stress + (size_t)9 * o, *Fi = b->tl_deformation + (size_t)9 * o;
+        const sps_real vi = SPS__V0(w, b, i);
+        sps_real f[3] = {0, 0, 0};
+        for (k = 0; k < w->nb_count[i]; ++k) {
+            const int j = w->nb_j[first + k * SPS__LANES], oj = j - b->begin;
+            const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
+            const sps_real *Qj = b->tl_stress + (size_t)9 * oj, *Fj = b->tl_deformation + (size_t)9 * oj;
+            const sps_real dir[3] = {e.ex, e.ey, e.ez}, vv = vi * SPS__V0(w, b, j);
+            sps_real xij[3] = {0, 0, 0}, Xij[3] = {0, 0, 0}, r2 = 0, inv_r, di = 0, dj = 0, fh;
+            for (a = 0; a < dim; ++a) {
+                sps_real s = 0;
+                for (c = 0; c < dim; ++c) s += (Qi[3 * a + c] + Qj[3 * a + c]) * dir[c];
+                f[a] += vv * e.dw * s;
+                xij[a] = w->pos[a][j] - w->pos[a][i];
+                Xij[a] = -e.r * dir[a];
+                r2 += xij[a] * xij[a];
+            }
+            inv_r = 1 / SPS__SQRT(r2);
+            for (a = 0; a < dim; ++a) {
+                sps_real pi = -xij[a], pj = -xij[a]; /* (F X_ij - x_ij)_a */
+                for (c = 0; c < dim; ++c) {
+                    pi += Fi[3 * a + c] * Xij[c];
+                    pj += Fj[3 * a + c] * Xij[c];
+                }
+                di += pi * xij[a];
+                dj += pj * xij[a];
+            }
+            fh = hourglass * vv * e.w / (e.r * e.r) * (di + dj) * inv_r * inv_r; /* (delta_i + delta_j) / |x_ij| */
+            for (a = 0; a < dim; ++a) f[a] += fh * xij[a];
+        }
+        for (a = 0; a < dim; ++a) w->acc_p[a][i] = f[a] / w->mass[i];
+    }
+}
+
+/* The pass instances (named, for a profiler) and the choice of a total-Lagrangian model's. */
+static void sps__tl_stress_svk_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
+static void sps__tl_stress_svk_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
+static void sps__tl_stress_neo_hookean_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_NEO_HOOKEAN); }
+static void sps__tl_stress_neo_hookean_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_NEO_HOOKEAN); }
+static void sps__tl_force_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2); }
+static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3); }
+
+static int sps__tl_law_of(sps_material_kind kind) { return kind == SPS_MATERIAL_NEO_HOOKEAN ? SPS__LAW_NEO_HOOKEAN : SPS__LAW_SAINT_VENANT_KIRCHHOFF; }
+
+static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
+    const int neo = sps__tl_law_of(m->material->kind) == SPS__LAW_NEO_HOOKEAN;
+    sps__passes p;
+    memset(&p, 0, sizeof p);
+    p.stress = w->dim == 2 ? (neo ? sps__tl_stress_neo_hookean_2d : sps__tl_stress_svk_2d) : (neo ? sps__tl_stress_neo_hookean_3d : sps__tl_stress_svk_3d);
+    p.pressure = w->dim == 2 ? sps__tl_force_2d : sps__tl_force_3d;
+    return p;
+}
+
+/* The stored energy V0 psi(F) of particle i of total-Lagrangian body b (from the F of its last
+   stress pass; 0 for particles added since the last commit). */
+static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
+    const sps_real* F;
+    sps_real P[9];
+    if (i - b->begin >= b->field_count) return 0;
+    F = b->tl_deformation + (size_t)9 * (i - b->begin);
+    return SPS__V0(w, b, i) * sps__tl_law(sps__tl_law_of(b->def.material.kind), SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
 }
 
 /* >>contact: rigid walls and contact between bodies */
@@ -4024,7 +4393,7 @@ static sps_result sps__find_contact_pairs(sps_world* w) {
         w->ct_cap = w->ct_first && w->ct_cell && w->ct_order && w->ct_cell_start ? w->cap : 0;
         if (!w->ct_cap) return sps__oom(w, "the contact lists");
     }
-    ncell = sps__setup_grid(w, 0, n);
+    ncell = sps__setup_grid(w, w->pos, 0, n);
     for (i = 0; i < n; ++i) {
         int a;
         for (c = 0, a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, w->pos[a][i]);
@@ -4625,7 +4994,8 @@ static void sps__particle_energies(const sps_world* w, const sps__body* b, int i
         tt = t[0] * t[0] + t[3] * t[3] + t[5] * t[5] + 2 * (t[1] * t[1] + t[2] * t[2] + t[4] * t[4]);
     }
     *kinetic = sps__kinetic(w, i);
-    *strain = w->mass[i] / w->rho[i] * b->model.material->energy_density(&b->mat, tt, w->p[i]);
+    *strain = b->model.total_lagrangian ? sps__tl_energy(w, b, i) /* the whole hyperelastic energy, exact under rotation */
+                                        : w->mass[i] / w->rho[i] * b->model.material->energy_density(&b->mat, tt, w->p[i]);
 }
 
 /* The energies of body b [J]: kinetic + volumetric strain, contact, gravity potential
@@ -4727,6 +5097,7 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt) {
     int bi;
     sps_real vmax2;
     sps__half_drift(w, dt);
+    for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.stress, dt); /* TL */
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
     sps__contact_pass(w);
     vmax2 = sps__kick(w, t, dt);

@@ -3678,6 +3678,210 @@ static int test_restart_refused(void) {
 
 /* ============================================================================================ */
 
+/* ============================================================================================ */
+/* >>total-Lagrangian: the solver of TL sections 2-3 (chapter >>solver: total Lagrangian)        */
+
+/* A total-Lagrangian box of n^dim particles (spacing 1e-3, rho0 1000, E 1e6, nu 0.3) of law kind
+   with hourglass coefficient alpha; held = 1 constrains every particle to v = 0 (its positions,
+   once set, stay). */
+static sps_world* tl_box(int dim, sps_material_kind kind, double alpha, int n, int held, sps_body* out) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {n * 1e-3, n * 1e-3, dim == 3 ? n * 1e-3 : 0}, all_lo[3] = {-1, -1, -1}, all_hi[3] = {1, 1, 1};
+    wd.dim = dim; wd.dp = 1e-3; wd.log = quiet_log; wd.threads = 1;
+    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
+    bd.material.kind = kind;
+    bd.hourglass_alpha = alpha;
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
+    if (sps_world_add_body(w, &bd, out) != SPS_OK || sps_body_add_box(w, *out, lo, hi, NULL) != SPS_OK ||
+        (held && sps_body_constrain_box(w, *out, all_lo, all_hi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK)) {
+        sps_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+/* Moves every particle of w to x = A X + c (A row-major 3 x 3). */
+static void tl_map(sps_world* w, const double A[9], const double c[3]) {
+    int id, a, k;
+    for (id = 0; id < sps_world_particle_count(w); ++id) {
+        sps_particle_state s;
+        sps_real x[3] = {0, 0, 0}, X[3];
+        sps_world_particle(w, id, &s);
+        for (a = 0; a < 3; ++a) X[a] = s.position[a] - s.displacement[a];
+        for (a = 0; a < 3; ++a) {
+            x[a] = (sps_real)c[a];
+            for (k = 0; k < 3; ++k) x[a] += (sps_real)(A[3 * a + k] * X[k]);
+        }
+        sps_world_set_particle(w, id, x, NULL);
+    }
+}
+
+/* The reference state: F = I, zero stress and zero force at every particle (boundaries included:
+   the corrected gradients are first-order complete, TL eq. 16). */
+static int test_tl_reference_state(void) {
+    int dim;
+    for (dim = 2; dim <= 3; ++dim) {
+        sps_body b;
+        sps_world* w = tl_box(dim, dim == 2 ? SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF : SPS_MATERIAL_NEO_HOOKEAN, 50, dim == 2 ? 8 : 5, 0, &b);
+        const sps_real *F, *tau, *acc;
+        int nc, first, count, i, k;
+        double ferr = 0, smax = 0, amax = 0;
+        ENSURE(w != NULL);
+        ENSURE(sps_world_step(w) == SPS_OK);
+        F = sps_body_field(w, b, "deformation_gradient", &nc, &first, &count);
+        ENSURE(F != NULL && nc == 9 && count == sps_world_particle_count(w));
+        tau = sps_body_field(w, b, "shear_stress", &nc, &first, &count);
+        ENSURE(tau != NULL);
+        for (i = 0; i < count; ++i) {
+            for (k = 0; k < 9; ++k) ferr = fmax(ferr, fabs(F[9 * i + k] - (k % 4 == 0)));
+            for (k = 0; k < 6; ++k) smax = fmax(smax, fabs(tau[6 * i + k]));
+        }
+        for (k = 0; k < dim; ++k) {
+            static const char* names[3] = {"pressure_acceleration_x", "pressure_acceleration_y", "pressure_acceleration_z"};
+            acc = sps_world_field_by_name(w, names[k], NULL);
+            ENSURE(acc != NULL);
+            for (i = 0; i < count; ++i) amax = fmax(amax, fabs(acc[first + i]));
+        }
+        printf("    %dD: max |F - I| %.2e, max |stress| %.2e Pa, max |a| %.2e m/s^2\n", dim, ferr, smax, amax);
+        ENSURE(ferr < 1e-12);  /* round-off of sums of O(1) terms */
+        ENSURE(smax < 1e-5);   /* E 1e6 Pa times the round-off of F */
+        ENSURE(amax < 1e-2);   /* that stress over rho0 dp (1 m/s^2 per Pa): round-off */
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
+/* A homogeneous stretch x = diag(l1, l2, l3) X gives F = diag(l) at every particle and the
+   closed-form Cauchy stress sigma = F S F^T / J: Saint Venant-Kirchhoff S = lambda tr(E) I + 2 mu E
+   (TL eq. 19), Neo-Hookean sigma = (mu (F F^T - I) + lambda ln J I)/J (TL eq. 44). */
+static int test_tl_homogeneous_stretch(void) {
+    int dim;
+    for (dim = 2; dim <= 3; ++dim) {
+        int law;
+        for (law = 0; law < 2; ++law) {
+            const sps_material_kind kind = law ? SPS_MATERIAL_NEO_HOOKEAN : SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
+            const double E = 1e6, nu = 0.3, mu = E / (2 * (1 + nu)), lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+            const double l[3] = {1.2, 0.9, dim == 3 ? 1.1 : 1}, A[9] = {l[0], 0, 0, 0, l[1], 0, 0, 0, l[2]}, c[3] = {1e-3, -2e-3, 0};
+            double J = l[0] * l[1] * l[2], trE = 0, sigma[3], err = 0, ferr = 0;
+            sps_body b;
+            sps_world* w = tl_box(dim, kind, 50, dim == 2 ? 8 : 5, 1, &b);
+            const sps_real *F, *tau, *p;
+            int nc, first, count, i, a;
+            ENSURE(w != NULL);
+            for (a = 0; a < 3; ++a) trE += 0.5 * (l[a] * l[a] - 1);
+            for (a = 0; a < 3; ++a)
+                sigma[a] = law ? (mu * (l[a] * l[a] - 1) + lambda * log(J)) / J
+                               : l[a] * l[a] * (lambda * trE + mu * (l[a] * l[a] - 1)) / J;
+            tl_map(w, A, c);
+            ENSURE(sps_world_step(w) == SPS_OK);
+            F = sps_body_field(w, b, "deformation_gradient", &nc, &first, &count);
+            tau = sps_body_field(w, b, "shear_stress", &nc, &first, &count);
+            p = sps_world_field_by_name(w, "pressure", NULL);
+            ENSURE(F && tau && p);
+            for (i = 0; i < count; ++i) {
+                for (a = 0; a < 9; ++a) ferr = fmax(ferr, fabs(F[9 * i + a] - A[a]));
+                for (a = 0; a < dim; ++a) err = fmax(err, fabs(tau[6 * i + (a == 0 ? 0 : a == 1 ? 3 : 5)] - p[first + i] - sigma[a]));
+            }
+            printf("    %dD %s: sigma = (%.6g, %.6g, %.6g) Pa, max |F - F_exact| %.2e, max |sigma - exact| %.2e Pa\n", dim,
+                   law ? "Neo-Hookean" : "SVK", sigma[0], sigma[1], sigma[2], ferr, err);
+            ENSURE(ferr < 1e-11);  /* first-order completeness: exact for an affine map up to round-off (7e-13 in 3D) */
+            ENSURE(err < 1e-6 * E); /* the closed form, up to the round-off of F times E */
+            ENSURE(fabs(sigma[0]) > 1e4); /* the stretch is large enough to test anything */
+            sps_world_destroy(w);
+        }
+    }
+    return 0;
+}
+
+/* The hourglass force of TL eq. 32 vanishes for an affine deformation (rotation, stretch and
+   shear): the accelerations with alpha = 50 and alpha = 0 agree to round-off; and it does not
+   vanish when one particle is moved off the affine field (so the comparison can fail). */
+static int test_tl_hourglass_affine(void) {
+    const double A[9] = {1.05 * cos(0.3), -0.9 * sin(0.3) + 0.1, 0, 1.05 * sin(0.3), 0.9 * cos(0.3), 0, 0, 0, 1}, c[3] = {2e-3, 1e-3, 0};
+    double diff_affine = 0, diff_kicked = 0, scale = 0;
+    int kicked;
+    for (kicked = 0; kicked < 2; ++kicked) {
+        double a_of[2][2][64];
+        int run;
+        for (run = 0; run < 2; ++run) {
+            sps_body b;
+            sps_world* w = tl_box(2, SPS_MATERIAL_NEO_HOOKEAN, run ? 50 : 0, 8, 1, &b);
+            const int* ids;
+            int i, a;
+            ENSURE(w != NULL);
+            tl_map(w, A, c);
+            if (kicked) { /* particle 27 (inside) moved by 0.1 dp */
+                sps_particle_state s;
+                sps_world_particle(w, 27, &s);
+                s.position[0] += (sps_real)1e-4;
+                sps_world_set_particle(w, 27, s.position, NULL);
+            }
+            ENSURE(sps_world_step(w) == SPS_OK);
+            ids = sps_world_particle_ids(w);
+            for (a = 0; a < 2; ++a) {
+                const sps_real* acc = sps_world_field_by_name(w, a ? "pressure_acceleration_y" : "pressure_acceleration_x", NULL);
+                for (i = 0; i < 64; ++i) a_of[run][a][ids[i]] = acc[i];
+            }
+            sps_world_destroy(w);
+        }
+        for (int i = 0; i < 64; ++i)
+            for (int a = 0; a < 2; ++a) {
+                const double d = fabs(a_of[1][a][i] - a_of[0][a][i]);
+                if (kicked) diff_kicked = fmax(diff_kicked, d);
+                else diff_affine = fmax(diff_affine, d);
+                scale = fmax(scale, fabs(a_of[0][a][i]));
+            }
+    }
+    printf("    max |a(alpha 50) - a(alpha 0)|: affine %.2e, one particle off by 0.1 dp %.2e m/s^2 (stress force up to %.2e)\n",
+           diff_affine, diff_kicked, scale);
+    ENSURE(diff_affine < 1e-9 * scale); /* round-off of the error vectors F X_ij - x_ij */
+    ENSURE(diff_kicked > 1e-2 * scale); /* the non-affine part is resisted */
+    return 0;
+}
+
+/* A free TL body (Neo-Hookean, 2D and 3D) started with a translation, a spin and a shear keeps its
+   linear and angular momentum: the stress force of TL eq. 24 is antisymmetric and, with F from
+   the same corrected gradients, P F^T = J sigma is symmetric, so it exerts no net torque; the
+   hourglass force is central. */
+static int test_tl_momentum(void) {
+    int dim;
+    for (dim = 2; dim <= 3; ++dim) {
+        sps_body b;
+        sps_world* w = tl_box(dim, SPS_MATERIAL_NEO_HOOKEAN, 50, dim == 2 ? 10 : 5, 0, &b);
+        sps_diagnostics d0, d1;
+        double p0 = 0, dl = 0, da = 0, l0 = 0;
+        int id, a, steps;
+        ENSURE(w != NULL);
+        for (id = 0; id < sps_world_particle_count(w); ++id) {
+            sps_particle_state s;
+            sps_real v[3];
+            sps_world_particle(w, id, &s);
+            v[0] = (sps_real)(1.0 - 200 * (s.position[1] - 5e-3) + 300 * (s.position[1] - 5e-3));
+            v[1] = (sps_real)(-0.5 + 200 * (s.position[0] - 5e-3));
+            v[2] = dim == 3 ? (sps_real)(0.3 + 100 * (s.position[0] - 2.5e-3)) : 0;
+            sps_world_set_particle(w, id, NULL, v);
+        }
+        ENSURE(sps_world_diagnostics(w, (sps_body){0}, &d0) == SPS_OK);
+        for (steps = 0; steps < 20; ++steps) ENSURE(sps_world_step(w) == SPS_OK);
+        ENSURE(sps_world_diagnostics(w, (sps_body){0}, &d1) == SPS_OK);
+        for (a = 0; a < 3; ++a) {
+            p0 += fabs(d0.linear_momentum[a]);
+            l0 += fabs(d0.angular_momentum[a]);
+            dl = fmax(dl, fabs(d1.linear_momentum[a] - d0.linear_momentum[a]));
+            da = fmax(da, fabs(d1.angular_momentum[a] - d0.angular_momentum[a]));
+        }
+        printf("    %dD: %ld sub-steps, |dP|/|P| %.2e, |dL|/|L| %.2e, hourglass %.2e\n", dim, d1.acoustic_steps, dl / p0, da / l0,
+               (double)d1.hourglass);
+        ENSURE(dl / p0 < 1e-12);  /* antisymmetric pair forces: round-off */
+        ENSURE(da / l0 < 1e-12);  /* no torque (B refined to the exact inverse): round-off */
+        ENSURE(d1.acoustic_steps > 100); /* the body deformed for a while */
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int i;
     /* OpenMP's default wait policy spins in barriers. On a machine whose cores are busy with
@@ -3712,6 +3916,10 @@ int main(int argc, char** argv) {
     RUN(test_spinning_disc_stays_rigid);
     RUN(test_translation_keeps_steps);
     RUN(test_momentum_conservation);
+    RUN(test_tl_reference_state);
+    RUN(test_tl_homogeneous_stretch);
+    RUN(test_tl_hourglass_affine);
+    RUN(test_tl_momentum);
     RUN(test_uniform_translation);
     RUN(test_damping_decays_velocity_exactly);
     RUN(test_external_acceleration);
