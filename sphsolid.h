@@ -1,11 +1,13 @@
-/* sphsolid.h - v0.6.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.7.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
    smoothed particle hydrodynamics (UL-SPH): Wendland C2 kernel, cell-linked-list neighbour search,
    low-dissipation Riemann solver, six shear formulations (SPH-OG, SPH-OAS, SPH-ENO, SPH-ENO-A,
    SPH-GNO, SPH-GNO-A; Rodrigues rotation for the -A variants), position-based Verlet with
-   dual-criteria time stepping. libc and (optionally) OpenMP only.
+   dual-criteria time stepping; and, per body, total-Lagrangian SPH with Ganzenmueller's
+   hourglass control (Saint Venant-Kirchhoff and Neo-Hookean; TOTAL-LAGRANGIAN). libc and
+   (optionally) OpenMP only.
 
    ========================================================================================
    USAGE
@@ -163,11 +165,68 @@
       J2 bodies only (VTK: plastic_strain; sps_particle_state.plastic_strain); an elastic body
       carries neither, and its kernels contain no return map.
 
+   TOTAL-LAGRANGIAN (sps_body_def.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; TL = Ganzenmueller's
+   paper, chapter >>solver: total Lagrangian)
+      A total-Lagrangian body computes everything in its reference configuration X (the
+      positions its particles were added at): neighbours within 2h of X, the correction matrix
+      L_i = sum_j V0_j grad W_i(X_ij) (x) X_ij (TL eq. 15) and the corrected gradients
+      L_i^-1 grad W_i(X_ij) (TL eq. 14), with V0 = m/rho0. They are built once, at the first
+      step (again after particles are added to the world: the sort by body moves the ranges):
+      the body's particles are then sorted by reference cell and never re-sorted, and its lists
+      are never rebuilt from the current positions, so a pair stays a pair however far apart
+      its particles move, and particles that meet do not interact (no self-contact). L^-1 is the
+      blended inverse of the updated-Lagrangian B refined by two Newton steps, exact to
+      round-off, so F is exact for every affine motion (tested). Each acoustic sub-step, after
+      the half drift: the stress pass, F_i = I + sum_j V0_j (u_j - u_i) (x) L_i^-1 grad W_i
+      (TL eq. 17), the first Piola-Kirchhoff stress P_i of the body's law, the Cauchy stress
+      sigma = P F^T / J and the density rho0/J (TL eq. 3); a barrier; the force pass,
+      f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji)) (TL eq. 24)
+      plus the hourglass force of TL eq. 32,
+      f_i += sum_j -1/2 alpha V0_i V0_j W_ij / X_ij^2 (E delta^i_ij + E delta^j_ji) x_ij/|x_ij|,
+      delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij| (TL eqs. 25-27), E Young's modulus and
+      alpha = hourglass_alpha (default 50, TL Table 1; 0 turns it off); then the kick and the
+      second half drift as for any body. No continuity equation is integrated; the pressure
+      p = c0^2 (rho - rho0) is still set (output, guards), and the field "shear_stress" holds
+      sigma + p I, so that -p I + tau, what the outputs read (von Mises, the VTK stress tensor),
+      is sigma. Both forces are antisymmetric in i, j: linear momentum is exact; the stress force
+      exerts no torque since P F^T = J sigma is symmetric and the hourglass force is central, so
+      angular momentum is exact too (tested: 6e-16 relative in 2D and 3D over 2000 sub-steps).
+      Laws (material.kind; in 2D plane strain, F_zz = 1):
+      SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF  S = lambda tr(E) I + 2 mu E, E = (F^T F - I)/2,
+                         P = F S (TL eqs. 18-20), energy lambda/2 tr(E)^2 + mu E:E per V0;
+                         for small strains it is the linear elastic law.
+      SPS_MATERIAL_NEO_HOOKEAN  S = mu (I - C^-1) + lambda ln(J) C^-1 (TL eq. 44),
+                         energy mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2 per V0.
+      SPS_MATERIAL_J2  (with this solver) the multiplicative elastic-plastic law of the TL
+                         frame: F = F_e F_p, Hencky's law in the logarithmic elastic stretches of
+                         b_e = F C_p^-1 F^T, the von Mises radial return in them (yield_stress,
+                         hardening_modulus; chapter >>material: J2 plasticity in the
+                         total-Lagrangian frame), state C_p^-1 (field "plastic_metric", less I)
+                         and alpha ("plastic_strain"), plastic work as for updated-Lagrangian J2.
+                         The hourglass force uses the yield stress instead of E at particles
+                         that have flowed (alpha > 0; TL section 4.5).
+      with mu = G = E/(2(1 + nu)), lambda = K - 2G/3. Saint Venant-Kirchhoff and Neo-Hookean
+      are for total-Lagrangian bodies only, and a total-Lagrangian body takes only these and J2
+      (combination rules). Time step: the signal
+      speed of a TL body is c = sqrt(c_p^2 + alpha E h^2 max_i S_i / (d rho0)), c_p the P-wave
+      speed sqrt((K + 4G/3)/rho0) and S_i = sum_j V0_j W_ij / X_ij^2, the stiffness the
+      hourglass springs add (without it alpha = 50 blew up the 2D plate at cfl_acoustic = 0.4;
+      with it the plate runs at 0.8). sps_body_material_constants gives c_p before the first
+      step, c after. The strain energy of a TL body is the law's, sum V0 psi(F): exact under
+      rotation, and counted by the energy watchdog; the hourglass force is not the gradient of
+      an energy (its F depends on the neighbours' positions), so it is not in the account: on
+      irregular particles it slowly feeds energy in (D1 in bench/VALIDATION.md). The def
+      fields shear, rotation, zeta, xi, oas_* and track_stress do not apply (the stress is
+      always there). Fields of TL bodies: "deformation_gradient" (F, 9 values row-major, 3 x 3),
+      "reference_correction" (-L^-1) and "corrected_piola_stress" (-P L^-1). Contact with other
+      bodies and walls is the shared contact pass. Not yet: the damage model of TL eqs. 45-46.
+
    MODELS AND FIELDS
       A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic;
-      SPS_MATERIAL_J2, elastic-plastic (PLASTICITY); the material gives c0, G, K, its checks and
-      its stored energy), its solver (solver:
-      SPS_SOLVER_UPDATED_LAGRANGIAN), its stabilisation (shear and rotation) and its transport
+      SPS_MATERIAL_J2, elastic-plastic (PLASTICITY); SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF and
+      SPS_MATERIAL_NEO_HOOKEAN, hyperelastic (TOTAL-LAGRANGIAN); the material gives c0, G, K,
+      its checks and its stored energy), its solver (solver: SPS_SOLVER_UPDATED_LAGRANGIAN or
+      SPS_SOLVER_TOTAL_LAGRANGIAN), its stabilisation (shear and rotation) and its transport
       correction (transport: SPS_TRANSPORT_NONE). sps_world_add_body checks each field's range
       and the table of allowed combinations (OAS only in 2D) and resolves the model once into
       the pass kernels the step runs for the body: one named function per pass variant,
@@ -272,7 +331,9 @@
       c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
-      track_stress 0/1, damping finite >= 0 (0 for a wall body). Calls: NULL pointers (defs, outputs,
+      track_stress 0/1, damping finite >= 0 (0 for a wall body), solver 0..1, hourglass_alpha
+      [0, 1000], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian solver only and
+      that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
       at most 2e8), coordinates, volumes, points and velocities (finite, volumes > 0),
@@ -372,10 +433,15 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, Drucker-Prager plasticity, fluids, granular media, total-Lagrangian SPH,
+      self-contact, Drucker-Prager plasticity, fluids, granular media, damage (TL eqs. 45-46),
       removing particles.
 
    REVISION HISTORY
+      0.7.0 (2026-12-02) total-Lagrangian SPH (SPS_SOLVER_TOTAL_LAGRANGIAN): reference neighbour
+                         lists and corrected gradients, Saint Venant-Kirchhoff and Neo-Hookean
+                         (material kinds 4, 5) and multiplicative J2, Ganzenmueller's hourglass
+                         force (hourglass_alpha) with its yield-strength switch;
+                         updated-Lagrangian results bit for bit those of 0.6.0 (tests/pinned.c).
       0.6.0 (2026-12-02) J2 plasticity (SPS_MATERIAL_J2); guards that judge the body: time steps
                          in each body's frame, the escape guard around each body's centre of
                          mass, the energy watchdog, warnings for CFL above the measured stable
@@ -418,9 +484,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 6
+#define SPHSOLID_VERSION_MINOR 7
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.6.0"
+#define SPHSOLID_VERSION_STRING "0.7.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
@@ -968,6 +1034,8 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #define SPS__ATAN2 atan2f
 #define SPS__EXPM1 expm1f
 #define SPS__LOG logf
+#define SPS__EXP expf
+#define SPS__FABS fabsf
 #else
 #define SPS__SQRT sqrt
 #define SPS__SIN sin
@@ -976,6 +1044,8 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #define SPS__ATAN2 atan2
 #define SPS__EXPM1 expm1
 #define SPS__LOG log
+#define SPS__EXP exp
+#define SPS__FABS fabs
 #endif
 #define SPS__PI SPS_R(3.14159265358979323846)
 #define SPS__COOKIE 0x5350531
@@ -1093,6 +1163,7 @@ typedef struct sps__body {
     sps_real* driven_work; /* driven: work done by its prescribed motion through each particle */
     sps_real *plastic_strain, *plastic_work, *return_factor; /* J2 bodies */
     sps_real *tl_correction, *tl_deformation, *tl_stress; /* total-Lagrangian bodies: B_i, F_i, P_i B_i */
+    sps_real* tl_plastic; /* total-Lagrangian J2 bodies: C_p^-1 - I (sps__tl_j2) */
     int field_count; /* particles they hold: its count at the last commit */
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
@@ -1221,7 +1292,8 @@ typedef enum {
     SPS__NEED_SCALED_PENALTY, /* a plastic body's GNO penalty is scaled by its return factors */
     SPS__NEED_CONSTRAINTS, /* allocated by the first sps_body_constrain_box */
     SPS__NEED_DRIVEN,      /* a body whose prescribed motion does work (sps__body.driven) */
-    SPS__NEED_TOTAL_LAGRANGIAN /* a total-Lagrangian body */
+    SPS__NEED_TOTAL_LAGRANGIAN, /* a total-Lagrangian body */
+    SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC /* a total-Lagrangian J2 body */
 } sps__need;
 
 enum {
@@ -1273,6 +1345,9 @@ static const sps__field_info sps__fields[] = {
     {"reference_correction", "reference correction", 1, SPS__BOFF(tl_correction), 0, 9, 0, SPS__NEED_TOTAL_LAGRANGIAN, 0},
     {"deformation_gradient", "deformation gradient", 1, SPS__BOFF(tl_deformation), 0, 9, 0, SPS__NEED_TOTAL_LAGRANGIAN, SPS__CARRIED | SPS__CHECKED},
     {"corrected_piola_stress", "corrected Piola stress", 1, SPS__BOFF(tl_stress), 0, 9, 0, SPS__NEED_TOTAL_LAGRANGIAN, 0},
+    /* total-Lagrangian J2: the inverse plastic right Cauchy-Green tensor less I (xx xy xz yy yz zz; 0: no plastic flow yet) */
+    {"plastic_metric", "plastic metric", 1, SPS__BOFF(tl_plastic), 0, 6, 0, SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC,
+     SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
@@ -1646,7 +1721,8 @@ static int sps__oas_outside_2d(int dim, const sps_body_def* def) { return def->s
 static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
 static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->material.kind == SPS_MATERIAL_J2 && (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
+    return def->material.kind == SPS_MATERIAL_J2 && def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN &&
+           (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
 }
 static int sps__total_lagrangian_law(int dim, const sps_body_def* def) {
     (void)dim;
@@ -1656,13 +1732,13 @@ static int sps__hyperelastic_updated(int dim, const sps_body_def* def) {
     return sps__total_lagrangian_law(dim, def) && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
 static int sps__total_lagrangian_other_law(int dim, const sps_body_def* def) {
-    return def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN && !sps__total_lagrangian_law(dim, def);
+    return def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN && !sps__total_lagrangian_law(dim, def) && def->material.kind != SPS_MATERIAL_J2;
 }
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__hyperelastic_updated, "material.kind = Saint Venant-Kirchhoff or Neo-Hookean with solver = updated Lagrangian: these laws "
                                 "take the deformation gradient of the reference configuration; use solver = total Lagrangian"},
-    {sps__total_lagrangian_other_law, "solver = total Lagrangian with material.kind other than Saint Venant-Kirchhoff (4) or Neo-Hookean "
-                                      "(5): a total-Lagrangian body needs a law of the deformation gradient"},
+    {sps__total_lagrangian_other_law, "solver = total Lagrangian with material.kind other than Saint Venant-Kirchhoff (4), Neo-Hookean "
+                                      "(5) or J2 (2): a total-Lagrangian body needs a law of the deformation gradient"},
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
     {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
     /* ANG sections 4.1 and 5.2: ENO's shear force is an accumulated Laplacian of velocity, not
@@ -1722,7 +1798,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     }
     if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) { /* its stress comes from F: tau holds its Cauchy stress + p I */
         m.stabilisation = &sps__tl_hourglass;
-        m.total_lagrangian = m.stress = 1;
+        m.total_lagrangian = m.stress = 1; /* m.plastic stays: a J2 body's return map is sps__tl_j2 */
         m.paired = m.gradient = m.artificial_stress = m.scaled_penalty = 0;
         m.turn = SPS__TURN_NONE;
     }
@@ -3098,7 +3174,8 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
            (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
            (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven) ||
-           (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian);
+           (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
+           (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -4060,8 +4137,8 @@ static void sps__tl_reference(sps_world* w, sps__body* b) {
     b->reference_built = 1;
 }
 
-/* The hyperelastic laws, a literal in the stress pass. */
-enum { SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN };
+/* The laws, a literal in the stress pass. */
+enum { SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
 
 /* The first Piola-Kirchhoff stress P (row-major 3 x 3) of the deformation gradient F (row-major
    3 x 3; in 2D, plane strain, F_zz = 1 and the out-of-plane entries 0) and the stored energy per
@@ -4117,6 +4194,158 @@ SPS__INLINE sps_real sps__det3(const sps_real F[9]) {
     return F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
 }
 
+/* >>material: J2 plasticity in the total-Lagrangian frame (TL section 4.5; the multiplicative
+   hyperelastic-plastic model of Bonet and Wood's appendix the paper cites)
+
+   F = F_e F_p. The state is C_p^-1 = (F_p^T F_p)^-1 (stored less I, field "plastic_metric") and
+   the equivalent plastic strain alpha. At each stress pass: the trial elastic left
+   Cauchy-Green tensor b_e = F C_p^-1 F^T = sum_a lambda_a^2 n_a (x) n_a (Jacobi), logarithmic
+   strains eps_a = ln lambda_a, Hencky's Kirchhoff stresses tau_a = lambda tr(eps) + 2 mu eps_a;
+   if the von Mises stress q = sqrt(3/2 |dev tau|^2) exceeds sigma_Y + kappa alpha, the radial
+   return in the principal logarithmic strains: d_gamma = f / (3 mu + kappa), dev tau and
+   dev eps scaled by 1 - 3 mu d_gamma / q, alpha += d_gamma; then b_e = sum exp(2 eps_a) n_a (x) n_a,
+   C_p^-1 = F^-1 b_e F^-T, P = tau F^-T, and the plastic work grows by the elastic energy the
+   return removed, V0 (psi(eps_trial) - psi(eps)), psi = lambda/2 tr(eps)^2 + mu eps:eps. */
+
+/* Eigenvalues d and eigenvectors (columns of Q, row-major) of the symmetric 3 x 3 matrix A
+   (row-major), by cyclic Jacobi rotations until the off-diagonal part is below 1e-15 of the
+   norm (deterministic: a fixed order of rotations). */
+static void sps__eigen3(const sps_real A[9], sps_real d[3], sps_real Q[9]) {
+    sps_real M[9];
+    int k, sweep, p, q, r;
+    for (k = 0; k < 9; ++k) {
+        M[k] = A[k];
+        Q[k] = (sps_real)(k % 4 == 0);
+    }
+    for (sweep = 0; sweep < 30; ++sweep) {
+        sps_real off = M[1] * M[1] + M[2] * M[2] + M[5] * M[5], norm = off;
+        for (k = 0; k < 3; ++k) norm += M[4 * k] * M[4 * k];
+        if (!(off > SPS_R(1e-30) * norm)) break; /* NaN stops too: the guards see it */
+        for (p = 0; p < 2; ++p)
+            for (q = p + 1; q < 3; ++q) {
+                const sps_real apq = M[3 * p + q];
+                sps_real theta, t, c, s;
+                if (apq == 0) continue;
+                theta = (M[3 * q + q] - M[3 * p + p]) / (2 * apq);
+                t = (theta >= 0 ? 1 : -1) / (SPS__FABS(theta) + SPS__SQRT(theta * theta + 1));
+                c = 1 / SPS__SQRT(t * t + 1);
+                s = t * c;
+                for (r = 0; r < 3; ++r) { /* M <- M J (columns p, q) */
+                    const sps_real mp = M[3 * r + p], mq = M[3 * r + q];
+                    M[3 * r + p] = c * mp - s * mq;
+                    M[3 * r + q] = s * mp + c * mq;
+                }
+                for (r = 0; r < 3; ++r) { /* M <- J^T M (rows p, q) */
+                    const sps_real mp = M[3 * p + r], mq = M[3 * q + r];
+                    M[3 * p + r] = c * mp - s * mq;
+                    M[3 * q + r] = s * mp + c * mq;
+                }
+                for (r = 0; r < 3; ++r) { /* Q <- Q J */
+                    const sps_real qp = Q[3 * r + p], qq = Q[3 * r + q];
+                    Q[3 * r + p] = c * qp - s * qq;
+                    Q[3 * r + q] = s * qp + c * qq;
+                }
+            }
+    }
+    for (k = 0; k < 3; ++k) d[k] = M[4 * k];
+}
+
+/* The inverse of a row-major 3 x 3 matrix with determinant J. */
+static void sps__inverse3(const sps_real F[9], sps_real J, sps_real G[9]) {
+    G[0] = (F[4] * F[8] - F[5] * F[7]) / J;
+    G[1] = (F[2] * F[7] - F[1] * F[8]) / J;
+    G[2] = (F[1] * F[5] - F[2] * F[4]) / J;
+    G[3] = (F[5] * F[6] - F[3] * F[8]) / J;
+    G[4] = (F[0] * F[8] - F[2] * F[6]) / J;
+    G[5] = (F[2] * F[3] - F[0] * F[5]) / J;
+    G[6] = (F[3] * F[7] - F[4] * F[6]) / J;
+    G[7] = (F[1] * F[6] - F[0] * F[7]) / J;
+    G[8] = (F[0] * F[4] - F[1] * F[3]) / J;
+}
+
+/* The J2 law of a total-Lagrangian body at F (J = det F) from the state cp (C_p^-1 - I, 6 values)
+   and alpha: P; with update = 1 the state is advanced (cp, alpha) and *work gets the plastic
+   work density of the return. Returns the elastic energy density psi per reference volume. */
+static sps_real sps__tl_j2(sps_real lambda, sps_real mu, sps_real yield, sps_real hardening, const sps_real F[9], sps_real J,
+                           sps_real* cp, sps_real* alpha, int update, sps_real P[9], sps_real* work) {
+    const sps_real C[9] = {1 + cp[0], cp[1], cp[2], cp[1], 1 + cp[3], cp[4], cp[2], cp[4], 1 + cp[5]};
+    sps_real FC[9], be[9], d[3], Q[9], eps[3], tau[3], Finv[9], T[9], Bn[9], tr = 0, mean, q2 = 0, psi_trial, psi, ee = 0;
+    int a, c, k;
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < 3; ++k) s += F[3 * a + k] * C[3 * k + c];
+            FC[3 * a + c] = s;
+        }
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < 3; ++k) s += FC[3 * a + k] * F[3 * c + k];
+            be[3 * a + c] = s;
+        }
+    sps__eigen3(be, d, Q);
+    for (a = 0; a < 3; ++a) {
+        eps[a] = SPS_R(0.5) * SPS__LOG(d[a]);
+        tr += eps[a];
+        ee += eps[a] * eps[a];
+    }
+    psi_trial = SPS_R(0.5) * lambda * tr * tr + mu * ee;
+    for (a = 0; a < 3; ++a) tau[a] = lambda * tr + 2 * mu * eps[a];
+    mean = (tau[0] + tau[1] + tau[2]) / 3;
+    for (a = 0; a < 3; ++a) q2 += (tau[a] - mean) * (tau[a] - mean);
+    {
+        const sps_real q = SPS__SQRT(SPS_R(1.5) * q2), f = q - (yield + hardening * *alpha);
+        if (f > 0) {
+            const sps_real dgamma = f / (3 * mu + hardening), scale = 1 - 3 * mu * dgamma / q;
+            for (a = 0; a < 3; ++a) {
+                tau[a] = mean + (tau[a] - mean) * scale;
+                eps[a] = tr / 3 + (eps[a] - tr / 3) * scale;
+            }
+            if (update) *alpha += dgamma;
+        }
+    }
+    ee = 0;
+    for (a = 0; a < 3; ++a) ee += eps[a] * eps[a];
+    psi = SPS_R(0.5) * lambda * tr * tr + mu * ee;
+    sps__inverse3(F, J, Finv);
+    /* Kirchhoff stress T = Q diag(tau) Q^T; P = T F^-T */
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0, t = 0;
+            for (k = 0; k < 3; ++k) {
+                s += Q[3 * a + k] * tau[k] * Q[3 * c + k];
+                t += Q[3 * a + k] * SPS__EXP(2 * eps[k]) * Q[3 * c + k];
+            }
+            T[3 * a + c] = s;
+            Bn[3 * a + c] = t;
+        }
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < 3; ++k) s += T[3 * a + k] * Finv[3 * c + k];
+            P[3 * a + c] = s;
+        }
+    if (update) { /* C_p^-1 = F^-1 b_e F^-T */
+        sps_real G[9], H[9];
+        for (a = 0; a < 3; ++a)
+            for (c = 0; c < 3; ++c) {
+                sps_real s = 0;
+                for (k = 0; k < 3; ++k) s += Finv[3 * a + k] * Bn[3 * k + c];
+                G[3 * a + c] = s;
+            }
+        for (a = 0; a < 3; ++a)
+            for (c = 0; c < 3; ++c) {
+                sps_real s = 0;
+                for (k = 0; k < 3; ++k) s += G[3 * a + k] * Finv[3 * c + k];
+                H[3 * a + c] = s;
+            }
+        cp[0] = H[0] - 1; cp[1] = SPS_R(0.5) * (H[1] + H[3]); cp[2] = SPS_R(0.5) * (H[2] + H[6]);
+        cp[3] = H[4] - 1; cp[4] = SPS_R(0.5) * (H[5] + H[7]); cp[5] = H[8] - 1;
+        *work = psi_trial - psi;
+    }
+    return psi;
+}
+
 /* Lame constants of a total-Lagrangian body: mu = G, lambda = K - 2G/3. */
 #define SPS__LAME_LAMBDA(b) ((b)->mat.K - (b)->mat.G * 2 / 3)
 
@@ -4158,7 +4387,14 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         sps_real P[9], sigma[9], J;
         sps__tl_deformation(w, b, i, q.s0 + l, dim, F);
         J = sps__det3(F);
-        sps__tl_law(law, lambda, mu, F, J, P);
+        if (law == SPS__LAW_J2) {
+            sps_real work = 0;
+            sps__tl_j2(lambda, mu, b->def.material.yield_stress, b->def.material.hardening_modulus, F, J, b->tl_plastic + (size_t)6 * o,
+                       b->plastic_strain + o, 1, P, &work);
+            b->plastic_work[o] += SPS__V0(w, b, i) * work;
+        } else {
+            sps__tl_law(law, lambda, mu, F, J, P);
+        }
         for (a = 0; a < 3; ++a)
             for (c = 0; c < 3; ++c) {
                 sps_real s = 0, t = 0;
@@ -4183,18 +4419,20 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
    and the hourglass force of TL eq. 32,
    f_i += sum_j -1/2 alpha V0_i V0_j W_ij / R_ij^2 (E_Y delta^i_ij + E_Y delta^j_ji) x_ij/|x_ij|,
    delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij| (TL eqs. 25-27, X_ij = X_j - X_i, x_ij = x_j - x_i;
-   delta^j_ji = (F_j X_ij - x_ij) . x_ij/|x_ij| by the same algebra), E_Y Young's modulus.
+   delta^j_ji = (F_j X_ij - x_ij) . x_ij/|x_ij| by the same algebra), E_Y Young's modulus, or
+   for a J2 body (plastic, a literal) the yield stress at particles that have flowed (TL
+   section 4.5).
    Both are antisymmetric in i, j (the hourglass force also central), so the pair sums conserve
    linear momentum, the hourglass force also angular momentum. acc_p = f_i / m_i. */
-SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim) {
+SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real hourglass = -SPS_R(0.5) * b->def.hourglass_alpha * b->def.material.youngs_modulus;
+    const sps_real hourglass = -SPS_R(0.5) * b->def.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
     int l, a, c, k;
     (void)dt;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
         const sps_real *Qi = b->tl_stress + (size_t)9 * o, *Fi = b->tl_deformation + (size_t)9 * o;
-        const sps_real vi = SPS__V0(w, b, i);
+        const sps_real vi = SPS__V0(w, b, i), Ei = plastic && b->plastic_strain[o] > 0 ? Y : E;
         sps_real f[3] = {0, 0, 0};
         for (k = 0; k < w->nb_count[i]; ++k) {
             const int j = w->nb_j[first + k * SPS__LANES], oj = j - b->begin;
@@ -4220,7 +4458,10 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
                 di += pi * xij[a];
                 dj += pj * xij[a];
             }
-            fh = hourglass * vv * e.w / (e.r * e.r) * (di + dj) * inv_r * inv_r; /* (delta_i + delta_j) / |x_ij| */
+            {
+                const sps_real Ej = plastic && b->plastic_strain[oj] > 0 ? Y : E; /* TL section 4.5: the yield strength once plastic */
+                fh = hourglass * vv * e.w / (e.r * e.r) * (Ei * di + Ej * dj) * inv_r * inv_r; /* (E delta_i + E delta_j) / |x_ij| */
+            }
             for (a = 0; a < dim; ++a) f[a] += fh * xij[a];
         }
         for (a = 0; a < dim; ++a) w->acc_p[a][i] = f[a] / w->mass[i];
@@ -4232,28 +4473,45 @@ static void sps__tl_stress_svk_2d(sps_world* w, const sps__body* b, int g, sps_r
 static void sps__tl_stress_svk_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
 static void sps__tl_stress_neo_hookean_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_NEO_HOOKEAN); }
 static void sps__tl_stress_neo_hookean_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_NEO_HOOKEAN); }
-static void sps__tl_force_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2); }
-static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3); }
+static void sps__tl_stress_j2_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_J2); }
+static void sps__tl_stress_j2_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_J2); }
+static void sps__tl_force_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 0); }
+static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 0); }
+static void sps__tl_force_plastic_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 1); }
+static void sps__tl_force_plastic_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 1); }
 
-static int sps__tl_law_of(sps_material_kind kind) { return kind == SPS_MATERIAL_NEO_HOOKEAN ? SPS__LAW_NEO_HOOKEAN : SPS__LAW_SAINT_VENANT_KIRCHHOFF; }
+static int sps__tl_law_of(sps_material_kind kind) {
+    return kind == SPS_MATERIAL_NEO_HOOKEAN ? SPS__LAW_NEO_HOOKEAN : kind == SPS_MATERIAL_J2 ? SPS__LAW_J2 : SPS__LAW_SAINT_VENANT_KIRCHHOFF;
+}
 
 static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
-    const int neo = sps__tl_law_of(m->material->kind) == SPS__LAW_NEO_HOOKEAN;
+    static const sps__group_kernel stress[3][2] = {{sps__tl_stress_svk_2d, sps__tl_stress_svk_3d},
+                                                   {sps__tl_stress_neo_hookean_2d, sps__tl_stress_neo_hookean_3d},
+                                                   {sps__tl_stress_j2_2d, sps__tl_stress_j2_3d}};
+    const int law = sps__tl_law_of(m->material->kind), d = w->dim - 2;
     sps__passes p;
     memset(&p, 0, sizeof p);
-    p.stress = w->dim == 2 ? (neo ? sps__tl_stress_neo_hookean_2d : sps__tl_stress_svk_2d) : (neo ? sps__tl_stress_neo_hookean_3d : sps__tl_stress_svk_3d);
-    p.pressure = w->dim == 2 ? sps__tl_force_2d : sps__tl_force_3d;
+    p.stress = stress[law][d];
+    if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
+    else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;
     return p;
 }
 
-/* The stored energy V0 psi(F) of particle i of total-Lagrangian body b (from the F of its last
-   stress pass; 0 for particles added since the last commit). */
+/* The stored energy V0 psi(F) of particle i of total-Lagrangian body b, F from the current
+   positions (the neighbour lists are valid wherever energies are summed: diagnostics and the
+   watchdog at configuration updates); 0 before its reference lists are built. */
 static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
-    const sps_real* F;
-    sps_real P[9];
-    if (i - b->begin >= b->field_count) return 0;
-    F = b->tl_deformation + (size_t)9 * (i - b->begin);
-    return SPS__V0(w, b, i) * sps__tl_law(sps__tl_law_of(b->def.material.kind), SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
+    sps_real F[9], P[9];
+    const int law = sps__tl_law_of(b->def.material.kind);
+    if (!b->reference_built) return 0;
+    sps__tl_deformation(w, b, i, w->nb_first[i], w->dim, F);
+    if (law == SPS__LAW_J2) { /* the state is not advanced: a copy */
+        sps_real cp[6], alpha = b->plastic_strain[i - b->begin];
+        memcpy(cp, b->tl_plastic + (size_t)6 * (i - b->begin), sizeof cp);
+        return SPS__V0(w, b, i) * sps__tl_j2(SPS__LAME_LAMBDA(b), b->mat.G, b->def.material.yield_stress, b->def.material.hardening_modulus,
+                                             F, sps__det3(F), cp, &alpha, 0, P, NULL);
+    }
+    return SPS__V0(w, b, i) * sps__tl_law(law, SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
 }
 
 /* >>contact: rigid walls and contact between bodies */

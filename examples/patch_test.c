@@ -119,13 +119,14 @@ static void add_patch(sps_world* w, sps_body patch, int n, double jitter, int se
 
 int main(int argc, char** argv) {
     int n = 21, periods = 300;
-    double alpha = 50, fail = 0.05;
+    double alpha = 50, fail = 0.05, h_over_dp = 1;
     common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0.01, .E = 1, .nu = 0.3, .rho0 = 1,
                         .out = "out/patch_test", .jitter = 0.4, .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"n", OPT_INT, &n, "particles per side (n^2 in all; 21: 441, the paper 444)", 4, 400, NULL},
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
         {"periods", OPT_INT, &periods, "breathing periods to run (the end time is periods x the period estimate)", 1, 100000, NULL},
+        {"h", OPT_REAL, &h_over_dp, "smoothing length / dp (1: support 2 dp, about 12 neighbours)", 0.8, 3, NULL},
         {"fail", OPT_REAL, &fail, "stop when the hourglass indicator exceeds this", 1e-6, 10, NULL},
         COMMON_OPTION_SPECS(c),
     };
@@ -142,7 +143,7 @@ int main(int argc, char** argv) {
     apply_common(&c, &wd, &bd);
     wd.dim = 2;
     wd.dp = (sps_real)(1.0 / n);
-    wd.h_over_dp = 1; /* support 2 dp: about 12 neighbours, as the paper's */
+    wd.h_over_dp = (sps_real)h_over_dp; /* 1: support 2 dp, about 12 neighbours, as the paper's */
     wd.max_substeps = 4; /* a sample of s(t) every 4 sub-steps (about 1/150 of a period) for the crossings */
     wd.log = ex_log;
     wd.energy_growth_limit = (sps_real)INFINITY; /* the hourglass force is not in the energy account */

@@ -3800,7 +3800,7 @@ static int test_tl_homogeneous_stretch(void) {
    vanish when one particle is moved off the affine field (so the comparison can fail). */
 static int test_tl_hourglass_affine(void) {
     const double A[9] = {1.05 * cos(0.3), -0.9 * sin(0.3) + 0.1, 0, 1.05 * sin(0.3), 0.9 * cos(0.3), 0, 0, 0, 1}, c[3] = {2e-3, 1e-3, 0};
-    double diff_affine = 0, diff_kicked = 0, scale = 0;
+    double diff_affine = 0, diff_kicked = 0, scale = 0, restoring = 0;
     int kicked;
     for (kicked = 0; kicked < 2; ++kicked) {
         double a_of[2][2][64];
@@ -3826,6 +3826,7 @@ static int test_tl_hourglass_affine(void) {
             }
             sps_world_destroy(w);
         }
+        if (kicked) restoring = a_of[1][0][27] - a_of[0][0][27]; /* the hourglass force on the moved particle, x */
         for (int i = 0; i < 64; ++i)
             for (int a = 0; a < 2; ++a) {
                 const double d = fabs(a_of[1][a][i] - a_of[0][a][i]);
@@ -3838,6 +3839,8 @@ static int test_tl_hourglass_affine(void) {
            diff_affine, diff_kicked, scale);
     ENSURE(diff_affine < 1e-9 * scale); /* round-off of the error vectors F X_ij - x_ij */
     ENSURE(diff_kicked > 1e-2 * scale); /* the non-affine part is resisted */
+    printf("    hourglass acceleration of the moved particle (moved +x): %.3g m/s^2\n", restoring);
+    ENSURE(restoring < 0); /* and pushed back */
     return 0;
 }
 
@@ -3882,6 +3885,56 @@ static int test_tl_momentum(void) {
     return 0;
 }
 
+/* J2 in the TL frame: a homogeneous 3D stretch beyond yield leaves the Kirchhoff stress tau = J sigma
+   on the yield surface, sqrt(3/2 |dev tau|^2) = sigma_Y (perfect plasticity), with plastic strain
+   at every particle; below yield (a stretch 100 times smaller) none flows and the stress is Hencky's. */
+static int test_tl_j2_return(void) {
+    int big;
+    for (big = 0; big < 2; ++big) {
+        const double e = big ? 0.05 : 5e-4, A[9] = {1 + e, 0, 0, 0, 1 / (1 + e), 0, 0, 0, 1}, c[3] = {0, 0, 0}, Y = 1e3;
+        sps_world_def wd = sps_default_world_def();
+        sps_body_def bd = sps_default_body_def();
+        sps_world* w;
+        sps_body b;
+        sps_real lo[3] = {0, 0, 0}, hi[3] = {4e-3, 4e-3, 4e-3}, all_lo[3] = {-1, -1, -1}, all_hi[3] = {1, 1, 1};
+        const sps_real *tau, *p, *alpha;
+        double qmax = 0, qmin = 1e300, amin = 1e300;
+        int nc, first, count, i;
+        wd.dim = 3; wd.dp = 1e-3; wd.log = quiet_log; wd.threads = 1;
+        bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
+        bd.material.kind = SPS_MATERIAL_J2;
+        bd.material.yield_stress = (sps_real)Y; /* yield strain 1e-3 of E 1e6 */
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK && sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK);
+        ENSURE(sps_body_constrain_box(w, b, all_lo, all_hi, SPS_AXIS_ALL, NULL, NULL) == SPS_OK);
+        tl_map(w, A, c);
+        ENSURE(sps_world_step(w) == SPS_OK);
+        tau = sps_body_field(w, b, "shear_stress", &nc, &first, &count);
+        p = sps_world_field_by_name(w, "pressure", NULL);
+        alpha = sps_body_field(w, b, "plastic_strain", &nc, &first, &count);
+        ENSURE(tau && p && alpha);
+        for (i = 0; i < count; ++i) {
+            const double J = 1 /* isochoric */, sx = tau[6 * i] - p[first + i], sy = tau[6 * i + 3] - p[first + i], sz = tau[6 * i + 5] - p[first + i];
+            const double m = (sx + sy + sz) / 3, q = J * sqrt(1.5 * ((sx - m) * (sx - m) + (sy - m) * (sy - m) + (sz - m) * (sz - m) +
+                                                                   2 * (tau[6 * i + 1] * tau[6 * i + 1] + tau[6 * i + 2] * tau[6 * i + 2] +
+                                                                        tau[6 * i + 4] * tau[6 * i + 4])));
+            qmax = fmax(qmax, q);
+            qmin = fmin(qmin, q);
+            amin = fmin(amin, alpha[i]);
+        }
+        printf("    stretch %g: von Mises of tau %.6g .. %.6g Pa (yield %g), smallest plastic strain %.3g\n", e, qmin, qmax, Y, amin);
+        if (big) {
+            ENSURE(fabs(qmax - Y) < 1e-9 * Y && fabs(qmin - Y) < 1e-9 * Y); /* on the surface: round-off (J = 1: isochoric stretch) */
+            /* every particle flowed by the equivalent strain 2/sqrt(3) ln(1 + e) = 0.0563 less the elastic 2/3 (1 + nu) Y/E */
+            ENSURE_NEAR(amin, 2 / sqrt(3) * log(1 + e) - 2.0 / 3 * 1.3 * Y / 1e6, 1e-9);
+        } else {
+            ENSURE(qmax < Y && amin == 0); /* elastic: below yield, no flow */
+        }
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int i;
     /* OpenMP's default wait policy spins in barriers. On a machine whose cores are busy with
@@ -3920,6 +3973,7 @@ int main(int argc, char** argv) {
     RUN(test_tl_homogeneous_stretch);
     RUN(test_tl_hourglass_affine);
     RUN(test_tl_momentum);
+    RUN(test_tl_j2_return);
     RUN(test_uniform_translation);
     RUN(test_damping_decays_velocity_exactly);
     RUN(test_external_acceleration);
