@@ -82,7 +82,7 @@ static void stretch(sps_world* w, double f) {
 
 /* The n x n jittered points of the patch, each with the Shepard volume V_i = 1 / sum_j W_ij
    (itself included), scaled so that they add up to the patch's area 1: irregular points with
-   volumes that fit them, as the paper's Voronoi cells do. */
+   volumes that fit them, as the paper's Voronoi cells do. Without jitter: the lattice, dp^2 each. */
 static void add_patch(sps_world* w, sps_body patch, int n, double jitter, int seed) {
     sps_world* probe;
     sps_body b;
@@ -92,6 +92,11 @@ static void add_patch(sps_world* w, sps_body patch, int n, double jitter, int se
     const sps_real* x[2];
     double total = 0;
     int i, j, m;
+    if (jitter == 0) {
+        sps_real lo[3] = {0, 0, 0}, hi[3] = {1, 1, 0};
+        ex_check(w, sps_body_add_box(w, patch, lo, hi, NULL));
+        return;
+    }
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &probe)); /* the jittered points, from scene_add_box */
     ex_check(probe, sps_world_add_body(probe, &bd, &b));
