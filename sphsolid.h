@@ -214,8 +214,11 @@
       with it the plate runs at 0.8). sps_body_material_constants gives c_p before the first
       step, c after. The strain energy of a TL body is the law's, sum V0 psi(F): exact under
       rotation, and counted by the energy watchdog; the hourglass force is not the gradient of
-      an energy (its F depends on the neighbours' positions), so it is not in the account: on
-      irregular particles it slowly feeds energy in (D1 in bench/VALIDATION.md). The def
+      an energy (its F depends on the neighbours' positions), so it is not in the account, and
+      it can feed energy in: measured with alpha = 50 (bench/VALIDATION.md, D1-D5), the A1 plate
+      blows up at 0.45 s and the irregular patch after 3.6 breathing periods, while alpha = 10
+      runs the plate for its full second (first period 0.2587 s) and alpha = 0 lets zigzag
+      modes grow (the patch's particles disorder at once). The def
       fields shear, rotation, zeta, xi, oas_* and track_stress do not apply (the stress is
       always there). Fields of TL bodies: "deformation_gradient" (F, 9 values row-major, 3 x 3),
       "reference_correction" (-L^-1) and "corrected_piola_stress" (-P L^-1). Contact with other
