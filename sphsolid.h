@@ -952,7 +952,8 @@ typedef struct sps_vtk_options {
 SPSDEF sps_vtk_options sps_default_vtk_options(void);
 /* Legacy VTK file (POLYDATA, one vertex per particle, in the current particle order) with the
    point data velocity, displacement, pressure, density, von_mises (and stress; plastic_strain
-   when a body is J2), body and id in one FIELD block, so that VTK's legacy reader (ParaView) shows every array with its default
+   when a body is J2; deformation_gradient, 9 values row-major and 0 for the other bodies, when
+   a body is total-Lagrangian), body and id in one FIELD block, so that VTK's legacy reader (ParaView) shows every array with its default
    settings. options NULL: the defaults. SPS_ERR_INVALID_ARG (w or path NULL, an option not 0
    or 1), SPS_ERR_IO (cannot open or write; the message names the path). No allocation; O(N). */
 SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const sps_vtk_options* options);
@@ -6102,7 +6103,7 @@ SPSDEF sps_result sps_observer_read(const sps_world* w, sps_observer o, sps_real
    output is one row. */
 /* When a row of sps__vtk_arrays is written: always, with sps_vtk_options.stress, or when a
    body is plastic (J2). */
-typedef enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC } sps__vtk_shown_when;
+typedef enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC, SPS__VTK_IF_TOTAL_LAGRANGIAN } sps__vtk_shown_when;
 typedef struct sps__vtk_array {
     const char* name;
     int components; /* per point (a per-axis field: 3, z = 0 in 2D) */
@@ -6134,6 +6135,7 @@ static const sps__vtk_array sps__vtk_arrays[] = {
     {"von_mises", 1, 0, NULL, sps__vtk_von_mises, SPS__VTK_ALWAYS},
     {"stress", 9, 0, NULL, sps__vtk_stress, SPS__VTK_WITH_STRESS},
     {"plastic_strain", 1, 0, NULL, sps__vtk_plastic_strain, SPS__VTK_IF_PLASTIC},
+    {"deformation_gradient", 9, 0, "deformation_gradient", NULL, SPS__VTK_IF_TOTAL_LAGRANGIAN},
     {"body", 1, 1, "body", NULL, SPS__VTK_ALWAYS},
     {"id", 1, 1, "id", NULL, SPS__VTK_ALWAYS},
 };
@@ -6145,6 +6147,8 @@ static int sps__vtk_shown(const sps_world* w, const sps__vtk_array* row, const s
     if (row->shown == SPS__VTK_WITH_STRESS) return opt->stress;
     for (bi = 0; row->shown == SPS__VTK_IF_PLASTIC && bi < w->nbodies; ++bi)
         if (w->bodies[bi].model.plastic) return 1;
+    for (bi = 0; row->shown == SPS__VTK_IF_TOTAL_LAGRANGIAN && bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.total_lagrangian) return 1;
     return row->shown == SPS__VTK_ALWAYS;
 }
 

@@ -32,7 +32,7 @@ static int on_step(sps_world* w, void* user) {
 }
 
 int main(int argc, char** argv) {
-    double alpha = 50, v = 10, length = 12e-3, dp_mm = 1.0 / 15;
+    double alpha = 50, v = 10, length = 12e-3, dp_mm = 1.0 / 15, h_over_dp = 1;
     common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0, .E = 1e9, .nu = 0.45, .rho0 = 1000,
                         .out = "out/strip_pull", .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
         {"v", OPT_REAL, &v, "pull speed of each clamped row [m/s]", 1e-6, 1000, NULL},
         {"length", OPT_REAL, &length, "final length [m] (12 mm: +500 %)", 2.1e-3, 0.1, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.005, 1, NULL},
+        {"h", OPT_REAL, &h_over_dp, "smoothing length / dp (1: kernel support 2 dp, the paper's)", 0.8, 3, NULL},
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
     dp = dp_mm * 1e-3;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
-    wd.h_over_dp = 1; /* kernel support 2 dp, as the paper's */
+    wd.h_over_dp = (sps_real)h_over_dp; /* 1: kernel support 2 dp, as the paper's */
     wd.log = ex_log;
     bd.name = "strip";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
