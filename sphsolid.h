@@ -208,11 +208,14 @@
       with mu = G = E/(2(1 + nu)), lambda = K - 2G/3. Saint Venant-Kirchhoff and Neo-Hookean
       are for total-Lagrangian bodies only, and a total-Lagrangian body takes only these and J2
       (combination rules). Time step: the signal
-      speed of a TL body is c = sqrt(c_p^2 + alpha E h^2 max_i S_i / (d rho0)), c_p the P-wave
-      speed sqrt((K + 4G/3)/rho0) and S_i = sum_j V0_j W_ij / X_ij^2, the stiffness the
-      hourglass springs add (without it alpha = 50 blew up the 2D plate at cfl_acoustic = 0.4;
-      with it the plate runs at 0.8). sps_body_material_constants gives c_p before the first
-      step, c after. The strain energy of a TL body is the law's, sum V0 psi(F): exact under
+      speed of a TL body in its reference state is c_ref = sqrt(c_p^2 + alpha E h^2 max_i S_i /
+      (d rho0)), c_p the P-wave speed sqrt((K + 4G/3)/rho0) and S_i = sum_j V0_j W_ij / X_ij^2,
+      the stiffness the hourglass springs add (without it alpha = 50 blew up the 2D plate at
+      cfl_acoustic = 0.4; with it the plate runs at 0.8); at every configuration update it is
+      c = c_ref / s^2, s the body's smallest principal stretch (at most 1), since a direction
+      compressed by s has its spacing shrunk by s and its stiffness grown as 1/s^2 (the D3 block
+      reached 50 % compression only so). sps_body_material_constants gives c_p before the
+      first step, c after. The strain energy of a TL body is the law's, sum V0 psi(F): exact under
       rotation, and counted by the energy watchdog; the hourglass force is not the gradient of
       an energy (its F depends on the neighbours' positions), so it is not in the account, and
       it can feed energy in: measured with alpha = 50 (bench/VALIDATION.md, D1-D5), the A1 plate
@@ -1175,6 +1178,7 @@ typedef struct sps__body {
     int field_count; /* particles they hold: its count at the last commit */
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
+    sps_real tl_c_ref;   /* total Lagrangian: its signal speed in the reference state (sps__tl_signal_speeds) */
 } sps__body;
 
 /* An analytic rigid wall (chapter >>contact): the half-space (x - point) . normal < 0 is solid. */
@@ -4142,7 +4146,7 @@ static void sps__tl_reference(sps_world* w, sps__body* b) {
         if (S > s_max) s_max = S;
     }
     c2 = (b->mat.K + b->mat.G * 4 / 3 + b->def.hourglass_alpha * b->def.material.youngs_modulus * w->h * w->h * s_max / dim) / b->rho0;
-    b->mat.c0 = SPS__SQRT(c2);
+    b->mat.c0 = b->tl_c_ref = SPS__SQRT(c2);
     if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
     b->reference_built = 1;
 }
@@ -4505,6 +4509,42 @@ static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
     if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
     else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;
     return p;
+}
+
+/* At every configuration update, after the lists: each total-Lagrangian body's signal speed for
+   the time step follows its deformation, c = c_ref / s^2 with s the smallest principal stretch
+   (sqrt of the smallest eigenvalue of F^T F, at most 1) of its particles at the current
+   positions: a direction compressed by s has its spacing shrunk by s and, for both laws, its
+   tangent stiffness grown as 1/s^2 (measured: the D3 block at cfl 0.4 with the reference speed
+   stopped with a NaN at 31 % compression; at cfl 0.1 it reached 50 %). Then the world's c0_max,
+   the largest signal speed of its deformable bodies, is taken again: for a world without
+   total-Lagrangian bodies the same value as before, bit for bit. Serial: a fixed order. */
+static void sps__tl_signal_speeds(sps_world* w) {
+    sps_real c_max = 0;
+    int bi, i, a, c, k;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps__body* b = &w->bodies[bi];
+        if (b->model.material->kinematic) continue;
+        if (b->model.total_lagrangian && b->reference_built) {
+            sps_real s2 = 1; /* the smallest squared principal stretch */
+            for (i = b->begin; i < b->end; ++i) {
+                sps_real F[9], C[9], d[3], Q[9];
+                sps__tl_deformation(w, b, i, w->nb_first[i], w->dim, F);
+                for (a = 0; a < 3; ++a)
+                    for (c = 0; c < 3; ++c) {
+                        sps_real v = 0;
+                        for (k = 0; k < 3; ++k) v += F[3 * k + a] * F[3 * k + c];
+                        C[3 * a + c] = v;
+                    }
+                sps__eigen3(C, d, Q);
+                for (a = 0; a < 3; ++a)
+                    if (!(d[a] >= s2)) s2 = d[a]; /* NaN is kept: the guards report the state */
+            }
+            b->mat.c0 = b->tl_c_ref / (s2 > SPS_R(1e-6) ? s2 : SPS_R(1e-6)); /* a collapsed particle: the guards stop the run */
+        }
+        if (b->mat.c0 > c_max) c_max = b->mat.c0;
+    }
+    w->c0_max = c_max;
 }
 
 /* The stored energy V0 psi(F) of particle i of total-Lagrangian body b, F from the current
@@ -5464,6 +5504,7 @@ static sps_result sps__update_configuration(sps_world* w) {
     if ((r = sps__check_escape(w)) != SPS_OK) return r;
     w->lists_valid = 0;
     if ((r = sps__build_neighbors(w)) != SPS_OK) return r; /* also B_i when a body needs the velocity gradient */
+    sps__tl_signal_speeds(w); /* total-Lagrangian bodies: the time step follows their deformation */
     sps__report_fragments(w);
     if ((w->contact_dirty || w->sigma_cap < w->cap) && sps__commit_contact(w) != SPS_OK) return sps__oom(w, "the contact tables");
     w->contact_dirty = 0;
