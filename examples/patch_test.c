@@ -13,7 +13,7 @@
 
    Build: make examples   Run: ./build/patch_test --alpha 50 --periods 300; ./build/patch_test --alpha 0
    Measured (bench/VALIDATION.md): alpha 0 stops at once (0.06 s); alpha 50 after 3.6 periods
-   (21.5 on the regular lattice, --jitter 0), its hourglass force feeding energy in. */
+   (19.4 on the regular lattice, --jitter 0), its hourglass force feeding energy in. */
 #include "common.h"
 #include "scenes/scene.h"
 
