@@ -219,7 +219,7 @@
       rotation, and counted by the energy watchdog; the hourglass force is not the gradient of
       an energy (its F depends on the neighbours' positions), so it is not in the account, and
       it can feed energy in: measured with alpha = 50 (bench/VALIDATION.md, D1-D5), the A1 plate
-      blows up at 0.45 s and the irregular patch after 3.6 breathing periods, while alpha = 10
+      blows up at 0.43 s and the irregular patch after 3.6 breathing periods, while alpha = 10
       runs the plate for its full second (first period 0.2587 s) and alpha = 0 lets zigzag
       modes grow (the patch's particles disorder at once). The def
       fields shear, rotation, zeta, xi, oas_* and track_stress do not apply (the stress is
