@@ -49,7 +49,7 @@ SCENE_UNUSED static sps_result plate2d_create(sps_world_def wd, const sps_body_d
     sps_real lo[3] = {-PLATE2D_HOLDER_LAYERS * dp, -PLATE2D_H / 2, 0}, hi[3] = {PLATE2D_L, PLATE2D_H / 2, 0};
     sps_real clamp_lo[3] = {-1, -1, -1}, clamp_hi[3] = {0, 1, 1}, x_tip[3] = {PLATE2D_L, 0, 0};
     plate2d_start start;
-    sps_real c0;
+    sps_real c0, K;
     sps_result r;
     wd.dim = 2;
     wd.dp = dp;
@@ -58,7 +58,9 @@ SCENE_UNUSED static sps_result plate2d_create(sps_world_def wd, const sps_body_d
     SCENE_TRY(w, sps_world_add_body(*w, &def, plate));
     SCENE_TRY(w, scene_add_box(*w, *plate, lo, hi, p->jitter, p->seed));
     SCENE_TRY(w, sps_body_constrain_box(*w, *plate, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL)); /* holder x < 0 */
-    SCENE_TRY(w, sps_body_material_constants(*w, *plate, &c0, NULL, NULL));
+    /* the papers' c0 = sqrt(K/rho0) (a total-Lagrangian body's own signal speed is the P-wave speed) */
+    SCENE_TRY(w, sps_body_material_constants(*w, *plate, NULL, NULL, &K));
+    c0 = (sps_real)sqrt(K / def.material.density);
     start.vf = p->vf;
     start.c0 = c0;
     SCENE_TRY(w, sps_body_set_velocity(*w, *plate, plate2d_initial_velocity, &start));
