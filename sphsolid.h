@@ -195,7 +195,7 @@
       is exact. Surface particles (position divergence -sum r_ij . grad W_ij V_j below 0.75 d, or
       within h of one) are not moved by TVF and are moved along the surface only by UTVF (normal
       B_i g_i / |B_i g_i|); none with a divergence below 0.6 d. For fluids and solids alike (not
-      wall bodies). Costs two neighbour passes per sub-step; the diagnostics'
+      wall bodies, nor total-Lagrangian ones, whose neighbours are those of the reference). Costs two neighbour passes per sub-step; the diagnostics'
       surface_particles counts the particles below 0.75 d, which voids and cracks raise.
 
    TOTAL-LAGRANGIAN (sps_body_def.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; TL = Ganzenmueller's
