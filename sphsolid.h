@@ -3294,6 +3294,17 @@ SPS__INLINE void sps__blended_inverse(const sps_real* a, int as, sps_real* b, in
    r_ij = r e_ij and grad W = dW e_ij, A -= r dW V_j e_ij (x) e_ij, rdwv = r dW V_j. A's entries
    xx xy xz yy yz zz at A[k as] (the lane sums of the continuity pass, or one matrix). The
    continuity pass and the diagnostics both build B this way. */
+/* out = A B, or A B^T with transposed, for 3 x 3 row-major matrices (out aliases neither). */
+static void sps__mat3_product(const sps_real A[9], const sps_real B[9], int transposed, sps_real out[9]) {
+    int a, c, k;
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < 3; ++k) s += A[3 * a + k] * (transposed ? B[3 * c + k] : B[3 * k + c]);
+            out[3 * a + c] = s;
+        }
+}
+
 SPS__INLINE void sps__add_moment(sps_real* A, int as, sps_real ex, sps_real ey, sps_real ez, sps_real rdwv, const int dim) {
     A[0] -= rdwv * ex * ex;
     A[as] -= rdwv * ex * ey;
@@ -4531,12 +4542,7 @@ SPS__INLINE sps_real sps__tl_law(const int law, sps_real lambda, sps_real mu, co
             S[k] = 2 * mu * E[k] + (k % 4 == 0 ? lambda * tr : 0);
             ee += E[k] * E[k];
         }
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) {
-                sps_real s = 0;
-                for (k = 0; k < 3; ++k) s += F[3 * a + k] * S[3 * k + c];
-                P[3 * a + c] = s;
-            }
+        sps__mat3_product(F, S, 0, P);
         return SPS_R(0.5) * lambda * tr * tr + mu * ee;
     } else {
         /* F^-T from the cofactors: (F^-T)_ac = cof(F)_ac / J */
@@ -4641,18 +4647,8 @@ static sps_real sps__tl_j2(sps_real lambda, sps_real mu, sps_real yield, sps_rea
     const sps_real C[9] = {1 + cp[0], cp[1], cp[2], cp[1], 1 + cp[3], cp[4], cp[2], cp[4], 1 + cp[5]};
     sps_real FC[9], be[9], d[3], Q[9], eps[3], tau[3], Finv[9], T[9], Bn[9], tr = 0, mean, q2 = 0, psi_trial, psi, ee = 0;
     int a, c, k;
-    for (a = 0; a < 3; ++a)
-        for (c = 0; c < 3; ++c) {
-            sps_real s = 0;
-            for (k = 0; k < 3; ++k) s += F[3 * a + k] * C[3 * k + c];
-            FC[3 * a + c] = s;
-        }
-    for (a = 0; a < 3; ++a)
-        for (c = 0; c < 3; ++c) {
-            sps_real s = 0;
-            for (k = 0; k < 3; ++k) s += FC[3 * a + k] * F[3 * c + k];
-            be[3 * a + c] = s;
-        }
+    sps__mat3_product(F, C, 0, FC);
+    sps__mat3_product(FC, F, 1, be);
     sps__eigen3(be, d, Q);
     for (a = 0; a < 3; ++a) {
         eps[a] = SPS_R(0.5) * SPS__LOG(d[a]);
@@ -4689,26 +4685,11 @@ static sps_real sps__tl_j2(sps_real lambda, sps_real mu, sps_real yield, sps_rea
             T[3 * a + c] = s;
             Bn[3 * a + c] = t;
         }
-    for (a = 0; a < 3; ++a)
-        for (c = 0; c < 3; ++c) {
-            sps_real s = 0;
-            for (k = 0; k < 3; ++k) s += T[3 * a + k] * Finv[3 * c + k];
-            P[3 * a + c] = s;
-        }
+    sps__mat3_product(T, Finv, 1, P);
     if (update) { /* C_p^-1 = F^-1 b_e F^-T */
         sps_real G[9], H[9];
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) {
-                sps_real s = 0;
-                for (k = 0; k < 3; ++k) s += Finv[3 * a + k] * Bn[3 * k + c];
-                G[3 * a + c] = s;
-            }
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) {
-                sps_real s = 0;
-                for (k = 0; k < 3; ++k) s += G[3 * a + k] * Finv[3 * c + k];
-                H[3 * a + c] = s;
-            }
+        sps__mat3_product(Finv, Bn, 0, G);
+        sps__mat3_product(G, Finv, 1, H);
         cp[0] = H[0] - 1; cp[1] = SPS_R(0.5) * (H[1] + H[3]); cp[2] = SPS_R(0.5) * (H[2] + H[6]);
         cp[3] = H[4] - 1; cp[4] = SPS_R(0.5) * (H[5] + H[7]); cp[5] = H[8] - 1;
         *work = psi_trial - psi;
