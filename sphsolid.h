@@ -1355,6 +1355,7 @@ struct sps_world {
     sps__wall* walls;
     int nwalls;
     sps_real wall_sigma[SPS__WALL_TABLE + 1], wall_plane[SPS__WALL_TABLE + 1];
+    sps_real wall_sigma_half; /* a wall's contact density at dp/2 (the fluids' backstop, sps__mirror_force) */
     int *separate, nseparate;   /* body pairs turned off by sps_world_set_contact */
     unsigned char* touch;       /* nbodies x nbodies: bodies a and b touch */
     int touch_n, contact_bodies, contact_dirty;
@@ -4064,16 +4065,22 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__gr
    count (an image is never nearer than its particle); in a corner the image across both walls
    is missing. The solids' penalty contact with walls (sigma) is not applied to a fluid. */
 
+/* The distance of particle i from wall wl along its normal. */
+static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int i) {
+    sps_real d = 0;
+    int a;
+    for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+    return d;
+}
+
 /* The image of particle j across wall wl: position x, velocity v, viscous velocity vv and
    pressure *p. */
 static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall* wl, int j, sps_real x[3], sps_real v[3], sps_real vv[3],
                         sps_real* p) {
-    sps_real d = 0, vn = 0, gd = 0;
+    const sps_real d = sps__wall_distance(w, wl, j);
+    sps_real vn = 0, gd = 0;
     int a;
-    for (a = 0; a < w->dim; ++a) {
-        d += (w->pos[a][j] - wl->point[a]) * wl->normal[a];
-        vn += w->vel[a][j] * wl->normal[a];
-    }
+    for (a = 0; a < w->dim; ++a) vn += w->vel[a][j] * wl->normal[a];
     for (a = 0; a < 3; ++a) {
         x[a] = a < w->dim ? w->pos[a][j] - 2 * d * wl->normal[a] : 0;
         v[a] = a < w->dim ? w->vel[a][j] - 2 * vn * wl->normal[a] : 0;
@@ -4081,14 +4088,6 @@ static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall*
         gd += a < w->dim ? w->def.gravity[a] * (x[a] - w->pos[a][j]) : 0;
     }
     *p = w->p[j] + b->rho0 * gd;
-}
-
-/* The distance of particle i from wall wl along its normal. */
-static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int i) {
-    sps_real d = 0;
-    int a;
-    for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
-    return d;
 }
 
 /* Calls visit(w, b, i, image position, velocity, pressure, V_j, user) for every image within 2h
@@ -4147,7 +4146,6 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
    corners' missing images would let through. */
 static sps_real sps__wall_sigma(const sps_world* w, sps_real d);
 static void sps__mirror_force(sps_world* w, const sps__body* b, int i) {
-    const sps_real sigma_half = sps__wall_sigma(w, SPS_R(0.5) * w->def.dp);
     sps_real acc[3] = {0, 0, 0};
     int a, k;
     sps__each_image(w, b, i, sps__image_force, acc);
@@ -4156,7 +4154,7 @@ static void sps__mirror_force(sps_world* w, const sps__body* b, int i) {
         const sps_real d = sps__wall_distance(w, wl, i);
         if (!(d < SPS_R(0.5) * w->def.dp)) continue;
         for (a = 0; a < w->dim; ++a)
-            acc[a] += 2 * b->mat.K * (sps__wall_sigma(w, d) - sigma_half) * sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d) * wl->normal[a];
+            acc[a] += 2 * b->mat.K * (sps__wall_sigma(w, d) - w->wall_sigma_half) * sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d) * wl->normal[a];
     }
     for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += acc[a] / w->rho[i];
 }
@@ -4948,7 +4946,10 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
     }
     wall.slip = slip;
     if (!sps__grow(w, &w->walls, sizeof wall, (size_t)w->nwalls, (size_t)w->nwalls + 1)) return sps__oom(w, "sps_world_add_wall: the wall table");
-    if (w->nwalls == 0) sps__kernel_plane_tables(w, SPS__WALL_TABLE, w->wall_plane, w->wall_sigma);
+    if (w->nwalls == 0) {
+        sps__kernel_plane_tables(w, SPS__WALL_TABLE, w->wall_plane, w->wall_sigma);
+        w->wall_sigma_half = sps__wall_sigma(w, SPS_R(0.5) * w->def.dp);
+    }
     w->walls[w->nwalls++] = wall;
     w->contact_dirty = 1;
     sps__rearm_watchdog(w);
@@ -5141,11 +5142,10 @@ static sps_real sps__pair_contact_density(const sps_world* w, int i) {
 }
 /* sigma plus the contact density of particle i from the walls. */
 static sps_real sps__wall_contact_density(const sps_world* w, int i, sps_real sigma) {
-    int k, a;
+    int k;
     for (k = 0; k < w->nwalls; ++k) {
         const sps__wall* wl = &w->walls[k];
-        sps_real d = 0;
-        for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+        const sps_real d = sps__wall_distance(w, wl, i);
         if (d < w->support) sigma += sps__wall_sigma(w, d);
     }
     return sigma;
@@ -5190,8 +5190,8 @@ static void sps__contact_force(sps_world* w, int i) {
         }
     for (k = 0; k < w->nwalls && bi->model.material->shear; ++k) { /* a fluid's walls: sps__mirror_force */
         const sps__wall* wl = &w->walls[k];
-        sps_real d = 0, plane, vn = 0;
-        for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+        const sps_real d = sps__wall_distance(w, wl, i);
+        sps_real plane, vn = 0;
         if (!(d < w->support)) continue;
         plane = sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d); /* at its peak for d <= 0 */
         for (a = 0; a < w->dim; ++a) f[a] += 2 * bi->mat.K * si * plane * wl->normal[a];
