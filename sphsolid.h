@@ -685,8 +685,14 @@ typedef enum sps_material_kind {
                                  (UTVF eqs. 16-20), and a Newtonian viscosity if viscosity > 0 */
     SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF = 4, /* hyperelastic S = lambda tr(E) I + 2 mu E, E the
                                  Green-Lagrange strain (TL eq. 19); total-Lagrangian bodies only */
-    SPS_MATERIAL_NEO_HOOKEAN = 5 /* compressible Neo-Hookean S = mu (I - C^-1) + lambda ln(J) C^-1
+    SPS_MATERIAL_NEO_HOOKEAN = 5, /* compressible Neo-Hookean S = mu (I - C^-1) + lambda ln(J) C^-1
                                  (TL eq. 44); total-Lagrangian bodies only */
+    SPS_MATERIAL_DRUCKER_PRAGER = 6 /* granular: elastic-perfectly plastic Drucker-Prager (cohesion,
+                                 friction_angle, dilatancy_angle; UTVF section 2.3; GRANULAR): the
+                                 whole stress integrated (Jaumann rate, the pressure is its
+                                 trace, not a function of density), returned onto the cone, with
+                                 the Riemann solver's limited dissipation and stress diffusion
+                                 (stress_diffusion); the shear formulation is not used */
 } sps_material_kind;
 
 /* The solver of a body. */
@@ -722,6 +728,10 @@ typedef struct sps_material_def {
                                 kinds, whose c0 follows from E and nu. Default 0. */
     sps_real viscosity;      /* fluid: the dynamic viscosity mu [Pa s], finite >= 0 (0: inviscid);
                                 ignored by the other kinds. Default 0. */
+    sps_real cohesion;       /* Drucker-Prager: cohesion c [Pa], finite >= 0. Default 0. */
+    sps_real friction_angle; /* Drucker-Prager: friction angle phi [degrees], in [0, 90). Default 0. */
+    sps_real dilatancy_angle; /* Drucker-Prager: dilatancy angle psi [degrees], in [0, friction_angle]
+                                (0: no volume change in plastic flow). Default 0. */
 } sps_material_def;
 
 /* Body definition: a material, a shear formulation and which outputs the body needs. */
@@ -747,6 +757,9 @@ typedef struct sps_body_def {
                                   wall bodies. Default 0. */
     sps_real hourglass_alpha;  /* total-Lagrangian bodies: the hourglass coefficient alpha of TL
                                   eq. 32, [0, 1000] (0: no hourglass control). Default 50. */
+    sps_real stress_diffusion; /* Drucker-Prager bodies: the coefficient zeta of the stress
+                                  diffusion (Feng et al. 2021; GRANULAR), [0, 1] (0: off).
+                                  Default 0.1. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -886,6 +899,15 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
    volume becomes m / rho): an initial pressure field such as the hydrostatic one. p must be
    finite and above -rho0 c0^2 (a positive density). Not for wall bodies. */
 SPSDEF sps_result sps_body_set_pressure(sps_world* w, sps_body b, sps_pressure_fn fn, void* user);
+/* Gives a Drucker-Prager body the geostatic stress of a layer at rest under the world's
+   gravity (GRANULAR): at a depth d = surface_height - height below its free surface (height
+   = -g^ . x of the reference position, g^ the direction of gravity; 0 above the surface) the
+   vertical stress -rho0 |g| d and the horizontal ones k0 times it (in 2D also sigma_zz: plane
+   strain); k0 = 0 selects Jaky's 1 - sin(phi). Call after the body's particles are added (it
+   sorts the world's particles by body, as the first step would). SPS_ERR_INVALID_ARG for an
+   invalid or non-Drucker-Prager body, zero gravity, k0 outside [0, 10] or a surface_height
+   that is not finite. */
+SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_real surface_height, sps_real k0);
 /* Gives every particle of body b the external acceleration fn(x, x0, v, t, a, user) on top of
    the world's gravity, from the next sub-step on (EXTERNAL ACCELERATION); fn NULL removes it.
    SPS_ERR_INVALID_ARG for an invalid body or a wall body (its particles keep their velocity).
@@ -1150,6 +1172,15 @@ typedef struct sps__material_constants {
     sps_real K;  /* bulk modulus [Pa]: the equation of state p = K (rho/rho0 - 1) = c0^2 (rho - rho0) */
 } sps__material_constants;
 
+/* The yield surface of a plastic material. */
+typedef enum { SPS__YIELD_NONE, SPS__YIELD_VON_MISES, SPS__YIELD_DRUCKER_PRAGER } sps__yield;
+
+/* The Drucker-Prager cone of a body (>>material: Drucker-Prager). */
+typedef struct sps__yield_cone {
+    sps_real alpha_phi, k_c, alpha_psi; /* UTVF eq. 14 */
+    sps_real k0; /* 1 - sin(phi): the geostatic stress's horizontal to vertical ratio */
+} sps__yield_cone;
+
 typedef struct sps__material_model {
     sps_material_kind kind;
     const char* name;
@@ -1159,16 +1190,23 @@ typedef struct sps__material_model {
     /* stored-energy density [J/m^3] from tau:tau of the shear stress (0 when not tracked) and p */
     sps_real (*energy_density)(const sps__material_constants* c, sps_real tau_tau, sps_real p);
     int kinematic; /* its particles move as prescribed: no passes, no forces (a wall body) */
-    int plastic;   /* its shear stress is returned onto a yield surface (sps__j2_stress_lanes) */
-    int shear;     /* it has a shear stress: 0 for a fluid, whose body then runs no shear
-                      formulation (sps__no_shear) */
+    sps__yield plastic; /* the yield surface its stress is returned onto, if any */
+    int shear;     /* it has a shear stress: 0 for a fluid */
+    /* the stabilisation it always runs (a fluid: sps__no_shear; granular: sps__granular_stress),
+       or NULL: the def's shear formulation */
+    const struct sps__stabilisation* stabilisation;
     /* The Riemann solver's terms (UTVF eqs. 16-20). limiter: the coefficient eta of the
        dissipation limiter beta = min(eta max(-v_ij . e_ij / c0, 0), 1) of the momentum
        equation, or 0 for beta = 1 (the reference code's choice for solids); riemann_density:
        the continuity equation's pressure term (p_i - p_j) / (rho0 c0), which the reference
-       code leaves out for solids (DESIGN: facts from the reference implementation). */
-    sps_real limiter;
+       code leaves out for solids (DESIGN: facts from the reference implementation);
+       limiter_per_dim: a further eta per space dimension (granular: 20 d). */
+    sps_real limiter, limiter_per_dim;
     int riemann_density;
+    int mirrored; /* walls act on it through mirror particles (>>walls by mirror particles),
+                     not the solids' penalty */
+    int pressure_of_density; /* p = c0^2 (rho - rho0) at every half drift; 0: p is -tr(sigma)/3 of
+                                its integrated stress (Drucker-Prager) */
 } sps__material_model;
 
 /* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
@@ -1211,11 +1249,15 @@ typedef struct sps__model {
     int stress;   /* the shear stress tau is integrated (stress force, or track_stress) */
     int gradient; /* the velocity gradient L is needed (stress, or a turned rotation) */
     int artificial_stress; /* Gray's artificial stress is computed (OAS) */
-    int plastic;  /* J2 radial return after the Jaumann update; plastic strain and work fields */
+    int plastic;  /* an sps__yield: the return map after the stress update (J2's radial return, the
+                     Drucker-Prager cone); plastic strain and work fields */
     int scaled_penalty; /* the GNO penalty scaled per pair by the particles' return factors */
     int limited;  /* the Riemann dissipation limited (material limiter > 0: fluids) */
     int viscous;  /* a Newtonian viscous force (a fluid with viscosity > 0) */
-    int riemann_density; /* the continuity equation's Riemann pressure term (fluids) */
+    int riemann_density; /* the continuity equation's Riemann pressure term (fluids, granular) */
+    int diffusion; /* the stress diffusion of a Drucker-Prager body (def stress_diffusion > 0) */
+    int mirrored;  /* walls act through mirror particles (the material's choice) */
+    int pressure_of_density; /* the half drift sets p from rho (not for Drucker-Prager) */
     sps_transport transport; /* the transport correction after each sub-step (>>transport) */
     int total_lagrangian; /* reference neighbours and gradients (chapter >>solver: total Lagrangian) */
     sps__passes pass;
@@ -1255,6 +1297,14 @@ typedef struct sps__body {
     sps_real* driven_work; /* driven: work done by its prescribed motion through each particle */
     sps_real *plastic_strain, *plastic_work, *return_factor; /* J2 bodies */
     sps_real* transport;   /* TVF, UTVF: SPS__TRANSPORT_VALUES per particle (>>transport) */
+    sps_real* diffusion;   /* Drucker-Prager with stress diffusion: its rate (6 per particle) */
+    sps_real* next_pressure; /* Drucker-Prager: the pressure of the stress update (sps__finish) */
+    sps__yield_cone cone;  /* Drucker-Prager: the yield cone */
+    sps_real limiter_eta;  /* eta of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
+    sps_real diffusion_rate; /* 2 zeta h c0 of the stress diffusion */
+    sps_real geostatic[6]; /* -rho0 [g^ g^ + K0 (I - g^ g^)] (g^ = g/|g|): the geostatic stress
+                              difference of a pair is this times g . x_ij, which the stress
+                              diffusion leaves alone */
     sps_real transport_alpha; /* alpha of UTVF eq. 30 */
     sps_real *tl_correction, *tl_deformation, *tl_stress; /* total-Lagrangian bodies: B_i, F_i, P_i B_i */
     sps_real* tl_plastic; /* total-Lagrangian J2 bodies: C_p^-1 - I (sps__tl_j2) */
@@ -1390,11 +1440,13 @@ typedef enum {
     SPS__NEED_STRESS,      /* a body integrates the shear stress (model.stress) */
     SPS__NEED_MEAN_TURN,   /* a body turns its increments by the mean rotation */
     SPS__NEED_ARTIFICIAL,  /* a body has Gray's artificial stress (OAS) */
-    SPS__NEED_PLASTIC,     /* a body's material is plastic (J2) */
+    SPS__NEED_PLASTIC,     /* a body's material is plastic (J2, Drucker-Prager) */
     SPS__NEED_SCALED_PENALTY, /* a plastic body's GNO penalty is scaled by its return factors */
     SPS__NEED_CONSTRAINTS, /* allocated by the first sps_body_constrain_box */
     SPS__NEED_DRIVEN,      /* a body whose prescribed motion does work (sps__body.driven) */
     SPS__NEED_TRANSPORT,   /* a body with a transport correction (TVF, UTVF) */
+    SPS__NEED_DIFFUSION,   /* a Drucker-Prager body with stress diffusion */
+    SPS__NEED_GRANULAR,    /* a Drucker-Prager body */
     SPS__NEED_TOTAL_LAGRANGIAN, /* a total-Lagrangian body */
     SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC /* a total-Lagrangian J2 body */
 } sps__need;
@@ -1439,10 +1491,16 @@ static const sps__field_info sps__fields[] = {
     /* carried: the next kick reads it (the per-particle half-step rotation) */
     {"velocity_gradient", "velocity gradient", 1, SPS__BOFF(grad), 0, 9, 0, SPS__NEED_GRADIENT, SPS__CARRIED},
     {"prescribed_work", "prescribed work", 1, SPS__BOFF(driven_work), 0, 1, 0, SPS__NEED_DRIVEN, SPS__CARRIED},
+    /* J2: the equivalent plastic strain alpha; Drucker-Prager: the accumulated deviatoric plastic strain */
     {"plastic_strain", "plastic strain", 1, SPS__BOFF(plastic_strain), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
     {"plastic_work", "plastic work", 1, SPS__BOFF(plastic_work), 0, 1, 0, SPS__NEED_PLASTIC, SPS__CARRIED | SPS__CHECKED | SPS__GOOD},
     /* rebuilt at every sub-step (>>transport) */
     {"transport", "transport correction", 1, SPS__BOFF(transport), 0, SPS__TRANSPORT_VALUES, 0, SPS__NEED_TRANSPORT, 0},
+    /* written by the pressure pass, read by the continuity pass of the same sub-step */
+    {"stress_diffusion", "stress diffusion", 1, SPS__BOFF(diffusion), 0, 6, 0, SPS__NEED_DIFFUSION, 0},
+    /* Drucker-Prager: -tr(sigma)/3 of the stress update, written by the continuity pass (whose
+       Riemann term reads the neighbours' p) and moved into p when the sub-step finishes */
+    {"next_pressure", "next pressure", 1, SPS__BOFF(next_pressure), 0, 1, 0, SPS__NEED_GRANULAR, 0},
     /* written by the continuity pass, read by the penalty pass of the same sub-step */
     {"return_factor", "return factor", 1, SPS__BOFF(return_factor), 0, 1, 0, SPS__NEED_SCALED_PENALTY, 0},
     /* total Lagrangian: B_i = -L_i^-1 (TL eq. 15) of the reference configuration, F_i (TL eq. 17)
@@ -1650,6 +1708,7 @@ SPSDEF sps_body_def sps_default_body_def(void) {
     d.oas_exponent = 4;
     d.contact = 1;
     d.hourglass_alpha = 50; /* TL section 4.2, Table 1 */
+    d.stress_diffusion = SPS_R(0.1); /* Feng et al. 2021, as UTVF section 3.1.3 */
     d.internal_cookie = SPS__COOKIE;
     return d;
 }
@@ -1791,6 +1850,128 @@ static sps_real sps__fluid_energy_density(const sps__material_constants* c, sps_
     (void)tau_tau;
     return p * p / (2 * c->K);
 }
+/* >>material: Drucker-Prager (granular media; UTVF sections 2.3, 3.1.3)
+
+   Elastic-perfectly plastic: the linear elastic law (c0 = sqrt(K/rho0), as the reference code),
+   the yield cone f = alpha_phi I1 + sqrt(J2) - k_c (UTVF eq. 11) and the plastic potential
+   g = alpha_psi I1 + sqrt(J2) (eq. 12), with I1 = tr(sigma) and J2 = s:s/2 of the deviator
+   s (eq. 14 gives the constants). The whole stress sigma = tau - p I is integrated (tau the
+   deviator, 3 x 3 also in 2D: plane strain has sigma_zz), so the pressure is -I1/3 of the
+   stress, not the equation of state. One particle's update is sps__drucker_prager_update; the
+   lane loop that calls it is sps__granular_stress_lanes (chapter >>solver), and the stress
+   diffusion's pair sums are in the pressure pass (sps__pressure). */
+
+/* The cone of a def: alpha_phi, k_c, alpha_psi (UTVF eq. 14) and K0 = 1 - sin(phi), the
+   at-rest ratio of horizontal to vertical stress (Jaky) of the geostatic stress. */
+static sps__yield_cone sps__yield_cone_of(const sps_material_def* m) {
+    const sps_real deg = SPS_R(3.14159265358979323846) / 180, phi = m->friction_angle * deg, psi = m->dilatancy_angle * deg;
+    const sps_real tan_phi = SPS__SIN(phi) / SPS__COS(phi), tan_psi = SPS__SIN(psi) / SPS__COS(psi);
+    const sps_real root_phi = SPS__SQRT(9 + 12 * tan_phi * tan_phi);
+    sps__yield_cone c;
+    c.alpha_phi = tan_phi / root_phi;
+    c.k_c = 3 * m->cohesion / root_phi;
+    c.alpha_psi = tan_psi / SPS__SQRT(9 + 12 * tan_psi * tan_psi);
+    c.k0 = 1 - SPS__SIN(phi);
+    return c;
+}
+static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
+    int broken = 0;
+    sps__elastic_check(m, msg, msg_size, &broken);
+    SPS__CHECK(m->cohesion >= 0 && sps__finite(m->cohesion), "material.cohesion = %g, allowed finite >= 0 Pa for Drucker-Prager",
+               (double)m->cohesion);
+    SPS__CHECK(m->friction_angle >= 0 && m->friction_angle < 90, "material.friction_angle = %g, allowed [0, 90) degrees for Drucker-Prager",
+               (double)m->friction_angle);
+    SPS__CHECK(m->dilatancy_angle >= 0 && m->dilatancy_angle <= m->friction_angle,
+               "material.dilatancy_angle = %g, allowed [0, friction_angle = %g] degrees for Drucker-Prager", (double)m->dilatancy_angle,
+               (double)m->friction_angle);
+    *broken_out += broken;
+}
+
+/* A Drucker-Prager body's constants: its cone, the stress diffusion's 2 zeta h c0 and the
+   geostatic difference tensor (sps__body.geostatic). */
+static void sps__granular_setup(const sps_world* w, sps__body* b) {
+    const sps_real* g = w->def.gravity;
+    const sps_real g_norm = SPS__SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    static const int row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+    int a;
+    b->cone = sps__yield_cone_of(&b->def.material);
+    b->diffusion_rate = 2 * b->def.stress_diffusion * w->h * b->mat.c0;
+    for (a = 0; a < 6; ++a) {
+        const sps_real vertical = g_norm > 0 ? g[row[a]] * g[col[a]] / (g_norm * g_norm) : 0;
+        b->geostatic[a] = g_norm > 0 ? -b->rho0 * (vertical + b->cone.k0 * ((row[a] == col[a]) - vertical)) : 0;
+    }
+}
+
+/* A symmetric 3 x 3 tensor's entries xx xy xz yy yz zz, and its double contraction. */
+enum { SPS__XX, SPS__XY, SPS__XZ, SPS__YY, SPS__YZ, SPS__ZZ };
+SPS__INLINE sps_real sps__sym_contract(const sps_real a[6], const sps_real b[6]) {
+    return a[0] * b[0] + a[3] * b[3] + a[5] * b[5] + 2 * (a[1] * b[1] + a[2] * b[2] + a[4] * b[4]);
+}
+
+/* The return mapping of a trial stress sig (xx xy xz yy yz zz) onto the cone, as the reference
+   code's: first the tension cut-off (a mean stress beyond the apex I1 = k_c / alpha_phi is
+   moved back to it), then the deviator scaled by r = (k_c - alpha_phi I1) / sqrt(J2) where it
+   exceeds the cone. Branch-free (selects), for the lane loops. */
+SPS__INLINE void sps__drucker_prager_return(sps_real sig[6], const sps__yield_cone* c) {
+    const sps_real apex = c->alpha_phi > 0 ? c->k_c / c->alpha_phi : (sps_real)INFINITY;
+    sps_real i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ], s[6], j2, strength, r;
+    int a;
+    if (i1 > apex) i1 = apex;
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) s[a] = sig[a] - (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? i1 / 3 : 0);
+    j2 = SPS_R(0.5) * sps__sym_contract(s, s);
+    strength = c->k_c - c->alpha_phi * i1; /* >= 0 after the cut-off */
+    r = j2 > strength * strength ? strength / SPS__SQRT(j2) : 1;
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) sig[a] = r * s[a] + (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? i1 / 3 : 0);
+}
+
+/* One particle's stress update over dt (UTVF eqs. 10, 13, 15, then the return mapping): from
+   its stress sig (xx xy xz yy yz zz) and velocity gradient L (9 entries, row-major, zero
+   outside dim), the Jaumann rate 2G dev(D) + K tr(D) I + W sig - sig W, less the plastic
+   flow gamma' (3 K alpha_psi I + G s / sqrt(J2)) where the stress is on or beyond the cone
+   (gamma' of eq. 13, kept >= 0: an unloading particle does not flow; the reference code
+   lets it go negative), plus the stress diffusion rate (NULL: none), then
+   sps__drucker_prager_return. *elastic_trial gets the stress the elastic rate alone would give:
+   the difference is the plastic part of the step. */
+SPS__INLINE void sps__drucker_prager_update(sps_real sig[6], const sps_real* L, int ls, const sps_real* diffusion, int ds,
+                                            const sps__yield_cone* c, sps_real G, sps_real K, sps_real dt, sps_real elastic_trial[6]) {
+    static const int row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+    static const int sym[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+    sps_real D[6], S[9], tr_d, i1, s[6], j2, f, gamma_rate = 0, rate[6];
+    int a, m;
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) D[a] = SPS_R(0.5) * (L[(3 * row[a] + col[a]) * ls] + L[(3 * col[a] + row[a]) * ls]);
+    tr_d = D[SPS__XX] + D[SPS__YY] + D[SPS__ZZ];
+    i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ];
+    SPS__UNROLL
+    for (a = 0; a < 9; ++a) S[a] = sig[sym[a]];
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) s[a] = sig[a] - (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? i1 / 3 : 0);
+    j2 = SPS_R(0.5) * sps__sym_contract(s, s);
+    f = c->alpha_phi * i1 + SPS__SQRT(j2) - c->k_c;
+    if (f >= 0 && j2 > 0) { /* eq. 13 */
+        const sps_real root = SPS__SQRT(j2);
+        gamma_rate = (3 * c->alpha_phi * K * tr_d + G / root * sps__sym_contract(s, D)) / (9 * c->alpha_phi * K * c->alpha_psi + G);
+        if (!(gamma_rate > 0)) gamma_rate = 0;
+    }
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) {
+        const int diagonal = a == SPS__XX || a == SPS__YY || a == SPS__ZZ;
+        sps_real spin = 0; /* (W sig - sig W)_ab, W = (L - L^T)/2 */
+        SPS__UNROLL
+        for (m = 0; m < 3; ++m)
+            spin += SPS_R(0.5) * (L[(3 * row[a] + m) * ls] - L[(3 * m + row[a]) * ls]) * S[3 * m + col[a]] -
+                    S[3 * row[a] + m] * SPS_R(0.5) * (L[(3 * m + col[a]) * ls] - L[(3 * col[a] + m) * ls]);
+        rate[a] = 2 * G * (D[a] - (diagonal ? tr_d / 3 : 0)) + (diagonal ? K * tr_d : 0) + spin + (diffusion ? diffusion[a * ds] : 0);
+        elastic_trial[a] = sig[a] + dt * rate[a];
+        if (gamma_rate > 0)
+            rate[a] -= gamma_rate * ((diagonal ? 3 * K * c->alpha_psi : 0) + G * s[a] / SPS__SQRT(j2));
+        sig[a] += dt * rate[a];
+    }
+    sps__drucker_prager_return(sig, c);
+}
+
 /* >>material: Saint Venant-Kirchhoff (total Lagrangian; TL eqs. 18-20) */
 /* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
 
@@ -1805,20 +1986,6 @@ static sps__material_constants sps__hyperelastic_constants(const sps_material_de
 }
 
 /* >>model (continued): the rows */
-
-static const sps__material_model sps__materials[] = {
-    /* kind               name       check               constants               energy density            kinematic plastic shear limiter riemann density */
-    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density, 0, 0, 1, 0, 0},
-    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density, 1, 0, 1, 0, 0},
-    /* the stored energy of a J2 body is its elastic part; the return map's share is plastic work */
-    {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density, 0, 1, 1, 0, 0},
-    /* eta = 3 for fluids (UTVF section 3.1.1, after Zhang et al. 2017) */
-    {SPS_MATERIAL_FLUID, "fluid", sps__fluid_check, sps__fluid_constants, sps__fluid_energy_density, 0, 0, 0, 3, 1},
-    /* total-Lagrangian bodies only: their stored energy comes from F (sps__tl_energy) */
-    {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", sps__elastic_check, sps__hyperelastic_constants, NULL, 0, 0, 1, 0, 0},
-    {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", sps__elastic_check, sps__hyperelastic_constants, NULL, 0, 0, 1, 0, 0},
-};
-#define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
 /* ---- stabilisations ---- */
 static const sps__stabilisation sps__stabilisations[] = {
@@ -1840,6 +2007,34 @@ static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid
    (sps__tl_reference); the plate ran at 0.8 too, and the instabilities of D1-D4 come at the
    same strain at 0.05 as at 0.4 (bench/VALIDATION.md), so they are not the time step's. */
 static const sps__stabilisation sps__tl_hourglass = {SPS_SHEAR_OG, "TL hourglass", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
+/* A Drucker-Prager body's stabilisation: the divergence of its stress (UTVF eq. 25) and the
+   stress diffusion (its def's stress_diffusion), no hourglass penalty (the reference code's). */
+static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular stress", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
+
+static const sps__material_model sps__materials[] = {
+    /* kind, name, check, constants, energy density,
+       kinematic, plastic, shear, fixed stabilisation, limiter eta + per dim, Riemann density, mirrored walls, pressure of density */
+    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density,
+     0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
+    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density,
+     1, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
+    /* the stored energy of a J2 body is its elastic part; the return map's share is plastic work */
+    {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density,
+     0, SPS__YIELD_VON_MISES, 1, NULL, 0, 0, 0, 0, 1},
+    /* eta = 3 for fluids (UTVF section 3.1.1, after Zhang et al. 2017) */
+    {SPS_MATERIAL_FLUID, "fluid", sps__fluid_check, sps__fluid_constants, sps__fluid_energy_density,
+     0, SPS__YIELD_NONE, 0, &sps__no_shear, 3, 0, 1, 1, 1},
+    /* total-Lagrangian bodies only: their stored energy comes from F (sps__tl_energy) */
+    {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", sps__elastic_check, sps__hyperelastic_constants, NULL,
+     0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
+    {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", sps__elastic_check, sps__hyperelastic_constants, NULL,
+     0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
+    /* eta = 20 d for granular bodies (UTVF section 3.1.3, after Zhang et al. 2024); the Riemann
+       density term and the mirror walls as the reference code's (dummy wall particles) */
+    {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", sps__drucker_prager_check, sps__elastic_constants, sps__elastic_energy_density,
+     0, SPS__YIELD_DRUCKER_PRAGER, 1, &sps__granular_stress, 0, 20, 1, 1, 0},
+};
+#define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
 static const sps__material_model* sps__material_of(sps_material_kind kind) {
     int k;
@@ -1906,8 +2101,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
-    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid), 2 (J2), 3 (fluid), 4 (Saint Venant-Kirchhoff) or 5 "
-               "(Neo-Hookean)", (int)def->material.kind);
+    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid), 2 (J2), 3 (fluid), 4 (Saint Venant-Kirchhoff), 5 "
+               "(Neo-Hookean) or 6 (Drucker-Prager)", (int)def->material.kind);
     if (material) material->check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN || def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN,
@@ -1916,6 +2111,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                (double)def->hourglass_alpha);
     SPS__CHECK(def->transport == SPS_TRANSPORT_NONE || def->transport == SPS_TRANSPORT_TVF || def->transport == SPS_TRANSPORT_UTVF,
                "transport = %d, allowed 0 (none), 1 (TVF) or 2 (UTVF)", (int)def->transport);
+    SPS__CHECK(def->stress_diffusion >= 0 && def->stress_diffusion <= 1, "stress_diffusion = %g, allowed [0, 1] (0: off)",
+               (double)def->stress_diffusion);
     SPS__CHECK(def->transport_coefficient >= 0 && def->transport_coefficient <= 1,
                "transport_coefficient = %g, allowed 0 (default 0.2) or (0, 1]", (double)def->transport_coefficient);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
@@ -1940,7 +2137,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     sps__model m;
     memset(&m, 0, sizeof m);
     m.material = sps__material_of(def->material.kind);
-    m.stabilisation = m.material->shear ? sps__stabilisation_of(def->shear) : &sps__no_shear;
+    m.stabilisation = m.material->stabilisation ? m.material->stabilisation : sps__stabilisation_of(def->shear);
     m.paired = m.stabilisation->rotated && def->rotation == SPS_ROTATION_PAIR;
     m.turn = !m.stabilisation->rotated || m.paired ? SPS__TURN_NONE
              : def->rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
@@ -1948,10 +2145,13 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.gradient = m.turn != SPS__TURN_NONE || m.stress;
     m.artificial_stress = m.stabilisation->artificial_stress;
     m.plastic = m.material->plastic; /* a plastic body is of the OG family (combination rules): m.stress is set */
-    m.scaled_penalty = m.plastic && m.stabilisation->penalty;
+    m.scaled_penalty = m.plastic == SPS__YIELD_VON_MISES && m.stabilisation->penalty;
+    m.diffusion = m.plastic == SPS__YIELD_DRUCKER_PRAGER && def->stress_diffusion > 0;
+    m.mirrored = m.material->mirrored;
+    m.pressure_of_density = m.material->pressure_of_density;
     if (!m.material->shear) m.stress = 0; /* nothing to track (track_stress is moot) */
     if (!m.material->shear) m.gradient = 1; /* a fluid's density rate is -rho tr L (FLUIDS) */
-    m.limited = m.material->limiter > 0;
+    m.limited = m.material->limiter > 0 || m.material->limiter_per_dim > 0;
     m.viscous = !m.material->shear && def->material.viscosity > 0;
     m.riemann_density = m.material->riemann_density;
     m.transport = def->transport;
@@ -2224,6 +2424,8 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->oas_n = def->oas_exponent;
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->transport_alpha = def->transport_coefficient > 0 ? def->transport_coefficient : SPS_R(0.2); /* UTVF section 3.2 */
+    b->limiter_eta = b->model.material->limiter + b->model.material->limiter_per_dim * w->dim;
+    if (b->model.plastic == SPS__YIELD_DRUCKER_PRAGER) sps__granular_setup(w, b);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
     b->driven = b->model.material->kinematic && sps__watchdog_on(w);
 
@@ -2433,6 +2635,52 @@ SPSDEF sps_result sps_body_set_pressure(sps_world* w, sps_body b, sps_pressure_f
         w->rho[i] = body->rho0 + p / (body->mat.c0 * body->mat.c0);
         w->vol[i] = w->mass[i] / w->rho[i];
         sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, 0, p) - before, 0);
+    }
+    return SPS_OK;
+}
+
+static sps_result sps__ready_to_step(sps_world* w);
+SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_real surface_height, sps_real k0) {
+    const sps_real* g = w ? w->def.gravity : NULL;
+    const sps_real g_norm = g ? SPS__SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]) : 0;
+    sps__body* body;
+    sps_result r;
+    int k, i, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, "sps_body_set_geostatic_stress")) < 0) return SPS_ERR_INVALID_ARG;
+    body = &w->bodies[k];
+    if (body->model.plastic != SPS__YIELD_DRUCKER_PRAGER) {
+        sps__set_error(w, 0, "sps_body_set_geostatic_stress: body '%s' has material.kind = %d, allowed 6 (Drucker-Prager)", body->name,
+                       (int)body->def.material.kind);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (!(g_norm > 0) || !sps__finite(g_norm)) {
+        sps__set_error(w, 0, "sps_body_set_geostatic_stress: world gravity = (%g, %g, %g) m/s^2, allowed finite and not zero", (double)g[0],
+                       (double)g[1], (double)g[2]);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (!sps__finite(surface_height) || !(k0 >= 0 && k0 <= 10)) {
+        sps__set_error(w, 0, "sps_body_set_geostatic_stress: surface_height = %g m, allowed finite; k0 = %g, allowed [0, 10] (0: 1 - sin(phi))",
+                       (double)surface_height, (double)k0);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if ((r = sps__ready_to_step(w)) != SPS_OK) return r;
+    body = &w->bodies[k]; /* the sort by body may have moved its range */
+    if (k0 == 0) k0 = body->cone.k0;
+    for (i = body->begin; i < body->end; ++i) {
+        sps_real height = 0, before, sigma[6], p;
+        sps_real* tau = body->tau + (size_t)6 * (i - body->begin);
+        static const int row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
+        for (a = 0; a < w->dim; ++a) height -= g[a] / g_norm * w->ref[a][i];
+        for (a = 0; a < 6; ++a) { /* sigma_h I + (sigma_v - sigma_h) g^ g^, sigma_h = k0 sigma_v */
+            const sps_real vertical_stress = -body->rho0 * g_norm * (surface_height > height ? surface_height - height : 0);
+            sigma[a] = k0 * vertical_stress * (row[a] == col[a]) + (1 - k0) * vertical_stress * g[row[a]] * g[col[a]] / (g_norm * g_norm);
+        }
+        p = -(sigma[SPS__XX] + sigma[SPS__YY] + sigma[SPS__ZZ]) / 3;
+        before = w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), w->p[i]);
+        for (a = 0; a < 6; ++a) tau[a] = sigma[a] + (row[a] == col[a] ? p : 0);
+        w->p[i] = p;
+        sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), p) - before, 0);
     }
     return SPS_OK;
 }
@@ -3381,7 +3629,8 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
            (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
            (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
            (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven) ||
-           (need == SPS__NEED_TRANSPORT && m->transport != SPS_TRANSPORT_NONE) ||
+           (need == SPS__NEED_TRANSPORT && m->transport != SPS_TRANSPORT_NONE) || (need == SPS__NEED_DIFFUSION && m->diffusion) ||
+           (need == SPS__NEED_GRANULAR && m->plastic == SPS__YIELD_DRUCKER_PRAGER) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic);
 }
@@ -3665,19 +3914,23 @@ SPS__INLINE sps_real sps__riemann_limiter(sps_real u, sps_real eta_c0) {
    literals at every call so each variant's loop is branch-free. Each lane sums its own
    particle's neighbours in list order, so the result does not depend on the vector width. */
 SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                               const int stress, const int art, const int paired, const int limited, const int viscous) {
+                               const int stress, const int art, const int paired, const int limited, const int viscous,
+                               const int diffusion) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real z = b->z_riemann, eta_c0 = limited ? b->model.material->limiter / b->mat.c0 : 0;
-    const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h;
+    const sps_real z = b->z_riemann, eta_c0 = limited ? b->limiter_eta / b->mat.c0 : 0;
+    const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h, soft2 = SPS_R(0.01) * w->h * w->h;
+    const sps_real *gravity = w->def.gravity, *geostatic = b->geostatic;
     const int begin = b->begin; /* the body's own arrays (tau, art) hold particle begin + k at k */
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
-    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES];
-    int k, l;
+    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES];
+    int k, l, a;
     (void)dt; /* every pass kernel takes the sub-step; this pass needs none */
-    for (l = 0; l < SPS__LANES; ++l)
+    for (l = 0; l < SPS__LANES; ++l) {
         acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
+        for (a = 0; a < 6; ++a) spread[a][l] = 0;
+    }
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
             sps_real u, f2, beta = 1;
@@ -3712,6 +3965,18 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                     acc[0][l] += (sxx * ex + sxy * ey) * dwv;
                     acc[1][l] += (sxy * ex + syy * ey) * dwv;
                 }
+                if (diffusion) { /* (sigma_i - sigma_j - geostatic difference) r dW/(r^2 + 0.01 h^2) V_j */
+                    const sps_real weight = rij * dwv / (rij * rij + soft2);
+                    const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0)), dp_ij = p[i] - p[j];
+                    spread[0][l] += weight * (ti[0] - tj[0] - dp_ij - geostatic[0] * g_x);
+                    spread[1][l] += weight * (ti[1] - tj[1] - geostatic[1] * g_x);
+                    spread[3][l] += weight * (ti[3] - tj[3] - dp_ij - geostatic[3] * g_x);
+                    spread[5][l] += weight * (ti[5] - tj[5] - dp_ij - geostatic[5] * g_x);
+                    if (dim == 3) {
+                        spread[2][l] += weight * (ti[2] - tj[2] - geostatic[2] * g_x);
+                        spread[4][l] += weight * (ti[4] - tj[4] - geostatic[4] * g_x);
+                    }
+                }
             }
             if (art) {
                 const sps_real *ri = b->art + (size_t)3 * (i - begin), *rj = b->art + (size_t)3 * (j - begin);
@@ -3730,20 +3995,25 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
         if (dim == 3) w->acc_p[2][i] = acc[2][l] / w->rho[i];
         if (paired)
             for (k = 0; k < dim; ++k) w->acc_p[k][i] += shear[k][l] / w->mass[i];
+        if (diffusion)
+            for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i - begin) + a] = b->diffusion_rate * spread[a][l];
     }
 }
 
-/* The pressure pass's variants: (stress force, artificial stress, pair forces, limited, viscous). */
-#define SPS__PRESSURE_VARIANTS(X)   \
-    X(plain, 0, 0, 0, 0, 0)         \
-    X(pairs, 0, 0, 1, 0, 0)         \
-    X(stress, 1, 0, 0, 0, 0)        \
-    X(stress_pairs, 1, 0, 1, 0, 0)  \
-    X(oas, 1, 1, 0, 0, 0)           \
-    X(fluid, 0, 0, 0, 1, 0)         \
-    X(fluid_viscous, 0, 0, 0, 1, 1)
-#define SPS__PRESSURE_INSTANCES(variant, stress, art, paired, limited, viscous) \
-    SPS__INSTANCES(pressure, variant, stress, art, paired, limited, viscous)
+/* The pressure pass's variants: (stress force, artificial stress, pair forces, limited, viscous,
+   stress diffusion). */
+#define SPS__PRESSURE_VARIANTS(X)               \
+    X(plain, 0, 0, 0, 0, 0, 0)                  \
+    X(pairs, 0, 0, 1, 0, 0, 0)                  \
+    X(stress, 1, 0, 0, 0, 0, 0)                 \
+    X(stress_pairs, 1, 0, 1, 0, 0, 0)           \
+    X(oas, 1, 1, 0, 0, 0, 0)                    \
+    X(fluid, 0, 0, 0, 1, 0, 0)                  \
+    X(fluid_viscous, 0, 0, 0, 1, 1, 0)          \
+    X(granular, 1, 0, 0, 1, 0, 0)               \
+    X(granular_diffusion, 1, 0, 0, 1, 0, 1)
+#define SPS__PRESSURE_INSTANCES(variant, stress, art, paired, limited, viscous, diffusion) \
+    SPS__INSTANCES(pressure, variant, stress, art, paired, limited, viscous, diffusion)
 SPS__PRESSURE_VARIANTS(SPS__PRESSURE_INSTANCES)
 
 /* Gray et al.'s artificial stress R_i (2D): in the principal frame of sigma = -p I + tau each
@@ -3955,6 +4225,62 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
     }
 }
 
+/* The Drucker-Prager update (sps__drucker_prager_update) of granular body b's lane group q from
+   the lanes' velocity gradients L and the stress diffusion of the pressure pass (diffused, a
+   literal): sigma = tau - p I, its deviator back into tau and -tr(sigma)/3 into next_pressure
+   (p itself is read by the neighbours' continuity sums of this pass), the accumulated
+   deviatoric plastic strain, grown by sqrt(2/3) |dev(t - sigma)| / (2G) with t the elastic trial
+   (the plastic strain increment's deviator), and the plastic work, grown by the particle's
+   volume times the elastic energy density the plastic flow removed, e(t) - e(sigma) with
+   e = s:s/(4G) + p^2/(2K). Padding lanes compute and do not store. */
+SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
+                                            sps_real L[9][SPS__LANES], const int diffused) {
+    const size_t k0 = (size_t)(q.i0 - b->begin);
+    sps_real* SPS__RESTRICT tau = b->tau + 6 * k0;
+    sps_real* SPS__RESTRICT strain = b->plastic_strain + k0;
+    sps_real* SPS__RESTRICT work = b->plastic_work + k0;
+    sps_real* SPS__RESTRICT next_p = b->next_pressure + k0;
+    const sps_real* SPS__RESTRICT spread = diffused ? b->diffusion + 6 * k0 : NULL;
+    const sps_real *SPS__RESTRICT p = w->p + q.i0, *SPS__RESTRICT mass = w->mass + q.i0, *SPS__RESTRICT rho = w->rho + q.i0;
+    const sps_real G = b->mat.G, K = b->mat.K, sqrt_2_3 = SPS_R(0.81649658092772603273);
+    const sps__yield_cone cone = b->cone;
+    const int end = b->end;
+    int l, a;
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l) {
+        const int mine = q.i0 + l < end;
+        const sps_real rho_l = mine ? rho[l] : 1; /* padding lanes: no 1/0 */
+        sps_real sig[6], trial[6], gradient[9], rate[6], flow[6], i1, flow_trace, p_next, p_trial, s_trial[6], s_next[6];
+        SPS__UNROLL
+        for (a = 0; a < 9; ++a) gradient[a] = a / 3 < dim && a % 3 < dim ? L[a][l] : 0;
+        SPS__UNROLL
+        for (a = 0; a < 6; ++a) {
+            sig[a] = tau[6 * l + a] - (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? p[l] : 0);
+            rate[a] = diffused ? spread[6 * l + a] : 0;
+        }
+        sps__drucker_prager_update(sig, gradient, 1, rate, 1, &cone, G, K, dt, trial);
+        i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ];
+        p_next = -i1 / 3;
+        p_trial = -(trial[SPS__XX] + trial[SPS__YY] + trial[SPS__ZZ]) / 3;
+        flow_trace = p_next - p_trial; /* tr(t - sigma)/3 */
+        SPS__UNROLL
+        for (a = 0; a < 6; ++a) {
+            const int diagonal = a == SPS__XX || a == SPS__YY || a == SPS__ZZ;
+            s_next[a] = sig[a] + (diagonal ? p_next : 0);
+            s_trial[a] = trial[a] + (diagonal ? p_trial : 0);
+            flow[a] = trial[a] - sig[a] - (diagonal ? flow_trace : 0);
+        }
+        if (mine) {
+            SPS__UNROLL
+            for (a = 0; a < 6; ++a) tau[6 * l + a] = s_next[a];
+            next_p[l] = p_next;
+            strain[l] += sqrt_2_3 * SPS__SQRT(sps__sym_contract(flow, flow)) / (2 * G);
+            work[l] += mass[l] / rho_l * (sps__sym_contract(s_trial, s_trial) / (4 * G) + p_trial * p_trial / (2 * K) -
+                                          sps__sym_contract(s_next, s_next) / (4 * G) - p_next * p_next / (2 * K));
+        }
+    }
+}
+
 /* The Rodrigues matrix of each particle of lane group q from its velocity gradient: from the
    lane arrays L when given (the continuity pass has them at hand; contiguous, so the lanes
    vectorise), else from the body's velocity gradients. Lanes that turned more than 0.01 rad are redone by sin and cos. */
@@ -4090,21 +4416,28 @@ static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall*
     *p = w->p[j] + b->rho0 * gd;
 }
 
-/* Calls visit(w, b, i, image position, velocity, pressure, V_j, user) for every image within 2h
-   of particle i of fluid body b. */
-typedef void (*sps__image_fn)(sps_world* w, const sps__body* b, int i, const sps_real x[3], const sps_real v[3], const sps_real vv[3],
-                              sps_real p, sps_real vol, void* user);
+/* An image: of particle j across wall wl, at x, with velocity v (reflected), vv (no-slip
+   walls: -v_j) and pressure p. */
+typedef struct sps__image {
+    int j;
+    const sps__wall* wall;
+    sps_real x[3], v[3], vv[3], p;
+} sps__image;
+/* Calls visit(w, b, i, image, user) for every image within 2h of particle i of body b (a
+   mirrored body: fluid or granular). */
+typedef void (*sps__image_fn)(sps_world* w, const sps__body* b, int i, const sps__image* image, void* user);
 static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_fn visit, void* user) {
     int k, m;
     for (k = 0; k < w->nwalls; ++k) {
         const sps__wall* wl = &w->walls[k];
         if (!(sps__wall_distance(w, wl, i) < w->support)) continue;
         for (m = -1; m < w->nb_count[i]; ++m) {
-            const int j = m < 0 ? i : sps__neighbor(w, i, m);
-            sps_real x[3], v[3], vv[3], p;
-            if (!(sps__wall_distance(w, wl, j) < w->support)) continue;
-            sps__mirror(w, b, wl, j, x, v, vv, &p);
-            visit(w, b, i, x, v, vv, p, w->vol[j], user);
+            sps__image image;
+            image.j = m < 0 ? i : sps__neighbor(w, i, m);
+            image.wall = wl;
+            if (!(sps__wall_distance(w, wl, image.j) < w->support)) continue;
+            sps__mirror(w, b, wl, image.j, image.x, image.v, image.vv, &image.p);
+            visit(w, b, i, &image, user);
         }
     }
 }
@@ -4124,19 +4457,50 @@ static sps_real sps__image_geometry(const sps_world* w, int i, const sps_real x[
     return sps__dwdr(w, r);
 }
 
-/* The pressure pass's terms (sps__pressure) of one image, added to acc (per unit mass * rho_i). */
-static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_real x[3], const sps_real v[3], const sps_real vv[3],
-                             sps_real p, sps_real vol, void* user) {
+/* The stress of image m of body b: the neighbour's deviator tau_j as it is at a no-slip wall
+   (the image continues the stress field, so the wall takes its shear traction, as the
+   reference code's dummy particles with the particle's own stress), reflected across a slip
+   wall, M tau_j M with M = I - 2 n n (no shear traction). */
+static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, sps_real t[9]) {
+    static const int sym[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+    const sps_real* tj = b->tau + (size_t)6 * (m->j - b->begin);
+    const sps_real* n = m->wall->normal;
+    sps_real M[9], Mt[9];
+    int a, c, k;
+    for (a = 0; a < 9; ++a) t[a] = tj[sym[a]];
+    if (m->wall->slip == SPS_WALL_NO_SLIP) return;
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) M[3 * a + c] = (a == c) - 2 * (a < w->dim ? n[a] : 0) * (c < w->dim ? n[c] : 0);
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c)
+            for (Mt[3 * a + c] = 0, k = 0; k < 3; ++k) Mt[3 * a + c] += M[3 * a + k] * t[3 * k + c];
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c)
+            for (t[3 * a + c] = 0, k = 0; k < 3; ++k) t[3 * a + c] += Mt[3 * a + k] * M[3 * k + c];
+}
+
+/* The pressure pass's terms (sps__pressure) of one image, added to acc (per unit mass * rho_i):
+   the Riemann pressure, the viscous force (a viscous fluid) and the stress divergence (a body
+   with a stress: granular). */
+static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
+    static const int sym[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
     sps_real* acc = (sps_real*)user, e[3], r, u = 0, beta, f2;
-    const sps_real dw = sps__image_geometry(w, i, x, e, &r);
-    int a;
+    const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), vol = w->vol[m->j];
+    int a, c;
     if (dw == 0) return;
-    for (a = 0; a < w->dim; ++a) u += (w->vel[a][i] - v[a]) * e[a];
-    beta = sps__riemann_limiter(u, b->model.material->limiter / b->mat.c0);
-    f2 = (w->p[i] + p - b->z_riemann * beta * u) * dw * vol;
+    for (a = 0; a < w->dim; ++a) u += (w->vel[a][i] - m->v[a]) * e[a];
+    beta = sps__riemann_limiter(u, b->limiter_eta / b->mat.c0);
+    f2 = (w->p[i] + m->p - b->z_riemann * beta * u) * dw * vol;
     for (a = 0; a < w->dim; ++a) {
         acc[a] -= f2 * e[a];
-        if (b->model.viscous) acc[a] += 2 * b->def.material.viscosity * dw * vol / (r + SPS_R(0.01) * w->h) * (w->vel[a][i] - vv[a]);
+        if (b->model.viscous) acc[a] += 2 * b->def.material.viscosity * dw * vol / (r + SPS_R(0.01) * w->h) * (w->vel[a][i] - m->vv[a]);
+    }
+    if (b->model.stress) { /* (tau_i + tau_j') . e dW V_j */
+        const sps_real* ti = b->tau + (size_t)6 * (i - b->begin);
+        sps_real tj[9];
+        sps__image_stress(w, b, m, tj);
+        for (a = 0; a < w->dim; ++a)
+            for (c = 0; c < w->dim; ++c) acc[a] += (ti[sym[3 * a + c]] + tj[3 * a + c]) * e[c] * dw * vol;
     }
 }
 
@@ -4164,16 +4528,18 @@ typedef struct {
     sps_real (*sum)[SPS__LANES];
     int lane;
 } sps__image_sums;
-static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const sps_real x[3], const sps_real v[3],
-                                  const sps_real vv[3], sps_real p, sps_real vol, void* user) {
+/* The velocity gradient of a body with a stress (granular) takes the no-slip image velocity
+   at a no-slip wall (the shear that carries the wall's friction); a fluid's the reflected one
+   (its density rate is tr L, the normal part alone). */
+static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
     const sps__image_sums* s = (const sps__image_sums*)user;
-    (void)vv;
+    const sps_real* v = b->model.stress ? m->vv : m->v;
     sps_real e[3], r, dv[3];
-    const sps_real dw = sps__image_geometry(w, i, x, e, &r), dwv = dw * vol;
+    const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), dwv = dw * w->vol[m->j];
     int a, c;
     if (dw == 0) return;
     for (a = 0; a < 3; ++a) dv[a] = a < w->dim ? w->vel[a][i] - v[a] : 0;
-    s->sum[SPS__DRHO][s->lane] += (w->p[i] - p) / b->z_riemann * dwv;
+    s->sum[SPS__DRHO][s->lane] += (w->p[i] - m->p) / b->z_riemann * dwv;
     for (a = 0; a < w->dim; ++a)
         for (c = 0; c < w->dim; ++c) s->sum[SPS__M00 + 3 * a + c][s->lane] -= dv[a] * dwv * e[c];
     sps__add_moment(&s->sum[SPS__A00][s->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
@@ -4258,10 +4624,12 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
     for (t = 0; t < SPS__NSUM; ++t)
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
     sps__continuity_pairs(w, b, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, eno == SPS__ENO_PARTICLES, riemann, shear_rate, sum);
-    if (riemann && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
+    if (b->model.mirrored && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
     sps__continuity_lanes(w, b, q, dim, gradient, riemann, shear_rate, sum, da, L);
     /* a plastic body is never ENO (combination rules): ENO kernels carry no return map */
-    if (plastic_possible && b->model.scaled_penalty && !b->model.paired) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
+    if (plastic_possible && b->model.plastic == SPS__YIELD_DRUCKER_PRAGER && b->model.diffusion) sps__granular_stress_lanes(w, b, q, dim, dt, L, 1);
+    else if (plastic_possible && b->model.plastic == SPS__YIELD_DRUCKER_PRAGER) sps__granular_stress_lanes(w, b, q, dim, dt, L, 0);
+    else if (plastic_possible && b->model.scaled_penalty && !b->model.paired) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
     else if (plastic_possible && b->model.scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
     else if (plastic_possible && b->model.plastic) sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);
     else if (b->model.stress) sps__stress_lanes(b, q, dim, dt, L);
@@ -4383,17 +4751,17 @@ SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
 /* The pass kernels of a model in the world's mode: each pass's variant table searched for the
    row whose literals are the model's choices (every resolvable model has exactly one). */
 typedef struct sps__variant_row {
-    int key[5];
+    int key[6];
     const sps__group_kernel* modes;
 } sps__variant_row;
-#define SPS__ROW_PRESSURE(variant, a, b, c, d, e) {{a, b, c, d, e}, sps__pressure_##variant},
-#define SPS__ROW_CONTINUITY(variant, a, b, c) {{a, b, c, 0, 0}, sps__continuity_##variant},
-#define SPS__ROW_PENALTY(variant, a, b, c, d) {{a, b, c, d, 0}, sps__penalty_##variant},
+#define SPS__ROW_PRESSURE(variant, a, b, c, d, e, f) {{a, b, c, d, e, f}, sps__pressure_##variant},
+#define SPS__ROW_CONTINUITY(variant, a, b, c) {{a, b, c, 0, 0, 0}, sps__continuity_##variant},
+#define SPS__ROW_PENALTY(variant, a, b, c, d) {{a, b, c, d, 0, 0}, sps__penalty_##variant},
 static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW_PRESSURE)};
 static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
 static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
 
-static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[5], int mode) {
+static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[6], int mode) {
     int r;
     for (r = 0; r < nrows; ++r)
         if (memcmp(rows[r].key, key, sizeof rows[r].key) == 0) return rows[r].modes[mode];
@@ -4406,9 +4774,9 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     const sps__stabilisation* st = m->stabilisation;
     const int mode = sps__mode(w);
     const int eno = !st->eno ? SPS__ENO_NONE : m->paired ? SPS__ENO_PAIRS : SPS__ENO_PARTICLES;
-    const int pressure_key[5] = {st->stress_force, st->artificial_stress, m->paired, m->limited, m->viscous};
-    const int continuity_key[5] = {m->gradient, eno, m->riemann_density, 0, 0};
-    const int penalty_key[5] = {st->projected, m->paired, (int)m->turn, m->scaled_penalty, 0};
+    const int pressure_key[6] = {st->stress_force, st->artificial_stress, m->paired, m->limited, m->viscous, m->diffusion};
+    const int continuity_key[6] = {m->gradient, eno, m->riemann_density, 0, 0, 0};
+    const int penalty_key[6] = {st->projected, m->paired, (int)m->turn, m->scaled_penalty, 0, 0};
     sps__passes p;
     if (m->material->kinematic) {
         memset(&p, 0, sizeof p);
@@ -5167,7 +5535,7 @@ static sps_real sps__contact_energy(const sps_world* w, int i) {
     const sps_real sigma = sps__pair_contact_density(w, i), sigma_wall = sps__wall_contact_density(w, i, 0);
     const sps_real k_pair = w->contact_bodies && w->ct_first[i + 1] > w->ct_first[i]
                             ? sps__contact_stiffness(bi->mat.K, w->bodies[w->body[w->ct_j[w->ct_first[i]]]].mat.K) : 0;
-    const sps_real k_wall = bi->model.material->shear ? bi->mat.K : 0; /* a fluid's wall force is its pressure's */
+    const sps_real k_wall = bi->model.mirrored ? 0 : bi->mat.K; /* a fluid's or granular body's wall force is its mirror particles' */
     return w->vol[i] * (SPS_R(0.5) * k_pair * sigma * sigma + k_wall * sigma_wall * sigma_wall);
 }
 
@@ -5188,7 +5556,7 @@ static void sps__contact_force(sps_world* w, int i) {
             s = -kij * (si + w->sigma[j]) * sps_world_kernel_derivative(w, r) / r * w->vol[j];
             for (a = 0; a < w->dim; ++a) f[a] += s * d[a];
         }
-    for (k = 0; k < w->nwalls && bi->model.material->shear; ++k) { /* a fluid's walls: sps__mirror_force */
+    for (k = 0; k < w->nwalls && !bi->model.mirrored; ++k) { /* fluids' and granular walls: sps__mirror_force */
         const sps__wall* wl = &w->walls[k];
         const sps_real d = sps__wall_distance(w, wl, i);
         sps_real plane, vn = 0;
@@ -5201,7 +5569,7 @@ static void sps__contact_force(sps_world* w, int i) {
         }
     }
     for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += vi_mi * f[a];
-    if (!bi->model.material->shear && w->nwalls > 0) sps__mirror_force(w, bi, i);
+    if (bi->model.mirrored && w->nwalls > 0) sps__mirror_force(w, bi, i);
 }
 
 /* The contact pass of a sub-step (after the pressure pass, before the kick): the contact
@@ -5230,7 +5598,8 @@ static void sps__thread_share(const sps__body* b, int* i0, int* i1) {
 
 /* Step 1 for particles i0 .. i1-1, dim a literal: half-step density, pressure (ENO eq. 4),
    volume and position. restrict and no branch, so the loop vectorises. */
-SPS__INLINE void sps__drift_range(sps_world* w, int i0, int i1, sps_real h, sps_real c2, sps_real rho0, const int dim) {
+SPS__INLINE void sps__drift_range(sps_world* w, int i0, int i1, sps_real h, sps_real c2, sps_real rho0, const int dim,
+                                  const int pressure_of_density) {
     sps_real *SPS__RESTRICT rho = w->rho, *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol;
     sps_real *SPS__RESTRICT px = w->pos[0], *SPS__RESTRICT py = w->pos[1], *SPS__RESTRICT pz = w->pos[2];
     const sps_real *SPS__RESTRICT drho = w->drho, *SPS__RESTRICT mass = w->mass;
@@ -5238,7 +5607,7 @@ SPS__INLINE void sps__drift_range(sps_world* w, int i0, int i1, sps_real h, sps_
     int i;
     for (i = i0; i < i1; ++i) {
         rho[i] += h * drho[i];
-        p[i] = c2 * (rho[i] - rho0);
+        if (pressure_of_density) p[i] = c2 * (rho[i] - rho0);
         vol[i] = mass[i] / rho[i];
         px[i] += h * vx[i];
         py[i] += h * vy[i];
@@ -5254,8 +5623,14 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
         const sps_real c2 = b->mat.c0 * b->mat.c0, rho0 = b->rho0, h = SPS_R(0.5) * dt;
         int i, i0, i1;
         sps__thread_share(b, &i0, &i1);
-        if (w->dim == 2) sps__drift_range(w, i0, i1, h, c2, rho0, 2);
-        else sps__drift_range(w, i0, i1, h, c2, rho0, 3);
+        if (!b->model.pressure_of_density) { /* Drucker-Prager: p comes from the stress update */
+            if (w->dim == 2) sps__drift_range(w, i0, i1, h, c2, rho0, 2, 0);
+            else sps__drift_range(w, i0, i1, h, c2, rho0, 3, 0);
+        } else if (w->dim == 2) {
+            sps__drift_range(w, i0, i1, h, c2, rho0, 2, 1);
+        } else {
+            sps__drift_range(w, i0, i1, h, c2, rho0, 3, 1);
+        }
         if (b->model.artificial_stress) /* after its own particles' pressure */
             for (i = i0; i < i1; ++i) sps__artificial_stress(w, b, i);
     }
@@ -5429,6 +5804,8 @@ static void sps__finish(sps_world* w, sps_real dt) {
         const sps_real* R = b->mean_rotation;
         int i, i0, i1;
         sps__thread_share(b, &i0, &i1);
+        if (b->next_pressure) /* Drucker-Prager: the stress update's pressure (sps__granular_stress_lanes) */
+            for (i = i0; i < i1; ++i) w->p[i] = b->next_pressure[i - b->begin];
         for (i = i0; i < i1; ++i) {
             int a, c;
             w->rho[i] += SPS_R(0.5) * dt * w->drho[i];
