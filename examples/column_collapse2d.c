@@ -1,0 +1,130 @@
+/* column_collapse2d.c - the collapse of a cohesionless granular column (benchmark C4, UTVF 5.1).
+
+   A column L = 0.2 m (or 0.1 m, --length) wide and H = 0.1 m high of Drucker-Prager soil
+   (rho0 = 2040, E = 5.84 MPa, nu = 0.3, c = 0, phi = 21.9 degrees, psi = 0: Nguyen et al. 2017's
+   aluminium rods) stands at the left wall of a tank 0.5 m x 0.15 m with no-slip walls, is
+   released at t = 0 from zero stress under g = 9.8 and spreads to rest. dp = 0.002 (5000
+   particles), stress diffusion on and no transport correction, as the reference code's case.
+   We print the mechanical energy (kinetic + gravity potential, from the floor) next to the
+   reference code's (19.992 J/m at the start, 13.97 J/m near 0.5 s, 13.79 J/m at 0.8 s), and the
+   final runout (the toe: rightmost particle + dp/2) and the final height at the left wall
+   against the experiments' scaling for 2D columns of aspect ratio a = H/L < 1.8 (Lube et al.
+   2005): runout (L_f - L)/L = 1.2 a, and a truncated column that keeps its height H at the wall
+   for a < 1.15 (the figures of UTVF Figs. 15-16 are pictures we cannot read numbers from).
+
+   Build: make examples     Run: ./build/column_collapse2d (--length 0.1)
+   Expect: the energy within a few % of the reference code's, the toe near 0.32 m (L = 0.2). */
+#include "common.h"
+
+#define TANK_LENGTH 0.5
+#define TANK_HEIGHT 0.15
+#define COLUMN_HEIGHT 0.1
+#define G_ACC 9.8
+
+typedef struct {
+    output_plan output;
+    double wall0, t_end, dp, energy_half, energy_end;
+} run_state;
+
+static double mechanical_energy(const sps_diagnostics* d) { return (double)(d->kinetic_energy + d->potential_energy); }
+
+/* The toe (rightmost particle + dp/2) and the height at the left wall (highest particle within
+   2 dp of it, + dp/2). */
+static void profile(const sps_world* w, double dp, double* toe, double* wall_height) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    int i, n = sps_world_particle_count(w);
+    *toe = *wall_height = 0;
+    for (i = 0; i < n; ++i) {
+        if (x[i] + 0.5 * dp > *toe) *toe = x[i] + 0.5 * dp;
+        if (x[i] < 2 * dp && y[i] + 0.5 * dp > *wall_height) *wall_height = y[i] + 0.5 * dp;
+    }
+}
+
+/* At every CSV row: the energies at 0.5 s (the last row at or before it) and at the end. */
+static int on_step(sps_world* w, void* user) {
+    run_state* s = (run_state*)user;
+    sps_diagnostics d;
+    const double t = sps_world_time(w);
+    if (output_tick(w, &s->output, "", &d)) {
+        if (t <= 0.5 + 1e-9) s->energy_half = mechanical_energy(&d);
+        s->energy_end = mechanical_energy(&d);
+    }
+    progress(t, s->t_end, s->wall0, 0);
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 0.8, .vtk_every = 0.05, .csv_every = 0.005, .E = 5.84e6, .nu = 0.3,
+                        .rho0 = 2040, .out = "out/column_collapse2d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
+    double dp = 0.002, length = 0.2, cohesion = 0, phi = 21.9, diffusion = 0.1;
+    opt_spec opts[] = {
+        {"length", OPT_REAL, &length, "column length L [m] (0.2 and 0.1 in the paper; height 0.1 m)", 0.02, 0.45, NULL},
+        {"dp", OPT_REAL, &dp, "particle spacing [m]", 5e-4, 0.02, NULL},
+        {"cohesion", OPT_REAL, &cohesion, "cohesion c [Pa]", 0, 1e9, NULL},
+        {"phi", OPT_REAL, &phi, "friction angle [degrees]", 0, 89, NULL},
+        {"diffusion", OPT_REAL, &diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL},
+        COMMON_OPTION_SPECS(c),
+    };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_body soil, all = {0};
+    sps_diagnostics d0, d;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {0, COLUMN_HEIGHT, 0}, tank_lo[3] = {0, 0, 0}, tank_hi[3] = {TANK_LENGTH, TANK_HEIGHT, 0};
+    run_state s;
+    double wall, toe, wall_height, a, toe_expected;
+    sps_real c0;
+
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, "2D granular column collapse (C4, UTVF 5.1): Drucker-Prager soil released in a tank", opts,
+              (int)(sizeof opts / sizeof *opts));
+    apply_common(&c, &wd, &bd);
+    memset(&s, 0, sizeof s);
+    hi[0] = (sps_real)length;
+    wd.dim = 2;
+    wd.dp = (sps_real)dp;
+    wd.gravity[1] = (sps_real)-G_ACC;
+    bd.name = "soil";
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    bd.material.cohesion = (sps_real)cohesion;
+    bd.material.friction_angle = (sps_real)phi;
+    bd.stress_diffusion = (sps_real)diffusion;
+    w = ex_create(&wd);
+    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    ex_check(w, sps_world_add_body(w, &bd, &soil));
+    ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
+    ex_check(w, sps_world_diagnostics(w, all, &d0));
+
+    s.dp = dp;
+    s.t_end = c.t_end;
+    output_open(&s.output, &c, "column_collapse2d", "velocity", "");
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
+    ex_check(w, sps_world_diagnostics(w, all, &d));
+    ex_check(w, sps_body_material_constants(w, soil, &c0, NULL, NULL));
+    profile(w, dp, &toe, &wall_height);
+    a = COLUMN_HEIGHT / length;
+    toe_expected = length * (1 + 1.2 * a);
+    printf("granular column collapse: L = %g m, H = %g m, dp = %g, %d particles, c0 = %.4g m/s, phi = %g deg, c = %g Pa, zeta = %g, transport %s\n",
+           length, COLUMN_HEIGHT, dp, sps_world_particle_count(w), (double)c0, phi, cohesion, diffusion,
+           c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+    printf("  mechanical energy [J/m]: start %.4f (reference code 19.992 for L = 0.2)\n", mechanical_energy(&d0));
+    if (c.t_end >= 0.5)
+        printf("                           t = 0.5 s: %.4f (reference code 13.97, %+.1f%%)\n", s.energy_half,
+               100 * (s.energy_half / 13.97 - 1));
+    printf("                           t = %.3g s: %.4f (reference code 13.79 at 0.8 s, %+.1f%%)\n", (double)d.time, s.energy_end,
+           100 * (s.energy_end / 13.79 - 1));
+    printf("  toe (final runout): %.4f m, experiments' scaling L (1 + 1.2 H/L) = %.4f m (%+.1f%%)\n", toe, toe_expected,
+           100 * (toe / toe_expected - 1));
+    printf("  height at the left wall: %.4f m, truncated column (a = %.2f < 1.15): %.4f m (%+.1f%%)\n", wall_height, a, COLUMN_HEIGHT,
+           100 * (wall_height / COLUMN_HEIGHT - 1));
+    printf("  plastic work %.4f J/m, largest accumulated deviatoric plastic strain %.3f, surface particles %d, min spacing %.3f dp\n",
+           (double)d.plastic_work, (double)d.max_plastic_strain, d.surface_particles, (double)d.min_spacing);
+    printf("RESULT case=column_collapse2d length=%g dp=%g phi=%g cohesion=%g zeta=%g t=%.4g energy_start=%.5g energy_0.5=%.5g "
+           "energy_end=%.5g toe=%.4f wall_height=%.4f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
+           "ns_per_particle_step=%.1f out=%s\n",
+           length, dp, phi, cohesion, diffusion, (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, wall_height,
+           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
+           1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)), c.out);
+    sps_world_destroy(w);
+    return 0;
+}
