@@ -1206,7 +1206,7 @@ typedef struct sps__material_model {
     int mirrored; /* walls act on it through mirror particles (>>walls by mirror particles),
                      not the solids' penalty */
     int pressure_of_density; /* p = c0^2 (rho - rho0) at every half drift; 0: p is -tr(sigma)/3 of
-                                its integrated stress (Drucker-Prager) */
+                                its integrated stress and rho = rho0 + p / c0^2 (Drucker-Prager) */
 } sps__material_model;
 
 /* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
@@ -2029,10 +2029,11 @@ static const sps__material_model sps__materials[] = {
      0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
     {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", sps__elastic_check, sps__hyperelastic_constants, NULL,
      0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
-    /* eta = 20 d for granular bodies (UTVF section 3.1.3, after Zhang et al. 2024); the Riemann
-       density term and the mirror walls as the reference code's (dummy wall particles) */
+    /* eta = 20 d for granular bodies (UTVF section 3.1.3, after Zhang et al. 2024); mirror walls
+       as the reference code's dummy wall particles; no Riemann density term: the density
+       follows the pressure (sps__finish) */
     {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", sps__drucker_prager_check, sps__elastic_constants, sps__elastic_energy_density,
-     0, SPS__YIELD_DRUCKER_PRAGER, 1, &sps__granular_stress, 0, 20, 1, 1, 0},
+     0, SPS__YIELD_DRUCKER_PRAGER, 1, &sps__granular_stress, 0, 20, 0, 1, 0},
 };
 #define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
 
@@ -2680,6 +2681,8 @@ SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_re
         before = w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), w->p[i]);
         for (a = 0; a < 6; ++a) tau[a] = sigma[a] + (row[a] == col[a] ? p : 0);
         w->p[i] = p;
+        w->rho[i] = body->rho0 + p / (body->mat.c0 * body->mat.c0); /* its density follows its pressure (GRANULAR) */
+        w->vol[i] = w->mass[i] / w->rho[i];
         sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), p) - before, 0);
     }
     return SPS_OK;
@@ -5606,8 +5609,10 @@ SPS__INLINE void sps__drift_range(sps_world* w, int i0, int i1, sps_real h, sps_
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     int i;
     for (i = i0; i < i1; ++i) {
-        rho[i] += h * drho[i];
-        if (pressure_of_density) p[i] = c2 * (rho[i] - rho0);
+        if (pressure_of_density) { /* else the density follows the pressure (sps__finish) */
+            rho[i] += h * drho[i];
+            p[i] = c2 * (rho[i] - rho0);
+        }
         vol[i] = mass[i] / rho[i];
         px[i] += h * vx[i];
         py[i] += h * vy[i];
@@ -5804,11 +5809,15 @@ static void sps__finish(sps_world* w, sps_real dt) {
         const sps_real* R = b->mean_rotation;
         int i, i0, i1;
         sps__thread_share(b, &i0, &i1);
-        if (b->next_pressure) /* Drucker-Prager: the stress update's pressure (sps__granular_stress_lanes) */
-            for (i = i0; i < i1; ++i) w->p[i] = b->next_pressure[i - b->begin];
+        if (b->next_pressure) /* Drucker-Prager: the stress update's pressure, and the density of its
+                                 elastic volume change (GRANULAR) */
+            for (i = i0; i < i1; ++i) {
+                w->p[i] = b->next_pressure[i - b->begin];
+                w->rho[i] = b->rho0 + w->p[i] / (b->mat.c0 * b->mat.c0);
+            }
         for (i = i0; i < i1; ++i) {
             int a, c;
-            w->rho[i] += SPS_R(0.5) * dt * w->drho[i];
+            if (!b->next_pressure) w->rho[i] += SPS_R(0.5) * dt * w->drho[i];
             if (mean) { /* ANG eq. 42: a_s = mean(R) a_s + da */
                 sps_real old[3];
                 for (a = 0; a < dim; ++a) old[a] = w->acc_s[a][i];

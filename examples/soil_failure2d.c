@@ -1,0 +1,134 @@
+/* soil_failure2d.c - the failure of a cohesive soil block under its own weight (benchmark C5,
+   UTVF 5.2, after Bui et al. 2008).
+
+   A block L = 4 m long and H = 2 m high of Drucker-Prager soil (rho0 = 1850, E = 1.8 MPa,
+   nu = 0.3, c = 5 kPa, phi = 25 degrees, psi = 0) stands against the left wall of a box 5 m x
+   2.5 m with no-slip walls, started from its geostatic stress (K0 = 1 - sin phi), and fails
+   under gravity (g = 9.8) to t = 2 s. --transport none|tvf|utvf selects the correction against
+   tensile instability (the paper's comparison), --res L/dp (100, 200). We print the surface
+   at the end: the crest (the first point, from the left, where the top has dropped a particle
+   spacing below H: how far the failure reached back), the toe (the rightmost particle), the
+   step-path rise (the largest rise of the surface profile from a point to any point right of
+   it: 0 for a surface that only descends, the paper's "descent then rise" when positive), and
+   the clustering and void indicators (the smallest spacing, and the particles whose position
+   divergence marks them as surface: voids and cracks inside raise the count).
+
+   Build: make examples     Run: ./build/soil_failure2d --transport utvf (--res 200)
+   Expect: with UTVF a uniform distribution (smallest spacing above 0.5 dp); without a
+   correction clustering (spacing well below 0.5 dp) and more surface particles. */
+#include "common.h"
+
+#define BLOCK_LENGTH 4.0
+#define BLOCK_HEIGHT 2.0
+#define G_ACC 9.8
+
+typedef struct {
+    output_plan output;
+    double wall0, t_end;
+} run_state;
+
+static int on_step(sps_world* w, void* user) {
+    run_state* s = (run_state*)user;
+    sps_diagnostics d;
+    output_tick(w, &s->output, "", &d);
+    progress(sps_world_time(w), s->t_end, s->wall0, 0);
+    return 0;
+}
+
+/* The surface profile in columns dp wide: each column's highest particle + dp/2 (0: empty). */
+#define MAX_COLUMNS 4096
+typedef struct {
+    double top[MAX_COLUMNS];
+    int columns;
+} surface_profile;
+static void surface_of(const sps_world* w, double dp, surface_profile* sp) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    int i, n = sps_world_particle_count(w);
+    memset(sp, 0, sizeof *sp);
+    for (i = 0; i < n; ++i) {
+        int k = (int)(x[i] / dp);
+        if (k < 0 || k >= MAX_COLUMNS) continue;
+        if (y[i] + 0.5 * dp > sp->top[k]) sp->top[k] = y[i] + 0.5 * dp;
+        if (k + 1 > sp->columns) sp->columns = k + 1;
+    }
+}
+
+int main(int argc, char** argv) {
+    common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 2, .vtk_every = 0.1, .csv_every = 0.01, .E = 1.8e6, .nu = 0.3,
+                        .rho0 = 1850, .out = "out/soil_failure2d", .jitter = 0, .seed = 1, .transport = 2, PNG_DEFAULTS};
+    double res = 100, cohesion = 5e3, phi = 25, diffusion = 0.1;
+    opt_spec opts[] = {
+        {"res", OPT_REAL, &res, "resolution L/dp (the paper: 100 and 200)", 10, 800, NULL},
+        {"cohesion", OPT_REAL, &cohesion, "cohesion c [Pa]", 0, 1e9, NULL},
+        {"phi", OPT_REAL, &phi, "friction angle [degrees]", 0, 89, NULL},
+        {"diffusion", OPT_REAL, &diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL},
+        COMMON_OPTION_SPECS(c),
+    };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_body soil, all = {0};
+    sps_diagnostics d;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {BLOCK_LENGTH, BLOCK_HEIGHT, 0}, box_hi[3] = {5, 2.5, 0};
+    run_state s;
+    surface_profile* sp = (surface_profile*)calloc(1, sizeof(surface_profile));
+    double wall, dp, crest = -1, toe = 0, rise = 0, rise_at = 0, lowest = 1e30, lowest_at = 0;
+    int k, n, surface0;
+
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, "2D failure of a cohesive soil block (C5, UTVF 5.2): Drucker-Prager with none, TVF or UTVF", opts,
+              (int)(sizeof opts / sizeof *opts));
+    if (!sp) { fprintf(stderr, "%s: out of memory\n", g_prog); return 1; }
+    apply_common(&c, &wd, &bd);
+    memset(&s, 0, sizeof s);
+    dp = BLOCK_LENGTH / res;
+    wd.dim = 2;
+    wd.dp = (sps_real)dp;
+    wd.gravity[1] = (sps_real)-G_ACC;
+    bd.name = "soil";
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    bd.material.cohesion = (sps_real)cohesion;
+    bd.material.friction_angle = (sps_real)phi;
+    bd.stress_diffusion = (sps_real)diffusion;
+    w = ex_create(&wd);
+    ex_check(w, sps_world_add_box_walls(w, lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    ex_check(w, sps_world_add_body(w, &bd, &soil));
+    ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
+    ex_check(w, sps_body_set_geostatic_stress(w, soil, (sps_real)BLOCK_HEIGHT, 0));
+    ex_check(w, sps_world_diagnostics(w, all, &d));
+    surface0 = d.surface_particles;
+
+    s.t_end = c.t_end;
+    output_open(&s.output, &c, "soil_failure2d", "plastic-strain", "");
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
+    ex_check(w, sps_world_diagnostics(w, all, &d));
+    surface_of(w, dp, sp);
+    n = sp->columns;
+    for (k = 0; k < n; ++k) {
+        const double x = (k + 0.5) * dp;
+        if (sp->top[k] > 0) toe = (k + 1) * dp;
+        if (crest < 0 && sp->top[k] < BLOCK_HEIGHT - dp) crest = x;
+    }
+    for (k = 0; k < n; ++k) { /* the largest rise of the profile from its lowest point so far */
+        const double x = (k + 0.5) * dp;
+        if (sp->top[k] <= 0 || x < crest) continue;
+        if (sp->top[k] < lowest) { lowest = sp->top[k]; lowest_at = x; }
+        if (sp->top[k] - lowest > rise) { rise = sp->top[k] - lowest; rise_at = x; }
+    }
+    printf("cohesive soil failure: L/dp = %g (dp = %g m), %d particles, c = %g Pa, phi = %g deg, zeta = %g, transport %s\n", res, dp,
+           sps_world_particle_count(w), cohesion, phi, diffusion, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+    printf("  at t = %.3g s: crest at x = %.3f m (%.3f m behind the block's edge), toe at x = %.3f m (%.3f m beyond it)\n", (double)d.time,
+           crest, BLOCK_LENGTH - crest, toe, toe - BLOCK_LENGTH);
+    printf("  step path: the surface rises %.3f m (%.1f dp) from its low at x = %.3f m to x = %.3f m\n", rise, rise / dp, lowest_at, rise_at);
+    printf("  smallest spacing %.3f dp (clustering below ~0.5), surface particles %d (%d at the start), largest plastic strain %.3f\n",
+           (double)d.min_spacing, d.surface_particles, surface0, (double)d.max_plastic_strain);
+    printf("RESULT case=soil_failure2d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g crest=%.4f toe=%.4f rise=%.4f rise_at=%.4f "
+           "min_spacing=%.3f surface_particles=%d surface_start=%d %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
+           "ns_per_particle_step=%.1f out=%s\n",
+           res, dp, cohesion, phi, diffusion, (double)d.time, crest, toe, rise, rise_at, (double)d.min_spacing, d.surface_particles, surface0,
+           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
+           1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)), c.out);
+    sps_world_destroy(w);
+    free(sp);
+    return 0;
+}
