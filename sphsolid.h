@@ -4234,8 +4234,10 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
    (p itself is read by the neighbours' continuity sums of this pass), the accumulated
    deviatoric plastic strain, grown by sqrt(2/3) |dev(t - sigma)| / (2G) with t the elastic trial
    (the plastic strain increment's deviator), and the plastic work, grown by the particle's
-   volume times the elastic energy density the plastic flow removed, e(t) - e(sigma) with
-   e = s:s/(4G) + p^2/(2K). Padding lanes compute and do not store. */
+   volume times sigma : d_eps_p, the work of the returned stress on the plastic strain
+   increment d_eps_p = C^-1 (t - sigma): s:(s_t - s)/(2G) + p (p_t - p)/K (backward Euler; the
+   energy difference e(t) - e(sigma) counted a cut-off from zero stress, a dilute front
+   particle's every sub-step, as dissipation). Padding lanes compute and do not store. */
 SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
                                             sps_real L[9][SPS__LANES], const int diffused) {
     const size_t k0 = (size_t)(q.i0 - b->begin);
@@ -4278,8 +4280,9 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
             for (a = 0; a < 6; ++a) tau[6 * l + a] = s_next[a];
             next_p[l] = p_next;
             strain[l] += sqrt_2_3 * SPS__SQRT(sps__sym_contract(flow, flow)) / (2 * G);
-            work[l] += mass[l] / rho_l * (sps__sym_contract(s_trial, s_trial) / (4 * G) + p_trial * p_trial / (2 * K) -
-                                          sps__sym_contract(s_next, s_next) / (4 * G) - p_next * p_next / (2 * K));
+            SPS__UNROLL
+            for (a = 0; a < 6; ++a) s_trial[a] -= s_next[a];
+            work[l] += mass[l] / rho_l * (sps__sym_contract(s_next, s_trial) / (2 * G) + p_next * (p_trial - p_next) / K);
         }
     }
 }

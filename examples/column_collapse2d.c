@@ -117,8 +117,9 @@ int main(int argc, char** argv) {
            100 * (toe / toe_expected - 1));
     printf("  height at the left wall: %.4f m, truncated column (a = %.2f < 1.15): %.4f m (%+.1f%%)\n", wall_height, a, COLUMN_HEIGHT,
            100 * (wall_height / COLUMN_HEIGHT - 1));
-    printf("  plastic work %.4f J/m, largest accumulated deviatoric plastic strain %.3f, surface particles %d, min spacing %.3f dp\n",
-           (double)d.plastic_work, (double)d.max_plastic_strain, d.surface_particles, (double)d.min_spacing);
+    printf("  plastic work %.4f J/m, largest accumulated deviatoric plastic strain %.3f, surface particles %d, %d particles closer than\n"
+           "  0.5 dp to another (smallest spacing %.3f dp)\n",
+           (double)d.plastic_work, (double)d.max_plastic_strain, d.surface_particles, ex_clustered_particles(w, dp, 0.5), (double)d.min_spacing);
     printf("RESULT case=column_collapse2d length=%g dp=%g phi=%g cohesion=%g zeta=%g t=%.4g energy_start=%.5g energy_0.5=%.5g "
            "energy_end=%.5g toe=%.4f wall_height=%.4f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
            "ns_per_particle_step=%.1f out=%s\n",

@@ -498,6 +498,56 @@ EX_UNUSED static double ex_centre_pressure(const sps_world* w, double dp) {
     return near ? sum / near : 0;
 }
 
+/* The clustering indicator of the granular examples: how many particles have another closer
+   than fraction dp. The particles are sorted by a cell of edge dp (a hash of the cell's
+   coordinates) and each is compared with the particles of its own and the neighbouring cells. */
+typedef struct {
+    long long cell;
+    int i;
+} ex_cell_entry;
+EX_UNUSED static int ex_cell_order(const void* a, const void* b) {
+    const long long ca = ((const ex_cell_entry*)a)->cell, cb = ((const ex_cell_entry*)b)->cell;
+    return ca < cb ? -1 : ca > cb;
+}
+EX_UNUSED static long long ex_cell_key(long long cx, long long cy, long long cz) { return (cx + (1 << 20)) * (1LL << 42) + (cy + (1 << 20)) * (1LL << 21) + (cz + (1 << 20)); }
+EX_UNUSED static int ex_clustered_particles(const sps_world* w, double dp, double fraction) {
+    const int dim = sps_world_get_def(w)->dim, n = sps_world_particle_count(w);
+    const sps_real* x[3] = {sps_world_field(w, SPS_FIELD_POSITION_X), sps_world_field(w, SPS_FIELD_POSITION_Y),
+                            dim == 3 ? sps_world_field(w, SPS_FIELD_POSITION_Z) : NULL};
+    ex_cell_entry* e = (ex_cell_entry*)malloc(sizeof(ex_cell_entry) * (size_t)(n > 0 ? n : 1));
+    int i, count = 0;
+    if (!e) return -1;
+    for (i = 0; i < n; ++i) {
+        e[i].cell = ex_cell_key((long long)floor(x[0][i] / dp), (long long)floor(x[1][i] / dp), dim == 3 ? (long long)floor(x[2][i] / dp) : 0);
+        e[i].i = i;
+    }
+    qsort(e, (size_t)n, sizeof *e, ex_cell_order);
+    for (i = 0; i < n; ++i) {
+        const int a = e[i].i;
+        const long long cx = (long long)floor(x[0][a] / dp), cy = (long long)floor(x[1][a] / dp), cz = dim == 3 ? (long long)floor(x[2][a] / dp) : 0;
+        int dx, dy, dz, close = 0;
+        for (dx = -1; dx <= 1 && !close; ++dx)
+            for (dy = -1; dy <= 1 && !close; ++dy)
+                for (dz = dim == 3 ? -1 : 0; dz <= (dim == 3 ? 1 : 0) && !close; ++dz) {
+                    ex_cell_entry key, *hit;
+                    key.cell = ex_cell_key(cx + dx, cy + dy, cz + dz);
+                    hit = (ex_cell_entry*)bsearch(&key, e, (size_t)n, sizeof *e, ex_cell_order);
+                    if (!hit) continue;
+                    while (hit > e && hit[-1].cell == key.cell) --hit;
+                    for (; hit < e + n && hit->cell == key.cell && !close; ++hit) {
+                        double r2 = 0;
+                        int k;
+                        if (hit->i == a) continue;
+                        for (k = 0; k < dim; ++k) r2 += (x[k][a] - x[k][hit->i]) * (x[k][a] - x[k][hit->i]);
+                        close = r2 < fraction * fraction * dp * dp;
+                    }
+                }
+        count += close;
+    }
+    free(e);
+    return count;
+}
+
 /* ---- period of an oscillation from the zero crossings of a signal starting at zero ---- */
 typedef struct {
     double t_prev, s_prev, crossing[64]; /* the first 64 crossing times */

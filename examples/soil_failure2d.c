@@ -6,8 +6,8 @@
    2.5 m with no-slip walls, started from its geostatic stress (K0 = 1 - sin phi), and fails
    under gravity (g = 9.8) to t = 2 s. --transport none|tvf|utvf selects the correction against
    tensile instability (the paper's comparison), --res L/dp (100, 200). We print the surface
-   at the end: the crest (the first point, from the left, where the top has dropped a particle
-   spacing below H: how far the failure reached back), the toe (the rightmost particle), the
+   at the end: the crest (the first point, from the left, where the top has dropped 5 % of H:
+   how far the failure reached back), the toe (the rightmost particle), the
    step-path rise (the largest rise of the surface profile from a point to any point right of
    it: 0 for a surface that only descends, the paper's "descent then rise" when positive), and
    the clustering and void indicators (the smallest spacing, and the particles whose position
@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
     sps_real lo[3] = {0, 0, 0}, hi[3] = {BLOCK_LENGTH, BLOCK_HEIGHT, 0}, box_hi[3] = {5, 2.5, 0};
     run_state s;
     surface_profile* sp = (surface_profile*)calloc(1, sizeof(surface_profile));
-    double wall, dp, crest = -1, toe = 0, rise = 0, rise_at = 0, lowest = 1e30, lowest_at = 0;
-    int k, n, surface0;
+    double wall, dp, crest = -1, toe = 0, rise = 0, rise_at = 0, lowest = 1e30, lowest_at = 0, low_x = 0;
+    int k, n, surface0, clustered;
 
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "2D failure of a cohesive soil block (C5, UTVF 5.2): Drucker-Prager with none, TVF or UTVF", opts,
@@ -107,25 +107,27 @@ int main(int argc, char** argv) {
     for (k = 0; k < n; ++k) {
         const double x = (k + 0.5) * dp;
         if (sp->top[k] > 0) toe = (k + 1) * dp;
-        if (crest < 0 && sp->top[k] < BLOCK_HEIGHT - dp) crest = x;
+        if (crest < 0 && sp->top[k] < 0.95 * BLOCK_HEIGHT) crest = x;
     }
-    for (k = 0; k < n; ++k) { /* the largest rise of the profile from its lowest point so far */
+    for (k = 0; k < n; ++k) { /* the largest rise of the profile above its lowest point to the left */
         const double x = (k + 0.5) * dp;
         if (sp->top[k] <= 0 || x < crest) continue;
-        if (sp->top[k] < lowest) { lowest = sp->top[k]; lowest_at = x; }
-        if (sp->top[k] - lowest > rise) { rise = sp->top[k] - lowest; rise_at = x; }
+        if (sp->top[k] < lowest) { lowest = sp->top[k]; low_x = x; }
+        if (sp->top[k] - lowest > rise) { rise = sp->top[k] - lowest; rise_at = x; lowest_at = low_x; }
     }
     printf("cohesive soil failure: L/dp = %g (dp = %g m), %d particles, c = %g Pa, phi = %g deg, zeta = %g, transport %s\n", res, dp,
            sps_world_particle_count(w), cohesion, phi, diffusion, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
     printf("  at t = %.3g s: crest at x = %.3f m (%.3f m behind the block's edge), toe at x = %.3f m (%.3f m beyond it)\n", (double)d.time,
            crest, BLOCK_LENGTH - crest, toe, toe - BLOCK_LENGTH);
     printf("  step path: the surface rises %.3f m (%.1f dp) from its low at x = %.3f m to x = %.3f m\n", rise, rise / dp, lowest_at, rise_at);
-    printf("  smallest spacing %.3f dp (clustering below ~0.5), surface particles %d (%d at the start), largest plastic strain %.3f\n",
-           (double)d.min_spacing, d.surface_particles, surface0, (double)d.max_plastic_strain);
+    clustered = ex_clustered_particles(w, dp, 0.5);
+    printf("  clustering: %d particles with another closer than 0.5 dp (smallest spacing %.3f dp); surface particles %d (%d at the\n"
+           "  start: voids and cracks raise it); largest accumulated deviatoric plastic strain %.3f\n",
+           clustered, (double)d.min_spacing, d.surface_particles, surface0, (double)d.max_plastic_strain);
     printf("RESULT case=soil_failure2d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g crest=%.4f toe=%.4f rise=%.4f rise_at=%.4f "
-           "min_spacing=%.3f surface_particles=%d surface_start=%d %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
+           "clustered=%d min_spacing=%.3f surface_particles=%d surface_start=%d %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
            "ns_per_particle_step=%.1f out=%s\n",
-           res, dp, cohesion, phi, diffusion, (double)d.time, crest, toe, rise, rise_at, (double)d.min_spacing, d.surface_particles, surface0,
+           res, dp, cohesion, phi, diffusion, (double)d.time, crest, toe, rise, rise_at, clustered, (double)d.min_spacing, d.surface_particles, surface0,
            common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
            1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)), c.out);
     sps_world_destroy(w);
