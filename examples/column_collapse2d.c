@@ -7,7 +7,8 @@
    particles), stress diffusion on and no transport correction, as the reference code's case.
    We print the mechanical energy (kinetic + gravity potential, from the floor) next to the
    reference code's (19.992 J/m at the start, 13.97 J/m near 0.5 s, 13.79 J/m at 0.8 s), and the
-   final runout (the toe: rightmost particle + dp/2) and the final height at the left wall
+   final runout (the toe: where the deposit, at least 2 dp deep, ends; and the farthest
+   particle) and the final height at the left wall
    against the experiments' scaling for 2D columns of aspect ratio a = H/L < 1.8 (Lube et al.
    2005): runout (L_f - L)/L = 1.2 a, and a truncated column that keeps its height H at the wall
    for a < 1.15 (the figures of UTVF Figs. 15-16 are pictures we cannot read numbers from).
@@ -28,16 +29,28 @@ typedef struct {
 
 static double mechanical_energy(const sps_diagnostics* d) { return (double)(d->kinetic_energy + d->potential_energy); }
 
-/* The toe (rightmost particle + dp/2) and the height at the left wall (highest particle within
-   2 dp of it, + dp/2). */
-static void profile(const sps_world* w, double dp, double* toe, double* wall_height) {
+/* The deposit in columns dp wide: the toe, where the contiguous deposit from the left wall
+   ends (the first column holding fewer than 2 particles, a compact depth below 2 dp: the loose
+   particles that slide on along the floor beyond it are not the deposit's), the farthest
+   particle, and the height at the left wall (the first column's highest particle + dp/2). */
+static void profile(const sps_world* w, double dp, double* toe, double* farthest, double* wall_height) {
     const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
-    int i, n = sps_world_particle_count(w);
-    *toe = *wall_height = 0;
+    int i, k, n = sps_world_particle_count(w), columns = (int)(TANK_LENGTH / dp) + 1;
+    double* top = (double*)calloc((size_t)columns, sizeof(double));
+    int* count = (int*)calloc((size_t)columns, sizeof(int));
+    *toe = *farthest = *wall_height = 0;
+    if (!top || !count) { free(top); free(count); return; }
     for (i = 0; i < n; ++i) {
-        if (x[i] + 0.5 * dp > *toe) *toe = x[i] + 0.5 * dp;
-        if (x[i] < 2 * dp && y[i] + 0.5 * dp > *wall_height) *wall_height = y[i] + 0.5 * dp;
+        k = (int)(x[i] / dp);
+        if (k < 0 || k >= columns) continue;
+        if (y[i] + 0.5 * dp > top[k]) top[k] = y[i] + 0.5 * dp;
+        ++count[k];
+        if (x[i] + 0.5 * dp > *farthest) *farthest = x[i] + 0.5 * dp;
     }
+    for (k = 0; k < columns && count[k] >= 2; ++k) *toe = (k + 1) * dp;
+    *wall_height = top[0];
+    free(top);
+    free(count);
 }
 
 /* At every CSV row: the energies at 0.5 s (the last row at or before it) and at the end. */
@@ -72,7 +85,7 @@ int main(int argc, char** argv) {
     sps_diagnostics d0, d;
     sps_real lo[3] = {0, 0, 0}, hi[3] = {0, COLUMN_HEIGHT, 0}, tank_lo[3] = {0, 0, 0}, tank_hi[3] = {TANK_LENGTH, TANK_HEIGHT, 0};
     run_state s;
-    double wall, toe, wall_height, a, toe_expected;
+    double wall, toe, farthest, wall_height, a, toe_expected;
     sps_real c0;
 
     ex_short_openmp_spin(argv);
@@ -101,7 +114,7 @@ int main(int argc, char** argv) {
     wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
     ex_check(w, sps_body_material_constants(w, soil, &c0, NULL, NULL));
-    profile(w, dp, &toe, &wall_height);
+    profile(w, dp, &toe, &farthest, &wall_height);
     a = COLUMN_HEIGHT / length;
     toe_expected = length * (1 + 1.2 * a);
     printf("granular column collapse: L = %g m, H = %g m, dp = %g, %d particles, c0 = %.4g m/s, phi = %g deg, c = %g Pa, zeta = %g, transport %s\n",
@@ -113,17 +126,17 @@ int main(int argc, char** argv) {
                100 * (s.energy_half / 13.97 - 1));
     printf("                           t = %.3g s: %.4f (reference code 13.79 at 0.8 s, %+.1f%%)\n", (double)d.time, s.energy_end,
            100 * (s.energy_end / 13.79 - 1));
-    printf("  toe (final runout): %.4f m, experiments' scaling L (1 + 1.2 H/L) = %.4f m (%+.1f%%)\n", toe, toe_expected,
-           100 * (toe / toe_expected - 1));
+    printf("  toe (final runout, the deposit at least 2 particles deep): %.4f m, experiments' scaling L (1 + 1.2 H/L) = %.4f m (%+.1f%%);\n"
+           "  farthest particle %.4f m\n", toe, toe_expected, 100 * (toe / toe_expected - 1), farthest);
     printf("  height at the left wall: %.4f m, truncated column (a = %.2f < 1.15): %.4f m (%+.1f%%)\n", wall_height, a, COLUMN_HEIGHT,
            100 * (wall_height / COLUMN_HEIGHT - 1));
     printf("  plastic work %.4f J/m, largest accumulated deviatoric plastic strain %.3f, surface particles %d, %d particles closer than\n"
            "  0.5 dp to another (smallest spacing %.3f dp)\n",
            (double)d.plastic_work, (double)d.max_plastic_strain, d.surface_particles, ex_clustered_particles(w, dp, 0.5), (double)d.min_spacing);
     printf("RESULT case=column_collapse2d length=%g dp=%g phi=%g cohesion=%g zeta=%g t=%.4g energy_start=%.5g energy_0.5=%.5g "
-           "energy_end=%.5g toe=%.4f wall_height=%.4f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
+           "energy_end=%.5g toe=%.4f farthest=%.4f wall_height=%.4f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
            "ns_per_particle_step=%.1f out=%s\n",
-           length, dp, phi, cohesion, diffusion, (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, wall_height,
+           length, dp, phi, cohesion, diffusion, (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, farthest, wall_height,
            common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
            1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)), c.out);
     sps_world_destroy(w);
