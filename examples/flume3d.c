@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
                         .rho0 = 1850, .out = "out/flume3d", .jitter = 0, .seed = 1, .transport = 2, PNG_DEFAULTS};
     double dp = 0.04, cohesion = 5e3, phi = 25, diffusion = 0.1;
     opt_spec opts[] = {
-        {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.005, 0.1, NULL},
+        {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.005, 0.25, NULL},
         {"cohesion", OPT_REAL, &cohesion, "cohesion c [Pa]", 0, 1e9, NULL},
         {"phi", OPT_REAL, &phi, "friction angle [degrees]", 0, 89, NULL},
         {"diffusion", OPT_REAL, &diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL},

@@ -246,7 +246,12 @@ static sps_body_def random_body_def(void) {
     d.rotation = (sps_rotation)(chance(p) ? hostile_int() : below(3));
     d.material.kind = (sps_material_kind)(chance(p) ? hostile_int() /* sometimes a wall body, sometimes plastic */
                                                     : chance(0.15) ? SPS_MATERIAL_RIGID : chance(0.2) ? SPS_MATERIAL_J2
-                                                    : chance(0.2) ? SPS_MATERIAL_FLUID : SPS_MATERIAL_ELASTIC);
+                                                    : chance(0.2) ? SPS_MATERIAL_FLUID : chance(0.15) ? SPS_MATERIAL_DRUCKER_PRAGER
+                                                    : SPS_MATERIAL_ELASTIC);
+    d.material.cohesion = chance(0.3) ? 0 : maybe_hostile(d.material.youngs_modulus * exp(uniform(log(1e-4), log(1e-2))), p);
+    d.material.friction_angle = maybe_hostile(uniform(0, 45), p);
+    d.material.dilatancy_angle = chance(0.6) ? 0 : maybe_hostile(uniform(0, 1) * d.material.friction_angle, p);
+    d.stress_diffusion = chance(0.3) ? 0 : maybe_hostile(uniform(0, 1), p);
     d.material.sound_speed = maybe_hostile(exp(uniform(log(1), log(1e3))), p);
     d.material.viscosity = chance(0.6) ? 0 : maybe_hostile(exp(uniform(log(1e-3), log(10))), p);
     d.transport = (sps_transport)(chance(p) ? hostile_int() : below(3));
@@ -392,6 +397,9 @@ static int random_call(fuzz_state* s) {
         f.scale = chance(0.05) ? hostile_real() : scales[below(7)];
         f.rng = next_u64();
         CALL(s, w, sps_body_set_velocity(w, any_body(s, k), chance(0.02) ? NULL : random_velocity, &f));
+        if (chance(0.2)) /* a geostatic stress (refused but for Drucker-Prager bodies under gravity) */
+            CALL(s, w, sps_body_set_geostatic_stress(w, any_body(s, k), (sps_real)maybe_hostile(uniform(-1, 2), 0.02),
+                                                     (sps_real)(chance(0.5) ? 0 : maybe_hostile(uniform(0, 2), 0.05))));
     } break;
     case 10: { /* constraint */
         sps_real v[3];

@@ -35,7 +35,8 @@ typedef struct pinned_case {
     int single;            /* single stepping */
     int track_stress;
     int all_shears;        /* one body of every formulation the dimension allows, side by side */
-    int plastic;           /* J2 material (yields within the run); its plastic strain and work are hashed too */
+    int plastic;           /* 1: J2 material (yields within the run); 2: Drucker-Prager in a tank of walls;
+                              its plastic strain and work are hashed too */
     int fluid;             /* 1: a fluid in a tank of walls (mirror particles); 2: also viscous */
     sps_transport transport;
     int tl;                /* 0: updated Lagrangian; else the material kind of a total-Lagrangian body (J2 with plastic) */
@@ -93,6 +94,10 @@ static const pinned_case g_cases[] = {
     {"3d/fluid-utvf", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_UTVF, 0},
     {"2d/og-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_UTVF, 0},
     {"3d/og-tvf", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_TVF, 0},
+    /* Drucker-Prager bodies (their shear is not used) */
+    {"2d/drucker-prager", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0},
+    {"2d/drucker-prager-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_UTVF, 0},
+    {"3d/drucker-prager", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0},
     /* total-Lagrangian bodies (their shear is not used) */
     {"2d/tl-svk", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF},
     {"2d/tl-neo-hookean", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN},
@@ -149,7 +154,12 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
     bd.rotation = c->rotation;
     bd.track_stress = c->track_stress;
     bd.material.youngs_modulus = (sps_real)(1e6 * (1 + 0.25 * index)); /* bodies differ */
-    if (c->plastic) { /* a yield stress a quarter of the shear stress the motion builds in the run: it yields */
+    if (c->plastic == 2) { /* a weak soil: the motion takes it onto the cone at once */
+        bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+        bd.material.cohesion = (sps_real)2e3;
+        bd.material.friction_angle = 30;
+        bd.material.dilatancy_angle = 5;
+    } else if (c->plastic) { /* a yield stress a quarter of the shear stress the motion builds in the run: it yields */
         bd.material.kind = SPS_MATERIAL_J2;
         bd.material.yield_stress = (sps_real)5e3;
         bd.material.hardening_modulus = (sps_real)1e5;
@@ -170,7 +180,7 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
     if (sps_body_add_box(w, b, lo, hi, &added) != SPS_OK || added == 0) return -1;
     ctx.centre[0] = x0 + 0.5 * len; ctx.centre[1] = 0.5 * hgt; ctx.centre[2] = 0.5 * dep;
     if (sps_body_set_velocity(w, b, case_velocity, &ctx) != SPS_OK) return -1;
-    if (c->fluid) { /* a tank with an open top: the walls' mirror particles */
+    if (c->fluid || c->plastic == 2) { /* a tank with an open top: the walls' mirror particles */
         sps_real tank_hi[3];
         tank_hi[0] = hi[0]; tank_hi[1] = 2 * hi[1]; tank_hi[2] = hi[2];
         return sps_world_add_box_walls(w, lo, tank_hi, c->dim == 2 ? SPS_FACE_Y_HI : SPS_FACE_Z_HI, SPS_WALL_NO_SLIP) == SPS_OK ? added : -1;
