@@ -268,8 +268,9 @@
       h the kernel radius 2 h_over_dp dp: D = 1 after h / (0.4 c0) above the threshold; D never
       falls. The positive principal values of the stress are scaled by 1 - D, the compressive
       ones kept (TL eq. 46), so a broken particle carries no tension but resists being pushed
-      into. The hourglass force is not degraded (the paper degrades the stress only). Its
-      stored energy is counted as (1 - D) V0 psi(F) (the rate model has no potential): the
+      into. The hourglass force (TL eq. 32) takes (1 - D) E at a damaged particle: the paper
+      degrades the stress only, but with E the hourglass springs of broken particles alone kept
+      a broken section carrying load (the D6 specimen, bench/VALIDATION.md). Its stored energy is counted as (1 - D) V0 psi(F) (the rate model has no potential): the
       energy account falls by what damage dissipates. Costs two 3 x 3 eigen-decompositions per
       particle and sub-step; a body without damage has no damage field and runs as before.
 
@@ -4739,7 +4740,8 @@ static sps_real sps__tl_j2(sps_real lambda, sps_real mu, sps_real yield, sps_rea
    TL eq. 46: of the principal stresses only the positive ones are scaled by 1 - D, so that a
    broken particle still resists being pushed into. It is applied to the Kirchhoff stress
    tau = P F^T = J sigma (the principal axes and signs of sigma), and P = tau~ F^-T. A particle
-   with D = 0 keeps its law's P untouched. */
+   with D = 0 keeps its law's P untouched. The hourglass force weakens with 1 - D too
+   (sps__tl_hourglass_modulus). */
 
 /* The growth of D^(1/3) per second of body b (TL eq. 45): 0.4 c0 / h. */
 static sps_real sps__tl_damage_rate(const sps_world* w, const sps__body* b) {
@@ -4845,6 +4847,16 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
     }
 }
 
+/* The modulus of particle o's side of the hourglass force (TL eq. 32): Young's modulus E, the
+   yield strength Y once a J2 particle has flowed (plastic, a literal; TL section 4.5), times
+   1 - D with damage: a broken particle, which carries no tension, holds no hourglass spring
+   (undegraded, the springs of broken particles alone kept a broken section of the D6 specimen
+   carrying load at alpha 50). */
+SPS__INLINE sps_real sps__tl_hourglass_modulus(const sps__body* b, int o, sps_real E, sps_real Y, const int plastic) {
+    const sps_real modulus = plastic && b->plastic_strain[o] > 0 ? Y : E;
+    return b->damage ? modulus * (1 - b->damage[o]) : modulus;
+}
+
 /* Force pass of lane group g (in the pressure pass's place): the stress force of TL eq. 24,
    f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji))
        = sum_j V0_i V0_j dW (Q_i + Q_j) E_ij,
@@ -4864,7 +4876,7 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
         const sps_real *Qi = b->tl_stress + (size_t)9 * o, *Fi = b->tl_deformation + (size_t)9 * o;
-        const sps_real vi = SPS__V0(w, b, i), Ei = plastic && b->plastic_strain[o] > 0 ? Y : E;
+        const sps_real vi = SPS__V0(w, b, i), Ei = sps__tl_hourglass_modulus(b, o, E, Y, plastic);
         sps_real f[3] = {0, 0, 0};
         for (k = 0; k < w->nb_count[i]; ++k) {
             const int j = w->nb_j[first + k * SPS__LANES], oj = j - b->begin;
@@ -4891,7 +4903,7 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
                 dj += pj * xij[a];
             }
             {
-                const sps_real Ej = plastic && b->plastic_strain[oj] > 0 ? Y : E; /* TL section 4.5: the yield strength once plastic */
+                const sps_real Ej = sps__tl_hourglass_modulus(b, oj, E, Y, plastic);
                 fh = hourglass * vv * e.w / (e.r * e.r) * (Ei * di + Ej * dj) * inv_r * inv_r; /* (E delta_i + E delta_j) / |x_ij| */
             }
             for (a = 0; a < dim; ++a) f[a] += fh * xij[a];
