@@ -3438,6 +3438,7 @@ typedef struct restart_scene {
     int frozen_geometry, keep_last_good_state, contact, threads;
     double shift; /* [m] the first block moved along x */
     int tl_kind;  /* 0: updated Lagrangian; else the material kind of total-Lagrangian blocks */
+    double damage_strain; /* total Lagrangian: the damage threshold (0: none) */
 } restart_scene;
 
 static void velocity_minus_x(const sps_real x[3], sps_real v[3], void* user) {
@@ -3467,6 +3468,7 @@ static sps_world* restart_build(const restart_scene* sc, int threads, sps_observ
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = (sps_material_kind)sc->tl_kind;
         bd.material.yield_stress = 2e3; /* J2: yields in the swirl */
+        bd.damage_strain = sc->damage_strain;
     }
     if (sps_world_add_body(w, &bd, &a) != SPS_OK || sps_body_add_box(w, a, lo, hi, NULL) != SPS_OK ||
         sps_body_set_velocity(w, a, random_velocity, &seed) != SPS_OK ||
@@ -3529,6 +3531,16 @@ static int restart_round_trip(const restart_scene* sc, int before, int after) {
     close(fd);
     ENSURE(sps_world_save(w, path) == SPS_OK);
     ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d_saved) == SPS_OK);
+    if (sc->damage_strain > 0) { /* the saved state holds damage: a restore that lost it would change the stresses after it */
+        double damage = 0;
+        for (k = 0; k < sps_world_particle_count(w); ++k) {
+            sps_particle_state ps;
+            sps_world_particle(w, k, &ps);
+            damage += ps.damage;
+        }
+        printf("    total damage at the save %.4g\n", damage);
+        ENSURE(damage > 0);
+    }
     for (k = 0; k < after; ++k) ENSURE(sps_world_step(w) == SPS_OK);
     n = sps_world_particle_count(w);
     first = restart_result(w, obs);
@@ -3554,17 +3566,19 @@ static int restart_round_trip(const restart_scene* sc, int before, int after) {
    formulations whose state differs (ENO-A's mean rotation and spin, GNO-A's velocity gradient,
    the pair forces of SPS_ROTATION_PAIR), contact with a wall, frozen geometry and the last good
    state, total-Lagrangian bodies (their reference lists rebuilt, Neo-Hookean with contact; J2
-   with its plastic metric); saved at 1 thread and restored at 2, and once the other way round. */
+   with its plastic metric; Saint Venant-Kirchhoff with damage); saved at 1 thread and restored at 2, and once the other way round. */
 static int test_restart_round_trip(void) {
     static const restart_scene scenes[] = {
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0},
-        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, 0, 0, 0, 2, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, 0},
-        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 1, 0, 1, 2, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, SPS_MATERIAL_NEO_HOOKEAN}, /* total Lagrangian, with contact */
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, SPS_MATERIAL_J2},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, 0, 0, 0, 2, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, 0, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 1, 0, 1, 2, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, SPS_MATERIAL_NEO_HOOKEAN, 0}, /* total Lagrangian, with contact */
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, SPS_MATERIAL_J2, 0},
+        /* damage that grows in the swirl (threshold 2e-3), with the last good state */
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 2, 0, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 2e-3},
     };
     int k;
     for (k = 0; k < (int)(sizeof scenes / sizeof scenes[0]); ++k) {
@@ -3580,7 +3594,7 @@ static int test_restart_round_trip(void) {
    bit, in the saved world and in the restored one. */
 static int test_restart_last_good_state(void) {
     char path[] = "/tmp/test_sphsolid_restart_XXXXXX";
-    const restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0};
+    const restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0, 0};
     const sps_real far[3] = {1e3, 0, 0};
     sps_observer obs, obs2;
     sps_world *w = restart_build(&sc, 1, &obs), *w2;
@@ -3643,7 +3657,7 @@ static int restore_refused(const restart_scene* sc, const char* path, sps_result
    missing one are refused with a message, and the world is left as it was. */
 static int test_restart_refused(void) {
     char path[] = "/tmp/test_sphsolid_restart_XXXXXX", part[] = "/tmp/test_sphsolid_part_XXXXXX";
-    restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, 0}, other = sc;
+    restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, 0, 0}, other = sc;
     sps_observer obs;
     sps_world* w = restart_build(&sc, 1, &obs);
     long size;
