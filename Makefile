@@ -25,7 +25,7 @@ CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
 SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 BUILD    = build
-EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
+EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl tensile3d cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
            taylor_square taylor_round impact2d
 HEADER   = sphsolid.h
 
@@ -166,7 +166,7 @@ SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 -
              "ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015" \
              "taylor_square --res 4 --tend 2e-6" "taylor_round --res 3 --tend 2e-6" "impact2d --dp 0.0008 --tend 5e-7" \
              "patch_test --n 8 --tend 0.05" "beam_tl --n 3 --periods 2" "strip_pull --dp 0.2 --length 2.2e-3" \
-             "punch_tl --dp 0.3 --compression 0.02" "taylor2d_tl --dp 1 --tend 2e-6" \
+             "punch_tl --dp 0.3 --compression 0.02" "taylor2d_tl --dp 1 --tend 2e-6" "tensile3d --res 4 --tend 2e-6" \
              "column_collapse2d --dp 0.01 --tend 0.01" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
              "flume3d --dp 0.2 --tend 0.01" "debris_barrier3d --dp 0.3 --distance 2 --tend 0.01"
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)

@@ -259,8 +259,20 @@
       always there). Fields of TL bodies: "deformation_gradient" (F, 9 values row-major, 3 x 3),
       "reference_correction" (-L^-1) and "corrected_piola_stress" (-P L^-1). Contact with other
       bodies and walls is the shared contact pass (tested in the restart round trip: a
-      Neo-Hookean block thrown at another over a floor wall). Not yet: the damage model of TL
-      eqs. 45-46.
+      Neo-Hookean block thrown at another over a floor wall).
+      Damage (damage_strain = eps_max > 0; TL section 4.6, chapter >>material: damage in the
+      total-Lagrangian frame): each particle carries the damage D in [0, 1] (field "damage",
+      VTK array damage, sps_particle_state.damage; saved by sps_world_save, in the last good
+      state). While the largest principal Green-Lagrange strain of F_i exceeds eps_max,
+      D^(1/3) grows at 0.4 c0 / h (TL eq. 45), c0 = sqrt((K + 4G/3)/rho0) the P-wave speed and
+      h the kernel radius 2 h_over_dp dp: D = 1 after h / (0.4 c0) above the threshold; D never
+      falls. The positive principal values of the stress are scaled by 1 - D, the compressive
+      ones kept (TL eq. 46), so a broken particle carries no tension but resists being pushed
+      into. The hourglass force (TL eq. 32) takes (1 - D) E at a damaged particle: the paper
+      degrades the stress only, but with E the hourglass springs of broken particles alone kept
+      a broken section carrying load (the D6 specimen, bench/VALIDATION.md). Its stored energy is counted as (1 - D) V0 psi(F) (the rate model has no potential): the
+      energy account falls by what damage dissipates. Costs two 3 x 3 eigen-decompositions per
+      particle and sub-step; a body without damage has no damage field and runs as before.
 
    MODELS AND FIELDS
       A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic;
@@ -374,7 +386,7 @@
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
       track_stress 0/1, damping finite >= 0 (0 for a wall body), solver 0..1, hourglass_alpha
-      [0, 1000], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian solver only and
+      [0, 1000], damage_strain [0, 100] (> 0 with the total-Lagrangian solver only), Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian solver only and
       that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
@@ -477,8 +489,8 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, Drucker-Prager plasticity, fluids, granular media, damage (TL eqs. 45-46),
-      removing particles.
+      self-contact, Drucker-Prager plasticity, fluids, granular media, damage of
+      updated-Lagrangian bodies, removing particles.
 
    REVISION HISTORY
       0.7.0 (2026-12-02) fluids (SPS_MATERIAL_FLUID: weakly compressible, Riemann solver with
@@ -760,6 +772,10 @@ typedef struct sps_body_def {
     sps_real stress_diffusion; /* Drucker-Prager bodies: the coefficient zeta of the stress
                                   diffusion (Feng et al. 2021; GRANULAR), [0, 1] (0: off).
                                   Default 0.1. */
+    sps_real damage_strain;    /* total-Lagrangian bodies: the damage threshold eps_max of TL
+                                  section 4.6, a principal Green-Lagrange strain (dimensionless),
+                                  [0, 100]; past it the damage D grows and degrades the tensile
+                                  stress (TOTAL-LAGRANGIAN). 0: no damage. Default 0. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -804,6 +820,7 @@ typedef struct sps_particle_state {
     sps_real density, pressure, von_mises; /* von_mises is 0 unless the body tracks stress */
     int body_index;
     sps_real plastic_strain;  /* equivalent plastic strain alpha (0 unless the body is J2) */
+    sps_real damage;          /* damage D in [0, 1] (0 unless the body has damage_strain > 0) */
 } sps_particle_state;
 
 /* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
@@ -974,7 +991,8 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    body has "shear_stress" (6: xx xy xz yy yz zz) and "velocity_gradient" (9, row-major) only
    if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation),
    "artificial_stress" (3: xx xy yy, OAS), and for J2 bodies "plastic_strain" (alpha),
-   "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r).
+   "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r); a
+   total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
@@ -1046,7 +1064,7 @@ SPSDEF sps_vtk_options sps_default_vtk_options(void);
 /* Legacy VTK file (POLYDATA, one vertex per particle, in the current particle order) with the
    point data velocity, displacement, pressure, density, von_mises (and stress; plastic_strain
    when a body is J2; deformation_gradient, 9 values row-major and 0 for the other bodies, when
-   a body is total-Lagrangian), body and id in one FIELD block, so that VTK's legacy reader (ParaView) shows every array with its default
+   a body is total-Lagrangian; damage, 0 for the other bodies, when a body has damage), body and id in one FIELD block, so that VTK's legacy reader (ParaView) shows every array with its default
    settings. options NULL: the defaults. SPS_ERR_INVALID_ARG (w or path NULL, an option not 0
    or 1), SPS_ERR_IO (cannot open or write; the message names the path). No allocation; O(N). */
 SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const sps_vtk_options* options);
@@ -1137,6 +1155,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #define SPS__LOG logf
 #define SPS__EXP expf
 #define SPS__FABS fabsf
+#define SPS__CBRT cbrtf
 #else
 #define SPS__SQRT sqrt
 #define SPS__SIN sin
@@ -1147,6 +1166,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #define SPS__LOG log
 #define SPS__EXP exp
 #define SPS__FABS fabs
+#define SPS__CBRT cbrt
 #endif
 #define SPS__PI SPS_R(3.14159265358979323846)
 #define SPS__COOKIE 0x5350531
@@ -1260,6 +1280,7 @@ typedef struct sps__model {
     int pressure_of_density; /* the half drift sets p from rho (not for Drucker-Prager) */
     sps_transport transport; /* the transport correction after each sub-step (>>transport) */
     int total_lagrangian; /* reference neighbours and gradients (chapter >>solver: total Lagrangian) */
+    int damage;   /* total Lagrangian with damage_strain > 0: the damage field (TL eqs. 45-46) */
     sps__passes pass;
 } sps__model;
 
@@ -1308,6 +1329,7 @@ typedef struct sps__body {
     sps_real transport_alpha; /* alpha of UTVF eq. 30 */
     sps_real *tl_correction, *tl_deformation, *tl_stress; /* total-Lagrangian bodies: B_i, F_i, P_i B_i */
     sps_real* tl_plastic; /* total-Lagrangian J2 bodies: C_p^-1 - I (sps__tl_j2) */
+    sps_real* damage;     /* total-Lagrangian bodies with damage: D in [0, 1] (sps__tl_damage) */
     int field_count; /* particles they hold: its count at the last commit */
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
@@ -1448,7 +1470,8 @@ typedef enum {
     SPS__NEED_DIFFUSION,   /* a Drucker-Prager body with stress diffusion */
     SPS__NEED_GRANULAR,    /* a Drucker-Prager body */
     SPS__NEED_TOTAL_LAGRANGIAN, /* a total-Lagrangian body */
-    SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC /* a total-Lagrangian J2 body */
+    SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC, /* a total-Lagrangian J2 body */
+    SPS__NEED_DAMAGE       /* a total-Lagrangian body with damage (damage_strain > 0) */
 } sps__need;
 
 enum {
@@ -1511,6 +1534,8 @@ static const sps__field_info sps__fields[] = {
     /* total-Lagrangian J2: the inverse plastic right Cauchy-Green tensor less I (xx xy xz yy yz zz; 0: no plastic flow yet) */
     {"plastic_metric", "plastic metric", 1, SPS__BOFF(tl_plastic), 0, 6, 0, SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC,
      SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    /* total-Lagrangian damage D (TL eqs. 45-46): state, advanced by the stress pass */
+    {"damage", "damage", 1, SPS__BOFF(damage), 0, 1, 0, SPS__NEED_DAMAGE, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
@@ -2081,6 +2106,10 @@ static int sps__shifted_reference(int dim, const sps_body_def* def) {
     (void)dim;
     return def->transport != SPS_TRANSPORT_NONE && def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
+static int sps__damage_updated(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->damage_strain > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
+}
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
     {sps__shifted_reference, "transport = TVF or UTVF with solver = total Lagrangian: its neighbours are those of the reference "
@@ -2089,6 +2118,8 @@ static const sps__combination_rule sps__combination_rules[] = {
                                 "take the deformation gradient of the reference configuration; use solver = total Lagrangian"},
     {sps__total_lagrangian_other_law, "solver = total Lagrangian with material.kind other than Saint Venant-Kirchhoff (4), Neo-Hookean "
                                       "(5) or J2 (2): a total-Lagrangian body needs a law of the deformation gradient"},
+    {sps__damage_updated, "damage_strain > 0 with solver = updated Lagrangian: the damage model (TL eqs. 45-46) reads the "
+                          "deformation gradient of the reference configuration; use solver = total Lagrangian"},
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
     {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
     /* ANG sections 4.1 and 5.2: ENO's shear force is an accumulated Laplacian of velocity, not
@@ -2110,6 +2141,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                "solver = %d, allowed 0 (updated Lagrangian) or 1 (total Lagrangian)", (int)def->solver);
     SPS__CHECK(def->hourglass_alpha >= 0 && def->hourglass_alpha <= 1000, "hourglass_alpha = %g, allowed [0, 1000]",
                (double)def->hourglass_alpha);
+    SPS__CHECK(def->damage_strain >= 0 && def->damage_strain <= 100,
+               "damage_strain = %g, allowed [0, 100] (a principal Green-Lagrange strain; 0: no damage)", (double)def->damage_strain);
     SPS__CHECK(def->transport == SPS_TRANSPORT_NONE || def->transport == SPS_TRANSPORT_TVF || def->transport == SPS_TRANSPORT_UTVF,
                "transport = %d, allowed 0 (none), 1 (TVF) or 2 (UTVF)", (int)def->transport);
     SPS__CHECK(def->stress_diffusion >= 0 && def->stress_diffusion <= 1, "stress_diffusion = %g, allowed [0, 1] (0: off)",
@@ -2163,6 +2196,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) { /* its stress comes from F: tau holds its Cauchy stress + p I */
         m.stabilisation = &sps__tl_hourglass;
         m.total_lagrangian = m.stress = 1; /* m.plastic stays: a J2 body's return map is sps__tl_j2 */
+        m.damage = def->damage_strain > 0;
         m.paired = m.gradient = m.artificial_stress = m.scaled_penalty = 0;
         m.turn = SPS__TURN_NONE;
     }
@@ -3635,7 +3669,8 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
            (need == SPS__NEED_TRANSPORT && m->transport != SPS_TRANSPORT_NONE) || (need == SPS__NEED_DIFFUSION && m->diffusion) ||
            (need == SPS__NEED_GRANULAR && m->plastic == SPS__YIELD_DRUCKER_PRAGER) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
-           (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic);
+           (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic) ||
+           (need == SPS__NEED_DAMAGE && m->damage);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -5069,6 +5104,55 @@ static sps_real sps__tl_j2(sps_real lambda, sps_real mu, sps_real yield, sps_rea
     return psi;
 }
 
+/* >>material: damage in the total-Lagrangian frame (TL section 4.6, eqs. 45-46)
+
+   A body with damage_strain = eps_max > 0 carries the damage D in [0, 1] of each particle (field
+   "damage"). The rate model of TL eq. 45: while the largest principal Green-Lagrange strain of
+   F_i exceeds eps_max, D^(1/3) grows at 0.4 c0 / h, with c0 the P-wave speed
+   sqrt((K + 4G/3)/rho0) and h the kernel radius (the support 2h here: where W reaches 0), so
+   that a crack crosses a particle no faster than 0.4 times the speed of sound; D never falls.
+   TL eq. 46: of the principal stresses only the positive ones are scaled by 1 - D, so that a
+   broken particle still resists being pushed into. It is applied to the Kirchhoff stress
+   tau = P F^T = J sigma (the principal axes and signs of sigma), and P = tau~ F^-T. A particle
+   with D = 0 keeps its law's P untouched. The hourglass force weakens with 1 - D too
+   (sps__tl_hourglass_modulus). */
+
+/* The growth of D^(1/3) per second of body b (TL eq. 45): 0.4 c0 / h. */
+static sps_real sps__tl_damage_rate(const sps_world* w, const sps__body* b) {
+    return SPS_R(0.4) * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) / w->support;
+}
+
+/* Advances the damage *D of a particle at F (J = det F) by dt with D^(1/3) growing at rate
+   (TL eq. 45), then scales the positive principal values of its Kirchhoff stress P F^T by
+   1 - D (TL eq. 46) in P. */
+static void sps__tl_damage(sps_real rate, sps_real eps_max, sps_real dt, const sps_real F[9], sps_real J, sps_real* D, sps_real P[9]) {
+    sps_real B[9], d[3], Q[9], T[9], Ts[9], Finv[9], largest;
+    int a, c, k;
+    sps__mat3_product(F, F, 1, B); /* F F^T: the principal stretches squared, as of F^T F */
+    sps__eigen3(B, d, Q);
+    largest = d[0] > d[1] ? d[0] : d[1];
+    if (d[2] > largest) largest = d[2];
+    if (SPS_R(0.5) * (largest - 1) > eps_max) { /* the largest principal Green-Lagrange strain */
+        const sps_real root = SPS__CBRT(*D) + rate * dt;
+        *D = root >= 1 ? 1 : root * root * root;
+    }
+    if (*D == 0) return;
+    sps__mat3_product(P, F, 1, T);
+    for (a = 0; a < 3; ++a) /* symmetric up to round-off: the Jacobi rotations read its upper part */
+        for (c = 0; c < 3; ++c) Ts[3 * a + c] = SPS_R(0.5) * (T[3 * a + c] + T[3 * c + a]);
+    sps__eigen3(Ts, d, Q);
+    for (a = 0; a < 3; ++a)
+        if (d[a] > 0) d[a] *= 1 - *D;
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < 3; ++k) s += Q[3 * a + k] * d[k] * Q[3 * c + k];
+            T[3 * a + c] = s;
+        }
+    sps__inverse3(F, J, Finv);
+    sps__mat3_product(T, Finv, 1, P);
+}
+
 /* Lame constants of a total-Lagrangian body: mu = G, lambda = K - 2G/3. */
 #define SPS__LAME_LAMBDA(b) ((b)->mat.K - (b)->mat.G * 2 / 3)
 
@@ -5095,14 +5179,14 @@ SPS__INLINE void sps__tl_deformation(const sps_world* w, const sps__body* b, int
         }
 }
 
-/* Stress pass of lane group g: F_i, P_i by the body's law, Q_i = P_i B_i (for the force pass),
+/* Stress pass of lane group g: F_i, P_i by the body's law (degraded by its damage, TL eqs. 45-46,
+   when the body has damage), Q_i = P_i B_i (for the force pass),
    the Cauchy stress sigma = P F^T / J stored as tau = sigma + p I (so that -p I + tau, what the
    output reads, is sigma) and the density rho0/J (TL eq. 3). law and dim are literals. */
 SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int law) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b);
+    const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b), damage_rate = b->damage ? sps__tl_damage_rate(w, b) : 0;
     int l, a, c, k;
-    (void)dt;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin;
         const sps_real* B = b->tl_correction + (size_t)9 * o;
@@ -5118,6 +5202,7 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         } else {
             sps__tl_law(law, lambda, mu, F, J, P);
         }
+        if (b->damage) sps__tl_damage(damage_rate, b->def.damage_strain, dt, F, J, b->damage + o, P);
         for (a = 0; a < 3; ++a)
             for (c = 0; c < 3; ++c) {
                 sps_real s = 0, t = 0;
@@ -5134,6 +5219,16 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         tau[5] = dim == 3 ? sigma[8] + w->p[i] : 0;
         w->rho[i] = b->rho0 / J;
     }
+}
+
+/* The modulus of particle o's side of the hourglass force (TL eq. 32): Young's modulus E, the
+   yield strength Y once a J2 particle has flowed (plastic, a literal; TL section 4.5), times
+   1 - D with damage: a broken particle, which carries no tension, holds no hourglass spring
+   (undegraded, the springs of broken particles alone kept a broken section of the D6 specimen
+   carrying load at alpha 50). */
+SPS__INLINE sps_real sps__tl_hourglass_modulus(const sps__body* b, int o, sps_real E, sps_real Y, const int plastic) {
+    const sps_real modulus = plastic && b->plastic_strain[o] > 0 ? Y : E;
+    return b->damage ? modulus * (1 - b->damage[o]) : modulus;
 }
 
 /* Force pass of lane group g (in the pressure pass's place): the stress force of TL eq. 24,
@@ -5155,7 +5250,7 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
         const sps_real *Qi = b->tl_stress + (size_t)9 * o, *Fi = b->tl_deformation + (size_t)9 * o;
-        const sps_real vi = SPS__V0(w, b, i), Ei = plastic && b->plastic_strain[o] > 0 ? Y : E;
+        const sps_real vi = SPS__V0(w, b, i), Ei = sps__tl_hourglass_modulus(b, o, E, Y, plastic);
         sps_real f[3] = {0, 0, 0};
         for (k = 0; k < w->nb_count[i]; ++k) {
             const int j = w->nb_j[first + k * SPS__LANES], oj = j - b->begin;
@@ -5182,7 +5277,7 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
                 dj += pj * xij[a];
             }
             {
-                const sps_real Ej = plastic && b->plastic_strain[oj] > 0 ? Y : E; /* TL section 4.5: the yield strength once plastic */
+                const sps_real Ej = sps__tl_hourglass_modulus(b, oj, E, Y, plastic);
                 fh = hourglass * vv * e.w / (e.r * e.r) * (Ei * di + Ej * dj) * inv_r * inv_r; /* (E delta_i + E delta_j) / |x_ij| */
             }
             for (a = 0; a < dim; ++a) f[a] += fh * xij[a];
@@ -5258,19 +5353,25 @@ static void sps__tl_signal_speeds(sps_world* w) {
 
 /* The stored energy V0 psi(F) of particle i of total-Lagrangian body b, F from the current
    positions (the neighbour lists are valid wherever energies are summed: diagnostics and the
-   watchdog at configuration updates); 0 before its reference lists are built. */
+   watchdog at configuration updates); 0 before its reference lists are built. A damaged
+   particle's is counted as (1 - D) V0 psi(F): the rate model of TL eq. 45 has no potential,
+   and a broken one (D = 1) stores nothing however far its crack opens, so the energy account
+   falls by what damage dissipates. */
 static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
-    sps_real F[9], P[9];
+    sps_real F[9], P[9], psi;
     const int law = sps__tl_law_of(b->def.material.kind);
     if (!b->reference_built) return 0;
     sps__tl_deformation(w, b, i, w->nb_first[i], w->dim, F);
     if (law == SPS__LAW_J2) { /* the state is not advanced: a copy */
         sps_real cp[6], alpha = b->plastic_strain[i - b->begin];
         memcpy(cp, b->tl_plastic + (size_t)6 * (i - b->begin), sizeof cp);
-        return SPS__V0(w, b, i) * sps__tl_j2(SPS__LAME_LAMBDA(b), b->mat.G, b->def.material.yield_stress, b->def.material.hardening_modulus,
-                                             F, sps__det3(F), cp, &alpha, 0, P, NULL);
+        psi = sps__tl_j2(SPS__LAME_LAMBDA(b), b->mat.G, b->def.material.yield_stress, b->def.material.hardening_modulus, F, sps__det3(F),
+                         cp, &alpha, 0, P, NULL);
+    } else {
+        psi = sps__tl_law(law, SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
     }
-    return SPS__V0(w, b, i) * sps__tl_law(law, SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
+    if (b->damage) psi *= 1 - b->damage[i - b->begin];
+    return SPS__V0(w, b, i) * psi;
 }
 
 /* >>contact: rigid walls and contact between bodies */
@@ -6639,6 +6740,11 @@ static sps_real sps__plastic_strain(const sps_world* w, int i) {
     const sps__body* b = &w->bodies[w->body[i]];
     return b->plastic_strain && i - b->begin < b->field_count ? b->plastic_strain[i - b->begin] : 0;
 }
+/* Particle i's damage D (0 unless its body has damage). */
+static sps_real sps__damage(const sps_world* w, int i) {
+    const sps__body* b = &w->bodies[w->body[i]];
+    return b->damage && i - b->begin < b->field_count ? b->damage[i - b->begin] : 0;
+}
 
 /* Hourglass indicator (see DIAGNOSTICS): displacement gradients with B from current positions;
    also the smallest spacing and the count of surface particles of [begin, end). */
@@ -6871,6 +6977,7 @@ SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_st
     out->von_mises = sps__von_mises(w, i);
     out->body_index = w->body[i];
     out->plastic_strain = sps__plastic_strain(w, i);
+    out->damage = sps__damage(w, i);
     return SPS_OK;
 }
 
@@ -6988,8 +7095,8 @@ SPSDEF sps_result sps_observer_read(const sps_world* w, sps_observer o, sps_real
    (a per-body one is 0 for the bodies without it), or computed per particle by value. A new
    output is one row. */
 /* When a row of sps__vtk_arrays is written: always, with sps_vtk_options.stress, or when a
-   body is plastic (J2). */
-typedef enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC, SPS__VTK_IF_TOTAL_LAGRANGIAN } sps__vtk_shown_when;
+   body is plastic (J2), total-Lagrangian, or has damage. */
+typedef enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC, SPS__VTK_IF_TOTAL_LAGRANGIAN, SPS__VTK_IF_DAMAGE } sps__vtk_shown_when;
 typedef struct sps__vtk_array {
     const char* name;
     int components; /* per point (a per-axis field: 3, z = 0 in 2D) */
@@ -7022,6 +7129,7 @@ static const sps__vtk_array sps__vtk_arrays[] = {
     {"stress", 9, 0, NULL, sps__vtk_stress, SPS__VTK_WITH_STRESS},
     {"plastic_strain", 1, 0, NULL, sps__vtk_plastic_strain, SPS__VTK_IF_PLASTIC},
     {"deformation_gradient", 9, 0, "deformation_gradient", NULL, SPS__VTK_IF_TOTAL_LAGRANGIAN},
+    {"damage", 1, 0, "damage", NULL, SPS__VTK_IF_DAMAGE},
     {"body", 1, 1, "body", NULL, SPS__VTK_ALWAYS},
     {"id", 1, 1, "id", NULL, SPS__VTK_ALWAYS},
 };
@@ -7035,6 +7143,8 @@ static int sps__vtk_shown(const sps_world* w, const sps__vtk_array* row, const s
         if (w->bodies[bi].model.plastic) return 1;
     for (bi = 0; row->shown == SPS__VTK_IF_TOTAL_LAGRANGIAN && bi < w->nbodies; ++bi)
         if (w->bodies[bi].model.total_lagrangian) return 1;
+    for (bi = 0; row->shown == SPS__VTK_IF_DAMAGE && bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.damage) return 1;
     return row->shown == SPS__VTK_ALWAYS;
 }
 

@@ -35,6 +35,7 @@ RENDER_UNUSED static double render_von_mises(const sps_particle_state* s) { retu
 RENDER_UNUSED static double render_displacement(const sps_particle_state* s) { return render_norm3(s->displacement); }
 RENDER_UNUSED static double render_body(const sps_particle_state* s) { return s->body_index; }
 RENDER_UNUSED static double render_plastic_strain(const sps_particle_state* s) { return s->plastic_strain; } /* 0 unless J2 */
+RENDER_UNUSED static double render_damage(const sps_particle_state* s) { return s->damage; } /* 0 unless the body has damage */
 
 /* More fields are more rows here. */
 static const render_field render_fields[] = {
@@ -44,6 +45,7 @@ static const render_field render_fields[] = {
     {"displacement", "displacement [m]", render_displacement},
     {"body", "body index", render_body},
     {"plastic-strain", "equivalent plastic strain", render_plastic_strain},
+    {"damage", "damage D", render_damage},
 };
 #define RENDER_FIELD_COUNT ((int)(sizeof render_fields / sizeof *render_fields))
 

@@ -40,6 +40,7 @@ typedef struct pinned_case {
     int fluid;             /* 1: a fluid in a tank of walls (mirror particles); 2: also viscous */
     sps_transport transport;
     int tl;                /* 0: updated Lagrangian; else the material kind of a total-Lagrangian body (J2 with plastic) */
+    int damage;            /* total Lagrangian with damage (TL eqs. 45-46; a threshold the motion passes): its damage is hashed too */
 } pinned_case;
 
 #define W SPS_KERNEL_WENDLAND_C2
@@ -52,10 +53,10 @@ typedef struct pinned_case {
    both kernels; the -A rotations where they apply (the others ignore the rotation). */
 static const pinned_case g_cases[] = {
 #define GEOMETRIES(nm, d, sh, rot)                              \
-    {nm "/wendland", d, sh, rot, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0},      \
-    {nm "/spline", d, sh, rot, 0, S, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0},        \
-    {nm "/frozen", d, sh, rot, 1, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0},        \
-    {nm "/frozen-spline", d, sh, rot, 1, S, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0}
+    {nm "/wendland", d, sh, rot, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},      \
+    {nm "/spline", d, sh, rot, 0, S, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},        \
+    {nm "/frozen", d, sh, rot, 1, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},        \
+    {nm "/frozen-spline", d, sh, rot, 1, S, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0}
     GEOMETRIES("2d/eno", 2, SPS_SHEAR_ENO, MEAN),
     GEOMETRIES("2d/eno-a-mean", 2, SPS_SHEAR_ENO_A, MEAN),
     GEOMETRIES("2d/eno-a-particle", 2, SPS_SHEAR_ENO_A, PART),
@@ -76,35 +77,36 @@ static const pinned_case g_cases[] = {
     GEOMETRIES("3d/gno-a-particle", 3, SPS_SHEAR_GNO_A, PART),
     GEOMETRIES("3d/gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR),
 #undef GEOMETRIES
-    {"2d/eno-a-mean/single", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 1, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0},
-    {"2d/eno/stress", 2, SPS_SHEAR_ENO, MEAN, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE, 0},
-    {"2d/eno-a-pair/stress", 2, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE, 0},
-    {"3d/eno-a-mean/stress", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE, 0},
-    {"2d/all-shears", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE, 0},
-    {"3d/all-shears", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE, 0},
-    {"2d/j2-og", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0},
-    {"2d/j2-gno-a-mean", 2, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0},
-    {"3d/j2-og", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0},
-    {"3d/j2-gno-a-mean", 3, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0},
-    {"3d/j2-gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0},
-    {"3d/j2-gno", 3, SPS_SHEAR_GNO, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0},
-    {"2d/fluid", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_NONE, 0},
-    {"2d/fluid-viscous-tvf", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 2, SPS_TRANSPORT_TVF, 0},
-    {"2d/fluid-utvf", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_UTVF, 0},
-    {"3d/fluid-utvf", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_UTVF, 0},
-    {"2d/og-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_UTVF, 0},
-    {"3d/og-tvf", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_TVF, 0},
+    {"2d/eno-a-mean/single", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 1, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/eno/stress", 2, SPS_SHEAR_ENO, MEAN, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/eno-a-pair/stress", 2, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/eno-a-mean/stress", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 1, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/all-shears", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/all-shears", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/j2-og", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/j2-gno-a-mean", 2, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/j2-og", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/j2-gno-a-mean", 3, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/j2-gno-a-pair", 3, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/j2-gno", 3, SPS_SHEAR_GNO, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/fluid", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/fluid-viscous-tvf", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 2, SPS_TRANSPORT_TVF, 0, 0},
+    {"2d/fluid-utvf", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_UTVF, 0, 0},
+    {"3d/fluid-utvf", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 1, SPS_TRANSPORT_UTVF, 0, 0},
+    {"2d/og-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_UTVF, 0, 0},
+    {"3d/og-tvf", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_TVF, 0, 0},
     /* Drucker-Prager bodies (their shear is not used) */
-    {"2d/drucker-prager", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0},
-    {"2d/drucker-prager-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_UTVF, 0},
-    {"3d/drucker-prager", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0},
+    {"2d/drucker-prager", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/drucker-prager-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_UTVF, 0, 0},
+    {"3d/drucker-prager", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0, 0},
     /* total-Lagrangian bodies (their shear is not used) */
-    {"2d/tl-svk", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF},
-    {"2d/tl-neo-hookean", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN},
-    {"2d/tl-j2", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_J2},
-    {"3d/tl-svk", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF},
-    {"3d/tl-neo-hookean", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN},
-    {"3d/tl-j2", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_J2},
+    {"2d/tl-svk", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 0},
+    {"2d/tl-neo-hookean", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN, 0},
+    {"2d/tl-j2", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_J2, 0},
+    {"3d/tl-svk", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 0},
+    {"3d/tl-neo-hookean", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN, 0},
+    {"3d/tl-j2", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_J2, 0},
+    {"3d/tl-svk-damage", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 1},
 };
 #define NCASES ((int)(sizeof g_cases / sizeof g_cases[0]))
 
@@ -173,6 +175,7 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
     if (c->tl) {
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = (sps_material_kind)c->tl;
+        bd.damage_strain = c->damage ? (sps_real)1e-3 : 0;
     }
     if (sps_world_add_body(w, &bd, &b) != SPS_OK) return -1;
     lo[0] = (sps_real)x0; lo[1] = 0; lo[2] = 0;
@@ -196,7 +199,7 @@ static uint64_t run_case(const pinned_case* c, int threads) {
     sps_world_def wd = sps_default_world_def();
     sps_world* w = NULL;
     uint64_t h = 1469598103934665603ull;
-    int n, id, k, step;
+    int n, id, k, step, damaged = 0;
     wd.dim = c->dim;
     wd.dp = (sps_real)0.01;
     wd.kernel = c->kernel;
@@ -226,7 +229,13 @@ static uint64_t run_case(const pinned_case* c, int threads) {
             const double alpha = (double)ps.plastic_strain;
             h = fnv_bytes(h, &alpha, sizeof alpha);
         }
+        if (c->damage) {
+            const double D = (double)ps.damage;
+            h = fnv_bytes(h, &D, sizeof D);
+            damaged += ps.damage > 0;
+        }
     }
+    if (c->damage && damaged == 0) { printf("    %s: no particle was damaged\n", c->name); goto fail; }
     h = fnv_bytes(h, &n, sizeof n);
     {   /* the diagnostics too: energies, momenta, the hourglass indicator (its B_i) and spacing */
         sps_diagnostics d;

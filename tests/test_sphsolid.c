@@ -3438,6 +3438,7 @@ typedef struct restart_scene {
     int frozen_geometry, keep_last_good_state, contact, threads;
     double shift; /* [m] the first block moved along x */
     int tl_kind;  /* 0: updated Lagrangian; else the material kind of total-Lagrangian blocks */
+    double damage_strain; /* total Lagrangian: the damage threshold (0: none) */
 } restart_scene;
 
 static void velocity_minus_x(const sps_real x[3], sps_real v[3], void* user) {
@@ -3467,6 +3468,7 @@ static sps_world* restart_build(const restart_scene* sc, int threads, sps_observ
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = (sps_material_kind)sc->tl_kind;
         bd.material.yield_stress = 2e3; /* J2: yields in the swirl */
+        bd.damage_strain = sc->damage_strain;
     }
     if (sps_world_add_body(w, &bd, &a) != SPS_OK || sps_body_add_box(w, a, lo, hi, NULL) != SPS_OK ||
         sps_body_set_velocity(w, a, random_velocity, &seed) != SPS_OK ||
@@ -3529,6 +3531,16 @@ static int restart_round_trip(const restart_scene* sc, int before, int after) {
     close(fd);
     ENSURE(sps_world_save(w, path) == SPS_OK);
     ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d_saved) == SPS_OK);
+    if (sc->damage_strain > 0) { /* the saved state holds damage: a restore that lost it would change the stresses after it */
+        double damage = 0;
+        for (k = 0; k < sps_world_particle_count(w); ++k) {
+            sps_particle_state ps;
+            sps_world_particle(w, k, &ps);
+            damage += ps.damage;
+        }
+        printf("    total damage at the save %.4g\n", damage);
+        ENSURE(damage > 0);
+    }
     for (k = 0; k < after; ++k) ENSURE(sps_world_step(w) == SPS_OK);
     n = sps_world_particle_count(w);
     first = restart_result(w, obs);
@@ -3554,17 +3566,19 @@ static int restart_round_trip(const restart_scene* sc, int before, int after) {
    formulations whose state differs (ENO-A's mean rotation and spin, GNO-A's velocity gradient,
    the pair forces of SPS_ROTATION_PAIR), contact with a wall, frozen geometry and the last good
    state, total-Lagrangian bodies (their reference lists rebuilt, Neo-Hookean with contact; J2
-   with its plastic metric); saved at 1 thread and restored at 2, and once the other way round. */
+   with its plastic metric; Saint Venant-Kirchhoff with damage); saved at 1 thread and restored at 2, and once the other way round. */
 static int test_restart_round_trip(void) {
     static const restart_scene scenes[] = {
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0},
-        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, 0, 0, 0, 2, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, 0},
-        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 1, 0, 1, 2, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0},
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, SPS_MATERIAL_NEO_HOOKEAN}, /* total Lagrangian, with contact */
-        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, SPS_MATERIAL_J2},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 0, 0, 0, 2, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_PAIR, 0, 0, 0, 2, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, 0, 0},
+        {SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 1, 0, 1, 2, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0, 0},
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 1, 2, 0, SPS_MATERIAL_NEO_HOOKEAN, 0}, /* total Lagrangian, with contact */
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, SPS_MATERIAL_J2, 0},
+        /* damage that grows in the swirl (threshold 2e-3), with the last good state */
+        {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 2, 0, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 2e-3},
     };
     int k;
     for (k = 0; k < (int)(sizeof scenes / sizeof scenes[0]); ++k) {
@@ -3580,7 +3594,7 @@ static int test_restart_round_trip(void) {
    bit, in the saved world and in the restored one. */
 static int test_restart_last_good_state(void) {
     char path[] = "/tmp/test_sphsolid_restart_XXXXXX";
-    const restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0};
+    const restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 1, 0, 1, 0, 0, 0};
     const sps_real far[3] = {1e3, 0, 0};
     sps_observer obs, obs2;
     sps_world *w = restart_build(&sc, 1, &obs), *w2;
@@ -3643,7 +3657,7 @@ static int restore_refused(const restart_scene* sc, const char* path, sps_result
    missing one are refused with a message, and the world is left as it was. */
 static int test_restart_refused(void) {
     char path[] = "/tmp/test_sphsolid_restart_XXXXXX", part[] = "/tmp/test_sphsolid_part_XXXXXX";
-    restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, 0}, other = sc;
+    restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, 0, 0}, other = sc;
     sps_observer obs;
     sps_world* w = restart_build(&sc, 1, &obs);
     long size;
@@ -3963,18 +3977,14 @@ static int test_fluid_bad_input(void) {
 /* ============================================================================================ */
 /* >>total-Lagrangian: the solver of TL sections 2-3 (chapter >>solver: total Lagrangian)        */
 
-/* A total-Lagrangian box of n^dim particles (spacing 1e-3, rho0 1000, E 1e6, nu 0.3) of law kind
-   with hourglass coefficient alpha; held = 1 constrains every particle to v = 0 (its positions,
-   once set, stay). */
-static sps_world* tl_box(int dim, sps_material_kind kind, double alpha, int n, int held, sps_body* out) {
+/* A total-Lagrangian box of n^dim particles (spacing 1e-3) of body def bd (solver set here);
+   held = 1 constrains every particle to v = 0 (its positions, once set, stay). */
+static sps_world* tl_box_of(int dim, sps_body_def bd, int n, int held, sps_body* out) {
     sps_world_def wd = sps_default_world_def();
-    sps_body_def bd = sps_default_body_def();
     sps_world* w;
     sps_real lo[3] = {0, 0, 0}, hi[3] = {n * 1e-3, n * 1e-3, dim == 3 ? n * 1e-3 : 0}, all_lo[3] = {-1, -1, -1}, all_hi[3] = {1, 1, 1};
     wd.dim = dim; wd.dp = 1e-3; wd.log = quiet_log; wd.threads = 1;
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
-    bd.material.kind = kind;
-    bd.hourglass_alpha = alpha;
     if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
     if (sps_world_add_body(w, &bd, out) != SPS_OK || sps_body_add_box(w, *out, lo, hi, NULL) != SPS_OK ||
         (held && sps_body_constrain_box(w, *out, all_lo, all_hi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK)) {
@@ -3982,6 +3992,15 @@ static sps_world* tl_box(int dim, sps_material_kind kind, double alpha, int n, i
         return NULL;
     }
     return w;
+}
+
+/* The box of tl_box_of with the default material (rho0 1000, E 1e6, nu 0.3) of law kind and
+   hourglass coefficient alpha. */
+static sps_world* tl_box(int dim, sps_material_kind kind, double alpha, int n, int held, sps_body* out) {
+    sps_body_def bd = sps_default_body_def();
+    bd.material.kind = kind;
+    bd.hourglass_alpha = alpha;
+    return tl_box_of(dim, bd, n, held, out);
 }
 
 /* Moves every particle of w to x = A X + c (A row-major 3 x 3). */
@@ -4217,6 +4236,129 @@ static int test_tl_j2_return(void) {
     return 0;
 }
 
+/* The closed-form Cauchy stress of a Saint Venant-Kirchhoff body (E 1e6, nu 0.3) under the
+   homogeneous stretch x = diag(l) X: sigma_a = l_a^2 (lambda tr(E) + mu (l_a^2 - 1)) / J (TL eq. 19). */
+static void tl_svk_stretch_stress(const double l[3], double sigma[3]) {
+    const double E = 1e6, nu = 0.3, mu = E / (2 * (1 + nu)), lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), J = l[0] * l[1] * l[2];
+    double trE = 0;
+    int a;
+    for (a = 0; a < 3; ++a) trE += 0.5 * (l[a] * l[a] - 1);
+    for (a = 0; a < 3; ++a) sigma[a] = l[a] * l[a] * (lambda * trE + mu * (l[a] * l[a] - 1)) / J;
+}
+
+/* A held Saint Venant-Kirchhoff box (rho0 1000, E 1e6, nu 0.3; n^dim particles) with damage
+   threshold eps_max, stretched homogeneously by diag(l) and advanced to time t; NULL on error. */
+static sps_world* tl_damage_run(int dim, int n, double eps_max, const double l[3], double t, sps_body* b) {
+    const double A[9] = {l[0], 0, 0, 0, l[1], 0, 0, 0, l[2]}, c[3] = {0, 0, 0};
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
+    bd.damage_strain = eps_max;
+    if ((w = tl_box_of(dim, bd, n, 1, b)) == NULL) return NULL;
+    tl_map(w, A, c);
+    if (sps_world_advance(w, (sps_real)t, NULL, NULL) != SPS_OK) {
+        sps_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+/* The damage rate of TL eq. 45: below the threshold (a uniaxial stretch of 5 %, Green-Lagrange
+   strain 0.051 < 0.08) no damage; above it (10 %: 0.105) D^(1/3) = 0.4 c0 t / h at every
+   particle, c0 = sqrt((K + 4G/3)/rho0) the P-wave speed and h the kernel radius 2 h_over_dp dp,
+   and the tensile stress sigma_xx is the undamaged one times 1 - D (TL eq. 46). 2D, plane strain. */
+static int test_tl_damage_rate(void) {
+    const double E = 1e6, nu = 0.3, K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu)), c0 = sqrt((K + 4 * G / 3) / 1000);
+    const double radius = 2 * 1.3 * 1e-3, t_full = radius / (0.4 * c0); /* default h_over_dp 1.3: D = 1 after t_full */
+    int above;
+    {   /* the def's checks: the range, and the solver that has a deformation gradient */
+        sps_world_def wd = sps_default_world_def();
+        sps_body_def bd = sps_default_body_def();
+        sps_world* w;
+        sps_body b;
+        wd.log = quiet_log;
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
+        bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
+        bd.damage_strain = -0.5;
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG);
+        ENSURE(strstr(sps_world_last_error(w), "damage_strain = -0.5, allowed [0, 100]") != NULL);
+        bd.damage_strain = 0.08;
+        bd.solver = SPS_SOLVER_UPDATED_LAGRANGIAN;
+        bd.material.kind = SPS_MATERIAL_ELASTIC;
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG);
+        ENSURE(strstr(sps_world_last_error(w), "damage_strain > 0 with solver = updated Lagrangian") != NULL);
+        sps_world_destroy(w);
+    }
+    for (above = 0; above < 2; ++above) {
+        const double l[3] = {above ? 1.1 : 1.05, 1, 1};
+        double sigma[3], t, root_err = 0, stress_err = 0, dmin = 1, dmax = 0;
+        sps_body b;
+        sps_world* w = tl_damage_run(2, 8, 0.08, l, 0.5 * t_full, &b);
+        const sps_real *D, *tau, *p;
+        int nc, first, count, i;
+        ENSURE(w != NULL);
+        t = sps_world_time(w);
+        D = sps_body_field(w, b, "damage", &nc, &first, &count);
+        ENSURE(D != NULL && nc == 1 && count == 64);
+        tau = sps_body_field(w, b, "shear_stress", &nc, &first, &count);
+        p = sps_world_field_by_name(w, "pressure", NULL);
+        ENSURE(sps_world_field_by_name(w, "damage", NULL) == NULL); /* a per-body field: sps_body_field's */
+        ENSURE(tau && p);
+        tl_svk_stretch_stress(l, sigma);
+        for (i = 0; i < count; ++i) {
+            dmin = fmin(dmin, D[i]);
+            dmax = fmax(dmax, D[i]);
+            root_err = fmax(root_err, fabs(cbrt(D[i]) - 0.4 * c0 * t / radius));
+            stress_err = fmax(stress_err, fabs(tau[6 * i] - p[first + i] - (1 - D[i]) * sigma[0]));
+        }
+        printf("    stretch %g (Green-Lagrange %.4f): t = %.4g s, D %.6g .. %.6g, max |D^(1/3) - 0.4 c0 t/h| %.2e, "
+               "max |sigma_xx - (1 - D) sigma_xx(undamaged)| %.2e Pa\n", l[0], 0.5 * (l[0] * l[0] - 1), t, dmin, dmax, root_err,
+               stress_err);
+        if (above) {
+            ENSURE(root_err < 1e-9); /* the sum of the sub-steps' dt is the world's time: round-off */
+            ENSURE(dmin > 0.1);      /* half way to full damage: D = 1/8 */
+        } else {
+            ENSURE(dmax == 0); /* below the threshold: none, exactly */
+        }
+        ENSURE(stress_err < 1e-9 * E); /* the closed form (TL eq. 46) up to the round-off of F times E */
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
+/* Damage degrades only tension (TL eq. 46): a 3D box stretched by 20 % in x, compressed by 20 %
+   in y (and held in z) until D = 1 everywhere loses its tensile stresses sigma_xx and
+   sigma_zz (lambda tr(E) > 0) and keeps its compressive sigma_yy, the undamaged closed form. */
+static int test_tl_damage_tension_only(void) {
+    const double E = 1e6, nu = 0.3, K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu)), c0 = sqrt((K + 4 * G / 3) / 1000);
+    const double l[3] = {1.2, 0.8, 1}, t = 1.2 * 2 * 1.3e-3 / (0.4 * c0); /* past full damage */
+    double sigma[3], tension = 0, compression_err = 0, dmin = 1;
+    sps_body b;
+    sps_world* w = tl_damage_run(3, 5, 0.08, l, t, &b);
+    const sps_real *D, *tau, *p;
+    int nc, first, count, i;
+    ENSURE(w != NULL);
+    D = sps_body_field(w, b, "damage", &nc, &first, &count);
+    tau = sps_body_field(w, b, "shear_stress", &nc, &first, &count);
+    p = sps_world_field_by_name(w, "pressure", NULL);
+    ENSURE(D && tau && p);
+    tl_svk_stretch_stress(l, sigma);
+    for (i = 0; i < count; ++i) {
+        dmin = fmin(dmin, D[i]);
+        tension = fmax(tension, fmax(fabs(tau[6 * i] - p[first + i]), fabs(tau[6 * i + 5] - p[first + i])));
+        compression_err = fmax(compression_err, fabs(tau[6 * i + 3] - p[first + i] - sigma[1]));
+    }
+    printf("    undamaged sigma = (%.6g, %.6g, %.6g) Pa; damaged: smallest D %.6g, max |sigma_xx|, |sigma_zz| %.2e Pa, "
+           "max |sigma_yy - undamaged| %.2e Pa\n", sigma[0], sigma[1], sigma[2], dmin, tension, compression_err);
+    ENSURE(sigma[0] > 1e5 && sigma[1] < -5e4 && sigma[2] > 1e4); /* the state has both signs to test */
+    ENSURE(dmin == 1);                        /* fully damaged */
+    ENSURE(tension < 1e-9 * E);               /* tension gone: round-off of rebuilding P */
+    ENSURE(compression_err < 1e-9 * E);       /* compression kept: round-off */
+    sps_world_destroy(w);
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int i;
     /* OpenMP's default wait policy spins in barriers. On a machine whose cores are busy with
@@ -4256,6 +4398,8 @@ int main(int argc, char** argv) {
     RUN(test_tl_hourglass_affine);
     RUN(test_tl_momentum);
     RUN(test_tl_j2_return);
+    RUN(test_tl_damage_rate);
+    RUN(test_tl_damage_tension_only);
     RUN(test_uniform_translation);
     RUN(test_damping_decays_velocity_exactly);
     RUN(test_external_acceleration);
