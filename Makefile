@@ -125,7 +125,10 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "punch2d --dp 0.05 --tend 0.004 --png-field pressure" "balls3d --dp 0.004 --tend 0.005 --png-view iso" \
                "tensile2d --dp 0.025 --tend 0.001" "ball_plate2d --dp 0.005 --v0 0.06 --tend 0.006" \
                "ball_plate3d --dp 0.01 --v0 0.12 --tend 0.003" \
-               "taylor_square --res 8" "taylor_round --res 6" "impact2d"
+               "taylor_square --res 8" "taylor_round --res 6" "impact2d" \
+               "column_collapse2d" "soil_failure2d --transport utvf" "soil_failure3d --res 25 --png-view iso" \
+               "flume3d --dp 0.08 --tend 2 --png-view iso" "debris_barrier3d --png-view iso" \
+               "tensile3d --res 4 --png-field damage --png-view iso"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \

@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.7.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.8.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -198,6 +198,42 @@
       wall bodies, nor total-Lagrangian ones, whose neighbours are those of the reference). Costs two neighbour passes per sub-step; the diagnostics'
       surface_particles counts the particles below 0.75 d, which voids and cracks raise.
 
+   GRANULAR (material.kind = SPS_MATERIAL_DRUCKER_PRAGER; UTVF sections 2.3, 3.1.3; chapter
+   >>material: Drucker-Prager)
+      Elastic-perfectly plastic soil: the linear elastic law (c0 = sqrt(K/rho0)), the cone
+      f = alpha_phi I1 + sqrt(J2) - k_c and the potential g = alpha_psi I1 + sqrt(J2) with
+      alpha_phi = tan(phi)/sqrt(9 + 12 tan^2 phi), k_c = 3c/sqrt(9 + 12 tan^2 phi) (UTVF eqs.
+      11-14; material.cohesion c [Pa], friction_angle phi and dilatancy_angle psi [degrees]).
+      The whole stress sigma = tau - p I is integrated, 3 x 3 also in 2D (plane strain keeps
+      sigma_zz): each sub-step the Jaumann rate 2G dev(D) + K tr(D) I + W sigma - sigma W less
+      the plastic flow gamma' (3K alpha_psi I + G s/sqrt(J2)) on the cone (eq. 13, gamma' >= 0),
+      plus the stress diffusion, then the reference code's return mapping: the tension cut-off
+      at the apex I1 = k_c/alpha_phi, then the deviator scaled back onto the cone. p is -I1/3
+      of that stress, not a function of density; the density follows the pressure,
+      rho = rho0 + p/c0^2 (the elastic volume change; with psi = 0 plastic flow keeps volume):
+      integrated by the continuity equation instead, the cohesionless front particles of a
+      column collapse expanded to a negative density. The momentum equation is the divergence
+      of sigma with the Riemann solver's dissipation, limited by beta = min(20 d max(-v_ij.e_ij
+      /c0, 0), 1) (UTVF section 3.1.3: none while particles separate); the body's shear
+      formulation is not used (no hourglass penalty, as in the paper). Stress diffusion
+      (Feng et al. 2021; stress_diffusion = zeta, default 0.1, 0: off): d sigma_i/dt +=
+      2 zeta h c0 sum_j (sigma_i - sigma_j - sigma_geo,ij) r_ij dW/(r_ij^2 + 0.01 h^2) V_j, the
+      geostatic difference sigma_geo,ij = -rho0 (g . x_ij) [g^ g^ + K0 (I - g^ g^)] left alone so
+      a layer at rest keeps its weight; its pair sums are taken in the pressure pass and used
+      in the stress update of the same sub-step. Walls act through mirror particles as on a
+      fluid (FLUIDS), the images carrying their particle's stress: unchanged at a no-slip wall,
+      which then takes the shear traction (friction), reflected at a slip wall; the velocity
+      gradient uses the no-slip image velocity -v_j. sps_body_set_geostatic_stress starts a
+      layer at rest (K0 = 1 - sin(phi) by default). Fields: "plastic_strain" is the accumulated
+      deviatoric plastic strain, sum sqrt(2/3) |dev(d_eps_p)|, "plastic_work" [J] the work of
+      the returned stress on the plastic strain increments (the energy account's dissipation),
+      "shear_stress" the deviator tau (6 values, with zz in 2D). UTVF and TVF apply as to any
+      body (TRANSPORT). Measured (bench/VALIDATION.md, "Granular media"): a geostatic block at
+      rest keeps its mid-depth stress within 3.7 % over 0.5 s while a slow zigzag mode of the
+      unpenalised stress divergence grows (hourglass indicator 0.02); cohesionless particles
+      that leave the bulk carry no stress (the cut-off), so single particles slide on along a
+      floor, and particles pressed onto a wall gather at the backstop's dp/2.
+
    TOTAL-LAGRANGIAN (sps_body_def.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; TL = Ganzenmueller's
    paper, chapter >>solver: total Lagrangian)
       A total-Lagrangian body computes everything in its reference configuration X (the
@@ -277,6 +313,7 @@
    MODELS AND FIELDS
       A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic;
       SPS_MATERIAL_J2, elastic-plastic (PLASTICITY); SPS_MATERIAL_FLUID (FLUIDS);
+      SPS_MATERIAL_DRUCKER_PRAGER, granular (GRANULAR);
       SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF and SPS_MATERIAL_NEO_HOOKEAN, hyperelastic
       (TOTAL-LAGRANGIAN); the material gives c0, G, K, its checks and its stored energy), its
       solver (solver: SPS_SOLVER_UPDATED_LAGRANGIAN or SPS_SOLVER_TOTAL_LAGRANGIAN), its
@@ -489,10 +526,16 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, Drucker-Prager plasticity, fluids, granular media, damage of
-      updated-Lagrangian bodies, removing particles.
+      self-contact, damage of updated-Lagrangian bodies, hourglass control of granular bodies,
+      removing particles.
 
    REVISION HISTORY
+      0.8.0 (2026-12-02) granular media (SPS_MATERIAL_DRUCKER_PRAGER, material kind 6: cohesion,
+                         friction_angle, dilatancy_angle; stress_diffusion;
+                         sps_body_set_geostatic_stress; mirror walls with the images' stress);
+                         damage of total-Lagrangian bodies (damage_strain, the "damage" field,
+                         sps_particle_state.damage). Results of earlier scenes unchanged
+                         (tests/pinned.c).
       0.7.0 (2026-12-02) fluids (SPS_MATERIAL_FLUID: weakly compressible, Riemann solver with
                          its limiter, viscosity, mirror particles at walls), the transport
                          corrections TVF and UTVF for any updated-Lagrangian body (transport),
@@ -545,9 +588,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 7
+#define SPHSOLID_VERSION_MINOR 8
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.7.0"
+#define SPHSOLID_VERSION_STRING "0.8.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
@@ -992,7 +1035,9 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation),
    "artificial_stress" (3: xx xy yy, OAS), and for J2 bodies "plastic_strain" (alpha),
    "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r); a
-   total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN).
+   total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
+   Drucker-Prager body "plastic_strain" (accumulated deviatoric), "plastic_work" and, with
+   stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's

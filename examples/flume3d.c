@@ -1,17 +1,19 @@
 /* flume3d.c - cohesive granular flow down a flume against a barrier (benchmark C7, UTVF 5.4).
 
    A rectangular mass of the C5 soil (rho0 = 1850, E = 1.8 MPa, nu = 0.3, c = 5 kPa, phi = 25
-   degrees, psi = 0), x in [-2, -1] m, up to y = 3 m and 0.5 m wide, stands on a bed inclined
+   degrees, psi = 0), x in [-2, -1] m, up to y = 3.5 m and 0.5 m wide, stands on a bed inclined
    at 50 degrees (the bed's foot at the origin), is released from zero stress, flows down onto
    a horizontal run-out and against a rigid barrier 0.5 m high, 2 m downstream of the foot,
    between two side walls. The paper gives the angle and the material only (the set-up of its
    Fig. 25a is a picture): these sizes are ours, chosen so that the mass fails (its downhill
-   face, 1.8 m high, is above the 1.7 m a vertical cut of this soil stands, 4 c / (rho g)
-   tan(45 + phi/2); a layer 0.4 m thick parallel to the bed holds). Walls are no-slip analytic planes (bed, floor, sides); the barrier is a wall body of
-   rigid particles. --transport none|tvf|utvf (UTVF, the paper's, by default). We print every
-   0.5 s the front (the farthest particle along the flow), the largest speed, the clustering
-   count (particles closer than 0.5 dp to another; the paper's claim: none with UTVF) and the
-   surface-particle count, and at the end the share of the soil held behind the barrier.
+   face, 2.3 m high, is a third above the 1.7 m a vertical cut of this soil stands, 4 c /
+   (rho g) tan(45 + phi/2); a layer 0.4 m thick parallel to the bed holds). The bed and the
+   floor are no-slip analytic walls, the side walls free-slip (no-slip sides held the whole
+   mass by its cohesion); the barrier is a wall body of rigid particles. --transport
+   none|tvf|utvf (UTVF, the paper's, by default). We print every 0.5 s the front (the farthest
+   particle along the flow), the largest speed, the clustering count (particles closer than
+   0.5 dp to another; the paper's claim: none with UTVF) and the surface-particle count, and
+   at the end the share of the soil held behind the barrier.
 
    Build: make examples     Run: ./build/flume3d (--dp 0.05: a quick look)
    Expect: the soil flows down, piles against the barrier and comes to rest; no clustering. */
@@ -111,12 +113,14 @@ int main(int argc, char** argv) {
     shape.n_along[1] = cos(a);
     shape.x0 = -2;
     shape.x1 = -1;
-    shape.y_top = 3;
+    shape.y_top = 3.5;
     w = ex_create(&wd);
     ex_check(w, sps_world_add_wall(w, origin, bed_normal, SPS_WALL_NO_SLIP)); /* the bed: solid below y = -tan(a) x */
     ex_check(w, sps_world_add_wall(w, origin, up, SPS_WALL_NO_SLIP));         /* the run-out floor, beyond the foot */
-    ex_check(w, sps_world_add_wall(w, side_lo, plus_z, SPS_WALL_NO_SLIP));
-    ex_check(w, sps_world_add_wall(w, side_hi, minus_z, SPS_WALL_NO_SLIP));
+    /* smooth side walls (a flume's glass): no-slip ones held the whole mass by its cohesion,
+       2 x 1.6 m^2 x 5 kPa against its 7.8 kN weight */
+    ex_check(w, sps_world_add_wall(w, side_lo, plus_z, SPS_WALL_FREE_SLIP));
+    ex_check(w, sps_world_add_wall(w, side_hi, minus_z, SPS_WALL_FREE_SLIP));
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
     bd.material.cohesion = (sps_real)cohesion;
