@@ -69,13 +69,12 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 0.8, .vtk_every = 0.05, .csv_every = 0.005, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/column_collapse2d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
-    double dp = 0.002, length = 0.2, cohesion = 0, phi = 21.9, diffusion = 0.1;
+    double dp = 0.002, length = 0.2;
+    granular_options g = {0, 21.9, 0.1};
     opt_spec opts[] = {
         {"length", OPT_REAL, &length, "column length L [m] (0.2 and 0.1 in the paper; height 0.1 m)", 0.02, 0.45, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 5e-4, 0.02, NULL},
-        {"cohesion", OPT_REAL, &cohesion, "cohesion c [Pa]", 0, 1e9, NULL},
-        {"phi", OPT_REAL, &phi, "friction angle [degrees]", 0, 89, NULL},
-        {"diffusion", OPT_REAL, &diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL},
+        GRANULAR_OPTION_SPECS(g),
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -97,11 +96,7 @@ int main(int argc, char** argv) {
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G_ACC;
-    bd.name = "soil";
-    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)cohesion;
-    bd.material.friction_angle = (sps_real)phi;
-    bd.stress_diffusion = (sps_real)diffusion;
+    ex_granular_body(&bd, &g);
     w = ex_create(&wd);
     ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_body(w, &bd, &soil));
@@ -118,8 +113,8 @@ int main(int argc, char** argv) {
     a = COLUMN_HEIGHT / length;
     toe_expected = length * (1 + 1.2 * a);
     printf("granular column collapse: L = %g m, H = %g m, dp = %g, %d particles, c0 = %.4g m/s, phi = %g deg, c = %g Pa, zeta = %g, transport %s\n",
-           length, COLUMN_HEIGHT, dp, sps_world_particle_count(w), (double)c0, phi, cohesion, diffusion,
-           c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+           length, COLUMN_HEIGHT, dp, sps_world_particle_count(w), (double)c0, g.phi, g.cohesion, g.diffusion,
+           transport_name(c.transport));
     printf("  mechanical energy [J/m]: start %.4f, t = 0.5 s: %.4f, t = %.3g s: %.4f\n", mechanical_energy(&d0), s.energy_half,
            (double)d.time, s.energy_end);
     if (fabs(length - 0.2) < 1e-9) /* the reference code's case */
@@ -135,9 +130,9 @@ int main(int argc, char** argv) {
     printf("RESULT case=column_collapse2d length=%g dp=%g phi=%g cohesion=%g zeta=%g t=%.4g energy_start=%.5g energy_0.5=%.5g "
            "energy_end=%.5g toe=%.4f farthest=%.4f wall_height=%.4f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
            "ns_per_particle_step=%.1f out=%s\n",
-           length, dp, phi, cohesion, diffusion, (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, farthest, wall_height,
+           length, dp, g.phi, g.cohesion, g.diffusion, (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, farthest, wall_height,
            common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
-           1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)), c.out);
+           ns_per_particle_step(w, wall, d.acoustic_steps), c.out);
     sps_world_destroy(w);
     return 0;
 }

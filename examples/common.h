@@ -498,6 +498,28 @@ EX_UNUSED static double ex_centre_pressure(const sps_world* w, double dp) {
     return near ? sum / near : 0;
 }
 
+/* ---- the soil of the granular examples (GRANULAR in the header's manual) ---- */
+typedef struct {
+    double cohesion, phi, diffusion; /* [Pa], [degrees], zeta */
+} granular_options;
+#define GRANULAR_OPTION_SPECS(g)                                                                     \
+    {"cohesion", OPT_REAL, &(g).cohesion, "cohesion c [Pa]", 0, 1e9, NULL},                          \
+    {"phi", OPT_REAL, &(g).phi, "friction angle [degrees]", 0, 89, NULL},                            \
+    {"diffusion", OPT_REAL, &(g).diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL}
+/* Makes bd a Drucker-Prager soil body of these options (density, E, nu: the common options). */
+EX_UNUSED static void ex_granular_body(sps_body_def* bd, const granular_options* g) {
+    bd->name = "soil";
+    bd->material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    bd->material.cohesion = (sps_real)g->cohesion;
+    bd->material.friction_angle = (sps_real)g->phi;
+    bd->stress_diffusion = (sps_real)g->diffusion;
+}
+EX_UNUSED static const char* transport_name(int t) { return t == 0 ? "none" : t == 1 ? "TVF" : "UTVF"; }
+/* Wall time per particle and acoustic sub-step [ns]. */
+EX_UNUSED static double ns_per_particle_step(const sps_world* w, double wall, long steps) {
+    return 1e9 * wall / ((double)sps_world_particle_count(w) * (double)(steps > 0 ? steps : 1));
+}
+
 /* The clustering indicator of the granular examples: how many particles have another closer
    than fraction dp. The particles are sorted by a cell of edge dp (a hash of the cell's
    coordinates) and each is compared with the particles of its own and the neighbouring cells. */

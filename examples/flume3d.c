@@ -77,12 +77,11 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 3, .vtk_every = 0.1, .csv_every = 0.01, .E = 1.8e6, .nu = 0.3,
                         .rho0 = 1850, .out = "out/flume3d", .jitter = 0, .seed = 1, .transport = 2, PNG_DEFAULTS};
-    double dp = 0.04, cohesion = 5e3, phi = 25, diffusion = 0.1;
+    double dp = 0.04;
+    granular_options g = {5e3, 25, 0.1};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.005, 0.25, NULL},
-        {"cohesion", OPT_REAL, &cohesion, "cohesion c [Pa]", 0, 1e9, NULL},
-        {"phi", OPT_REAL, &phi, "friction angle [degrees]", 0, 89, NULL},
-        {"diffusion", OPT_REAL, &diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL},
+        GRANULAR_OPTION_SPECS(g),
         COMMON_OPTION_SPECS(c),
     };
     const double a = SLOPE_DEG * PI / 180;
@@ -121,11 +120,7 @@ int main(int argc, char** argv) {
        2 x 1.6 m^2 x 5 kPa against its 7.8 kN weight */
     ex_check(w, sps_world_add_wall(w, side_lo, plus_z, SPS_WALL_FREE_SLIP));
     ex_check(w, sps_world_add_wall(w, side_hi, minus_z, SPS_WALL_FREE_SLIP));
-    bd.name = "soil";
-    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)cohesion;
-    bd.material.friction_angle = (sps_real)phi;
-    bd.stress_diffusion = (sps_real)diffusion;
+    ex_granular_body(&bd, &g);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     lo[0] = (sps_real)shape.x0; hi[0] = (sps_real)shape.x1;
     lo[1] = (sps_real)(-tan(a) * shape.x1); hi[1] = (sps_real)shape.y_top;
@@ -142,8 +137,8 @@ int main(int argc, char** argv) {
     ex_check(w, sps_body_add_box(w, barrier, blo, bhi, NULL));
 
     printf("granular flume: slope %g deg, dp = %g m, %d particles (soil and barrier), c = %g Pa, phi = %g deg, zeta = %g, transport %s\n",
-           SLOPE_DEG, dp, sps_world_particle_count(w), cohesion, phi, diffusion,
-           c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+           SLOPE_DEG, dp, sps_world_particle_count(w), g.cohesion, g.phi, g.diffusion,
+           transport_name(c.transport));
     s.t_end = c.t_end;
     s.next_report = 0.5;
     s.dp = dp;
@@ -160,9 +155,9 @@ int main(int argc, char** argv) {
            100 * held, front(w, soil, dp), (double)d.max_speed, ex_clustered_particles(w, dp, 0.5));
     printf("RESULT case=flume3d dp=%g cohesion=%g phi=%g zeta=%g t=%.4g front=%.4f held=%.4f max_speed=%.4g clustered=%d "
            "min_spacing=%.3f surface_particles=%d %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
-           dp, cohesion, phi, diffusion, (double)d.time, front(w, soil, dp), held, (double)d.max_speed, ex_clustered_particles(w, dp, 0.5),
+           dp, g.cohesion, g.phi, g.diffusion, (double)d.time, front(w, soil, dp), held, (double)d.max_speed, ex_clustered_particles(w, dp, 0.5),
            (double)d.min_spacing, d.surface_particles, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps,
-           d.advection_steps, wall, 1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)),
+           d.advection_steps, wall, ns_per_particle_step(w, wall, d.acoustic_steps),
            c.out);
     sps_world_destroy(w);
     return 0;

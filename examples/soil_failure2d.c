@@ -56,12 +56,11 @@ static void surface_of(const sps_world* w, double dp, surface_profile* sp) {
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 2, .vtk_every = 0.1, .csv_every = 0.01, .E = 1.8e6, .nu = 0.3,
                         .rho0 = 1850, .out = "out/soil_failure2d", .jitter = 0, .seed = 1, .transport = 2, PNG_DEFAULTS};
-    double res = 100, cohesion = 5e3, phi = 25, diffusion = 0.1;
+    double res = 100;
+    granular_options g = {5e3, 25, 0.1};
     opt_spec opts[] = {
         {"res", OPT_REAL, &res, "resolution L/dp (the paper: 100 and 200)", 10, 800, NULL},
-        {"cohesion", OPT_REAL, &cohesion, "cohesion c [Pa]", 0, 1e9, NULL},
-        {"phi", OPT_REAL, &phi, "friction angle [degrees]", 0, 89, NULL},
-        {"diffusion", OPT_REAL, &diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL},
+        GRANULAR_OPTION_SPECS(g),
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -85,11 +84,7 @@ int main(int argc, char** argv) {
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G_ACC;
-    bd.name = "soil";
-    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)cohesion;
-    bd.material.friction_angle = (sps_real)phi;
-    bd.stress_diffusion = (sps_real)diffusion;
+    ex_granular_body(&bd, &g);
     w = ex_create(&wd);
     ex_check(w, sps_world_add_box_walls(w, lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_body(w, &bd, &soil));
@@ -116,7 +111,7 @@ int main(int argc, char** argv) {
         if (sp->top[k] - lowest > rise) { rise = sp->top[k] - lowest; rise_at = x; lowest_at = low_x; }
     }
     printf("cohesive soil failure: L/dp = %g (dp = %g m), %d particles, c = %g Pa, phi = %g deg, zeta = %g, transport %s\n", res, dp,
-           sps_world_particle_count(w), cohesion, phi, diffusion, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+           sps_world_particle_count(w), g.cohesion, g.phi, g.diffusion, transport_name(c.transport));
     printf("  at t = %.3g s: crest at x = %.3f m (%.3f m behind the block's edge), toe at x = %.3f m (%.3f m beyond it)\n", (double)d.time,
            crest, BLOCK_LENGTH - crest, toe, toe - BLOCK_LENGTH);
     printf("  step path: the surface rises %.3f m (%.1f dp) from its low at x = %.3f m to x = %.3f m\n", rise, rise / dp, lowest_at, rise_at);
@@ -127,9 +122,9 @@ int main(int argc, char** argv) {
     printf("RESULT case=soil_failure2d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g crest=%.4f toe=%.4f rise=%.4f rise_at=%.4f "
            "clustered=%d min_spacing=%.3f surface_particles=%d surface_start=%d %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
            "ns_per_particle_step=%.1f out=%s\n",
-           res, dp, cohesion, phi, diffusion, (double)d.time, crest, toe, rise, rise_at, clustered, (double)d.min_spacing, d.surface_particles, surface0,
+           res, dp, g.cohesion, g.phi, g.diffusion, (double)d.time, crest, toe, rise, rise_at, clustered, (double)d.min_spacing, d.surface_particles, surface0,
            common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
-           1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)), c.out);
+           ns_per_particle_step(w, wall, d.acoustic_steps), c.out);
     sps_world_destroy(w);
     free(sp);
     return 0;

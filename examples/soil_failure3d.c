@@ -60,12 +60,11 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 1, .vtk_every = 0.25, .csv_every = 0.01, .E = 1.8e6, .nu = 0.3,
                         .rho0 = 1850, .out = "out/soil_failure3d", .jitter = 0, .seed = 1, .transport = 2, PNG_DEFAULTS};
-    double res = 50, cohesion = 5e3, phi = 25, diffusion = 0.1;
+    double res = 50;
+    granular_options g = {5e3, 25, 0.1};
     opt_spec opts[] = {
         {"res", OPT_REAL, &res, "resolution edge/dp (the paper: 50, dp = 0.04 m)", 5, 200, NULL},
-        {"cohesion", OPT_REAL, &cohesion, "cohesion c [Pa]", 0, 1e9, NULL},
-        {"phi", OPT_REAL, &phi, "friction angle [degrees]", 0, 89, NULL},
-        {"diffusion", OPT_REAL, &diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL},
+        GRANULAR_OPTION_SPECS(g),
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -86,11 +85,7 @@ int main(int argc, char** argv) {
     wd.dim = 3;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G_ACC;
-    bd.name = "soil";
-    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)cohesion;
-    bd.material.friction_angle = (sps_real)phi;
-    bd.stress_diffusion = (sps_real)diffusion;
+    ex_granular_body(&bd, &g);
     w = ex_create(&wd);
     ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_body(w, &bd, &soil));
@@ -98,7 +93,7 @@ int main(int argc, char** argv) {
     ex_check(w, sps_body_set_geostatic_stress(w, soil, (sps_real)EDGE, 0));
 
     printf("3D cohesive soil failure: edge/dp = %g (dp = %g m), %d particles, c = %g Pa, phi = %g deg, zeta = %g, transport %s\n", res,
-           dp, sps_world_particle_count(w), cohesion, phi, diffusion, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+           dp, sps_world_particle_count(w), g.cohesion, g.phi, g.diffusion, transport_name(c.transport));
     s.t_end = c.t_end;
     s.next_report = 0.25;
     output_open(&s.output, &c, "soil_failure3d", "plastic-strain", "");
@@ -106,9 +101,9 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_diagnostics(w, all, &d));
     printf("RESULT case=soil_failure3d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g clustered=%d min_spacing=%.3f surface_particles=%d "
            "max_plastic_strain=%.3f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
-           res, dp, cohesion, phi, diffusion, (double)d.time, ex_clustered_particles(w, dp, 0.5), (double)d.min_spacing, d.surface_particles, (double)d.max_plastic_strain,
+           res, dp, g.cohesion, g.phi, g.diffusion, (double)d.time, ex_clustered_particles(w, dp, 0.5), (double)d.min_spacing, d.surface_particles, (double)d.max_plastic_strain,
            common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
-           1e9 * wall / ((double)sps_world_particle_count(w) * (double)(d.acoustic_steps > 0 ? d.acoustic_steps : 1)), c.out);
+           ns_per_particle_step(w, wall, d.acoustic_steps), c.out);
     sps_world_destroy(w);
     return 0;
 }
