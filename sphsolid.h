@@ -3481,9 +3481,11 @@ SPS__INLINE void sps__freeze_lanes(sps_world* w, sps__group q, const int dim, co
         SPS__PRAGMA(omp simd)
         for (l = 0; l < SPS__LANES; ++l) {
             const int i = q.i0 + l, s = q.s0 + k * SPS__LANES + l, j = nb_j[s];
-            const int real = j != i; /* padding slots point at the particle itself */
-            const sps_real dx = px[i] - px[j], dy = py[i] - py[j], dz = dim == 3 ? pz[i] - pz[j] : 0;
-            const sps_real r = SPS__SQRT(real ? dx * dx + dy * dy + dz * dz : 1), inv_r = real ? 1 / r : 0;
+            const sps_real dx = px[i] - px[j], dy = py[i] - py[j], dz = dim == 3 ? pz[i] - pz[j] : 0, r2 = dx * dx + dy * dy + dz * dz;
+            /* padding slots point at the particle itself; particles at the same point (a
+               collapsed cluster) have no direction and no force either */
+            const int real = r2 > 0;
+            const sps_real r = SPS__SQRT(real ? r2 : 1), inv_r = real ? 1 / r : 0;
             const sps_real dw = real ? dw_scale * sps__kernel_df(kernel, r * inv_h) : 0;
             nb_dw[s] = dw;
             nb_inv_r[s] = inv_r;
@@ -3857,10 +3859,11 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
         q.dw_r = q.dw * inv_r;
         q.r = r2 * inv_r;
     } else {
-        const sps_real pad = (sps_real)(j == i);
-        sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
-        sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] : 0;
-        sps_real r = SPS__SQRT(dx * dx + dy * dy + dz * dz + pad), inv = 1 / r;
+        /* pad: a padding slot (j = i) or two particles at the same point, which have no
+           direction between them and no force (dW(0) = 0): both take e = 0, dW = 0 */
+        const sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
+        const sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] : 0, r2 = dx * dx + dy * dy + dz * dz;
+        const sps_real pad = (sps_real)(r2 == 0), r = SPS__SQRT(r2 + pad), inv = 1 / r;
         q.ex = dx * inv;
         q.ey = dy * inv;
         q.ez = dz * inv;
