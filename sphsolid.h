@@ -6812,7 +6812,7 @@ static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_s
             sps_real d[3] = {0, 0, 0}, r2 = 0, r, f;
             for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
             r = SPS__SQRT(r2);
-            f = sps__dwdr(w, r) / r * w->vol[j];
+            f = r > 0 ? sps__dwdr(w, r) / r * w->vol[j] : 0; /* particles at one point: no direction (sps__pair) */
             for (a = 0; a < w->dim; ++a) {
                 sps_real uij = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
                 for (c = 0; c < w->dim; ++c) M[3 * a + c] -= uij * d[c] * f;
