@@ -302,13 +302,14 @@
       state). While the largest principal Green-Lagrange strain of F_i exceeds eps_max,
       D^(1/3) grows at 0.4 c0 / h (TL eq. 45), c0 = sqrt((K + 4G/3)/rho0) the P-wave speed and
       h the kernel radius 2 h_over_dp dp: D = 1 after h / (0.4 c0) above the threshold; D never
-      falls. The positive principal values of the stress are scaled by 1 - D, the compressive
-      ones kept (TL eq. 46), so a broken particle carries no tension but resists being pushed
-      into. The hourglass force (TL eq. 32) takes (1 - D) E at a damaged particle: the paper
-      degrades the stress only, but with E the hourglass springs of broken particles alone kept
-      a broken section carrying load (the D6 specimen, bench/VALIDATION.md). Its stored energy is counted as (1 - D) V0 psi(F) (the rate model has no potential): the
-      energy account falls by what damage dissipates. Costs two 3 x 3 eigen-decompositions per
-      particle and sub-step; a body without damage has no damage field and runs as before.
+      falls. The positive principal values of the stress are scaled by 1 - D, the compressive ones
+      kept (TL eq. 46), so a broken particle carries no tension but resists being pushed into. The
+      hourglass force (TL eq. 32) takes (1 - D) E at a damaged particle: the paper degrades the
+      stress only, but with E the hourglass springs of broken particles alone kept a broken section
+      carrying load (the D6 specimen, bench/VALIDATION.md). Its stored energy is counted as (1 - D)
+      V0 psi(F) (the rate model has no potential): the energy account falls by what damage
+      dissipates. Costs two 3 x 3 eigen-decompositions per particle and sub-step; a body without
+      damage has no damage field and runs as before.
 
    MODELS AND FIELDS
       A body's model is its material (material.kind: SPS_MATERIAL_ELASTIC, linear elastic;
@@ -423,8 +424,10 @@
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
       track_stress 0/1, damping finite >= 0 (0 for a wall body), solver 0..1, hourglass_alpha
-      [0, 1000], damage_strain [0, 100] (> 0 with the total-Lagrangian solver only), Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian solver only and
-      that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
+      [0, 1000], damage_strain [0, 100] (> 0 with the total-Lagrangian solver only),
+      stress_diffusion [0, 1], material.cohesion >= 0, friction_angle [0, 90), dilatancy_angle
+      [0, friction_angle], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian
+      solver only and that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
       at most 2e8), coordinates, volumes, points and velocities (finite, volumes > 0),
