@@ -214,8 +214,11 @@
       integrated by the continuity equation instead, the cohesionless front particles of a
       column collapse expanded to a negative density. The momentum equation is the divergence
       of sigma with the Riemann solver's dissipation, limited by beta = min(20 d max(-v_ij.e_ij
-      /c0, 0), 1) (UTVF section 3.1.3: none while particles separate); the body's shear
-      formulation is not used (no hourglass penalty, as in the paper). Stress diffusion
+      /c0, 0), 1) (UTVF section 3.1.3: none while particles separate); no hourglass penalty,
+      as in the paper, unless shear = SPS_SHEAR_GNO or SPS_SHEAR_GNO_A (rotation mean or per
+      particle): then ANG's penalty joins, scaled per pair by the particles' return factors
+      |s|/|s_trial| and relaxed with them, as for J2 (PLASTICITY); the other shear values are
+      not used. Stress diffusion
       (Feng et al. 2021; stress_diffusion = zeta, default 0.1, 0: off): d sigma_i/dt +=
       2 zeta h c0 sum_j (sigma_i - sigma_j - sigma_geo,ij) r_ij dW/(r_ij^2 + 0.01 h^2) V_j, the
       geostatic difference sigma_geo,ij = -rho0 (g . x_ij) [g^ g^ + K0 (I - g^ g^)] left alone so
@@ -230,7 +233,8 @@
       "shear_stress" the deviator tau (6 values, with zz in 2D). UTVF and TVF apply as to any
       body (TRANSPORT). Measured (bench/VALIDATION.md, "Granular media"): a geostatic block at
       rest keeps its mid-depth stress within 3.7 % over 0.5 s while a slow zigzag mode of the
-      unpenalised stress divergence grows (hourglass indicator 0.02); cohesionless particles
+      unpenalised stress divergence grows (hourglass indicator 0.02; 0.0000 with GNO-A, which
+      does not remove a slow drift of the stress, +4.3 % at 1 s); cohesionless particles
       that leave the bulk carry no stress (the cut-off), so single particles slide on along a
       floor, and particles pressed onto a wall gather at the backstop's dp/2.
 
@@ -529,8 +533,7 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, damage of updated-Lagrangian bodies, hourglass control of granular bodies,
-      removing particles.
+      self-contact, damage of updated-Lagrangian bodies, removing particles.
 
    REVISION HISTORY
       0.8.0 (2026-12-02) granular media (SPS_MATERIAL_DRUCKER_PRAGER, material kind 6: cohesion,
@@ -2158,7 +2161,13 @@ static int sps__damage_updated(int dim, const sps_body_def* def) {
     (void)dim;
     return def->damage_strain > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
+static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
+}
 static const sps__combination_rule sps__combination_rules[] = {
+    {sps__granular_pair_rotation, "material.kind = Drucker-Prager with shear = GNO-A and rotation = pair: a granular body keeps its "
+                                  "penalty per particle; use rotation = mean or per particle"},
     {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
     {sps__shifted_reference, "transport = TVF or UTVF with solver = total Lagrangian: its neighbours are those of the reference "
                              "configuration, which a shift of the particles would not move"},
@@ -2220,6 +2229,8 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     memset(&m, 0, sizeof m);
     m.material = sps__material_of(def->material.kind);
     m.stabilisation = m.material->stabilisation ? m.material->stabilisation : sps__stabilisation_of(def->shear);
+    if (m.material->plastic == SPS__YIELD_DRUCKER_PRAGER && (def->shear == SPS_SHEAR_GNO || def->shear == SPS_SHEAR_GNO_A))
+        m.stabilisation = sps__stabilisation_of(def->shear); /* a granular body with ANG's penalty (GRANULAR) */
     m.paired = m.stabilisation->rotated && def->rotation == SPS_ROTATION_PAIR;
     m.turn = !m.stabilisation->rotated || m.paired ? SPS__TURN_NONE
              : def->rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
@@ -2227,7 +2238,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.gradient = m.turn != SPS__TURN_NONE || m.stress;
     m.artificial_stress = m.stabilisation->artificial_stress;
     m.plastic = m.material->plastic; /* a plastic body is of the OG family (combination rules): m.stress is set */
-    m.scaled_penalty = m.plastic == SPS__YIELD_VON_MISES && m.stabilisation->penalty;
+    m.scaled_penalty = m.plastic && m.stabilisation->penalty;
     m.diffusion = m.plastic == SPS__YIELD_DRUCKER_PRAGER && def->stress_diffusion > 0;
     m.mirrored = m.material->mirrored;
     m.pressure_of_density = m.material->pressure_of_density;
@@ -4325,13 +4336,14 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
    energy difference e(t) - e(sigma) counted a cut-off from zero stress, a dilute front
    particle's every sub-step, as dissipation). Padding lanes compute and do not store. */
 SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
-                                            sps_real L[9][SPS__LANES], const int diffused) {
+                                            sps_real L[9][SPS__LANES], const int diffused, const int scaled, const int relax) {
     const size_t k0 = (size_t)(q.i0 - b->begin);
     sps_real* SPS__RESTRICT tau = b->tau + 6 * k0;
     sps_real* SPS__RESTRICT strain = b->plastic_strain + k0;
     sps_real* SPS__RESTRICT work = b->plastic_work + k0;
     sps_real* SPS__RESTRICT next_p = b->next_pressure + k0;
     const sps_real* SPS__RESTRICT spread = diffused ? b->diffusion + 6 * k0 : NULL;
+    sps_real* SPS__RESTRICT factor = scaled ? b->return_factor + k0 : NULL;
     const sps_real *SPS__RESTRICT p = w->p + q.i0, *SPS__RESTRICT mass = w->mass + q.i0, *SPS__RESTRICT rho = w->rho + q.i0;
     const sps_real G = b->mat.G, K = b->mat.K, sqrt_2_3 = SPS_R(0.81649658092772603273);
     const sps__yield_cone cone = b->cone;
@@ -4366,6 +4378,15 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
             for (a = 0; a < 6; ++a) tau[6 * l + a] = s_next[a];
             next_p[l] = p_next;
             strain[l] += sqrt_2_3 * SPS__SQRT(sps__sym_contract(flow, flow)) / (2 * G);
+            if (scaled) { /* the return factor of the penalty (as sps__j2_stress_lanes): |s| / |s_trial| */
+                const sps_real trial_norm2 = sps__sym_contract(s_trial, s_trial);
+                const sps_real r = trial_norm2 > sps__sym_contract(s_next, s_next) ? SPS__SQRT(sps__sym_contract(s_next, s_next) / trial_norm2) : 1;
+                int c;
+                factor[l] = r;
+                if (relax)
+                    SPS__UNROLL
+                    for (c = 0; c < dim; ++c) w->acc_s[c][q.i0 + l] *= r;
+            }
             SPS__UNROLL
             for (a = 0; a < 6; ++a) s_trial[a] -= s_next[a];
             work[l] += mass[l] / rho_l * (sps__sym_contract(s_next, s_trial) / (2 * G) + p_next * (p_trial - p_next) / K);
@@ -4719,8 +4740,8 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
     if (b->model.mirrored && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
     sps__continuity_lanes(w, b, q, dim, gradient, riemann, shear_rate, sum, da, L);
     /* a plastic body is never ENO (combination rules): ENO kernels carry no return map */
-    if (plastic_possible && b->model.plastic == SPS__YIELD_DRUCKER_PRAGER && b->model.diffusion) sps__granular_stress_lanes(w, b, q, dim, dt, L, 1);
-    else if (plastic_possible && b->model.plastic == SPS__YIELD_DRUCKER_PRAGER) sps__granular_stress_lanes(w, b, q, dim, dt, L, 0);
+    if (plastic_possible && b->model.plastic == SPS__YIELD_DRUCKER_PRAGER)
+        sps__granular_stress_lanes(w, b, q, dim, dt, L, b->model.diffusion, b->model.scaled_penalty, !b->model.paired);
     else if (plastic_possible && b->model.scaled_penalty && !b->model.paired) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
     else if (plastic_possible && b->model.scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
     else if (plastic_possible && b->model.plastic) sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);

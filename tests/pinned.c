@@ -99,6 +99,7 @@ static const pinned_case g_cases[] = {
     {"2d/drucker-prager", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0, 0},
     {"2d/drucker-prager-utvf", 2, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_UTVF, 0, 0},
     {"3d/drucker-prager", 3, SPS_SHEAR_OG, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/drucker-prager-gno-a", 2, SPS_SHEAR_GNO_A, MEAN, 0, W, 0, 0, 0, 2, 0, SPS_TRANSPORT_NONE, 0, 0},
     /* total-Lagrangian bodies (their shear is not used) */
     {"2d/tl-svk", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 0},
     {"2d/tl-neo-hookean", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN, 0},

@@ -3886,6 +3886,32 @@ static int test_granular_block_at_rest(void) {
     return 0;
 }
 
+/* Bad granular input is refused with a message naming the field, its value and the range. */
+static int test_granular_bad_input(void) {
+    sps_world* w = new_world(2, 0.01);
+    sps_body_def d = sps_default_body_def(), bad;
+    ENSURE(w);
+    d.material = c5_soil();
+    bad = d; bad.material.cohesion = -1;         ENSURE(rejects_body_def(w, &bad, "material.cohesion = -1") == 0);
+    bad = d; bad.material.friction_angle = 90;   ENSURE(rejects_body_def(w, &bad, "material.friction_angle = 90") == 0);
+    bad = d; bad.material.dilatancy_angle = 30;  ENSURE(rejects_body_def(w, &bad, "material.dilatancy_angle = 30") == 0);
+    bad = d; bad.stress_diffusion = 2;           ENSURE(rejects_body_def(w, &bad, "stress_diffusion = 2") == 0);
+    bad = d; bad.shear = SPS_SHEAR_GNO_A; bad.rotation = SPS_ROTATION_PAIR;
+    ENSURE(rejects_body_def(w, &bad, "rotation = pair") == 0);
+    ENSURE(sps_body_set_geostatic_stress(w, (sps_body){0}, 1, 0) == SPS_ERR_INVALID_ARG);
+    { /* a soil body in a world without gravity, and an elastic one: both refused, with the reason */
+        sps_body soil, plate;
+        sps_body_def elastic = sps_default_body_def();
+        const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0};
+        ENSURE(sps_world_add_body(w, &d, &soil) == SPS_OK && sps_body_add_box(w, soil, lo, hi, NULL) == SPS_OK);
+        ENSURE(sps_world_add_body(w, &elastic, &plate) == SPS_OK && sps_body_add_box(w, plate, lo, hi, NULL) == SPS_OK);
+        ENSURE(sps_body_set_geostatic_stress(w, soil, 1, 0) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "gravity"));
+        ENSURE(sps_body_set_geostatic_stress(w, plate, 1, 0) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "material.kind"));
+    }
+    sps_world_destroy(w);
+    return 0;
+}
+
 /* Two particles at one point (a cluster collapsed by tensile instability within an advection
    step: the neighbour search leaves such pairs out, the pair geometry of the sub-steps meets
    them) have no direction between them: the pair is taken as a padding slot is, e = 0 and
@@ -4434,6 +4460,7 @@ int main(int argc, char** argv) {
     RUN(test_granular_limiter_off_in_expansion);
     RUN(test_granular_block_at_rest);
     RUN(test_coincident_particles_stay_finite);
+    RUN(test_granular_bad_input);
     RUN(test_transport_keeps_linear_momentum);
     RUN(test_fluid_bad_input);
     RUN(test_contact_determinism);
