@@ -1628,6 +1628,26 @@ static const sps__field_info* sps__field_named(const char* name) {
 
 /* >>util */
 
+/* A symmetric 3 x 3 tensor (a stress) stored as its six entries xx xy xz yy yz zz: entry k is
+   row sps__sym_row[k], column sps__sym_col[k]; entry 3 a + c of the full matrix is entry
+   sps__sym9[3 a + c]. */
+enum { SPS__XX, SPS__XY, SPS__XZ, SPS__YY, SPS__YZ, SPS__ZZ };
+static const int sps__sym_row[6] = {0, 0, 0, 1, 1, 2}, sps__sym_col[6] = {0, 1, 2, 1, 2, 2};
+static const int sps__sym9[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+SPS__INLINE int sps__sym_diagonal(int k) { return k == SPS__XX || k == SPS__YY || k == SPS__ZZ; }
+/* a : b */
+SPS__INLINE sps_real sps__sym_contract(const sps_real a[6], const sps_real b[6]) {
+    return a[0] * b[0] + a[3] * b[3] + a[5] * b[5] + 2 * (a[1] * b[1] + a[2] * b[2] + a[4] * b[4]);
+}
+/* The deviator s = sig - I1/3 I into s; returns I1 = tr(sig). */
+SPS__INLINE sps_real sps__sym_deviator(const sps_real sig[6], sps_real s[6]) {
+    const sps_real i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ];
+    int k;
+    SPS__UNROLL
+    for (k = 0; k < 6; ++k) s[k] = sig[k] - (sps__sym_diagonal(k) ? i1 / 3 : 0);
+    return i1;
+}
+
 static void sps__vset_error(sps_world* w, int level, const char* fmt, va_list ap) {
     vsnprintf(w->error, sizeof w->error, fmt, ap);
     if (w->def.log) w->def.log(level, w->error, w->def.log_user);
@@ -1968,21 +1988,15 @@ static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size
 static void sps__granular_setup(const sps_world* w, sps__body* b) {
     const sps_real* g = w->def.gravity;
     const sps_real g_norm = SPS__SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    static const int row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
     int a;
     b->cone = sps__yield_cone_of(&b->def.material);
     b->diffusion_rate = 2 * b->def.stress_diffusion * w->h * b->mat.c0;
     for (a = 0; a < 6; ++a) {
-        const sps_real vertical = g_norm > 0 ? g[row[a]] * g[col[a]] / (g_norm * g_norm) : 0;
-        b->geostatic[a] = g_norm > 0 ? -b->rho0 * (vertical + b->cone.k0 * ((row[a] == col[a]) - vertical)) : 0;
+        const sps_real vertical = g_norm > 0 ? g[sps__sym_row[a]] * g[sps__sym_col[a]] / (g_norm * g_norm) : 0;
+        b->geostatic[a] = g_norm > 0 ? -b->rho0 * (vertical + b->cone.k0 * (sps__sym_diagonal(a) - vertical)) : 0;
     }
 }
 
-/* A symmetric 3 x 3 tensor's entries xx xy xz yy yz zz, and its double contraction. */
-enum { SPS__XX, SPS__XY, SPS__XZ, SPS__YY, SPS__YZ, SPS__ZZ };
-SPS__INLINE sps_real sps__sym_contract(const sps_real a[6], const sps_real b[6]) {
-    return a[0] * b[0] + a[3] * b[3] + a[5] * b[5] + 2 * (a[1] * b[1] + a[2] * b[2] + a[4] * b[4]);
-}
 
 /* The return mapping of a trial stress sig (xx xy xz yy yz zz) onto the cone, as the reference
    code's: first the tension cut-off (a mean stress beyond the apex I1 = k_c / alpha_phi is
@@ -1993,13 +2007,14 @@ SPS__INLINE void sps__drucker_prager_return(sps_real sig[6], const sps__yield_co
     sps_real i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ], s[6], j2, strength, r;
     int a;
     if (i1 > apex) i1 = apex;
+    /* s: sig less the mean after the cut-off (where the cut-off acted, strength is 0 and r takes s to 0) */
     SPS__UNROLL
-    for (a = 0; a < 6; ++a) s[a] = sig[a] - (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? i1 / 3 : 0);
+    for (a = 0; a < 6; ++a) s[a] = sig[a] - (sps__sym_diagonal(a) ? i1 / 3 : 0);
     j2 = SPS_R(0.5) * sps__sym_contract(s, s);
     strength = c->k_c - c->alpha_phi * i1; /* >= 0 after the cut-off */
     r = j2 > strength * strength ? strength / SPS__SQRT(j2) : 1;
     SPS__UNROLL
-    for (a = 0; a < 6; ++a) sig[a] = r * s[a] + (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? i1 / 3 : 0);
+    for (a = 0; a < 6; ++a) sig[a] = r * s[a] + (sps__sym_diagonal(a) ? i1 / 3 : 0);
 }
 
 /* One particle's stress update over dt (UTVF eqs. 10, 13, 15, then the return mapping): from
@@ -2012,18 +2027,16 @@ SPS__INLINE void sps__drucker_prager_return(sps_real sig[6], const sps__yield_co
    the difference is the plastic part of the step. */
 SPS__INLINE void sps__drucker_prager_update(sps_real sig[6], const sps_real* L, int ls, const sps_real* diffusion, int ds,
                                             const sps__yield_cone* c, sps_real G, sps_real K, sps_real dt, sps_real elastic_trial[6]) {
-    static const int row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
-    static const int sym[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+    const int* row = sps__sym_row;
+    const int* col = sps__sym_col;
     sps_real D[6], S[9], tr_d, i1, s[6], j2, f, gamma_rate = 0, rate[6];
     int a, m;
     SPS__UNROLL
     for (a = 0; a < 6; ++a) D[a] = SPS_R(0.5) * (L[(3 * row[a] + col[a]) * ls] + L[(3 * col[a] + row[a]) * ls]);
     tr_d = D[SPS__XX] + D[SPS__YY] + D[SPS__ZZ];
-    i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ];
     SPS__UNROLL
-    for (a = 0; a < 9; ++a) S[a] = sig[sym[a]];
-    SPS__UNROLL
-    for (a = 0; a < 6; ++a) s[a] = sig[a] - (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? i1 / 3 : 0);
+    for (a = 0; a < 9; ++a) S[a] = sig[sps__sym9[a]];
+    i1 = sps__sym_deviator(sig, s);
     j2 = SPS_R(0.5) * sps__sym_contract(s, s);
     f = c->alpha_phi * i1 + SPS__SQRT(j2) - c->k_c;
     if (f >= 0 && j2 > 0) { /* eq. 13 */
@@ -2033,7 +2046,7 @@ SPS__INLINE void sps__drucker_prager_update(sps_real sig[6], const sps_real* L, 
     }
     SPS__UNROLL
     for (a = 0; a < 6; ++a) {
-        const int diagonal = a == SPS__XX || a == SPS__YY || a == SPS__ZZ;
+        const int diagonal = sps__sym_diagonal(a);
         sps_real spin = 0; /* (W sig - sig W)_ab, W = (L - L^T)/2 */
         SPS__UNROLL
         for (m = 0; m < 3; ++m)
@@ -2762,21 +2775,18 @@ SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_re
     body = &w->bodies[k]; /* the sort by body may have moved its range */
     if (k0 == 0) k0 = body->cone.k0;
     for (i = body->begin; i < body->end; ++i) {
-        sps_real height = 0, before, sigma[6], p;
+        sps_real height = 0, before, sigma[6], vertical_stress;
         sps_real* tau = body->tau + (size_t)6 * (i - body->begin);
-        static const int row[6] = {0, 0, 0, 1, 1, 2}, col[6] = {0, 1, 2, 1, 2, 2};
         for (a = 0; a < w->dim; ++a) height -= g[a] / g_norm * w->ref[a][i];
-        for (a = 0; a < 6; ++a) { /* sigma_h I + (sigma_v - sigma_h) g^ g^, sigma_h = k0 sigma_v */
-            const sps_real vertical_stress = -body->rho0 * g_norm * (surface_height > height ? surface_height - height : 0);
-            sigma[a] = k0 * vertical_stress * (row[a] == col[a]) + (1 - k0) * vertical_stress * g[row[a]] * g[col[a]] / (g_norm * g_norm);
-        }
-        p = -(sigma[SPS__XX] + sigma[SPS__YY] + sigma[SPS__ZZ]) / 3;
+        vertical_stress = -body->rho0 * g_norm * (surface_height > height ? surface_height - height : 0);
+        for (a = 0; a < 6; ++a) /* sigma_h I + (sigma_v - sigma_h) g^ g^, sigma_h = k0 sigma_v */
+            sigma[a] = k0 * vertical_stress * sps__sym_diagonal(a) +
+                       (1 - k0) * vertical_stress * g[sps__sym_row[a]] * g[sps__sym_col[a]] / (g_norm * g_norm);
         before = w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), w->p[i]);
-        for (a = 0; a < 6; ++a) tau[a] = sigma[a] + (row[a] == col[a] ? p : 0);
-        w->p[i] = p;
-        w->rho[i] = body->rho0 + p / (body->mat.c0 * body->mat.c0); /* its density follows its pressure (GRANULAR) */
+        w->p[i] = -sps__sym_deviator(sigma, tau) / 3; /* tau: the deviator */
+        w->rho[i] = body->rho0 + w->p[i] / (body->mat.c0 * body->mat.c0); /* its density follows its pressure (GRANULAR) */
         w->vol[i] = w->mass[i] / w->rho[i];
-        sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), p) - before, 0);
+        sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), w->p[i]) - before, 0);
     }
     return SPS_OK;
 }
@@ -4206,7 +4216,7 @@ static void sps__spin_of_rotation(const sps_real R[9], sps_real dt, const int di
    the entries of next that exist in dim (xx xy yy in 2D). */
 SPS__INLINE void sps__next_stress(const sps_real* t6, int ts, const sps_real* L, int ls, sps_real G, sps_real dt, const int dim,
                                   sps_real next[6]) {
-    static const int sym[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
+    const int* sym = sps__sym9;
     sps_real T[9], D[9], W[9], tr = 0, rate;
     int a, c, m;
     SPS__UNROLL
@@ -4358,7 +4368,7 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
         for (a = 0; a < 9; ++a) gradient[a] = a / 3 < dim && a % 3 < dim ? L[a][l] : 0;
         SPS__UNROLL
         for (a = 0; a < 6; ++a) {
-            sig[a] = tau[6 * l + a] - (a == SPS__XX || a == SPS__YY || a == SPS__ZZ ? p[l] : 0);
+            sig[a] = tau[6 * l + a] - (sps__sym_diagonal(a) ? p[l] : 0);
             rate[a] = diffused ? spread[6 * l + a] : 0;
         }
         sps__drucker_prager_update(sig, gradient, 1, rate, 1, &cone, G, K, dt, trial);
@@ -4368,7 +4378,7 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
         flow_trace = p_next - p_trial; /* tr(t - sigma)/3 */
         SPS__UNROLL
         for (a = 0; a < 6; ++a) {
-            const int diagonal = a == SPS__XX || a == SPS__YY || a == SPS__ZZ;
+            const int diagonal = sps__sym_diagonal(a);
             s_next[a] = sig[a] + (diagonal ? p_next : 0);
             s_trial[a] = trial[a] + (diagonal ? p_trial : 0);
             flow[a] = trial[a] - sig[a] - (diagonal ? flow_trace : 0);
@@ -4379,8 +4389,8 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
             next_p[l] = p_next;
             strain[l] += sqrt_2_3 * SPS__SQRT(sps__sym_contract(flow, flow)) / (2 * G);
             if (scaled) { /* the return factor of the penalty (as sps__j2_stress_lanes): |s| / |s_trial| */
-                const sps_real trial_norm2 = sps__sym_contract(s_trial, s_trial);
-                const sps_real r = trial_norm2 > sps__sym_contract(s_next, s_next) ? SPS__SQRT(sps__sym_contract(s_next, s_next) / trial_norm2) : 1;
+                const sps_real trial_norm2 = sps__sym_contract(s_trial, s_trial), norm2 = sps__sym_contract(s_next, s_next);
+                const sps_real r = trial_norm2 > norm2 ? SPS__SQRT(norm2 / trial_norm2) : 1;
                 int c;
                 factor[l] = r;
                 if (relax)
@@ -4575,28 +4585,22 @@ static sps_real sps__image_geometry(const sps_world* w, int i, const sps_real x[
    reference code's dummy particles with the particle's own stress), reflected across a slip
    wall, M tau_j M with M = I - 2 n n (no shear traction). */
 static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, sps_real t[9]) {
-    static const int sym[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
     const sps_real* tj = b->tau + (size_t)6 * (m->j - b->begin);
     const sps_real* n = m->wall->normal;
     sps_real M[9], Mt[9];
-    int a, c, k;
-    for (a = 0; a < 9; ++a) t[a] = tj[sym[a]];
+    int a, c;
+    for (a = 0; a < 9; ++a) t[a] = tj[sps__sym9[a]];
     if (m->wall->slip == SPS_WALL_NO_SLIP) return;
     for (a = 0; a < 3; ++a)
         for (c = 0; c < 3; ++c) M[3 * a + c] = (a == c) - 2 * (a < w->dim ? n[a] : 0) * (c < w->dim ? n[c] : 0);
-    for (a = 0; a < 3; ++a)
-        for (c = 0; c < 3; ++c)
-            for (Mt[3 * a + c] = 0, k = 0; k < 3; ++k) Mt[3 * a + c] += M[3 * a + k] * t[3 * k + c];
-    for (a = 0; a < 3; ++a)
-        for (c = 0; c < 3; ++c)
-            for (t[3 * a + c] = 0, k = 0; k < 3; ++k) t[3 * a + c] += Mt[3 * a + k] * M[3 * k + c];
+    sps__mat3_product(M, t, 0, Mt);
+    sps__mat3_product(Mt, M, 0, t);
 }
 
 /* The pressure pass's terms (sps__pressure) of one image, added to acc (per unit mass * rho_i):
    the Riemann pressure, the viscous force (a viscous fluid) and the stress divergence (a body
    with a stress: granular). */
 static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
-    static const int sym[9] = {0, 1, 2, 1, 3, 4, 2, 4, 5};
     sps_real* acc = (sps_real*)user, e[3], r, u = 0, beta, f2;
     const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), vol = w->vol[m->j];
     int a, c;
@@ -4613,7 +4617,7 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
         sps_real tj[9];
         sps__image_stress(w, b, m, tj);
         for (a = 0; a < w->dim; ++a)
-            for (c = 0; c < w->dim; ++c) acc[a] += (ti[sym[3 * a + c]] + tj[3 * a + c]) * e[c] * dw * vol;
+            for (c = 0; c < w->dim; ++c) acc[a] += (ti[sps__sym9[3 * a + c]] + tj[3 * a + c]) * e[c] * dw * vol;
     }
 }
 
