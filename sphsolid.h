@@ -1372,7 +1372,7 @@ typedef struct sps__body {
     sps_real* diffusion;   /* Drucker-Prager with stress diffusion: its rate (6 per particle) */
     sps_real* next_pressure; /* Drucker-Prager: the pressure of the stress update (sps__finish) */
     sps__yield_cone cone;  /* Drucker-Prager: the yield cone */
-    sps_real limiter_eta;  /* eta of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
+    sps_real limiter_eta_c0; /* eta / c0 of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
     sps_real diffusion_rate; /* 2 zeta h c0 of the stress diffusion */
     sps_real geostatic[6]; /* -rho0 [g^ g^ + K0 (I - g^ g^)] (g^ = g/|g|): the geostatic stress
                               difference of a pair is this times g . x_ij, which the stress
@@ -2531,7 +2531,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->oas_n = def->oas_exponent;
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->transport_alpha = def->transport_coefficient > 0 ? def->transport_coefficient : SPS_R(0.2); /* UTVF section 3.2 */
-    b->limiter_eta = b->model.material->limiter + b->model.material->limiter_per_dim * w->dim;
+    b->limiter_eta_c0 = (b->model.material->limiter + b->model.material->limiter_per_dim * w->dim) / b->mat.c0;
     if (b->model.plastic == SPS__YIELD_DRUCKER_PRAGER) sps__granular_setup(w, b);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
     b->driven = b->model.material->kinematic && sps__watchdog_on(w);
@@ -4027,7 +4027,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                                const int stress, const int art, const int paired, const int limited, const int viscous,
                                const int diffusion) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real z = b->z_riemann, eta_c0 = limited ? b->limiter_eta / b->mat.c0 : 0;
+    const sps_real z = b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
     const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h, soft2 = SPS_R(0.01) * w->h * w->h;
     const sps_real *gravity = w->def.gravity, *geostatic = b->geostatic;
     const int begin = b->begin; /* the body's own arrays (tau, art) hold particle begin + k at k */
@@ -4606,7 +4606,7 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
     int a, c;
     if (dw == 0) return;
     for (a = 0; a < w->dim; ++a) u += (w->vel[a][i] - m->v[a]) * e[a];
-    beta = sps__riemann_limiter(u, b->limiter_eta / b->mat.c0);
+    beta = sps__riemann_limiter(u, b->limiter_eta_c0);
     f2 = (w->p[i] + m->p - b->z_riemann * beta * u) * dw * vol;
     for (a = 0; a < w->dim; ++a) {
         acc[a] -= f2 * e[a];

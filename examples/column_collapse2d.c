@@ -20,7 +20,6 @@
 #define TANK_LENGTH 0.5
 #define TANK_HEIGHT 0.15
 #define COLUMN_HEIGHT 0.1
-#define G_ACC 9.8
 
 typedef struct {
     output_plan output;
@@ -93,11 +92,8 @@ int main(int argc, char** argv) {
     apply_common(&c, &wd, &bd);
     memset(&s, 0, sizeof s);
     hi[0] = (sps_real)length;
-    wd.dim = 2;
-    wd.dp = (sps_real)dp;
-    wd.gravity[1] = (sps_real)-G_ACC;
     ex_granular_body(&bd, &g);
-    w = ex_create(&wd);
+    w = ex_granular_world(&wd, 2, dp);
     ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));

@@ -514,6 +514,14 @@ EX_UNUSED static void ex_granular_body(sps_body_def* bd, const granular_options*
     bd->material.friction_angle = (sps_real)g->phi;
     bd->stress_diffusion = (sps_real)g->diffusion;
 }
+/* The world of a granular example: dim, dp and the UTVF paper's gravity, 9.8 m/s^2 down y. */
+#define GRANULAR_GRAVITY 9.8
+EX_UNUSED static sps_world* ex_granular_world(sps_world_def* wd, int dim, double dp) {
+    wd->dim = dim;
+    wd->dp = (sps_real)dp;
+    wd->gravity[1] = (sps_real)-GRANULAR_GRAVITY;
+    return ex_create(wd);
+}
 EX_UNUSED static const char* transport_name(int t) { return t == 0 ? "none" : t == 1 ? "TVF" : "UTVF"; }
 /* Wall time per particle and acoustic sub-step [ns]. */
 EX_UNUSED static double ns_per_particle_step(const sps_world* w, double wall, long steps) {

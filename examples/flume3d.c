@@ -21,7 +21,6 @@
 #include "common.h"
 
 #define SLOPE_DEG 50.0
-#define G_ACC 9.8
 #define WIDTH 0.5
 #define BARRIER_X 2.0
 #define BARRIER_HEIGHT 0.5
@@ -103,9 +102,6 @@ int main(int argc, char** argv) {
               (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
     memset(&s, 0, sizeof s);
-    wd.dim = 3;
-    wd.dp = (sps_real)dp;
-    wd.gravity[1] = (sps_real)-G_ACC;
     bed_normal[0] = (sps_real)sin(a);
     bed_normal[1] = (sps_real)cos(a);
     bed_normal[2] = 0;
@@ -114,7 +110,7 @@ int main(int argc, char** argv) {
     shape.x0 = -2;
     shape.x1 = -1;
     shape.y_top = 3.5;
-    w = ex_create(&wd);
+    w = ex_granular_world(&wd, 3, dp);
     ex_check(w, sps_world_add_wall(w, origin, bed_normal, SPS_WALL_NO_SLIP)); /* the bed: solid below y = -tan(a) x */
     ex_check(w, sps_world_add_wall(w, origin, up, SPS_WALL_NO_SLIP));         /* the run-out floor, beyond the foot */
     /* smooth side walls (a flume's glass): no-slip ones held the whole mass by its cohesion,

@@ -20,7 +20,6 @@
 
 #define BLOCK_LENGTH 4.0
 #define BLOCK_HEIGHT 2.0
-#define G_ACC 9.8
 
 typedef struct {
     output_plan output;
@@ -81,11 +80,8 @@ int main(int argc, char** argv) {
     apply_common(&c, &wd, &bd);
     memset(&s, 0, sizeof s);
     dp = BLOCK_LENGTH / res;
-    wd.dim = 2;
-    wd.dp = (sps_real)dp;
-    wd.gravity[1] = (sps_real)-G_ACC;
     ex_granular_body(&bd, &g);
-    w = ex_create(&wd);
+    w = ex_granular_world(&wd, 2, dp);
     ex_check(w, sps_world_add_box_walls(w, lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));

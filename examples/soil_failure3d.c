@@ -16,7 +16,6 @@
 #include "common.h"
 
 #define EDGE 2.0
-#define G_ACC 9.8
 
 typedef struct {
     output_plan output;
@@ -82,11 +81,8 @@ int main(int argc, char** argv) {
     apply_common(&c, &wd, &bd);
     memset(&s, 0, sizeof s);
     dp = EDGE / res;
-    wd.dim = 3;
-    wd.dp = (sps_real)dp;
-    wd.gravity[1] = (sps_real)-G_ACC;
     ex_granular_body(&bd, &g);
-    w = ex_create(&wd);
+    w = ex_granular_world(&wd, 3, dp);
     ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
