@@ -4034,13 +4034,16 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
-    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES];
+    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES], tau_i[6][SPS__LANES];
     int k, l, a;
     (void)dt; /* every pass kernel takes the sub-step; this pass needs none */
     for (l = 0; l < SPS__LANES; ++l) {
         acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
         for (a = 0; a < 6; ++a) spread[a][l] = 0;
     }
+    if (stress) /* the lanes' own stresses side by side: read in the pair loop without a strided group */
+        for (a = 0; a < 6; ++a)
+            for (l = 0; l < SPS__LANES; ++l) tau_i[a][l] = tau[6 * (q.i0 + l - begin) + a];
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
             sps_real u, f2, beta = 1;
@@ -4063,11 +4066,11 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 if (dim == 3) shear[2][l] += f * ez;
             }
             if (stress) { /* (tau_i + tau_j) . e_ij dW V_j */
-                const sps_real *ti = tau + (size_t)6 * (i - begin), *tj = tau + (size_t)6 * (j - begin);
-                sps_real dwv = dw * vol[j];
-                sps_real sxx = ti[0] + tj[0], sxy = ti[1] + tj[1], syy = ti[3] + tj[3];
+                const int tj = 6 * (j - begin); /* an int offset from the array: a gather (a pointer to j's entries defeats it) */
+                const sps_real dwv = dw * vol[j];
+                const sps_real sxx = tau_i[0][l] + tau[tj], sxy = tau_i[1][l] + tau[tj + 1], syy = tau_i[3][l] + tau[tj + 3];
                 if (dim == 3) {
-                    sps_real sxz = ti[2] + tj[2], syz = ti[4] + tj[4], szz = ti[5] + tj[5];
+                    const sps_real sxz = tau_i[2][l] + tau[tj + 2], syz = tau_i[4][l] + tau[tj + 4], szz = tau_i[5][l] + tau[tj + 5];
                     acc[0][l] += (sxx * ex + sxy * ey + sxz * ez) * dwv;
                     acc[1][l] += (sxy * ex + syy * ey + syz * ez) * dwv;
                     acc[2][l] += (sxz * ex + syz * ey + szz * ez) * dwv;
@@ -4078,13 +4081,13 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 if (diffusion) { /* (sigma_i - sigma_j - geostatic difference) r dW/(r^2 + 0.01 h^2) V_j */
                     const sps_real weight = rij * dwv / (rij * rij + soft2);
                     const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0)), dp_ij = p[i] - p[j];
-                    spread[0][l] += weight * (ti[0] - tj[0] - dp_ij - geostatic[0] * g_x);
-                    spread[1][l] += weight * (ti[1] - tj[1] - geostatic[1] * g_x);
-                    spread[3][l] += weight * (ti[3] - tj[3] - dp_ij - geostatic[3] * g_x);
-                    spread[5][l] += weight * (ti[5] - tj[5] - dp_ij - geostatic[5] * g_x);
+                    spread[0][l] += weight * (tau_i[0][l] - tau[tj] - dp_ij - geostatic[0] * g_x);
+                    spread[1][l] += weight * (tau_i[1][l] - tau[tj + 1] - geostatic[1] * g_x);
+                    spread[3][l] += weight * (tau_i[3][l] - tau[tj + 3] - dp_ij - geostatic[3] * g_x);
+                    spread[5][l] += weight * (tau_i[5][l] - tau[tj + 5] - dp_ij - geostatic[5] * g_x);
                     if (dim == 3) {
-                        spread[2][l] += weight * (ti[2] - tj[2] - geostatic[2] * g_x);
-                        spread[4][l] += weight * (ti[4] - tj[4] - geostatic[4] * g_x);
+                        spread[2][l] += weight * (tau_i[2][l] - tau[tj + 2] - geostatic[2] * g_x);
+                        spread[4][l] += weight * (tau_i[4][l] - tau[tj + 4] - geostatic[4] * g_x);
                     }
                 }
             }
@@ -4814,20 +4817,24 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     const sps_real* SPS__RESTRICT factor = b->return_factor; /* likewise, J2 bodies only */
     const int begin = b->begin;
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
-    sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES];
+    const sps_real* const vel[3] = {w->vel[0], w->vel[1], w->vel[2]};
+    sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES], L_i[9][SPS__LANES];
     int k, l, a, c;
     for (a = 0; a < 3; ++a)
         for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
+    for (a = 0; a < 9; ++a) /* the lanes' own gradients side by side: no strided group in the pair loop */
+        for (l = 0; l < SPS__LANES; ++l) L_i[a][l] = L[9 * (q.i0 + l - begin) + a];
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real dir[3] = {e.ex, e.ey, e.ez}, dw = e.dw, dw_r = e.dw_r;
             const sps_real pair_scale = scaled ? SPS_R(0.5) * (factor[i - begin] + factor[j - begin]) : 1;
+            const int lj = 9 * (j - begin); /* an int offset from the array: a gather */
             sps_real vhat[3], u = 0, u_pair = 0;
             SPS__UNROLL
             for (a = 0; a < dim; ++a) {
                 sps_real le = 0, v_r;
                 SPS__UNROLL
-                for (c = 0; c < dim; ++c) le += (L[(size_t)9 * (i - begin) + 3 * a + c] + L[(size_t)9 * (j - begin) + 3 * a + c]) * dir[c];
-                v_r = (w->vel[a][i] - w->vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
+                for (c = 0; c < dim; ++c) le += (L_i[3 * a + c][l] + L[lj + 3 * a + c]) * dir[c];
+                v_r = (vel[a][i] - vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
                 if (scaled) v_r *= pair_scale;
                 vhat[a] = v_r * vol[j];
                 u += vhat[a] * dir[a];
