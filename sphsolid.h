@@ -1185,10 +1185,10 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #else
 #define SPS__PRAGMA(x)
 #endif
-/* Unrolls a short loop (over dimensions or matrix entries) inside a lane loop: GCC vectorises a
-   lane loop only when no loop is left inside it. */
+/* Unrolls a short loop (over dimensions, matrix entries or OAS's exponent) inside a lane loop:
+   GCC vectorises a lane loop only when no loop is left inside it. */
 #if defined(__GNUC__) && !defined(__INTEL_COMPILER)
-#define SPS__UNROLL _Pragma("GCC unroll 9")
+#define SPS__UNROLL _Pragma("GCC unroll 12")
 #else
 #define SPS__UNROLL
 #endif
@@ -1229,6 +1229,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
    past the last particle reads valid memory. */
 #define SPS__LANES (128 / (int)sizeof(sps_real))
 #define SPS__MAX_BODIES 4096
+#define SPS__OAS_MAX_EXPONENT 12 /* the largest oas_exponent */
 #define SPS__MAX_THREADS 1024
 #define SPS__DT_COLLAPSE 1e-3 /* acoustic dt / dt at rest below which a run is unstable */
 #define SPS__MAX_PARTICLES 200000000 /* 2e8: keeps every per-particle array index inside an int */
@@ -2223,7 +2224,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
-    SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= 12, "oas_exponent = %g, allowed [1, 12]", (double)def->oas_exponent);
+    SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= SPS__OAS_MAX_EXPONENT, "oas_exponent = %g, allowed [1, 12]", (double)def->oas_exponent);
     SPS__CHECK(def->rotation == SPS_ROTATION_MEAN || def->rotation == SPS_ROTATION_PER_PARTICLE || def->rotation == SPS_ROTATION_PAIR,
                "rotation = %d, allowed 0 (mean), 1 (per particle) or 2 (pair)", (int)def->rotation);
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
@@ -4034,7 +4035,11 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
-    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES], tau_i[6][SPS__LANES];
+    const sps_real* SPS__RESTRICT art_r = b->art; /* OAS only */
+    const sps_real oas_w_dp = b->oas_w_dp;
+    const int kernel = geo == SPS__GEO_SPLINE ? SPS_KERNEL_CUBIC_SPLINE : geo == SPS__GEO_WENDLAND ? SPS_KERNEL_WENDLAND_C2 : w->def.kernel;
+    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES], tau_i[6][SPS__LANES], art_i[3][SPS__LANES];
+    sps_real oas_factor[SPS__OAS_MAX_EXPONENT]; /* a lane-uniform select the vectoriser takes: 1 f + 0 or 0 f + 1 */
     int k, l, a;
     (void)dt; /* every pass kernel takes the sub-step; this pass needs none */
     for (l = 0; l < SPS__LANES; ++l) {
@@ -4044,6 +4049,11 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     if (stress) /* the lanes' own stresses side by side: read in the pair loop without a strided group */
         for (a = 0; a < 6; ++a)
             for (l = 0; l < SPS__LANES; ++l) tau_i[a][l] = tau[6 * (q.i0 + l - begin) + a];
+    if (art) { /* likewise their artificial stresses; and which of the exponent's factors are f */
+        for (a = 0; a < 3; ++a)
+            for (l = 0; l < SPS__LANES; ++l) art_i[a][l] = art_r[3 * (q.i0 + l - begin) + a];
+        for (a = 0; a < SPS__OAS_MAX_EXPONENT; ++a) oas_factor[a] = (sps_real)(a < (int)b->oas_n);
+    }
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
             sps_real u, f2, beta = 1;
@@ -4092,13 +4102,15 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 }
             }
             if (art) {
-                const sps_real *ri = b->art + (size_t)3 * (i - begin), *rj = b->art + (size_t)3 * (j - begin);
-                sps_real f = w->kernel_norm * sps__kernel_f(w->def.kernel, rij * w->inv_h) / b->oas_w_dp, fn = 1, mf;
+                const int rj = 3 * (j - begin); /* an int offset: a gather */
+                const sps_real f = w->kernel_norm * sps__kernel_f(kernel, rij * w->inv_h) / oas_w_dp;
+                sps_real fn = 1, mf;
                 int m;
-                for (m = 0; m < (int)b->oas_n; ++m) fn *= f;
+                SPS__UNROLL
+                for (m = 0; m < SPS__OAS_MAX_EXPONENT; ++m) fn *= oas_factor[m] * f + (1 - oas_factor[m]); /* f^n: f or exactly 1 */
                 mf = w->mass[j] * fn * dw;
-                gray[0][l] += mf * ((ri[0] + rj[0]) * ex + (ri[1] + rj[1]) * ey);
-                gray[1][l] += mf * ((ri[1] + rj[1]) * ex + (ri[2] + rj[2]) * ey);
+                gray[0][l] += mf * ((art_i[0][l] + art_r[rj]) * ex + (art_i[1][l] + art_r[rj + 1]) * ey);
+                gray[1][l] += mf * ((art_i[1][l] + art_r[rj + 1]) * ex + (art_i[2][l] + art_r[rj + 2]) * ey);
             }
     })
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
@@ -6371,14 +6383,14 @@ SPS__INLINE void sps__transport_shift(sps_world* w, const sps__body* b, int g, s
     const sps_real* SPS__RESTRICT t = b->transport;
     const int begin = b->begin;
     const sps_real surface_divr = SPS_R(0.75) * dim, splash_divr = SPS_R(0.6) * dim;
-    const sps_real scale = -2 * b->transport_alpha * w->h * w->h;
+    const sps_real scale = -2 * b->transport_alpha * w->h * w->h, h = w->h;
     sps_real near[SPS__LANES];
     int k, l, a;
     (void)dt;
     for (l = 0; l < SPS__LANES; ++l) near[l] = 0;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
-            const int outer_j = t[(size_t)SPS__TRANSPORT_VALUES * (j - begin) + SPS__TR_DIVR] < surface_divr;
-            near[l] += outer_j && e.r < w->h && e.dw != 0 ? 1 : 0; /* padding (j = i, dW = 0) counts not */
+            const int outer_j = t[SPS__TRANSPORT_VALUES * (j - begin) + SPS__TR_DIVR] < surface_divr; /* an int offset: a gather */
+            near[l] += (sps_real)(outer_j & (e.r < h) & (e.dw != 0)); /* padding (j = i, dW = 0) counts not; & not &&: no branch */
     })
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         sps_real* ti = b->transport + (size_t)SPS__TRANSPORT_VALUES * (q.i0 + l - begin);
