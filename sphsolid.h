@@ -3964,13 +3964,18 @@ static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, in
    particle i, its neighbour j (i itself in padding slots), the slot s and the pair geometry e
    (sps__pair) declared for TERMS, the pass's statements, which add to the lanes' sums. Each lane
    sums its own particle's neighbours in list order, so no result depends on the vector width.
-   k and l are the caller's ints. */
+   k and l are the caller's ints. SPS__PAIR_NEIGHBOR(js_, l) is lane l's neighbour; the
+   speed probe bench/pass_bound.c redefines it as js_[0], one neighbour for every lane, read
+   without gathers, to time a pass's arithmetic alone. */
+#ifndef SPS__PAIR_NEIGHBOR
+#define SPS__PAIR_NEIGHBOR(js_, l) (js_)[l]
+#endif
 #define SPS__PAIR_LOOP(w, q, dim, geo, k, l, ...)                                            \
     for (k = 0; k < (q).len; ++k) {                                                          \
         const int* SPS__RESTRICT js_ = (w)->nb_j + (q).s0 + k * SPS__LANES;                 \
         SPS__PRAGMA(omp simd)                                                                \
         for (l = 0; l < SPS__LANES; ++l) {                                                   \
-            const int i = (q).i0 + l, s = (q).s0 + k * SPS__LANES + l, j = js_[l];           \
+            const int i = (q).i0 + l, s = (q).s0 + k * SPS__LANES + l, j = SPS__PAIR_NEIGHBOR(js_, l); \
             const sps__pair_geometry e = sps__pair(w, i, s, j, dim, geo);                    \
             __VA_ARGS__                                                                      \
         }                                                                                    \
