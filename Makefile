@@ -13,12 +13,15 @@
 #   make clean
 CC      ?= cc
 CXX     ?= c++
-# -fno-math-errno lets sqrt vectorise (the library never reads errno). On x86-64, GCC's generic
-# tuning (what -march=native picks on CPUs it does not name) emits no gather instructions, and
-# the neighbour loops need them: -mtune=icelake-server measured 1.6x faster on the 2D plate.
-# With AVX-512, GCC still prefers 256-bit vectors; 512-bit ones run the 16-double lane groups
-# 1.2x faster (2D plate; without AVX-512 the preference changes nothing).
-TUNE    ?= $(if $(filter x86_64,$(shell uname -m)),-mtune=icelake-server -mprefer-vector-width=512,)
+# -fno-math-errno lets sqrt vectorise (the library never reads errno). On an AVX-512 CPU, GCC's
+# generic tuning (what -march=native picks on CPUs it does not name) emits no gather
+# instructions, and the neighbour loops need them: -mtune=icelake-server measured 1.6x faster
+# on the 2D plate; GCC also prefers 256-bit vectors there, and 512-bit ones run the 16-double
+# lane groups 1.2x faster. Elsewhere (AVX2 CPUs such as AMD's, other architectures) -march=native
+# keeps the CPU's own tuning: on an AVX2 EPYC the Intel tuning's gathers changed nothing
+# (bench/VALIDATION.md, "Speed"). TUNE= on the command line overrides the choice.
+AVX512  := $(shell grep -q -w avx512f /proc/cpuinfo 2>/dev/null && echo yes)
+TUNE    ?= $(if $(AVX512),-mtune=icelake-server -mprefer-vector-width=512,)
 OPT     ?= -O2 -march=native $(TUNE) -fno-math-errno
 WARN     = -Wall -Wextra -Wpedantic
 CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
