@@ -22,7 +22,7 @@ CXX     ?= c++
 # (bench/VALIDATION.md, "Speed"). TUNE= on the command line overrides the choice.
 AVX512  := $(shell grep -q -w avx512f /proc/cpuinfo 2>/dev/null && echo yes)
 TUNE    ?= $(if $(AVX512),-mtune=icelake-server -mprefer-vector-width=512,)
-OPT     ?= -O2 -march=native $(TUNE) -fno-math-errno
+OPT     ?= -O2 -march=native $(TUNE) -fno-math-errno -fno-trapping-math
 WARN     = -Wall -Wextra -Wpedantic
 CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm

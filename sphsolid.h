@@ -15,7 +15,7 @@
          #define SPHSOLID_IMPLEMENTATION
          #include "sphsolid.h"
       Everywhere else include "sphsolid.h" alone. Link with -lm; add -fopenmp for threads.
-      For speed: -O2 -march=native -fno-math-errno (so sqrt vectorises), and with GCC on x86-64
+      For speed: -O2 -march=native -fno-math-errno -fno-trapping-math (so sqrt and, on AVX2, the pair loops vectorise), and with GCC on x86-64
       a -mtune that allows gather instructions (e.g. -mtune=icelake-server; GCC's generic
       tuning has none) and, on CPUs with AVX-512, -mprefer-vector-width=512 (GCC keeps 256-bit
       vectors otherwise; 1.2x on the 2D plate). The neighbour loops run one particle per SIMD
@@ -3888,7 +3888,8 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
            direction between them and no force (dW(0) = 0): both take e = 0, dW = 0 */
         const sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
         const sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] : 0, r2 = dx * dx + dy * dy + dz * dz;
-        const sps_real pad = (sps_real)(r2 == 0), r = SPS__SQRT(r2 + pad), inv = 1 / r;
+        const sps_real pad = (sps_real)(r2 == 0), r = SPS__SQRT(r2 == 0 ? 1 : r2), inv = 1 / r; /* a select, not r2 + pad: GCC
+                                                    would branch round the add, and AVX2 (no masked add) could not vectorise it */
         q.ex = dx * inv;
         q.ey = dy * inv;
         q.ez = dz * inv;
