@@ -1346,7 +1346,8 @@ typedef struct sps__body {
     sps__material_constants mat; /* its material's c0, G and K */
     sps_real rho0, zeta;
     sps_real z_riemann;   /* rho0 c0: dissipation impedance of the Riemann solver */
-    sps_real xi, oas_eps, oas_n, oas_w_dp;
+    sps_real xi, oas_eps, oas_w_dp;
+    sps_real oas_factor[SPS__OAS_MAX_EXPONENT]; /* OAS: 1 for the first oas_exponent factors of f^n, then 0 */
     sps_real mean_rotation[9];
     sps_real mean_spin[9];     /* angular velocity of mean_rotation as a skew matrix (sps__kick) */
     sps_real frame_velocity[3]; /* its mass-weighted mean velocity at the start of the advection
@@ -2224,7 +2225,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
-    SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= SPS__OAS_MAX_EXPONENT, "oas_exponent = %g, allowed [1, 12]", (double)def->oas_exponent);
+    SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= SPS__OAS_MAX_EXPONENT, "oas_exponent = %g, allowed [1, %d]", (double)def->oas_exponent, SPS__OAS_MAX_EXPONENT);
     SPS__CHECK(def->rotation == SPS_ROTATION_MEAN || def->rotation == SPS_ROTATION_PER_PARTICLE || def->rotation == SPS_ROTATION_PAIR,
                "rotation = %d, allowed 0 (mean), 1 (per particle) or 2 (pair)", (int)def->rotation);
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
@@ -2502,6 +2503,7 @@ static int sps__check_body(sps_world* w, sps_body b, const char* fn) {
 SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_body* out) {
     char msg[768];
     sps__body* b;
+    int k;
     if (!w) return SPS_ERR_INVALID_ARG;
     if (out) out->id = 0;
     if (!def || !out) { sps__set_error(w, 0, "sps_world_add_body: def and out must not be NULL"); return SPS_ERR_INVALID_ARG; }
@@ -2529,7 +2531,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->z_riemann = b->rho0 * b->mat.c0;
     b->xi = def->xi > 0 ? def->xi : 2; /* ANG section 5: xi_G = 2 */
     b->oas_eps = def->oas_epsilon;
-    b->oas_n = def->oas_exponent;
+    for (k = 0; k < SPS__OAS_MAX_EXPONENT; ++k) b->oas_factor[k] = (sps_real)(k < (int)def->oas_exponent);
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->transport_alpha = def->transport_coefficient > 0 ? def->transport_coefficient : SPS_R(0.2); /* UTVF section 3.2 */
     b->limiter_eta_c0 = (b->model.material->limiter + b->model.material->limiter_per_dim * w->dim) / b->mat.c0;
@@ -3848,6 +3850,11 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
 /* Pair geometry modes, a literal in the neighbour loops so they carry no branch on it: the
    stored geometry, or recomputed with the Wendland C2 or the cubic-spline kernel. */
 enum { SPS__GEO_WENDLAND, SPS__GEO_SPLINE, SPS__GEO_FROZEN };
+/* The kernel of pair geometry geo: a literal for the recomputed modes (the loops carry no
+   branch on it), the world's for the frozen one. */
+SPS__INLINE int sps__geo_kernel(const sps_world* w, const int geo) {
+    return geo == SPS__GEO_SPLINE ? SPS_KERNEL_CUBIC_SPLINE : geo == SPS__GEO_WENDLAND ? SPS_KERNEL_WENDLAND_C2 : w->def.kernel;
+}
 static int sps__mode(const sps_world* w) {
     int geo = w->def.frozen_geometry ? SPS__GEO_FROZEN : w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
     return (w->dim == 3) * 3 + geo;
@@ -3893,7 +3900,7 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
         q.ex = dx * inv;
         q.ey = dy * inv;
         q.ez = dz * inv;
-        q.dw = (1 - pad) * w->dw_scale * sps__kernel_df(geo == SPS__GEO_SPLINE ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2, r * w->inv_h);
+        q.dw = (1 - pad) * w->dw_scale * sps__kernel_df(sps__geo_kernel(w, geo), r * w->inv_h);
         q.dw_r = q.dw * inv;
         q.r = r;
     }
@@ -3958,6 +3965,16 @@ static void sps__group_share(const sps_world* w, const sps__body* b, int* g0, in
     sps__team_rank(&nt, &me);
     *g0 = me == 0 ? 0 : sps__group_at_slot(start, b->ngroups, first + total * me / nt);
     *g1 = me == nt - 1 ? b->ngroups : sps__group_at_slot(start, b->ngroups, first + total * (me + 1) / nt);
+}
+
+/* The `count` entries of a per-particle array (count values per particle, particle k of the
+   array at count k) of the SPS__LANES particles from array index first, side by side: out[a][l]
+   is entry a of lane l. A pair loop reads its lanes' own tensors from here, not as a strided
+   group of count values, which GCC vectorises only for 1, 2, 3 or 4. */
+SPS__INLINE void sps__own_lanes(const sps_real* array, int count, int first, sps_real (*out)[SPS__LANES]) {
+    int a, l;
+    for (a = 0; a < count; ++a)
+        for (l = 0; l < SPS__LANES; ++l) out[a][l] = array[count * (first + l) + a];
 }
 
 /* The pair loop of every neighbour pass, the skeleton each pass fills with its terms: for each
@@ -4043,23 +4060,18 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
     const sps_real* SPS__RESTRICT art_r = b->art; /* OAS only */
     const sps_real oas_w_dp = b->oas_w_dp;
-    const int kernel = geo == SPS__GEO_SPLINE ? SPS_KERNEL_CUBIC_SPLINE : geo == SPS__GEO_WENDLAND ? SPS_KERNEL_WENDLAND_C2 : w->def.kernel;
+    const int kernel = sps__geo_kernel(w, geo);
     sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES], tau_i[6][SPS__LANES], art_i[3][SPS__LANES];
-    sps_real oas_factor[SPS__OAS_MAX_EXPONENT]; /* a lane-uniform select the vectoriser takes: 1 f + 0 or 0 f + 1 */
+    const sps_real* oas_factor = b->oas_factor; /* f^n as a product of 12 factors, each 1 f + 0 or 0 f + 1 exactly: a
+                                                   lane-uniform select the vectoriser takes (a loop to n it does not) */
     int k, l, a;
     (void)dt; /* every pass kernel takes the sub-step; this pass needs none */
     for (l = 0; l < SPS__LANES; ++l) {
         acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
         for (a = 0; a < 6; ++a) spread[a][l] = 0;
     }
-    if (stress) /* the lanes' own stresses side by side: read in the pair loop without a strided group */
-        for (a = 0; a < 6; ++a)
-            for (l = 0; l < SPS__LANES; ++l) tau_i[a][l] = tau[6 * (q.i0 + l - begin) + a];
-    if (art) { /* likewise their artificial stresses; and which of the exponent's factors are f */
-        for (a = 0; a < 3; ++a)
-            for (l = 0; l < SPS__LANES; ++l) art_i[a][l] = art_r[3 * (q.i0 + l - begin) + a];
-        for (a = 0; a < SPS__OAS_MAX_EXPONENT; ++a) oas_factor[a] = (sps_real)(a < (int)b->oas_n);
-    }
+    if (stress) sps__own_lanes(tau, 6, q.i0 - begin, tau_i);
+    if (art) sps__own_lanes(art_r, 3, q.i0 - begin, art_i);
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
             sps_real u, f2, beta = 1;
@@ -4113,7 +4125,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 sps_real fn = 1, mf;
                 int m;
                 SPS__UNROLL
-                for (m = 0; m < SPS__OAS_MAX_EXPONENT; ++m) fn *= oas_factor[m] * f + (1 - oas_factor[m]); /* f^n: f or exactly 1 */
+                for (m = 0; m < SPS__OAS_MAX_EXPONENT; ++m) fn *= oas_factor[m] * f + (1 - oas_factor[m]); /* f^n */
                 mf = w->mass[j] * fn * dw;
                 gray[0][l] += mf * ((art_i[0][l] + art_r[rj]) * ex + (art_i[1][l] + art_r[rj + 1]) * ey);
                 gray[1][l] += mf * ((art_i[1][l] + art_r[rj + 1]) * ex + (art_i[2][l] + art_r[rj + 2]) * ey);
@@ -4840,8 +4852,7 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     int k, l, a, c;
     for (a = 0; a < 3; ++a)
         for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
-    for (a = 0; a < 9; ++a) /* the lanes' own gradients side by side: no strided group in the pair loop */
-        for (l = 0; l < SPS__LANES; ++l) L_i[a][l] = L[9 * (q.i0 + l - begin) + a];
+    sps__own_lanes(L, 9, q.i0 - begin, L_i);
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real dir[3] = {e.ex, e.ey, e.ez}, dw = e.dw, dw_r = e.dw_r;
             const sps_real pair_scale = scaled ? SPS_R(0.5) * (factor[i - begin] + factor[j - begin]) : 1;
