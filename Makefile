@@ -28,6 +28,8 @@ CFLAGS   = -std=c99 $(OPT) $(WARN) -fopenmp
 LDLIBS   = -lm
 SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 BUILD    = build
+# the examples built with sps_real = float (defined before the rules that name it)
+FLOAT    = $(BUILD)/float
 EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl tensile3d cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
            taylor_square taylor_round impact2d
 HEADER   = sphsolid.h
@@ -86,7 +88,6 @@ $(FLOAT)/taylor_round: examples/taylor_square.c $(EXAMPLE_HEADERS) $(FLOAT)/impl
 demo: $(BUILD)/demo
 
 # ---- the examples built with sps_real = float (bench/knobs.sh measures what float costs) ----
-FLOAT = $(BUILD)/float
 $(FLOAT)/impl.o: examples/impl.c $(HEADER)
 	@mkdir -p $(FLOAT)
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT -c $< -o $@
