@@ -254,16 +254,24 @@
       (TL eq. 17), the first Piola-Kirchhoff stress P_i of the body's law, the Cauchy stress
       sigma = P F^T / J and the density rho0/J (TL eq. 3); a barrier; the force pass,
       f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji)) (TL eq. 24)
-      plus the hourglass force of TL eq. 32,
-      f_i += sum_j -1/2 alpha V0_i V0_j W_ij / X_ij^2 (E delta^i_ij + E delta^j_ji) x_ij/|x_ij|,
-      delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij| (TL eqs. 25-27), E Young's modulus and
-      alpha = hourglass_alpha (default 50, TL Table 1; 0 turns it off); then the kick and the
-      second half drift as for any body. No continuity equation is integrated; the pressure
-      p = c0^2 (rho - rho0) is still set (output, guards), and the field "shear_stress" holds
-      sigma + p I, so that -p I + tau, what the outputs read (von Mises, the VTK stress tensor),
-      is sigma. Both forces are antisymmetric in i, j: linear momentum is exact; the stress force
-      exerts no torque since P F^T = J sigma is symmetric and the hourglass force is central, so
-      angular momentum is exact too (tested: 1e-15 relative in 2D and 3D over 1000 sub-steps).
+      plus the hourglass force. Its springs (TL eqs. 25-32): particle i holds one to each
+      neighbour j, of stiffness k_ij = 1/2 alpha E V0_i V0_j W_ij / X_ij^2 and stretch
+      delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij|, E Young's modulus and alpha = hourglass_alpha
+      (default 50, TL Table 1; 0 turns it off); their energy is Phi = sum_i sum_j 1/2 k_ij
+      (delta^i_ij)^2. hourglass = SPS_HOURGLASS_VARIATIONAL (the default) applies -dPhi/dx in
+      full: TL eq. 32, f_i += -sum_j (k_ij delta^i_ij + k_ji delta^j_ji) x_ij/|x_ij|, a force
+      across the pair from the turn of its direction, and TL eq. 24 applied to the hourglass
+      stress Pi_i = 1/V0_i dPhi/dF_i added to P_i (not to the Cauchy stress output), since
+      delta depends on F_i and F_i on i's neighbours (chapter >>solver: total Lagrangian).
+      SPS_HOURGLASS_PAPER applies TL eq. 32 alone, the paper's partial gradient: its stiffness is
+      not symmetric and it feeds energy into the motion (bench/VALIDATION.md, D1-D6). Then the
+      kick and the second half drift as for any body. No continuity equation is integrated; the
+      pressure p = c0^2 (rho - rho0) is still set (output, guards), and the field "shear_stress"
+      holds sigma + p I, so that -p I + tau, what the outputs read (von Mises, the VTK stress
+      tensor), is sigma. All forces are antisymmetric in i, j: linear momentum is exact; the
+      stress force exerts no torque since P F^T = J sigma is symmetric, and the springs' force is
+      the gradient of a rotation-invariant energy (the paper's: central), so angular momentum is
+      exact too (tested: 1e-15 relative in 2D and 3D over 1000 sub-steps).
       Laws (material.kind; in 2D plane strain, F_zz = 1):
       SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF  S = lambda tr(E) I + 2 mu E, E = (F^T F - I)/2,
                          P = F S (TL eqs. 18-20), energy lambda/2 tr(E)^2 + mu E:E per V0;
@@ -276,7 +284,7 @@
                          hardening_modulus; chapter >>material: J2 plasticity in the
                          total-Lagrangian frame), state C_p^-1 (field "plastic_metric", less I)
                          and alpha ("plastic_strain"), plastic work as for updated-Lagrangian J2.
-                         The hourglass force uses the yield stress instead of E at particles
+                         The hourglass springs use the yield stress instead of E at particles
                          that have flowed (alpha > 0; TL section 4.5).
       with mu = G = E/(2(1 + nu)), lambda = K - 2G/3. Saint Venant-Kirchhoff and Neo-Hookean
       are for total-Lagrangian bodies only, and a total-Lagrangian body takes only these and J2
@@ -284,20 +292,21 @@
       speed of a TL body in its reference state is c_ref = sqrt(c_p^2 + alpha E h^2 max_i S_i /
       (d rho0)), c_p the P-wave speed sqrt((K + 4G/3)/rho0) and S_i = sum_j V0_j W_ij / X_ij^2,
       the stiffness the hourglass springs add (without it alpha = 50 blew up the 2D plate at
-      cfl_acoustic = 0.4; with it the plate runs at 0.8); at every configuration update it is
+      cfl_acoustic = 0.4; with it the plate runs at 0.8; the variational form's highest
+      frequency is 3-5 % below the paper form's, so the bound holds for both); at every
+      configuration update it is
       c = c_ref / s^2, s the body's smallest principal stretch (at most 1), since a direction
       compressed by s has its spacing shrunk by s and its stiffness grown as 1/s^2 (the D3 block
       reached 50 % compression only so). sps_body_material_constants gives c_p before the
-      first step, c after. The strain energy of a TL body is the law's, sum V0 psi(F): exact under
-      rotation, and counted by the energy watchdog; the hourglass force is not the gradient of
-      an energy (its F depends on the neighbours' positions), so it is not in the account, and
-      it can feed energy in: measured with alpha = 50 (bench/VALIDATION.md, D1-D5), the A1 plate
-      blows up at 0.43 s and the irregular patch after 3.6 breathing periods, while alpha = 10
-      runs the plate for its full second (first period 0.2587 s) and alpha = 0 lets zigzag
-      modes grow (the patch's particles disorder at once). The def
+      first step, c after. The strain energy of a TL body is the law's, sum V0 psi(F), plus the
+      springs' Phi: exact under rotation, and counted by the energy watchdog, which so sees the
+      energy the paper's form feeds in (with it and alpha = 50 the A1 plate blew up at 0.43 s and
+      the irregular D1 patch after 3.6 breathing periods; alpha = 0 lets zigzag modes grow).
+      The def
       fields shear, rotation, zeta, xi, oas_* and track_stress do not apply (the stress is
       always there). Fields of TL bodies: "deformation_gradient" (F, 9 values row-major, 3 x 3),
-      "reference_correction" (-L^-1) and "corrected_piola_stress" (-P L^-1). Contact with other
+      "reference_correction" (-L^-1) and "corrected_piola_stress" (-(P + Pi) L^-1, the hourglass
+      stress Pi of the variational form included). Contact with other
       bodies and walls is the shared contact pass (tested in the restart round trip: a
       Neo-Hookean block thrown at another over a floor wall).
       Damage (damage_strain = eps_max > 0; TL section 4.6, chapter >>material: damage in the
@@ -308,7 +317,7 @@
       h the kernel radius 2 h_over_dp dp: D = 1 after h / (0.4 c0) above the threshold; D never
       falls. The positive principal values of the stress are scaled by 1 - D, the compressive ones
       kept (TL eq. 46), so a broken particle carries no tension but resists being pushed into. The
-      hourglass force (TL eq. 32) takes (1 - D) E at a damaged particle: the paper degrades the
+      hourglass springs take (1 - D) E at a damaged particle: the paper degrades the
       stress only, but with E the hourglass springs of broken particles alone kept a broken section
       carrying load (the D6 specimen, bench/VALIDATION.md). Its stored energy is counted as (1 - D)
       V0 psi(F) (the rate model has no potential): the energy account falls by what damage
@@ -428,7 +437,7 @@
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
       track_stress 0/1, damping finite >= 0 (0 for a wall body), solver 0..1, hourglass_alpha
-      [0, 1000], damage_strain [0, 100] (> 0 with the total-Lagrangian solver only),
+      [0, 1000], hourglass 0..1, damage_strain [0, 100] (> 0 with the total-Lagrangian solver only),
       stress_diffusion [0, 1], material.cohesion >= 0, friction_angle [0, 90), dilatancy_angle
       [0, friction_angle], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian
       solver only and that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
@@ -763,6 +772,14 @@ typedef enum sps_solver {
                                           gradient in the reference configuration (TOTAL-LAGRANGIAN) */
 } sps_solver;
 
+/* The hourglass force of a total-Lagrangian body (TOTAL-LAGRANGIAN). */
+typedef enum sps_hourglass {
+    SPS_HOURGLASS_VARIATIONAL = 0, /* -grad Phi of the springs' energy Phi (TL eq. 32 plus its two
+                                      missing terms): conserves energy, symmetric stiffness */
+    SPS_HOURGLASS_PAPER = 1        /* TL eq. 32 as printed: a partial gradient of Phi, which can feed
+                                      energy into the motion (kept to compare with the paper) */
+} sps_hourglass;
+
 /* The transport-velocity correction of a body (particles advected by a shifted velocity). */
 typedef enum sps_transport {
     SPS_TRANSPORT_NONE = 0, /* particles move with their own velocity */
@@ -818,6 +835,8 @@ typedef struct sps_body_def {
                                   wall bodies. Default 0. */
     sps_real hourglass_alpha;  /* total-Lagrangian bodies: the hourglass coefficient alpha of TL
                                   eq. 32, [0, 1000] (0: no hourglass control). Default 50. */
+    sps_hourglass hourglass;   /* total-Lagrangian bodies: the form of the hourglass force, 0..1.
+                                  Default SPS_HOURGLASS_VARIATIONAL. */
     sps_real stress_diffusion; /* Drucker-Prager bodies: the coefficient zeta of the stress
                                   diffusion (Feng et al. 2021; GRANULAR), [0, 1] (0: off).
                                   Default 0.1. */
@@ -2213,6 +2232,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                "solver = %d, allowed 0 (updated Lagrangian) or 1 (total Lagrangian)", (int)def->solver);
     SPS__CHECK(def->hourglass_alpha >= 0 && def->hourglass_alpha <= 1000, "hourglass_alpha = %g, allowed [0, 1000]",
                (double)def->hourglass_alpha);
+    SPS__CHECK(def->hourglass == SPS_HOURGLASS_VARIATIONAL || def->hourglass == SPS_HOURGLASS_PAPER,
+               "hourglass = %d, allowed 0 (variational) or 1 (paper: TL eq. 32 as printed)", (int)def->hourglass);
     SPS__CHECK(def->damage_strain >= 0 && def->damage_strain <= 100,
                "damage_strain = %g, allowed [0, 100] (a principal Green-Lagrange strain; 0: no damage)", (double)def->damage_strain);
     SPS__CHECK(def->transport == SPS_TRANSPORT_NONE || def->transport == SPS_TRANSPORT_TVF || def->transport == SPS_TRANSPORT_UTVF,
@@ -4951,9 +4972,34 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
    E_ij = (X_i - X_j)/R_ij and dW = dW/dR (< 0), the corrected kernel gradient of TL eq. 14 is
    L_i^-1 grad W_i(X_ij) = dW B_i E_ij, and the other side's L_j^-1 grad W_j(X_ji) = -dW B_j E_ij.
    Each sub-step runs two passes after the half drift: the stress pass (F_i by TL eq. 17, P_i by
-   the body's law, Q_i = P_i B_i, the Cauchy stress and density for output) and, after a barrier,
-   the force pass in the pressure pass's place (TL eq. 24 and the hourglass force of TL eq. 32),
-   whose acceleration the kick applies. No continuity pass: the density is rho0/J. */
+   the body's law, Q_i = (P_i + Pi_i) B_i with the hourglass stress Pi_i below, the Cauchy stress
+   and density for output) and, after a barrier, the force pass in the pressure pass's place (TL
+   eq. 24 and the hourglass springs' pair forces), whose acceleration the kick applies. No
+   continuity pass: the density is rho0/J.
+
+   The hourglass springs (TL eqs. 25-32). Particle i holds a spring to each reference neighbour
+   j, of stiffness k_ij = 1/2 alpha E_i V0_i V0_j W_ij / R_ij^2 and stretch
+   delta^i_ij = p^i_ij . e_ij, where p^i_ij = F_i X_ij - x_ij (X_ij = X_j - X_i, x_ij = x_j - x_i,
+   e_ij = x_ij/|x_ij|) is the error of F_i's prediction of j's position (TL eqs. 25-27). Their
+   energy is Phi = sum_i sum_j 1/2 k_ij (delta^i_ij)^2. TL eq. 32 is the part of -dPhi/dx that
+   holds F and e fixed: f_i = -sum_j (k_ij delta^i_ij + k_ji delta^j_ij) e_ij (with
+   delta^j_ji = delta^j_ij, p^j_ij = F_j X_ij - x_ij). It is not the gradient of any energy: its
+   stiffness is not symmetric (on the irregular D1 patch a quarter of the eigenvalues are
+   complex) and it feeds energy into the motion (flutter: the D1 patch blew up after a few
+   periods). The full gradient (SPS_HOURGLASS_VARIATIONAL, the default) adds the two parts it
+   drops, derived from d delta = dp . e + p . de:
+   - the turn of the pair, de = (I - e e) dx_ij / |x_ij|: a force across the pair,
+     f_i += sum_j (k_ij delta^i_ij p^i_perp + k_ji delta^j_ij p^j_perp) / |x_ij|, p_perp = p - (p.e) e;
+   - F_i, linear in the positions of i and its neighbours (TL eq. 17): dPhi/dF_i =
+     sum_j k_ij delta^i_ij e_ij (x) X_ij = V0_i Pi_i. TL eq. 24 is -d/dx of sum_i V0_i psi(F_i)
+     for P_i = dpsi/dF_i (whatever psi), so this part is TL eq. 24 applied to the hourglass
+     stress Pi_i, added to P_i where Q_i is formed (the Cauchy stress output keeps P_i alone).
+   With d = p . x_ij / |x_ij|^2 (so delta e = d x_ij and delta p_perp / |x_ij| = d (p - d x_ij)):
+   Pi_i = sum_j 1/2 alpha E_i V0_j W_ij / R_ij^2 d^i_ij x_ij (x) X_ij, and the pair forces
+   f_i += sum_j -(k_ij d^i + k_ji d^j) x_ij (TL eq. 32) + k_ij d^i (p^i - d^i x_ij) +
+   k_ji d^j (p^j - d^j x_ij) (the turn). Phi is invariant under
+   rotation and translation, so its gradient conserves both momenta; it is counted with the
+   strain energy (sps__tl_energy). SPS_HOURGLASS_PAPER applies TL eq. 32 alone. */
 
 /* The reference geometry of pair (i, j): E_ij, R_ij, W(R_ij) and dW/dR. */
 typedef struct sps__ref_pair {
@@ -5009,7 +5055,12 @@ static void sps__newton_inverse_step(const sps_real A6[6], sps_real B[9], const 
    c_p the body's signal speed is sqrt(c_p^2 + alpha E h^2 max_i S_i / (d rho0)), so that
    CFL_ac h / c resolves the stiffest spring too (without the hourglass term, alpha = 50 blew
    up the 2D plate at cfl_acoustic = 0.4 within 0.04 s). An irregular reference set (close
-   pairs) has a larger S and a shorter step. */
+   pairs) has a larger S and a shorter step. The variational form's full gradient adds, at the
+   reference state, only the springs' dependence on F (the transverse term vanishes with p);
+   measured from finite-difference stiffness matrices of jittered patches at alpha 50, its
+   highest frequency omega_max is 3-5 % below the paper form's (omega_max h / c = 1.27-1.32
+   against 1.33-1.36, 2D and 3D), so the same c serves both: CFL_ac 0.4 puts omega_max dt near
+   0.53, below leapfrog's limit 2. */
 static void sps__tl_reference(sps_world* w, sps__body* b) {
     const int dim = w->dim, width = w->ell_width;
     sps_real s_max = 0, c2;
@@ -5035,6 +5086,21 @@ static void sps__tl_reference(sps_world* w, sps__body* b) {
     b->mat.c0 = b->tl_c_ref = SPS__SQRT(c2);
     if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
     b->reference_built = 1;
+}
+
+/* The hourglass spring of pair (i, j) seen from a particle with deformation gradient F: the error
+   vector p = F X_ij - x_ij (TL eq. 25) into p, and d = p . x_ij / |x_ij|^2 returned (inv_x2 =
+   1/|x_ij|^2), so that delta = d |x_ij| (TL eq. 27) and delta e_ij = d x_ij. */
+SPS__INLINE sps_real sps__tl_spring(const sps_real F[9], const sps_real X[3], const sps_real x[3], sps_real inv_x2, const int dim,
+                                    sps_real p[3]) {
+    sps_real px = 0;
+    int a, c;
+    for (a = 0; a < dim; ++a) {
+        p[a] = -x[a];
+        for (c = 0; c < dim; ++c) p[a] += F[3 * a + c] * X[c];
+        px += p[a] * x[a];
+    }
+    return px * inv_x2;
 }
 
 /* The laws, a literal in the stress pass. */
@@ -5291,19 +5357,73 @@ SPS__INLINE void sps__tl_deformation(const sps_world* w, const sps__body* b, int
         }
 }
 
+/* The modulus of particle o's side of the hourglass force (TL eq. 32): Young's modulus E, the
+   yield strength Y once a J2 particle has flowed (plastic, a literal; TL section 4.5), times
+   1 - D with damage: a broken particle, which carries no tension, holds no hourglass spring
+   (undegraded, the springs of broken particles alone kept a broken section of the D6 specimen
+   carrying load at alpha 50). */
+SPS__INLINE sps_real sps__tl_hourglass_modulus(const sps__body* b, int o, sps_real E, sps_real Y, const int plastic) {
+    const sps_real modulus = plastic && b->plastic_strain[o] > 0 ? Y : E;
+    return b->damage ? modulus * (1 - b->damage[o]) : modulus;
+}
+
+/* The pair vectors of pair (i, j) with reference geometry e: X_ij = X_j - X_i = -R_ij E_ij and
+   x_ij = x_j - x_i; returns |x_ij|^2. */
+SPS__INLINE sps_real sps__tl_pair_vectors(const sps_world* w, int i, int j, const sps__ref_pair* e, const int dim, sps_real X[3], sps_real x[3]) {
+    const sps_real dir[3] = {e->ex, e->ey, e->ez};
+    sps_real x2 = 0;
+    int a;
+    for (a = 0; a < dim; ++a) {
+        X[a] = -e->r * dir[a];
+        x[a] = w->pos[a][j] - w->pos[a][i];
+        x2 += x[a] * x[a];
+    }
+    return x2;
+}
+
+/* Whether body b's stress pass adds the hourglass stress Pi (the variational form, alpha > 0). */
+#define SPS__TL_SPRING_STRESS(b) ((b)->def.hourglass == SPS_HOURGLASS_VARIATIONAL && (b)->def.hourglass_alpha > 0)
+
+/* The hourglass springs of particle i at its deformation gradient F (neighbours from slot first;
+   modulus: sps__tl_hourglass_modulus): their energy sum_j 1/2 k_ij (delta^i_ij)^2, returned, and,
+   if Pi is not NULL, the hourglass stress Pi_i = 1/V0_i dPhi/dF_i =
+   sum_j 1/2 alpha E_i V0_j W_ij / R_ij^2 d^i_ij x_ij (x) X_ij (row-major 3 x 3). */
+static sps_real sps__tl_springs(const sps_world* w, const sps__body* b, int i, int first, const int dim, const sps_real F[9],
+                                sps_real modulus, sps_real Pi[9]) {
+    const sps_real half_alpha_E = SPS_R(0.5) * b->def.hourglass_alpha * modulus;
+    sps_real energy = 0;
+    int k, a, c;
+    for (k = 0; Pi && k < 9; ++k) Pi[k] = 0;
+    for (k = 0; k < w->nb_count[i]; ++k) {
+        const int j = w->nb_j[first + k * SPS__LANES];
+        const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
+        const sps_real stiffness = half_alpha_E * SPS__V0(w, b, j) * e.w / (e.r * e.r); /* k_ij / V0_i */
+        sps_real X[3], x[3], p[3], x2, d;
+        x2 = sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
+        d = sps__tl_spring(F, X, x, 1 / x2, dim, p);
+        energy += SPS_R(0.5) * stiffness * d * d * x2;
+        for (a = 0; Pi && a < dim; ++a)
+            for (c = 0; c < dim; ++c) Pi[3 * a + c] += stiffness * d * x[a] * X[c];
+    }
+    return SPS__V0(w, b, i) * energy;
+}
+
 /* Stress pass of lane group g: F_i, P_i by the body's law (degraded by its damage, TL eqs. 45-46,
-   when the body has damage), Q_i = P_i B_i (for the force pass),
+   when the body has damage), Q_i = (P_i + Pi_i) B_i with the hourglass stress Pi_i of the
+   variational form (for the force pass; Pi = 0 otherwise),
    the Cauchy stress sigma = P F^T / J stored as tau = sigma + p I (so that -p I + tau, what the
    output reads, is sigma) and the density rho0/J (TL eq. 3). law and dim are literals. */
 SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int law) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b), damage_rate = b->damage ? sps__tl_damage_rate(w, b) : 0;
+    const sps_real E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
+    const int springs = SPS__TL_SPRING_STRESS(b);
     int l, a, c, k;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin;
         const sps_real* B = b->tl_correction + (size_t)9 * o;
         sps_real *F = b->tl_deformation + (size_t)9 * o, *Q = b->tl_stress + (size_t)9 * o, *tau = b->tau + (size_t)6 * o;
-        sps_real P[9], sigma[9], J;
+        sps_real P[9], Pi[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, sigma[9], J;
         sps__tl_deformation(w, b, i, q.s0 + l, dim, F);
         J = sps__det3(F);
         if (law == SPS__LAW_J2) {
@@ -5315,10 +5435,11 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
             sps__tl_law(law, lambda, mu, F, J, P);
         }
         if (b->damage) sps__tl_damage(damage_rate, b->def.damage_strain, dt, F, J, b->damage + o, P);
+        if (springs) sps__tl_springs(w, b, i, q.s0 + l, dim, F, sps__tl_hourglass_modulus(b, o, E, Y, law == SPS__LAW_J2), Pi);
         for (a = 0; a < 3; ++a)
             for (c = 0; c < 3; ++c) {
                 sps_real s = 0, t = 0;
-                for (k = 0; k < dim; ++k) s += P[3 * a + k] * B[3 * k + c];
+                for (k = 0; k < dim; ++k) s += (P[3 * a + k] + Pi[3 * a + k]) * B[3 * k + c];
                 for (k = 0; k < 3; ++k) t += P[3 * a + k] * F[3 * c + k];
                 Q[3 * a + c] = s;
                 sigma[3 * a + c] = t / J;
@@ -5333,66 +5454,47 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
     }
 }
 
-/* The modulus of particle o's side of the hourglass force (TL eq. 32): Young's modulus E, the
-   yield strength Y once a J2 particle has flowed (plastic, a literal; TL section 4.5), times
-   1 - D with damage: a broken particle, which carries no tension, holds no hourglass spring
-   (undegraded, the springs of broken particles alone kept a broken section of the D6 specimen
-   carrying load at alpha 50). */
-SPS__INLINE sps_real sps__tl_hourglass_modulus(const sps__body* b, int o, sps_real E, sps_real Y, const int plastic) {
-    const sps_real modulus = plastic && b->plastic_strain[o] > 0 ? Y : E;
-    return b->damage ? modulus * (1 - b->damage[o]) : modulus;
-}
-
 /* Force pass of lane group g (in the pressure pass's place): the stress force of TL eq. 24,
    f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji))
-       = sum_j V0_i V0_j dW (Q_i + Q_j) E_ij,
-   and the hourglass force of TL eq. 32,
-   f_i += sum_j -1/2 alpha V0_i V0_j W_ij / R_ij^2 (E_Y delta^i_ij + E_Y delta^j_ji) x_ij/|x_ij|,
-   delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij| (TL eqs. 25-27, X_ij = X_j - X_i, x_ij = x_j - x_i;
-   delta^j_ji = (F_j X_ij - x_ij) . x_ij/|x_ij| by the same algebra), E_Y Young's modulus, or
-   for a J2 body (plastic, a literal) the yield stress at particles that have flowed (TL
-   section 4.5).
-   Both are antisymmetric in i, j (the hourglass force also central), so the pair sums conserve
-   linear momentum, the hourglass force also angular momentum. acc_p = f_i / m_i. */
+       = sum_j V0_i V0_j dW (Q_i + Q_j) E_ij
+   (Q holds the hourglass stress too), and the springs' pair forces: TL eq. 32,
+   f_i += -sum_j (k_ij d^i + k_ji d^j) x_ij, and in the variational form the turn of the pair,
+   f_i += sum_j k_ij d^i (p^i - d^i x_ij) + k_ji d^j (p^j - d^j x_ij) (sps__tl_spring; k with E
+   Young's modulus, or for a J2 body (plastic, a literal) the yield stress at particles that have
+   flowed, TL section 4.5). All are antisymmetric in i, j, so the pair sums conserve linear
+   momentum; the stress force exerts no torque (P F^T = J sigma is symmetric), and the springs'
+   forces, the gradient of a rotation-invariant energy (or, in the paper's form, central), none
+   either. acc_p = f_i / m_i. */
 SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real hourglass = -SPS_R(0.5) * b->def.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
+    const sps_real half_alpha = SPS_R(0.5) * b->def.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
+    const int springs = half_alpha > 0, turn = b->def.hourglass == SPS_HOURGLASS_VARIATIONAL;
     int l, a, c, k;
     (void)dt;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
         const sps_real *Qi = b->tl_stress + (size_t)9 * o, *Fi = b->tl_deformation + (size_t)9 * o;
-        const sps_real vi = SPS__V0(w, b, i), Ei = sps__tl_hourglass_modulus(b, o, E, Y, plastic);
+        const sps_real vi = SPS__V0(w, b, i), Ei = springs ? sps__tl_hourglass_modulus(b, o, E, Y, plastic) : 0;
         sps_real f[3] = {0, 0, 0};
         for (k = 0; k < w->nb_count[i]; ++k) {
             const int j = w->nb_j[first + k * SPS__LANES], oj = j - b->begin;
             const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
             const sps_real *Qj = b->tl_stress + (size_t)9 * oj, *Fj = b->tl_deformation + (size_t)9 * oj;
             const sps_real dir[3] = {e.ex, e.ey, e.ez}, vv = vi * SPS__V0(w, b, j);
-            sps_real xij[3] = {0, 0, 0}, Xij[3] = {0, 0, 0}, r2 = 0, inv_r, di = 0, dj = 0, fh;
             for (a = 0; a < dim; ++a) {
                 sps_real s = 0;
                 for (c = 0; c < dim; ++c) s += (Qi[3 * a + c] + Qj[3 * a + c]) * dir[c];
                 f[a] += vv * e.dw * s;
-                xij[a] = w->pos[a][j] - w->pos[a][i];
-                Xij[a] = -e.r * dir[a];
-                r2 += xij[a] * xij[a];
             }
-            inv_r = 1 / SPS__SQRT(r2);
-            for (a = 0; a < dim; ++a) {
-                sps_real pi = -xij[a], pj = -xij[a]; /* (F X_ij - x_ij)_a */
-                for (c = 0; c < dim; ++c) {
-                    pi += Fi[3 * a + c] * Xij[c];
-                    pj += Fj[3 * a + c] * Xij[c];
-                }
-                di += pi * xij[a];
-                dj += pj * xij[a];
+            if (springs) {
+                const sps_real spring = half_alpha * vv * e.w / (e.r * e.r), ki = spring * Ei, kj = spring * sps__tl_hourglass_modulus(b, oj, E, Y, plastic);
+                sps_real X[3], x[3], pi[3], pj[3], di, dj, inv_x2;
+                inv_x2 = 1 / sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
+                di = sps__tl_spring(Fi, X, x, inv_x2, dim, pi);
+                dj = sps__tl_spring(Fj, X, x, inv_x2, dim, pj);
+                for (a = 0; a < dim; ++a) f[a] -= (ki * di + kj * dj) * x[a]; /* TL eq. 32 */
+                for (a = 0; turn && a < dim; ++a) f[a] += ki * di * (pi[a] - di * x[a]) + kj * dj * (pj[a] - dj * x[a]);
             }
-            {
-                const sps_real Ej = sps__tl_hourglass_modulus(b, oj, E, Y, plastic);
-                fh = hourglass * vv * e.w / (e.r * e.r) * (Ei * di + Ej * dj) * inv_r * inv_r; /* (E delta_i + E delta_j) / |x_ij| */
-            }
-            for (a = 0; a < dim; ++a) f[a] += fh * xij[a];
         }
         for (a = 0; a < dim; ++a) w->acc_p[a][i] = f[a] / w->mass[i];
     }
@@ -5465,12 +5567,14 @@ static void sps__tl_signal_speeds(sps_world* w) {
 
 /* The stored energy V0 psi(F) of particle i of total-Lagrangian body b, F from the current
    positions (the neighbour lists are valid wherever energies are summed: diagnostics and the
-   watchdog at configuration updates); 0 before its reference lists are built. A damaged
-   particle's is counted as (1 - D) V0 psi(F): the rate model of TL eq. 45 has no potential,
-   and a broken one (D = 1) stores nothing however far its crack opens, so the energy account
-   falls by what damage dissipates. */
+   watchdog at configuration updates), plus the energy of its hourglass springs (in either form:
+   the paper's force is not its gradient, and the account shows the energy it feeds in); 0
+   before its reference lists are built. A damaged particle's law energy is counted as
+   (1 - D) V0 psi(F): the rate model of TL eq. 45 has no potential, and a broken one (D = 1)
+   stores nothing however far its crack opens, so the energy account falls by what damage
+   dissipates (its springs' modulus has the factor 1 - D already). */
 static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
-    sps_real F[9], P[9], psi;
+    sps_real F[9], P[9], psi, modulus, springs;
     const int law = sps__tl_law_of(b->def.material.kind);
     if (!b->reference_built) return 0;
     sps__tl_deformation(w, b, i, w->nb_first[i], w->dim, F);
@@ -5483,7 +5587,9 @@ static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
         psi = sps__tl_law(law, SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
     }
     if (b->damage) psi *= 1 - b->damage[i - b->begin];
-    return SPS__V0(w, b, i) * psi;
+    modulus = sps__tl_hourglass_modulus(b, i - b->begin, b->def.material.youngs_modulus, b->def.material.yield_stress, law == SPS__LAW_J2);
+    springs = b->def.hourglass_alpha > 0 ? sps__tl_springs(w, b, i, w->nb_first[i], w->dim, F, modulus, NULL) : 0;
+    return SPS__V0(w, b, i) * psi + springs;
 }
 
 /* >>contact: rigid walls and contact between bodies */

@@ -4407,6 +4407,193 @@ static int test_tl_damage_tension_only(void) {
     return 0;
 }
 
+/* ============================================================================================ */
+/* Issue 39, chapter >>solver: total Lagrangian: the variational hourglass force. Phi, the
+   springs' energy sum_i sum_j 1/2 k_ij (delta^i_ij)^2, is read through sps__tl_energy (the law's
+   energy plus the springs'), and the forces through the two passes at the current positions. */
+
+/* A Neo-Hookean TL patch (E 1e6, alpha 50, the given hourglass form) of n^dim particles on a
+   lattice of dp = 1e-3 jittered by U(-0.2, 0.2) dp per coordinate (a fixed seed): an irregular
+   reference set. Held, so that the first step (which builds the reference lists) leaves it
+   where it is. */
+static sps_world* tl_irregular_patch(int dim, int n, sps_hourglass form, sps_body* out) {
+    sps_body_def bd = sps_default_body_def();
+    sps_world_def wd = sps_default_world_def();
+    sps_real xyz[3 * 216], all_lo[3] = {-1, -1, -1}, all_hi[3] = {1, 1, 1};
+    unsigned seed = 12345u;
+    sps_world* w;
+    int count = 0, i, j, k, a;
+    for (k = 0; k < (dim == 3 ? n : 1); ++k)
+        for (j = 0; j < n; ++j)
+            for (i = 0; i < n && count < 216; ++i, ++count) {
+                const int cell[3] = {i, j, k};
+                for (a = 0; a < 3; ++a) {
+                    seed = seed * 1664525u + 1013904223u; /* a fixed LCG: the same patch every run */
+                    xyz[3 * count + a] = a < dim ? (sps_real)(1e-3 * (cell[a] + 0.4 * ((seed >> 8) / 16777216.0 - 0.5))) : 0;
+                }
+            }
+    wd.dim = dim; wd.dp = 1e-3; wd.log = quiet_log; wd.threads = 1;
+    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
+    bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
+    bd.hourglass = form;
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
+    if (sps_world_add_body(w, &bd, out) != SPS_OK || sps_body_add_particles(w, *out, count, xyz, NULL) != SPS_OK ||
+        sps_body_constrain_box(w, *out, all_lo, all_hi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK || sps_world_step(w) != SPS_OK) {
+        sps_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+/* Moves every particle to x = A X + noise U(-0.05, 0.05) dp per coordinate (noise 0: affine). */
+static void tl_deform(sps_world* w, const double A[9], double noise) {
+    unsigned seed = 777u;
+    int i, a, c;
+    for (i = 0; i < w->n; ++i)
+        for (a = 0; a < w->dim; ++a) {
+            double x = 0;
+            for (c = 0; c < w->dim; ++c) x += A[3 * a + c] * w->ref[c][i];
+            seed = seed * 1664525u + 1013904223u;
+            w->pos[a][i] = (sps_real)(x + noise * 1e-3 * ((seed >> 8) / 16777216.0 - 0.5) * 2);
+        }
+}
+
+/* The force on every particle at the current positions (the stress and force passes), into f
+   (dim values per particle slot); the springs alone when springs_only (alpha 50 less alpha 0). */
+static void tl_forces(sps_world* w, int springs_only, double* f) {
+    sps__body* b = &w->bodies[0];
+    const sps_real alpha = b->def.hourglass_alpha;
+    int pass, i, a;
+    for (pass = 0; pass < (springs_only ? 2 : 1); ++pass) {
+        b->def.hourglass_alpha = pass ? 0 : alpha;
+        sps__run_groups(w, b, b->model.pass.stress, 0);
+        sps__run_groups(w, b, b->model.pass.pressure, 0);
+        for (i = 0; i < w->n; ++i)
+            for (a = 0; a < w->dim; ++a) f[w->dim * i + a] = (pass ? f[w->dim * i + a] : 0) + (pass ? -1 : 1) * (double)(w->acc_p[a][i] * w->mass[i]);
+    }
+    b->def.hourglass_alpha = alpha;
+}
+
+/* The stored energy sum_i sps__tl_energy at the current positions; the springs' Phi alone when
+   springs_only. */
+static double tl_stored_energy(sps_world* w, int springs_only) {
+    sps__body* b = &w->bodies[0];
+    const sps_real alpha = b->def.hourglass_alpha;
+    double e = 0;
+    int i;
+    for (i = 0; i < w->n; ++i) e += (double)sps__tl_energy(w, b, i);
+    if (springs_only) {
+        b->def.hourglass_alpha = 0;
+        for (i = 0; i < w->n; ++i) e -= (double)sps__tl_energy(w, b, i);
+        b->def.hourglass_alpha = alpha;
+    }
+    return e;
+}
+
+/* The springs' force is -grad Phi: on an irregular patch (2D 10 x 10, 3D 5 x 5 x 5) under a
+   stretch, shear and rotation plus non-affine noise of 0.05 dp, against central differences of
+   Phi (step 1e-5 dp) at every particle and axis; it vanishes for the affine map alone (noise 0);
+   and it exerts no net force or torque. The paper's form (TL eq. 32) fails the gradient check,
+   so the check can fail. */
+static int test_tl_hourglass_is_energy_gradient(void) {
+    const double A[9] = {1.1 * cos(0.4), -0.9 * sin(0.4) + 0.15, 0, 1.1 * sin(0.4), 0.9 * cos(0.4), 0.05, 0.1, -0.05, 0.95};
+    int dim, form;
+    for (dim = 2; dim <= 3; ++dim)
+        for (form = 0; form < 2; ++form) {
+            sps_body b;
+            sps_world* w = tl_irregular_patch(dim, dim == 2 ? 10 : 5, (sps_hourglass)form, &b);
+            double f[3 * 216], affine_max = 0, ferr = 0, fmax_ = 0, err = 0, net[3] = {0, 0, 0}, torque[3] = {0, 0, 0};
+            int i, a;
+            const double eps = 1e-8; /* 1e-5 dp */
+            ENSURE(w != NULL);
+            tl_deform(w, A, 0);
+            tl_forces(w, 1, f);
+            for (i = 0; i < dim * w->n; ++i) affine_max = fmax(affine_max, fabs(f[i]));
+            for (i = 0; i < 9 * w->n; ++i) /* the residue's source: F against the map */
+                if ((i % 9) / 3 < dim && i % 3 < dim) ferr = fmax(ferr, fabs(w->bodies[0].tl_deformation[i] - A[i % 9]));
+            tl_deform(w, A, 0.05);
+            tl_forces(w, 1, f);
+            for (i = 0; i < w->n; ++i) {
+                const double x[3] = {w->pos[0][i], w->pos[1][i], dim == 3 ? w->pos[2][i] : 0};
+                const double fi[3] = {f[dim * i], f[dim * i + 1], dim == 3 ? f[dim * i + 2] : 0};
+                for (a = 0; a < 3; ++a) {
+                    net[a] += fi[a];
+                    torque[a] += x[(a + 1) % 3] * fi[(a + 2) % 3] - x[(a + 2) % 3] * fi[(a + 1) % 3];
+                }
+                for (a = 0; a < dim; ++a) {
+                    const sps_real x0 = w->pos[a][i];
+                    double up, down;
+                    w->pos[a][i] = x0 + (sps_real)eps;
+                    up = tl_stored_energy(w, 1);
+                    w->pos[a][i] = x0 - (sps_real)eps;
+                    down = tl_stored_energy(w, 1);
+                    w->pos[a][i] = x0;
+                    err = fmax(err, fabs(f[dim * i + a] + (up - down) / (2 * eps)));
+                    fmax_ = fmax(fmax_, fabs(f[dim * i + a]));
+                }
+            }
+            printf("    %dD %s: springs' force up to %.3e N, |f + dPhi/dx| %.2e (relative %.2e); affine map: %.2e N "
+                   "(max |F - A| %.1e); net force %.1e, torque %.1e\n", dim, form ? "paper" : "variational", fmax_, err, err / fmax_, affine_max, ferr,
+                   fabs(net[0]) + fabs(net[1]) + fabs(net[2]), fabs(torque[0]) + fabs(torque[1]) + fabs(torque[2]));
+            if (form == SPS_HOURGLASS_VARIATIONAL) {
+                ENSURE(err < 1e-6 * fmax_); /* central differences: truncation (1e-5)^2, round-off 1e-16 Phi / eps ~ 1e-9 */
+            } else {
+                ENSURE(err > 1e-2 * fmax_); /* TL eq. 32 is a partial gradient only: the check can fail */
+            }
+            ENSURE(ferr < 1e-7); /* F of an affine map: exact but for the Newton-refined B of this patch's corner particles */
+            ENSURE(affine_max < 1e-6 * fmax_); /* no spring is stretched but by (F - A) X: 2e-8 x 2 dp against the noise's 0.05 dp */
+            ENSURE(fabs(net[0]) + fabs(net[1]) + fabs(net[2]) < 1e-12 * fmax_ * w->n); /* antisymmetric pairs: round-off */
+            ENSURE(fabs(torque[0]) + fabs(torque[1]) + fabs(torque[2]) < 1e-12 * fmax_ * w->n * 1e-2); /* round-off (lever ~1e-2 m) */
+            sps_world_destroy(w);
+        }
+    return 0;
+}
+
+/* The linearised stiffness K = -df/dx (stress and springs, alpha 50) of an irregular patch
+   (2D 6 x 6, 3D 4 x 4 x 4) at the deformed state of the test above is symmetric: the force is
+   the gradient of one energy. By central differences of the forces (step 1e-5 dp). The
+   paper's form is not (TL eq. 32: the flutter). */
+static int test_tl_hourglass_stiffness_symmetric(void) {
+    const double A[9] = {1.1 * cos(0.4), -0.9 * sin(0.4) + 0.15, 0, 1.1 * sin(0.4), 0.9 * cos(0.4), 0.05, 0.1, -0.05, 0.95};
+    int dim, form;
+    for (dim = 2; dim <= 3; ++dim)
+        for (form = 0; form < 2; ++form) {
+            sps_body b;
+            sps_world* w = tl_irregular_patch(dim, dim == 2 ? 6 : 4, (sps_hourglass)form, &b);
+            const int m = dim * (w ? w->n : 0);
+            double *K = (double*)calloc((size_t)m * m, sizeof(double)), fp[3 * 64], fm[3 * 64], kmax = 0, asym = 0;
+            const double eps = 1e-8;
+            int col, r;
+            ENSURE(w != NULL && K != NULL && m <= 3 * 64);
+            tl_deform(w, A, 0.05);
+            for (col = 0; col < m; ++col) {
+                sps_real* x = &w->pos[col % dim][col / dim];
+                const sps_real x0 = *x;
+                *x = x0 + (sps_real)eps;
+                tl_forces(w, 0, fp);
+                *x = x0 - (sps_real)eps;
+                tl_forces(w, 0, fm);
+                *x = x0;
+                for (r = 0; r < m; ++r) K[(size_t)r * m + col] = -(fp[r] - fm[r]) / (2 * eps);
+            }
+            for (r = 0; r < m; ++r)
+                for (col = 0; col < m; ++col) {
+                    kmax = fmax(kmax, fabs(K[(size_t)r * m + col]));
+                    asym = fmax(asym, fabs(K[(size_t)r * m + col] - K[(size_t)col * m + r]));
+                }
+            printf("    %dD %s: max |K| %.3e N/m, max |K - K^T| %.2e (relative %.2e)\n", dim, form ? "paper" : "variational", kmax, asym,
+                   asym / kmax);
+            if (form == SPS_HOURGLASS_VARIATIONAL) {
+                ENSURE(asym < 1e-6 * kmax); /* central differences of the forces: truncation (1e-5)^2, round-off 1e-16 f / eps */
+            } else {
+                ENSURE(asym > 1e-3 * kmax); /* TL eq. 32's stiffness is not symmetric: the check can fail */
+            }
+            free(K);
+            sps_world_destroy(w);
+        }
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int i;
     /* OpenMP's default wait policy spins in barriers. On a machine whose cores are busy with
@@ -4518,6 +4705,8 @@ int main(int argc, char** argv) {
     RUN_LONG(test_hourglass_og_breaks_others_do_not);
     RUN_LONG(test_damped_cantilever_sag);
     RUN_NAMED(test_plate3d_period_mode22); /* 1 min on 2 cores: ./build/test_sphsolid plate3d_period */
+    RUN(test_tl_hourglass_is_energy_gradient);
+    RUN(test_tl_hourglass_stiffness_symmetric);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
