@@ -271,7 +271,11 @@
       tensor), is sigma. All forces are antisymmetric in i, j: linear momentum is exact; the
       stress force exerts no torque since P F^T = J sigma is symmetric, and the springs' force is
       the gradient of a rotation-invariant energy (the paper's: central), so angular momentum is
-      exact too (tested: 1e-15 relative in 2D and 3D over 1000 sub-steps).
+      exact too (tested: 1e-15 relative in 2D and 3D over 1000 sub-steps). artificial_viscosity
+      = q1 > 0 adds Monaghan's linear artificial viscosity between reference neighbours, q1 c_p h
+      rho0 V0_i V0_j |dW(X_ij)| (v_ij . x_ij) x_ij / (|x_ij| (|x_ij|^2 + 0.01 h^2)) (the TL
+      author's LAMMPS input: q1 = 0.06; the paper's runs: none): it damps the pairs' stretching
+      rates only, hourglass modes among them, and keeps both momenta.
       Laws (material.kind; in 2D plane strain, F_zz = 1):
       SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF  S = lambda tr(E) I + 2 mu E, E = (F^T F - I)/2,
                          P = F S (TL eqs. 18-20), energy lambda/2 tr(E)^2 + mu E:E per V0;
@@ -437,7 +441,8 @@
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
       track_stress 0/1, damping finite >= 0 (0 for a wall body), solver 0..1, hourglass_alpha
-      [0, 1000], hourglass 0..1, damage_strain [0, 100] (> 0 with the total-Lagrangian solver only),
+      [0, 1000], hourglass 0..1, damage_strain [0, 100] and artificial_viscosity [0, 1] (> 0 with
+      the total-Lagrangian solver only),
       stress_diffusion [0, 1], material.cohesion >= 0, friction_angle [0, 90), dilatancy_angle
       [0, friction_angle], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian
       solver only and that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
@@ -837,6 +842,9 @@ typedef struct sps_body_def {
                                   eq. 32, [0, 1000] (0: no hourglass control). Default 50. */
     sps_hourglass hourglass;   /* total-Lagrangian bodies: the form of the hourglass force, 0..1.
                                   Default SPS_HOURGLASS_VARIATIONAL. */
+    sps_real artificial_viscosity; /* total-Lagrangian bodies: Monaghan's linear artificial
+                                  viscosity q1 between reference neighbours (TOTAL-LAGRANGIAN),
+                                  [0, 1]; 0: none. Default 0. */
     sps_real stress_diffusion; /* Drucker-Prager bodies: the coefficient zeta of the stress
                                   diffusion (Feng et al. 2021; GRANULAR), [0, 1] (0: off).
                                   Default 0.1. */
@@ -2195,6 +2203,10 @@ static int sps__damage_updated(int dim, const sps_body_def* def) {
     (void)dim;
     return def->damage_strain > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
+static int sps__viscosity_updated(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->artificial_viscosity > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
+}
 static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
     (void)dim;
     return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
@@ -2211,6 +2223,8 @@ static const sps__combination_rule sps__combination_rules[] = {
                                       "(5) or J2 (2): a total-Lagrangian body needs a law of the deformation gradient"},
     {sps__damage_updated, "damage_strain > 0 with solver = updated Lagrangian: the damage model (TL eqs. 45-46) reads the "
                           "deformation gradient of the reference configuration; use solver = total Lagrangian"},
+    {sps__viscosity_updated, "artificial_viscosity > 0 with solver = updated Lagrangian: it acts between the reference "
+                             "neighbours of a total-Lagrangian body; use solver = total Lagrangian"},
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
     {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
     /* ANG sections 4.1 and 5.2: ENO's shear force is an accumulated Laplacian of velocity, not
@@ -2234,6 +2248,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                (double)def->hourglass_alpha);
     SPS__CHECK(def->hourglass == SPS_HOURGLASS_VARIATIONAL || def->hourglass == SPS_HOURGLASS_PAPER,
                "hourglass = %d, allowed 0 (variational) or 1 (paper: TL eq. 32 as printed)", (int)def->hourglass);
+    SPS__CHECK(def->artificial_viscosity >= 0 && def->artificial_viscosity <= 1, "artificial_viscosity = %g, allowed [0, 1] (0: none)",
+               (double)def->artificial_viscosity);
     SPS__CHECK(def->damage_strain >= 0 && def->damage_strain <= 100,
                "damage_strain = %g, allowed [0, 100] (a principal Green-Lagrange strain; 0: no damage)", (double)def->damage_strain);
     SPS__CHECK(def->transport == SPS_TRANSPORT_NONE || def->transport == SPS_TRANSPORT_TVF || def->transport == SPS_TRANSPORT_UTVF,
@@ -5464,11 +5480,18 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
    flowed, TL section 4.5). All are antisymmetric in i, j, so the pair sums conserve linear
    momentum; the stress force exerts no torque (P F^T = J sigma is symmetric), and the springs'
    forces, the gradient of a rotation-invariant energy (or, in the paper's form, central), none
-   either. acc_p = f_i / m_i. */
+   either. With artificial_viscosity = q1 > 0, Monaghan's linear artificial viscosity between
+   reference neighbours (as the TL author's LAMMPS input uses it, there q1 = 0.06; the paper's
+   runs had none): f_i += sum_j q1 c_p h rho0 V0_i V0_j |dW(R_ij)| (v_ij . x_ij) x_ij /
+   (|x_ij| (|x_ij|^2 + 0.01 h^2)), v_ij = v_j - v_i, c_p the P-wave speed: central and
+   antisymmetric (both momenta kept), zero for rigid motions, and its power
+   -sum_pairs C (v_ij . x_ij)^2 is never positive: it only damps the pairs' stretching rates,
+   the hourglass modes' among them. acc_p = f_i / m_i. */
 SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real half_alpha = SPS_R(0.5) * b->def.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
     const int springs = half_alpha > 0, turn = b->def.hourglass == SPS_HOURGLASS_VARIATIONAL;
+    const sps_real viscosity = b->def.artificial_viscosity * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) * w->h * b->rho0;
     int l, a, c, k;
     (void)dt;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
@@ -5494,6 +5517,13 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
                 dj = sps__tl_spring(Fj, X, x, inv_x2, dim, pj);
                 for (a = 0; a < dim; ++a) f[a] -= (ki * di + kj * dj) * x[a]; /* TL eq. 32 */
                 for (a = 0; turn && a < dim; ++a) f[a] += ki * di * (pi[a] - di * x[a]) + kj * dj * (pj[a] - dj * x[a]);
+            }
+            if (viscosity > 0) {
+                sps_real X[3], x[3], vx = 0, x2, damper;
+                x2 = sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
+                for (a = 0; a < dim; ++a) vx += (w->vel[a][j] - w->vel[a][i]) * x[a];
+                damper = -viscosity * vv * e.dw * vx / (SPS__SQRT(x2) * (x2 + SPS_R(0.01) * w->h * w->h));
+                for (a = 0; a < dim; ++a) f[a] += damper * x[a];
             }
         }
         for (a = 0; a < dim; ++a) w->acc_p[a][i] = f[a] / w->mass[i];

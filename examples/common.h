@@ -54,6 +54,13 @@ typedef struct {
     const char* choices;  /* OPT_CHOICE: "a|b|c" */
 } opt_spec;
 
+/* The total-Lagrangian examples' hourglass options (sps_body_def.hourglass, .artificial_viscosity). */
+#define EX_HOURGLASS_OPTIONS(form, q1)                                                                                     \
+    {"hourglass", OPT_CHOICE, &(form), "TL hourglass force: variational (-grad of the springs' energy) or paper (TL eq. 32 alone)", \
+     0, 0, "variational|paper"},                                                                                               \
+    {"viscosity", OPT_REAL, &(q1), "TL artificial viscosity q1 (Monaghan's linear term; the TL author's LAMMPS input 0.06)", 0, 1, NULL}
+EX_UNUSED static const char* ex_hourglass_name(int form) { return form == SPS_HOURGLASS_PAPER ? "paper" : "variational"; }
+
 EX_UNUSED static void opt_usage(const char* prog, const char* about, const opt_spec* o, int n) {
     int i;
     printf("%s - %s\n\nOptions (default in brackets):\n", prog, about);

@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
     plate2d_params p = {.res = 10, .vf = 0.05};
     int solver = 0;       /* ul | tl */
     double alpha = 50;    /* TL eq. 32 */
+    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 1.0, .vtk_every = 0.1, .csv_every = 0.002,
                         .E = PLATE2D_E, .nu = PLATE2D_NU, .rho0 = PLATE2D_RHO0, .out = "out/plate2d", .jitter = 0, .seed = 1,
                         PNG_DEFAULTS};
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
         {"vf", OPT_REAL, &p.vf, "initial velocity factor v_f", 0, 1, NULL},
         {"solver", OPT_CHOICE, &solver, "ul: updated Lagrangian (--shear); tl: total Lagrangian, Saint Venant-Kirchhoff", 0, 0, "ul|tl"},
         {"alpha", OPT_REAL, &alpha, "tl: hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
+        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -85,6 +88,8 @@ int main(int argc, char** argv) {
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
         bd.hourglass_alpha = alpha;
+        bd.hourglass = (sps_hourglass)hourglass_form;
+        bd.artificial_viscosity = (sps_real)viscosity;
     }
     p.jitter = c.jitter;
     p.seed = c.seed;
@@ -103,10 +108,10 @@ int main(int argc, char** argv) {
         sps_diagnostics d;
         sps_body all = {0};
         ex_check(w, sps_world_diagnostics(w, all, &d));
-        printf("RESULT case=plate2d solver=%s alpha=%g shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
+        printf("RESULT case=plate2d solver=%s alpha=%g hourglass=%s viscosity=%g shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
                "analytical=%.6f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
                "hourglass_end=%.3g min_spacing=%.3f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
-               solver ? "tl" : "ul", solver ? alpha : 0, solver ? "-" : shear_name(c.shear), p.res, p.vf, c.stepping ? "single" : "dual", c.nu, c.jitter, period, paper, analytical,
+               solver ? "tl" : "ul", solver ? alpha : 0, solver ? ex_hourglass_name(hourglass_form) : "-", solver ? viscosity : 0, solver ? "-" : shear_name(c.shear), p.res, p.vf, c.stepping ? "single" : "dual", c.nu, c.jitter, period, paper, analytical,
                period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
                s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing,
                common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);

@@ -4594,6 +4594,81 @@ static int test_tl_hourglass_stiffness_symmetric(void) {
     return 0;
 }
 
+/* The artificial viscosity of TL bodies (artificial_viscosity = q1): a free Neo-Hookean patch
+   (2D and 3D) started with a translation, a spin and a shear keeps its linear and angular
+   momentum to round-off (central, antisymmetric pair forces), and after 5 steps (about 500
+   sub-steps) it has lost mechanical energy (kinetic + stored, springs included), far more than
+   the undamped run drifts (the variational force conserves energy, so the check can fail). Bad values are refused
+   with the field's name. */
+static int test_tl_artificial_viscosity(void) {
+    int dim;
+    for (dim = 2; dim <= 3; ++dim) {
+        double energy[2] = {0, 0}, energy0 = 0, dl = 0, da = 0, p0 = 0, l0 = 0;
+        long substeps = 0;
+        int damped;
+        for (damped = 0; damped < 2; ++damped) {
+            sps_body_def bd = sps_default_body_def();
+            sps_body b;
+            sps_world* w;
+            sps_diagnostics d0, d1;
+            int id, a, steps;
+            bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
+            bd.artificial_viscosity = damped ? (sps_real)0.5 : 0;
+            w = tl_box_of(dim, bd, dim == 2 ? 10 : 5, 0, &b);
+            ENSURE(w != NULL);
+            for (id = 0; id < sps_world_particle_count(w); ++id) {
+                sps_particle_state s;
+                sps_real v[3];
+                sps_world_particle(w, id, &s);
+                v[0] = (sps_real)(1.0 + 100 * (s.position[1] - 5e-3));
+                v[1] = (sps_real)(-0.5 + 200 * (s.position[0] - 5e-3));
+                v[2] = dim == 3 ? (sps_real)(0.3 + 100 * (s.position[0] - 2.5e-3)) : 0;
+                sps_world_set_particle(w, id, NULL, v);
+            }
+            ENSURE(sps_world_diagnostics(w, (sps_body){0}, &d0) == SPS_OK);
+            for (steps = 0; steps < 5; ++steps) ENSURE(sps_world_step(w) == SPS_OK);
+            ENSURE(sps_world_diagnostics(w, (sps_body){0}, &d1) == SPS_OK);
+            energy0 = d0.kinetic_energy + d0.strain_energy;
+            energy[damped] = d1.kinetic_energy + d1.strain_energy;
+            substeps = d1.acoustic_steps;
+            if (damped)
+                for (a = 0; a < 3; ++a) {
+                    p0 += fabs(d0.linear_momentum[a]);
+                    l0 += fabs(d0.angular_momentum[a]);
+                    dl = fmax(dl, fabs(d1.linear_momentum[a] - d0.linear_momentum[a]));
+                    da = fmax(da, fabs(d1.angular_momentum[a] - d0.angular_momentum[a]));
+                }
+            sps_world_destroy(w);
+        }
+        printf("    %dD: energy %.6e J at the start, %.6e undamped, %.6e with q1 0.5 after %ld sub-steps; |dP|/|P| %.1e, |dL|/|L| %.1e\n",
+               dim, energy0, energy[0], energy[1], substeps, dl / p0, da / l0);
+        ENSURE(fabs(energy[0] - energy0) < 1e-2 * energy0); /* undamped: energy kept (time-stepping error, well below 1 %) */
+        ENSURE(energy0 - energy[1] > 100 * fabs(energy0 - energy[0])); /* damped: a loss far above the time stepping's drift */
+        ENSURE(dl / p0 < 1e-12);           /* antisymmetric pair forces: round-off */
+        ENSURE(da / l0 < 1e-12);           /* central pair forces: round-off */
+    }
+    {
+        sps_world_def wd = sps_default_world_def();
+        sps_body_def bd = sps_default_body_def();
+        sps_world* w;
+        sps_body b;
+        wd.log = quiet_log;
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
+        bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
+        bd.artificial_viscosity = (sps_real)1.5;
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "artificial_viscosity = 1.5"));
+        bd.artificial_viscosity = (sps_real)0.1;
+        bd.hourglass = (sps_hourglass)2;
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "hourglass = 2"));
+        bd = sps_default_body_def();
+        bd.artificial_viscosity = (sps_real)0.1; /* an updated-Lagrangian body */
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "artificial_viscosity > 0"));
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int i;
     /* OpenMP's default wait policy spins in barriers. On a machine whose cores are busy with
@@ -4707,6 +4782,7 @@ int main(int argc, char** argv) {
     RUN_NAMED(test_plate3d_period_mode22); /* 1 min on 2 cores: ./build/test_sphsolid plate3d_period */
     RUN(test_tl_hourglass_is_energy_gradient);
     RUN(test_tl_hourglass_stiffness_symmetric);
+    RUN(test_tl_artificial_viscosity);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
