@@ -1971,7 +1971,9 @@ static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size,
    set apart; the beam-mode damping ratio follows from both (bench/VALIDATION.md, KV).
    The dissipated work, -m_i a_v,i . v_i dt per sub-step (v_i at the force's evaluation), is
    summed per particle (field "viscous_work") and counted in the energy account
-   (sps_diagnostics.viscous_work). Total-Lagrangian bodies take the same pair force over their
+   (sps_diagnostics.viscous_work), together with that of the Riemann solver's dissipation
+   Z (v_ij . e_ij) dW V_j of the same body (the same kind of central viscous pair force; without
+   it the account of a bouncing ball misses the ~10 % per bounce that it takes). Total-Lagrangian bodies take the same pair force over their
    reference neighbours with the reference dW/dR and the current direction (sps__tl_force's hook
    sps__tl_kelvin_voigt). The time step: an explicit viscous term is stable when the largest
    rate it damps, 4 (d + 2) nu S / d (nu = eta / rho0, S = sum_j |dW_ij| / r_ij V_j, the
@@ -4162,7 +4164,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     const sps_real oas_w_dp = b->oas_w_dp;
     const int kernel = sps__geo_kernel(w, geo);
     sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES], tau_i[6][SPS__LANES], art_i[3][SPS__LANES];
-    sps_real damp[3][SPS__LANES]; /* Kelvin-Voigt: the viscous force, kept apart for its work */
+    sps_real damp[3][SPS__LANES]; /* Kelvin-Voigt: the viscous and Riemann dissipation forces, kept apart for their work */
     const sps_real* oas_factor = b->oas_factor; /* f^n as a product of 12 factors, each 1 f + 0 or 0 f + 1 exactly: a
                                                    lane-uniform select the vectoriser takes (a loop to n it does not) */
     int k, l, a;
@@ -4178,16 +4180,18 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
             sps_real u, f2, beta = 1;
             u = (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
             if (limited) beta = sps__riemann_limiter(u, eta_c0);
-            f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
-            acc[0][l] -= f2 * ex;
-            acc[1][l] -= f2 * ey;
-            if (dim == 3) acc[2][l] -= f2 * ez;
-            if (viscous == SPS__VISCOUS_KELVIN_VOIGT) { /* 2 (d + 2) eta (v_ij . e_ij) dW / r_ij V_j e_ij */
-                const sps_real fk = kelvin_voigt * u * dw * vol[j] / rij;
+            if (viscous == SPS__VISCOUS_KELVIN_VOIGT) { /* the Riemann dissipation kept with the viscous force, for its work */
+                const sps_real fk = (kelvin_voigt / rij + z * beta) * u * dw * vol[j]; /* 2 (d + 2) eta (v_ij . e_ij) dW / r_ij V_j e_ij */
                 damp[0][l] += fk * ex;
                 damp[1][l] += fk * ey;
                 if (dim == 3) damp[2][l] += fk * ez;
+                f2 = (p[i] + p[j]) * dw * vol[j];
+            } else {
+                f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
             }
+            acc[0][l] -= f2 * ex;
+            acc[1][l] -= f2 * ey;
+            if (dim == 3) acc[2][l] -= f2 * ez;
             if (viscous == SPS__VISCOUS_NEWTON) {
                 const sps_real fv = two_mu * dw * vol[j] / (rij + soft);
                 acc[0][l] += fv * (vx[i] - vx[j]);
@@ -5991,18 +5995,18 @@ static void sps__pair_friction(const sps_world* w, const sps__body* bi, int i, i
 
 /* The friction of particle i with wall wl (plane = W_plane(d)): the no-slip drag bounded by mu
    times the wall's normal force per volume f_n (chapter's head). */
-static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, const sps__wall* wl, sps_real plane, sps_real f_n, sps_real f[3]) {
+static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, const sps__wall* wl, sps_real f_n, sps_real dt, sps_real f[3]) {
     const sps_real mu = sps__mix_friction(bi->def.friction, wl->friction);
     sps_real v_t[3] = {0, 0, 0}, vn = 0;
     int a;
     if (!(mu > 0)) return;
     for (a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];
     for (a = 0; a < w->dim; ++a) v_t[a] = w->vel[a][i] - vn * wl->normal[a];
-    sps__add_friction(mu, f_n, 2 * bi->z_riemann * plane, v_t, w->dim, f);
+    sps__add_friction(mu, f_n, w->rho[i] / (2 * dt), v_t, w->dim, f);
 }
 
 /* Adds the contact accelerations of particle i to acc_p (see the chapter's head). */
-static void sps__contact_force(sps_world* w, int i) {
+static void sps__contact_force(sps_world* w, int i, sps_real dt) {
     const sps__body* bi = &w->bodies[w->body[i]];
     const sps_real si = w->sigma[i], vi_mi = w->vol[i] / w->mass[i];
     sps_real f[3] = {0, 0, 0};
@@ -6031,7 +6035,7 @@ static void sps__contact_force(sps_world* w, int i) {
             for (a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];
             for (a = 0; a < w->dim; ++a) f[a] -= 2 * bi->z_riemann * plane * (w->vel[a][i] - vn * wl->normal[a]);
         } else if (w->friction) {
-            sps__wall_friction(w, bi, i, wl, plane, 2 * bi->mat.K * si * plane, f);
+            sps__wall_friction(w, bi, i, wl, 2 * bi->mat.K * si * plane, dt, f);
         }
     }
     for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += vi_mi * f[a];
@@ -6040,13 +6044,13 @@ static void sps__contact_force(sps_world* w, int i) {
 
 /* The contact pass of a sub-step (after the pressure pass, before the kick): the contact
    densities of all particles, then their forces. Work-shared over the step's team. */
-static void sps__contact_pass(sps_world* w) {
+static void sps__contact_pass(sps_world* w, sps_real dt) {
     int i;
     if (!w->contact_bodies && w->nwalls == 0) return;
     SPS__PRAGMA(omp for schedule(static))
     for (i = 0; i < w->n; ++i) w->sigma[i] = sps__contact_density(w, i);
     SPS__PRAGMA(omp for schedule(static))
-    for (i = 0; i < w->n; ++i) sps__contact_force(w, i);
+    for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
 }
 
 /* >>step: the per-particle updates of a sub-step */
@@ -6705,7 +6709,7 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt) {
     sps__half_drift(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.stress, dt); /* TL */
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
-    sps__contact_pass(w);
+    sps__contact_pass(w, dt);
     vmax2 = sps__kick(w, t, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
