@@ -353,10 +353,47 @@
       (sigma_i += int W dV) and the wall plane (F_i += 2 V_i K sigma_i W_plane(d) n), tabulated
       once; a no-slip wall adds a drag -2 V_i rho0 c0 W_plane(d) v_t on the tangential velocity.
       They cost a distance test per particle and wall.
+      Friction (sps_body_def.friction, sps_world_set_wall_friction): Coulomb's law with a
+      velocity-regularised stick. A contact's coefficient is the geometric mean sqrt(mu_a mu_b)
+      of its two sides (a body and a wall, or two bodies; Box2D's rule: a frictionless side
+      makes the contact frictionless). Each contact force of the penalty (a particle and a wall,
+      or two particles of touching bodies) gets a tangential force against the tangential
+      relative velocity v_t, F_t = -min(D |v_t|, mu F_n) v_t/|v_t|, F_n the contact's normal
+      force: sliding, |F_t| = mu F_n; sticking, the drag D holds v_t near 0. At a wall D = rho_i
+      V_i / (2 dt), the strongest drag the explicit kick carries (it halves v_t in a sub-step);
+      the no-slip wall's impedance drag 2 V_i rho0 c0 W_plane(d) instead let a block on a
+      10-degree slope with mu = 0.3 creep 4.5 % of its frictionless distance in 1 s, this one
+      0.36 % (bench/VALIDATION.md, "Friction"). Between bodies D = -2 V_i V_j Z_ij dW_ij, Z_ij
+      the harmonic mean of rho0 c0 (a stronger drag summed over a particle's many partners
+      would exceed the kick's bound); the pair's friction forces are equal and opposite, so
+      linear momentum stays exact (tested to 1e-12). Why not an elastic stick (a tangential
+      spring per contact): it needs a history per pair and per particle and wall, carried over
+      list rebuilds and restarts, for a creep the drag keeps below 1 %. SPS_WALL_NO_SLIP keeps its
+      meaning: the impedance drag with no Coulomb bound (mu = infinity); wall friction on it is
+      refused. Friction acts on the particles, so a disc sticks at its outer particle layer
+      (radius R - dp/2), not at its surface: rolling and spin-up rates carry an O(dp/R) error
+      (2D disc on 30 degrees, mu 0.5: a 3.9 % low at R/dp = 10, 2.0 % at 20). Fluids and
+      Drucker-Prager bodies have no friction (walls act on them through mirror particles). A
+      scene without friction runs none of it (bit-identical, pinned).
       Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
       them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
 
-   DAMPING AND EXTERNAL ACCELERATION (sps_body_def.damping, sps_body_set_acceleration)
+   DAMPING AND EXTERNAL ACCELERATION (sps_body_def.damping, material.viscosity,
+   sps_body_set_acceleration)
+      Material damping: material.viscosity = eta > 0 on an elastic, J2, Saint Venant-Kirchhoff
+      or Neo-Hookean body is a Kelvin-Voigt viscosity (chapter >>material: Kelvin-Voigt): the
+      viscous stress sigma_v = 2 eta D + eta tr(D) I (Lame viscosities lambda_v = mu_v = eta: the
+      volumetric part, eta (d + 2)/d, comes with the central pair force that carries it, the
+      ENO Laplacian (2 (d + 2) eta / rho_i) sum_j (v_ij . e_ij) dW_ij / r_ij V_j e_ij, for every
+      shear formulation and the total-Lagrangian bodies). It vanishes for any rigid motion (a
+      damped body falls at g and spins on, tested), conserves linear and angular momentum, and
+      its dissipated work, with that of the Riemann dissipation of the same body, is the field
+      "viscous_work" and sps_diagnostics.viscous_work, part of the energy account. The 2D plate's
+      first mode decays at the modal damping ratio of a viscoelastic beam, zeta = omega E'_v /
+      (2 E'), E'_v = eta (dE'/dlambda + dE'/dmu) (bench/VALIDATION.md, "Kelvin-Voigt"). Cost: an
+      explicit viscous term needs dt < d / (4 (d + 2) nu S), nu = eta / rho0, S ~ 3.5 / h^2 in
+      2D: for nu / h above about c0 / 30 it, not the sound speed, sets the acoustic step.
+      Numerical damping (damping):
       Damping is numerical, not a property of the material: it is there to bring a loaded body
       to its static equilibrium (a quasi-static run: load, let it settle, read the state). A
       body with damping c > 0 [1/s] integrates dv/dt = a - c v in the kick exactly over each
@@ -396,7 +433,9 @@
                          is on).
       plastic work       sum over J2 particles of the energy their return maps dissipated
                          (PLASTICITY); max_plastic_strain the largest alpha.
-      The account kinetic + strain + contact + potential + plastic work - prescribed work is
+      viscous work       sum over Kelvin-Voigt bodies (material.viscosity > 0) of the work their
+                         viscous and Riemann dissipation forces dissipated (DAMPING).
+      The account kinetic + strain + contact + potential + plastic work + viscous work - prescribed work is
       conserved by the continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
       numerical: the energy watchdog (ERRORS) reports it. The shear part of the strain energy,
       from the Jaumann-rate stress, is not conserved under large rotations (it over-reads by
@@ -427,7 +466,10 @@
       c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
-      track_stress 0/1, damping finite >= 0 (0 for a wall body), solver 0..1, hourglass_alpha
+      track_stress 0/1, damping finite >= 0 (0 for a wall body), friction finite >= 0 (0 without
+      contact and for fluid and Drucker-Prager bodies), material.viscosity finite >= 0 (0 for
+      wall and Drucker-Prager bodies), wall friction (finite >= 0, an existing free-slip wall),
+      solver 0..1, hourglass_alpha
       [0, 1000], damage_strain [0, 100] (> 0 with the total-Lagrangian solver only),
       stress_diffusion [0, 1], material.cohesion >= 0, friction_angle [0, 90), dilatancy_angle
       [0, friction_angle], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian
@@ -533,7 +575,8 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, damage of updated-Lagrangian bodies, removing particles.
+      self-contact, damage of updated-Lagrangian bodies, removing particles; rolling friction;
+      normal damping of contacts (a rigid bounce on the contact's stiffness is not damped).
 
    REVISION HISTORY
       0.8.0 (2026-12-02) granular media (SPS_MATERIAL_DRUCKER_PRAGER, material kind 6: cohesion,
@@ -1054,7 +1097,8 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r); a
    total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
    Drucker-Prager body "plastic_strain" (accumulated deviatoric), "plastic_work" and, with
-   stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR).
+   stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR); a body with a
+   Kelvin-Voigt viscosity "viscous_work" [J] (DAMPING).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
