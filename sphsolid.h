@@ -366,10 +366,47 @@
       (sigma_i += int W dV) and the wall plane (F_i += 2 V_i K sigma_i W_plane(d) n), tabulated
       once; a no-slip wall adds a drag -2 V_i rho0 c0 W_plane(d) v_t on the tangential velocity.
       They cost a distance test per particle and wall.
+      Friction (sps_body_def.friction, sps_world_set_wall_friction): Coulomb's law with a
+      velocity-regularised stick. A contact's coefficient is the geometric mean sqrt(mu_a mu_b)
+      of its two sides (a body and a wall, or two bodies; Box2D's rule: a frictionless side
+      makes the contact frictionless). Each contact force of the penalty (a particle and a wall,
+      or two particles of touching bodies) gets a tangential force against the tangential
+      relative velocity v_t, F_t = -min(D |v_t|, mu F_n) v_t/|v_t|, F_n the contact's normal
+      force: sliding, |F_t| = mu F_n; sticking, the drag D holds v_t near 0. At a wall D = rho_i
+      V_i / (2 dt), the strongest drag the explicit kick carries (it halves v_t in a sub-step);
+      the no-slip wall's impedance drag 2 V_i rho0 c0 W_plane(d) instead let a block on a
+      10-degree slope with mu = 0.3 creep 4.5 % of its frictionless distance in 1 s, this one
+      0.36 % (bench/VALIDATION.md, "Friction"). Between bodies D = -2 V_i V_j Z_ij dW_ij, Z_ij
+      the harmonic mean of rho0 c0 (a stronger drag summed over a particle's many partners
+      would exceed the kick's bound); the pair's friction forces are equal and opposite, so
+      linear momentum stays exact (tested to 1e-12). Why not an elastic stick (a tangential
+      spring per contact): it needs a history per pair and per particle and wall, carried over
+      list rebuilds and restarts, for a creep the drag keeps below 1 %. SPS_WALL_NO_SLIP keeps its
+      meaning: the impedance drag with no Coulomb bound (mu = infinity); wall friction on it is
+      refused. Friction acts on the particles, so a disc sticks at its outer particle layer
+      (radius R - dp/2), not at its surface: rolling and spin-up rates carry an O(dp/R) error
+      (2D disc on 30 degrees, mu 0.5: a 3.9 % low at R/dp = 10, 2.0 % at 20). Fluids and
+      Drucker-Prager bodies have no friction (walls act on them through mirror particles). A
+      scene without friction runs none of it (bit-identical, pinned).
       Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
       them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
 
-   DAMPING AND EXTERNAL ACCELERATION (sps_body_def.damping, sps_body_set_acceleration)
+   DAMPING AND EXTERNAL ACCELERATION (sps_body_def.damping, material.viscosity,
+   sps_body_set_acceleration)
+      Material damping: material.viscosity = eta > 0 on an elastic, J2, Saint Venant-Kirchhoff
+      or Neo-Hookean body is a Kelvin-Voigt viscosity (chapter >>material: Kelvin-Voigt): the
+      viscous stress sigma_v = 2 eta D + eta tr(D) I (Lame viscosities lambda_v = mu_v = eta: the
+      volumetric part, eta (d + 2)/d, comes with the central pair force that carries it, the
+      ENO Laplacian (2 (d + 2) eta / rho_i) sum_j (v_ij . e_ij) dW_ij / r_ij V_j e_ij, for every
+      shear formulation and the total-Lagrangian bodies). It vanishes for any rigid motion (a
+      damped body falls at g and spins on, tested), conserves linear and angular momentum, and
+      its dissipated work, with that of the Riemann dissipation of the same body, is the field
+      "viscous_work" and sps_diagnostics.viscous_work, part of the energy account. The 2D plate's
+      first mode decays at the modal damping ratio of a viscoelastic beam, zeta = omega E'_v /
+      (2 E'), E'_v = eta (dE'/dlambda + dE'/dmu) (bench/VALIDATION.md, "Kelvin-Voigt"). Cost: an
+      explicit viscous term needs dt < d / (4 (d + 2) nu S), nu = eta / rho0, S ~ 3.5 / h^2 in
+      2D: for nu / h above about c0 / 30 it, not the sound speed, sets the acoustic step.
+      Numerical damping (damping):
       Damping is numerical, not a property of the material: it is there to bring a loaded body
       to its static equilibrium (a quasi-static run: load, let it settle, read the state). A
       body with damping c > 0 [1/s] integrates dv/dt = a - c v in the kick exactly over each
@@ -409,7 +446,9 @@
                          is on).
       plastic work       sum over J2 particles of the energy their return maps dissipated
                          (PLASTICITY); max_plastic_strain the largest alpha.
-      The account kinetic + strain + contact + potential + plastic work - prescribed work is
+      viscous work       sum over Kelvin-Voigt bodies (material.viscosity > 0) of the work their
+                         viscous and Riemann dissipation forces dissipated (DAMPING).
+      The account kinetic + strain + contact + potential + plastic work + viscous work - prescribed work is
       conserved by the continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
       numerical: the energy watchdog (ERRORS) reports it. The shear part of the strain energy,
       from the Jaumann-rate stress, is not conserved under large rotations (it over-reads by
@@ -440,9 +479,11 @@
       c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
-      track_stress 0/1, damping finite >= 0 (0 for a wall body), solver 0..1, hourglass_alpha
-      [0, 1000], hourglass 0..1, damage_strain [0, 100] and artificial_viscosity [0, 1] (> 0 with
-      the total-Lagrangian solver only),
+      track_stress 0/1, damping finite >= 0 (0 for a wall body), friction finite >= 0 (0 without
+      contact and for fluid and Drucker-Prager bodies), material.viscosity finite >= 0 (0 for
+      wall and Drucker-Prager bodies), wall friction (finite >= 0, an existing free-slip wall),
+      solver 0..1, hourglass_alpha [0, 1000], hourglass 0..1, damage_strain [0, 100] and
+      artificial_viscosity [0, 1] (> 0 with the total-Lagrangian solver only),
       stress_diffusion [0, 1], material.cohesion >= 0, friction_angle [0, 90), dilatancy_angle
       [0, friction_angle], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian
       solver only and that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
@@ -547,7 +588,8 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, damage of updated-Lagrangian bodies, removing particles.
+      self-contact, damage of updated-Lagrangian bodies, removing particles; rolling friction;
+      normal damping of contacts (a rigid bounce on the contact's stiffness is not damped).
 
    REVISION HISTORY
       0.8.0 (2026-12-02) granular media (SPS_MATERIAL_DRUCKER_PRAGER, material kind 6: cohesion,
@@ -809,8 +851,11 @@ typedef struct sps_material_def {
                                 for a fluid; about 10 times the largest flow speed keeps the
                                 density within 1 %, UTVF section 2.1); ignored by the other
                                 kinds, whose c0 follows from E and nu. Default 0. */
-    sps_real viscosity;      /* fluid: the dynamic viscosity mu [Pa s], finite >= 0 (0: inviscid);
-                                ignored by the other kinds. Default 0. */
+    sps_real viscosity;      /* fluid: the dynamic viscosity mu [Pa s], finite >= 0 (0: inviscid).
+                                Elastic, J2, Saint Venant-Kirchhoff, Neo-Hookean: the Kelvin-Voigt
+                                viscosity eta [Pa s], finite >= 0, the material damping (DAMPING:
+                                vibrations decay, rigid motion is not braked; 0: none). Not for
+                                rigid and Drucker-Prager bodies. Default 0. */
     sps_real cohesion;       /* Drucker-Prager: cohesion c [Pa], finite >= 0. Default 0. */
     sps_real friction_angle; /* Drucker-Prager: friction angle phi [degrees], in [0, 90). Default 0. */
     sps_real dilatancy_angle; /* Drucker-Prager: dilatancy angle psi [degrees], in [0, friction_angle]
@@ -848,6 +893,11 @@ typedef struct sps_body_def {
     sps_real stress_diffusion; /* Drucker-Prager bodies: the coefficient zeta of the stress
                                   diffusion (Feng et al. 2021; GRANULAR), [0, 1] (0: off).
                                   Default 0.1. */
+    sps_real friction;         /* Coulomb friction coefficient mu, finite >= 0, of its contacts
+                                  with other bodies and walls (CONTACT); a pair's is the geometric
+                                  mean sqrt(mu_a mu_b), so a frictionless partner (0) gives none.
+                                  Needs contact = 1; not for fluid and Drucker-Prager bodies
+                                  (their walls act through mirror particles). Default 0. */
     sps_real damage_strain;    /* total-Lagrangian bodies: the damage threshold eps_max of TL
                                   section 4.6, a principal Green-Lagrange strain (dimensionless),
                                   [0, 100]; past it the damage D grows and degrades the tensile
@@ -874,6 +924,9 @@ typedef struct sps_diagnostics {
     sps_real plastic_work;        /* [J] (J/m in 2D) work dissipated by plastic flow since the start
                                      (J2 bodies; 0 for the others): kinetic + strain + plastic work
                                      is the energy account */
+    sps_real viscous_work;        /* [J] (J/m in 2D) work dissipated by the Kelvin-Voigt viscosity
+                                     (material.viscosity of a solid) since the start; part of the
+                                     energy account like plastic_work */
     sps_real max_plastic_strain;  /* largest equivalent plastic strain alpha (J2 bodies; else 0) */
     int surface_particles;        /* particles whose position divergence sum_j -r_ij . grad W_ij V_j
                                      is below 0.75 dim (UTVF eq. 31): the free surface, and any
@@ -1070,7 +1123,8 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r); a
    total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
    Drucker-Prager body "plastic_strain" (accumulated deviatoric), "plastic_work" and, with
-   stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR).
+   stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR); a body with a
+   Kelvin-Voigt viscosity "viscous_work" [J] (DAMPING).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
@@ -1107,6 +1161,13 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
 /* Adds the walls of the box [lo, hi] facing inwards (a tank: 2 dim faces, those in open_faces
    left out, e.g. SPS_FACE_Y_HI for an open top in 2D). */
 SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], const sps_real hi[3], unsigned open_faces, sps_wall_slip slip);
+/* Sets the Coulomb friction coefficient mu (finite >= 0; default 0) of wall number `wall`
+   (0, 1, ... in the order of addition; sps_world_add_box_walls adds its faces in the order x lo,
+   x hi, y lo, y hi, z lo, z hi, leaving out the open ones), or of every wall added so far with
+   wall = -1. A body touching it has the friction sqrt(mu_body mu) (CONTACT). A no-slip wall is
+   refused: it holds the tangential velocity with no Coulomb bound already (mu = infinity).
+   SPS_ERR_INVALID_ARG naming the value and the range. No allocation. */
+SPSDEF sps_result sps_world_set_wall_friction(sps_world* w, int wall, sps_real mu);
 /* Whether bodies a and b touch (CONTACT; default: every pair of bodies whose defs have
    contact = 1). a == b is refused: a body does not contact itself. */
 SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, int touch);
@@ -1339,6 +1400,10 @@ typedef struct sps__passes {
     sps__group_kernel pressure, continuity, penalty, stress;
 } sps__passes;
 
+/* A body's viscous force (sps__model.viscous): none, a fluid's Newtonian viscosity (FLUIDS), a
+   solid's Kelvin-Voigt material damping (>>material: Kelvin-Voigt). */
+enum { SPS__VISCOUS_NONE, SPS__VISCOUS_NEWTON, SPS__VISCOUS_KELVIN_VOIGT };
+
 /* What the step runs for a body, resolved once from its def. */
 typedef struct sps__model {
     const sps__material_model* material;
@@ -1352,7 +1417,8 @@ typedef struct sps__model {
                      Drucker-Prager cone); plastic strain and work fields */
     int scaled_penalty; /* the GNO penalty scaled per pair by the particles' return factors */
     int limited;  /* the Riemann dissipation limited (material limiter > 0: fluids) */
-    int viscous;  /* a Newtonian viscous force (a fluid with viscosity > 0) */
+    int viscous;  /* SPS__VISCOUS_NEWTON: a Newtonian viscous force (a fluid with viscosity > 0);
+                     SPS__VISCOUS_KELVIN_VOIGT: a solid's material damping (>>material: Kelvin-Voigt) */
     int riemann_density; /* the continuity equation's Riemann pressure term (fluids, granular) */
     int diffusion; /* the stress diffusion of a Drucker-Prager body (def stress_diffusion > 0) */
     int mirrored;  /* walls act through mirror particles (the material's choice) */
@@ -1410,6 +1476,7 @@ typedef struct sps__body {
     sps_real *tl_correction, *tl_deformation, *tl_stress; /* total-Lagrangian bodies: B_i, F_i, P_i B_i */
     sps_real* tl_plastic; /* total-Lagrangian J2 bodies: C_p^-1 - I (sps__tl_j2) */
     sps_real* damage;     /* total-Lagrangian bodies with damage: D in [0, 1] (sps__tl_damage) */
+    sps_real* viscous_work; /* Kelvin-Voigt bodies: the work each particle's viscous force dissipated [J] */
     int field_count; /* particles they hold: its count at the last commit */
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
@@ -1424,6 +1491,7 @@ enum { SPS__TR_G, SPS__TR_DIVR = 3, SPS__TR_NORMAL = 4, SPS__TRANSPORT_VALUES = 
 typedef struct sps__wall {
     sps_real point[3], normal[3]; /* normal of unit length */
     sps_wall_slip slip;
+    sps_real friction; /* its Coulomb coefficient (sps_world_set_wall_friction) */
 } sps__wall;
 #define SPS__WALL_TABLE 64 /* intervals of the wall tables over [0, 2h] */
 
@@ -1511,6 +1579,9 @@ struct sps_world {
     int *separate, nseparate;   /* body pairs turned off by sps_world_set_contact */
     unsigned char* touch;       /* nbodies x nbodies: bodies a and b touch */
     int touch_n, contact_bodies, contact_dirty;
+    int friction;           /* some contact has friction: the contact pass adds it (>>contact) */
+    sps_real* pair_friction; /* nbodies x nbodies: the friction coefficient of two touching bodies
+                                (allocated when a body has friction) */
     int *ct_first, *ct_j, *ct_cell, *ct_order, *ct_cell_start, ct_cap;
     long ct_pair_cap;
     sps_real* sigma;
@@ -1520,6 +1591,8 @@ struct sps_world {
     sps_real time, dt, c0_max;
     sps_real viscous_speed; /* the largest nu / h of the viscous fluids: the advection step's
                                speed when the flow is slower (sps__step_until) */
+    sps_real viscous_dt;    /* the longest acoustic step the Kelvin-Voigt bodies allow (INFINITY:
+                               none; sps__kelvin_voigt_dt) */
     sps_real vmax;     /* the time-step speed: the largest particle speed in its body's frame, or
                           approach if larger (sps__frame_speeds) */
     int impact_warned; /* sps__warn_impact has spoken */
@@ -1551,7 +1624,8 @@ typedef enum {
     SPS__NEED_GRANULAR,    /* a Drucker-Prager body */
     SPS__NEED_TOTAL_LAGRANGIAN, /* a total-Lagrangian body */
     SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC, /* a total-Lagrangian J2 body */
-    SPS__NEED_DAMAGE       /* a total-Lagrangian body with damage (damage_strain > 0) */
+    SPS__NEED_DAMAGE,      /* a total-Lagrangian body with damage (damage_strain > 0) */
+    SPS__NEED_KELVIN_VOIGT /* a solid with material damping (material.viscosity > 0) */
 } sps__need;
 
 enum {
@@ -1616,6 +1690,8 @@ static const sps__field_info sps__fields[] = {
      SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
     /* total-Lagrangian damage D (TL eqs. 45-46): state, advanced by the stress pass */
     {"damage", "damage", 1, SPS__BOFF(damage), 0, 1, 0, SPS__NEED_DAMAGE, SPS__CARRIED | SPS__CHECKED | SPS__GOOD | SPS__VALIDATED},
+    /* Kelvin-Voigt: the dissipated work, summed by the energy account (>>material: Kelvin-Voigt) */
+    {"viscous_work", "viscous work", 1, SPS__BOFF(viscous_work), 0, 1, 0, SPS__NEED_KELVIN_VOIGT, SPS__CARRIED | SPS__CHECKED | SPS__GOOD},
     {"id", "id", 0, SPS__OFF(id), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
@@ -1945,6 +2021,50 @@ static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size,
     *broken_out += broken;
 }
 
+/* >>material: Kelvin-Voigt (material damping of solids; DAMPING in the manual)
+
+   A solid with material.viscosity = eta > 0 carries, besides its elastic (or elastic-plastic)
+   stress, the viscous stress of a Kelvin-Voigt material, sigma_v = 2 eta D + eta tr(D) I (D the
+   rate of deformation: Lame viscosities lambda_v = mu_v = eta). It enters as the central pair
+   force of the ENO Laplacian (ENO eq. 24, without the time integration),
+       a_v,i = (2 (d + 2) eta / rho_i) sum_j (v_ij . e_ij) dW_ij / r_ij V_j e_ij,
+   whose continuum limit is (eta / rho)(lap v + 2 grad div v) = div(sigma_v) / rho: the second
+   moment of the kernel gives sum_j (v_ij . e_ij) e_ij dW_ij / r_ij V_j -> (lap v + 2 grad div
+   v) / (2 (d + 2)) (isotropic fourth moment; int r W' dV = -d). Why this form for every shear
+   formulation and not 2 eta dev(D) added to the stress of the OG family: a central pair force
+   vanishes exactly for any rigid motion (v_ij . e_ij = 0 for a translation and a rotation), so a
+   falling or spinning body is not braked; it conserves linear and angular momentum exactly;
+   it needs no velocity gradient (ENO-A with pair rotation has none) and costs one multiply-add
+   per pair in the pressure pass, which already forms v_ij . e_ij for the Riemann dissipation.
+   The price: a central pair force has its bulk viscosity tied to its shear viscosity (the
+   Cauchy relation of pair potentials), eta (d + 2) / d, so the volumetric part is there and not
+   set apart; the beam-mode damping ratio follows from both (bench/VALIDATION.md, KV).
+   The dissipated work, -m_i a_v,i . v_i dt per sub-step (v_i at the force's evaluation), is
+   summed per particle (field "viscous_work") and counted in the energy account
+   (sps_diagnostics.viscous_work), together with that of the Riemann solver's dissipation
+   Z (v_ij . e_ij) dW V_j of the same body (the same kind of central viscous pair force; without
+   it the account of a bouncing ball misses the ~10 % per bounce that it takes). Total-Lagrangian bodies take the same pair force over their
+   reference neighbours with the reference dW/dR and the current direction (sps__tl_force's hook
+   sps__tl_kelvin_voigt). The time step: an explicit viscous term is stable when the largest
+   rate it damps, 4 (d + 2) nu S / d (nu = eta / rho0, S = sum_j |dW_ij| / r_ij V_j, the
+   continuum integral of |W'| / r), times dt stays below 1 (the kick's bound is 2):
+   sps__kelvin_voigt_dt, a cap on the acoustic step. */
+
+/* The coefficient 2 (d + 2) eta of the viscous pair force of body b. */
+static sps_real sps__kelvin_voigt_coefficient(int dim, const sps__body* b) { return 2 * (dim + 2) * b->def.material.viscosity; }
+
+/* The longest acoustic step body b's viscosity allows: dt = d / (4 (d + 2) nu S), S the continuum
+   value of sum_j |dW_ij| / r_ij V_j: 2 pi W(0) in 2D, 4 pi int_0^2h W dr in 3D (by parts). */
+static sps_real sps__kelvin_voigt_dt(const sps_world* w, const sps__body* b) {
+    const sps_real nu = b->def.material.viscosity / b->rho0;
+    sps_real S = 0;
+    int k;
+    if (w->dim == 2) S = 2 * SPS__PI * sps_world_kernel(w, 0);
+    else
+        for (k = 0; k < 256; ++k) S += 4 * SPS__PI * sps_world_kernel(w, (k + SPS_R(0.5)) * w->support / 256) * w->support / 256;
+    return w->dim / (4 * (w->dim + 2) * nu * S);
+}
+
 /* >>material: weakly compressible fluid (UTVF sections 2.1, 3.1.1) */
 
 /* c0 is given (sound_speed), K = rho0 c0^2 and no shear modulus: a fluid's pressure is its only
@@ -2211,7 +2331,22 @@ static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
     (void)dim;
     return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
 }
+static int sps__viscous_wall_or_granular(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.viscosity > 0 && (def->material.kind == SPS_MATERIAL_RIGID || def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER);
+}
+static int sps__friction_without_contact(int dim, const sps_body_def* def) { (void)dim; return def->friction > 0 && !def->contact; }
+static int sps__friction_of_mirrored(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->friction > 0 && (def->material.kind == SPS_MATERIAL_FLUID || def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER);
+}
 static const sps__combination_rule sps__combination_rules[] = {
+    {sps__viscous_wall_or_granular, "material.viscosity > 0 with material.kind = rigid or Drucker-Prager: the Kelvin-Voigt damping is "
+                                    "for elastic, J2, Saint Venant-Kirchhoff and Neo-Hookean bodies (a wall body moves as given; a "
+                                    "granular body dissipates by plastic flow)"},
+    {sps__friction_without_contact, "friction > 0 with contact = 0: a body without contact has no friction"},
+    {sps__friction_of_mirrored, "friction > 0 with material.kind = fluid or Drucker-Prager: walls act on these through mirror particles "
+                                "(a no-slip wall holds them), not the solids' contact, so there is no Coulomb friction to set"},
     {sps__granular_pair_rotation, "material.kind = Drucker-Prager with shear = GNO-A and rotation = pair: a granular body keeps its "
                                   "penalty per particle; use rotation = mean or per particle"},
     {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
@@ -2269,6 +2404,11 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->track_stress == 0 || def->track_stress == 1, "track_stress = %d, allowed 0 or 1", def->track_stress);
     SPS__CHECK(def->contact == 0 || def->contact == 1, "contact = %d, allowed 0 or 1", def->contact);
     SPS__CHECK(def->damping >= 0 && sps__finite(def->damping), "damping = %g, allowed finite >= 0 1/s (0: off)", (double)def->damping);
+    SPS__CHECK(def->friction >= 0 && sps__finite(def->friction), "friction = %g, allowed finite >= 0 (Coulomb coefficient; 0: none)",
+               (double)def->friction);
+    if (material && material->shear)
+        SPS__CHECK(def->material.viscosity >= 0 && sps__finite(def->material.viscosity),
+                   "material.viscosity = %g, allowed finite >= 0 Pa s (the Kelvin-Voigt viscosity eta; 0: none)", (double)def->material.viscosity);
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
@@ -2297,7 +2437,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     if (!m.material->shear) m.stress = 0; /* nothing to track (track_stress is moot) */
     if (!m.material->shear) m.gradient = 1; /* a fluid's density rate is -rho tr L (FLUIDS) */
     m.limited = m.material->limiter > 0 || m.material->limiter_per_dim > 0;
-    m.viscous = !m.material->shear && def->material.viscosity > 0;
+    m.viscous = !(def->material.viscosity > 0) ? SPS__VISCOUS_NONE : m.material->shear ? SPS__VISCOUS_KELVIN_VOIGT : SPS__VISCOUS_NEWTON;
     m.riemann_density = m.material->riemann_density;
     m.transport = def->transport;
     if (m.material->kinematic) { /* a wall body runs no pass and needs no field of its own */
@@ -2470,6 +2610,7 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
     w->inv_h = 1 / w->h;
     w->dw_scale = w->kernel_norm / w->h;
     w->dp_volume = d.dim == 2 ? d.dp * d.dp : d.dp * d.dp * d.dp;
+    w->viscous_dt = (sps_real)INFINITY;
     *out = w;
     return SPS_OK;
 }
@@ -2499,7 +2640,7 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm);
     sps__free(w, w->scratch); sps__free(w, w->group_sum); sps__free(w, w->diag_scratch);
     sps__free(w, w->good); sps__free(w, w->good_id);
-    sps__free(w, w->walls); sps__free(w, w->separate); sps__free(w, w->touch); sps__free(w, w->sigma);
+    sps__free(w, w->walls); sps__free(w, w->separate); sps__free(w, w->touch); sps__free(w, w->pair_friction); sps__free(w, w->sigma);
     sps__free(w, w->ct_first); sps__free(w, w->ct_j); sps__free(w, w->ct_cell); sps__free(w, w->ct_order);
     sps__free(w, w->ct_cell_start);
 }
@@ -2577,7 +2718,8 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->driven = b->model.material->kinematic && sps__watchdog_on(w);
 
     if (!b->model.material->kinematic && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0; /* wall bodies: no waves */
-    if (b->model.viscous && def->material.viscosity / (b->rho0 * w->h) > w->viscous_speed)
+    if (b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT && sps__kelvin_voigt_dt(w, b) < w->viscous_dt) w->viscous_dt = sps__kelvin_voigt_dt(w, b);
+    if (b->model.viscous == SPS__VISCOUS_NEWTON && def->material.viscosity / (b->rho0 * w->h) > w->viscous_speed)
         w->viscous_speed = def->material.viscosity / (b->rho0 * w->h);
     if (!b->model.material->kinematic && w->def.cfl_acoustic > b->model.stabilisation->stable_cfl[w->dim - 2])
         sps__warn(w, "body '%s': cfl_acoustic = %g is above %g, the largest value measured stable for %s in %dD (bench/VALIDATION.md, "
@@ -3781,7 +3923,7 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
            (need == SPS__NEED_GRANULAR && m->plastic == SPS__YIELD_DRUCKER_PRAGER) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic) ||
-           (need == SPS__NEED_DAMAGE && m->damage);
+           (need == SPS__NEED_DAMAGE && m->damage) || (need == SPS__NEED_KELVIN_VOIGT && m->viscous == SPS__VISCOUS_KELVIN_VOIGT);
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -4079,9 +4221,11 @@ SPS__INLINE sps_real sps__riemann_limiter(sps_real u, sps_real eta_c0) {
    sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp); with paired (SPS_ROTATION_PAIR)
    the accumulated shear forces (1/m_i) sum_j g_ij e_ij along the current e_ij. For fluids,
    with limited, the dissipation Z beta with the limiter beta = min(eta max(-v_ij . e_ij / c0, 0), 1)
-   (UTVF eq. 20: only approaching pairs, fully from a 1/eta of c0 on), and with viscous the
-   Newtonian viscous force (2 mu / rho_i) sum_j v_ij dW / (r_ij + 0.01 h) V_j (Morris et al. 1997;
-   0.01 h keeps it finite for coinciding particles). stress, art, paired, limited and viscous are
+   (UTVF eq. 20: only approaching pairs, fully from a 1/eta of c0 on), and with viscous =
+   SPS__VISCOUS_NEWTON the Newtonian viscous force (2 mu / rho_i) sum_j v_ij dW / (r_ij + 0.01 h) V_j
+   (Morris et al. 1997; 0.01 h keeps it finite for coinciding particles), with viscous =
+   SPS__VISCOUS_KELVIN_VOIGT a solid's material damping (>>material: Kelvin-Voigt) and its
+   dissipated work. stress, art, paired, limited and viscous are
    literals at every call so each variant's loop is branch-free. Each lane sums its own
    particle's neighbours in list order, so the result does not depend on the vector width. */
 SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
@@ -4090,6 +4234,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
     const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h, soft2 = SPS_R(0.01) * w->h * w->h;
+    const sps_real kelvin_voigt = viscous == SPS__VISCOUS_KELVIN_VOIGT ? sps__kelvin_voigt_coefficient(dim, b) : 0;
     const sps_real *gravity = w->def.gravity, *geostatic = b->geostatic;
     const int begin = b->begin; /* the body's own arrays (tau, art) hold particle begin + k at k */
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
@@ -4099,12 +4244,13 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     const sps_real oas_w_dp = b->oas_w_dp;
     const int kernel = sps__geo_kernel(w, geo);
     sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES], tau_i[6][SPS__LANES], art_i[3][SPS__LANES];
+    sps_real damp[3][SPS__LANES]; /* Kelvin-Voigt: the viscous and Riemann dissipation forces, kept apart for their work */
     const sps_real* oas_factor = b->oas_factor; /* f^n as a product of 12 factors, each 1 f + 0 or 0 f + 1 exactly: a
                                                    lane-uniform select the vectoriser takes (a loop to n it does not) */
     int k, l, a;
-    (void)dt; /* every pass kernel takes the sub-step; this pass needs none */
     for (l = 0; l < SPS__LANES; ++l) {
         acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
+        damp[0][l] = damp[1][l] = damp[2][l] = 0;
         for (a = 0; a < 6; ++a) spread[a][l] = 0;
     }
     if (stress) sps__own_lanes(tau, 6, q.i0 - begin, tau_i);
@@ -4114,11 +4260,19 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
             sps_real u, f2, beta = 1;
             u = (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
             if (limited) beta = sps__riemann_limiter(u, eta_c0);
-            f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
+            if (viscous == SPS__VISCOUS_KELVIN_VOIGT) { /* the Riemann dissipation kept with the viscous force, for its work */
+                const sps_real fk = (kelvin_voigt / rij + z * beta) * u * dw * vol[j]; /* 2 (d + 2) eta (v_ij . e_ij) dW / r_ij V_j e_ij */
+                damp[0][l] += fk * ex;
+                damp[1][l] += fk * ey;
+                if (dim == 3) damp[2][l] += fk * ez;
+                f2 = (p[i] + p[j]) * dw * vol[j];
+            } else {
+                f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
+            }
             acc[0][l] -= f2 * ex;
             acc[1][l] -= f2 * ey;
             if (dim == 3) acc[2][l] -= f2 * ez;
-            if (viscous) {
+            if (viscous == SPS__VISCOUS_NEWTON) {
                 const sps_real fv = two_mu * dw * vol[j] / (rij + soft);
                 acc[0][l] += fv * (vx[i] - vx[j]);
                 acc[1][l] += fv * (vy[i] - vy[j]);
@@ -4177,6 +4331,14 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
             for (k = 0; k < dim; ++k) w->acc_p[k][i] += shear[k][l] / w->mass[i];
         if (diffusion)
             for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i - begin) + a] = b->diffusion_rate * spread[a][l];
+        if (viscous == SPS__VISCOUS_KELVIN_VOIGT) {
+            sps_real power = 0; /* of the viscous force, at the velocities it was evaluated with */
+            for (a = 0; a < dim; ++a) {
+                w->acc_p[a][i] += damp[a][l] / w->rho[i];
+                power += damp[a][l] / w->rho[i] * w->vel[a][i];
+            }
+            b->viscous_work[i - begin] -= w->mass[i] * power * dt;
+        }
     }
 }
 
@@ -4189,9 +4351,14 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
     X(stress_pairs, 1, 0, 1, 0, 0, 0)           \
     X(oas, 1, 1, 0, 0, 0, 0)                    \
     X(fluid, 0, 0, 0, 1, 0, 0)                  \
-    X(fluid_viscous, 0, 0, 0, 1, 1, 0)          \
+    X(fluid_viscous, 0, 0, 0, 1, SPS__VISCOUS_NEWTON, 0) \
     X(granular, 1, 0, 0, 1, 0, 0)               \
-    X(granular_diffusion, 1, 0, 0, 1, 0, 1)
+    X(granular_diffusion, 1, 0, 0, 1, 0, 1)     \
+    X(plain_kv, 0, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
+    X(pairs_kv, 0, 0, 1, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
+    X(stress_kv, 1, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
+    X(stress_pairs_kv, 1, 0, 1, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
+    X(oas_kv, 1, 1, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0)
 #define SPS__PRESSURE_INSTANCES(variant, stress, art, paired, limited, viscous, diffusion) \
     SPS__INSTANCES(pressure, variant, stress, art, paired, limited, viscous, diffusion)
 SPS__PRESSURE_VARIANTS(SPS__PRESSURE_INSTANCES)
@@ -4680,7 +4847,7 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
     f2 = (w->p[i] + m->p - b->z_riemann * beta * u) * dw * vol;
     for (a = 0; a < w->dim; ++a) {
         acc[a] -= f2 * e[a];
-        if (b->model.viscous) acc[a] += 2 * b->def.material.viscosity * dw * vol / (r + SPS_R(0.01) * w->h) * (w->vel[a][i] - m->vv[a]);
+        if (b->model.viscous == SPS__VISCOUS_NEWTON) acc[a] += 2 * b->def.material.viscosity * dw * vol / (r + SPS_R(0.01) * w->h) * (w->vel[a][i] - m->vv[a]);
     }
     if (b->model.stress) { /* (tau_i + tau_j') . e dW V_j */
         const sps_real* ti = b->tau + (size_t)6 * (i - b->begin);
@@ -5470,6 +5637,19 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
     }
 }
 
+/* The Kelvin-Voigt force on particle i from its reference neighbour j (>>material: Kelvin-Voigt),
+   added to f: 2 (d + 2) eta V0_i V0_j dW(R_ij) / R_ij (v_ij . e_ij) e_ij with the current
+   direction e_ij (xij = x_j - x_i, inv_r = 1/|xij|); weight = V0_i V0_j dW / R_ij. Central and
+   zero for a rigid motion, as for the updated-Lagrangian bodies. */
+static void sps__tl_kelvin_voigt(const sps_world* w, const sps__body* b, int i, int j, const sps_real xij[3], sps_real inv_r,
+                                 sps_real weight, int dim, sps_real f[3]) {
+    sps_real u = 0, s;
+    int a;
+    for (a = 0; a < dim; ++a) u += (w->vel[a][i] - w->vel[a][j]) * xij[a];
+    s = sps__kelvin_voigt_coefficient(dim, b) * weight * u * inv_r * inv_r;
+    for (a = 0; a < dim; ++a) f[a] += s * xij[a];
+}
+
 /* Force pass of lane group g (in the pressure pass's place): the stress force of TL eq. 24,
    f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji))
        = sum_j V0_i V0_j dW (Q_i + Q_j) E_ij
@@ -5493,12 +5673,11 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
     const int springs = half_alpha > 0, turn = b->def.hourglass == SPS_HOURGLASS_VARIATIONAL;
     const sps_real viscosity = b->def.artificial_viscosity * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) * w->h * b->rho0;
     int l, a, c, k;
-    (void)dt;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
         const sps_real *Qi = b->tl_stress + (size_t)9 * o, *Fi = b->tl_deformation + (size_t)9 * o;
         const sps_real vi = SPS__V0(w, b, i), Ei = springs ? sps__tl_hourglass_modulus(b, o, E, Y, plastic) : 0;
-        sps_real f[3] = {0, 0, 0};
+        sps_real f[3] = {0, 0, 0}, damp[3] = {0, 0, 0}; /* damp: the Kelvin-Voigt force, for its work */
         for (k = 0; k < w->nb_count[i]; ++k) {
             const int j = w->nb_j[first + k * SPS__LANES], oj = j - b->begin;
             const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
@@ -5525,8 +5704,17 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
                 damper = -viscosity * vv * e.dw * vx / (SPS__SQRT(x2) * (x2 + SPS_R(0.01) * w->h * w->h));
                 for (a = 0; a < dim; ++a) f[a] += damper * x[a];
             }
+            if (b->viscous_work) {
+                sps_real X[3], x[3];
+                const sps_real inv_r = 1 / SPS__SQRT(sps__tl_pair_vectors(w, i, j, &e, dim, X, x));
+                sps__tl_kelvin_voigt(w, b, i, j, x, inv_r, vv * e.dw / e.r, dim, damp);
+            }
         }
         for (a = 0; a < dim; ++a) w->acc_p[a][i] = f[a] / w->mass[i];
+        if (b->viscous_work) {
+            for (a = 0; a < dim; ++a) w->acc_p[a][i] += damp[a] / w->mass[i];
+            b->viscous_work[o] -= dt * (damp[0] * w->vel[0][i] + damp[1] * w->vel[1][i] + (dim == 3 ? damp[2] * w->vel[2][i] : 0));
+        }
     }
 }
 
@@ -5641,7 +5829,27 @@ static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
        sigma_i += sigma_wall(d),    F_i += 2 V_i K sigma_i W_plane(d) n
    (K the body's). A no-slip wall adds F_i -= 2 V_i rho0 c0 W_plane(d) v_t, a drag on the
    tangential velocity with the Riemann solver's impedance (it brings the contact layer to rest
-   in about one acoustic time). */
+   in about one acoustic time).
+   Coulomb friction (mu > 0: body friction, sps_world_set_wall_friction; a pair's coefficient
+   is the geometric mean sqrt(mu_a mu_b), Box2D's b2MixFriction) is that drag bounded by mu
+   times the normal force of the same pair or wall:
+       F_t = -min(D |v_t|, mu F_n) v_t / |v_t|,
+   a velocity-regularised law: below the bound the contact sticks through the drag D (a creep
+   at the speed that makes D |v_t| carry the load: for a block of height H on a slope, about
+   g H sin(theta) / c0, since the drag of a layer sums to the impedance rho0 c0 per unit area;
+   measured 0.2-0.5 % of the frictionless distance, bench/VALIDATION.md, "Friction"), above it
+   the contact slides with the Coulomb force. Why not a tangential spring (elastic stick, no
+   creep): it needs a history per contact pair and per particle and wall, carried over list
+   rebuilds and saved in restarts, for a creep that the drag already keeps below 1 % of the
+   motion it stops. For a wall, F_n = 2 V_i K sigma_i W_plane(d) and D = 2 V_i rho0 c0 W_plane(d)
+   (the no-slip drag: SPS_WALL_NO_SLIP is this law with mu = infinity, and keeps its meaning);
+   for a pair of particles of two bodies, F_n = -V_i V_j K_ij (sigma_i + sigma_j) dW_ij (the
+   repulsion's magnitude) and D = -2 V_i V_j Z_ij dW_ij, Z_ij the harmonic mean of the bodies'
+   impedances rho0 c0, v_t the tangential part of v_i - v_j: both symmetric in i and j and v_t
+   antisymmetric, so F_t,ji = -F_t,ij and linear momentum stays exact (a tangential pair force
+   has a torque about the pair's midpoint: angular momentum is not exact with friction between
+   bodies, as the torque is real for two bodies in contact only when the forces act at one
+   point). A scene without friction runs none of this (w->friction = 0). */
 
 SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], const sps_real normal[3], sps_wall_slip slip) {
     sps__wall wall;
@@ -5696,6 +5904,31 @@ SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], co
             normal[a] = side ? -1 : 1; /* inwards */
             if ((r = sps_world_add_wall(w, point, normal, slip)) != SPS_OK) return r;
         }
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_set_wall_friction(sps_world* w, int wall, sps_real mu) {
+    int k;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!(mu >= 0) || !sps__finite(mu)) {
+        sps__set_error(w, 0, "sps_world_set_wall_friction: mu = %g, allowed finite >= 0 (Coulomb coefficient; 0: none)", (double)mu);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (wall < -1 || wall >= w->nwalls || w->nwalls == 0) {
+        sps__set_error(w, 0, "sps_world_set_wall_friction: wall = %d, allowed -1 (all) or 0..%d (the walls added so far, %d)", wall,
+                       w->nwalls - 1, w->nwalls);
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (k = 0; k < w->nwalls; ++k)
+        if ((wall < 0 || k == wall) && w->walls[k].slip == SPS_WALL_NO_SLIP && mu > 0) {
+            sps__set_error(w, 0, "sps_world_set_wall_friction: wall %d is no-slip, which holds the tangential velocity with no Coulomb "
+                           "bound (mu = infinity); mu = %g is allowed on free-slip walls", k, (double)mu);
+            return SPS_ERR_INVALID_ARG;
+        }
+    for (k = 0; k < w->nwalls; ++k)
+        if (wall < 0 || k == wall) w->walls[k].friction = mu;
+    w->contact_dirty = 1;
+    sps__rearm_watchdog(w);
     return SPS_OK;
 }
 
@@ -5819,11 +6052,35 @@ static sps_result sps__find_contact_pairs(sps_world* w) {
     return SPS_OK;
 }
 
+/* A contact's friction coefficient from its two sides' (the chapter's head). */
+static sps_real sps__mix_friction(sps_real mu_a, sps_real mu_b) { return SPS__SQRT(mu_a * mu_b); }
+
+/* Whether the scene has friction (w->friction) and, if two touching bodies have, the table of
+   their coefficients (nbodies^2, made at commit after the touch table). */
+static sps_result sps__commit_friction(sps_world* w) {
+    int a, b, k, pairs = 0;
+    for (a = 0; a < w->nbodies; ++a) {
+        const sps_real mu = w->bodies[a].def.friction;
+        for (k = 0; k < w->nwalls; ++k) w->friction |= sps__mix_friction(mu, w->walls[k].friction) > 0;
+        for (b = 0; b < w->nbodies; ++b) pairs |= w->touch[(size_t)a * w->nbodies + b] && sps__mix_friction(mu, w->bodies[b].def.friction) > 0;
+    }
+    w->friction |= pairs;
+    sps__free(w, w->pair_friction);
+    w->pair_friction = NULL;
+    if (!pairs) return SPS_OK;
+    if (!(w->pair_friction = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)w->nbodies * (size_t)w->nbodies))) return SPS_ERR_OUT_OF_MEMORY;
+    for (a = 0; a < w->nbodies; ++a)
+        for (b = 0; b < w->nbodies; ++b)
+            w->pair_friction[(size_t)a * w->nbodies + b] = sps__mix_friction(w->bodies[a].def.friction, w->bodies[b].def.friction);
+    return SPS_OK;
+}
+
 /* The pair table of which bodies touch (nbodies^2 flags), made at commit; and the contact
    storage that the scene needs: none without walls or touching bodies. */
 static sps_result sps__commit_contact(sps_world* w) {
     int a, b;
     w->contact_bodies = sps__any_contact(w);
+    w->friction = 0;
     if (!w->contact_bodies && w->nwalls == 0) return SPS_OK;
     if (w->touch_n != w->nbodies) {
         sps__free(w, w->touch);
@@ -5833,6 +6090,7 @@ static sps_result sps__commit_contact(sps_world* w) {
     }
     for (a = 0; a < w->nbodies; ++a)
         for (b = 0; b < w->nbodies; ++b) w->touch[(size_t)a * w->nbodies + b] = (unsigned char)(a != b && sps__bodies_touch(w, a, b));
+    if (sps__commit_friction(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
     if (w->sigma_cap < w->cap) {
         sps__free(w, w->sigma);
         w->sigma_cap = 0;
@@ -5894,8 +6152,44 @@ static sps_real sps__contact_energy(const sps_world* w, int i) {
     return w->vol[i] * (SPS_R(0.5) * k_pair * sigma * sigma + k_wall * sigma_wall * sigma_wall);
 }
 
+/* The Coulomb friction force per volume of particle i, added to f: -min(drag |v_t|, mu f_n) v_t/|v_t|
+   for the tangential velocity v_t, normal force f_n and stick drag `drag` of one contact (the
+   chapter's head). */
+static void sps__add_friction(sps_real mu, sps_real f_n, sps_real drag, const sps_real v_t[3], int dim, sps_real f[3]) {
+    const sps_real speed = SPS__SQRT(v_t[0] * v_t[0] + v_t[1] * v_t[1] + v_t[2] * v_t[2]), bound = mu * f_n;
+    const sps_real coefficient = drag * speed > bound ? bound / speed : drag; /* sliding : sticking */
+    int a;
+    for (a = 0; a < dim; ++a) f[a] -= coefficient * v_t[a];
+}
+
+/* The friction of particle i with particle j of another body (bodies bi, bj), d = x_i - x_j at
+   distance r, dw = dW(r), normal force per volume f_n (chapter's head). */
+static void sps__pair_friction(const sps_world* w, const sps__body* bi, int i, int j, const sps_real d[3], sps_real r, sps_real dw,
+                               sps_real f_n, sps_real f[3]) {
+    const sps__body* bj = &w->bodies[w->body[j]];
+    const sps_real mu = w->pair_friction[(size_t)w->body[i] * w->nbodies + w->body[j]];
+    sps_real v[3] = {0, 0, 0}, v_t[3] = {0, 0, 0}, un = 0;
+    int a;
+    if (!(mu > 0)) return;
+    for (a = 0; a < w->dim; ++a) { v[a] = w->vel[a][i] - w->vel[a][j]; un += v[a] * d[a] / r; }
+    for (a = 0; a < w->dim; ++a) v_t[a] = v[a] - un * d[a] / r;
+    sps__add_friction(mu, f_n, -2 * sps__contact_stiffness(bi->z_riemann, bj->z_riemann) * dw * w->vol[j], v_t, w->dim, f);
+}
+
+/* The friction of particle i with wall wl (plane = W_plane(d)): the no-slip drag bounded by mu
+   times the wall's normal force per volume f_n (chapter's head). */
+static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, const sps__wall* wl, sps_real f_n, sps_real dt, sps_real f[3]) {
+    const sps_real mu = sps__mix_friction(bi->def.friction, wl->friction);
+    sps_real v_t[3] = {0, 0, 0}, vn = 0;
+    int a;
+    if (!(mu > 0)) return;
+    for (a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];
+    for (a = 0; a < w->dim; ++a) v_t[a] = w->vel[a][i] - vn * wl->normal[a];
+    sps__add_friction(mu, f_n, w->rho[i] / (2 * dt), v_t, w->dim, f);
+}
+
 /* Adds the contact accelerations of particle i to acc_p (see the chapter's head). */
-static void sps__contact_force(sps_world* w, int i) {
+static void sps__contact_force(sps_world* w, int i, sps_real dt) {
     const sps__body* bi = &w->bodies[w->body[i]];
     const sps_real si = w->sigma[i], vi_mi = w->vol[i] / w->mass[i];
     sps_real f[3] = {0, 0, 0};
@@ -5904,12 +6198,14 @@ static void sps__contact_force(sps_world* w, int i) {
         for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
             const int j = w->ct_j[k];
             const sps_real kij = sps__contact_stiffness(bi->mat.K, w->bodies[w->body[j]].mat.K);
-            sps_real d[3] = {0, 0, 0}, r2 = 0, r, s;
+            sps_real d[3] = {0, 0, 0}, r2 = 0, r, s, dw;
             for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
             r = SPS__SQRT(r2);
             if (!(r > 0)) continue; /* coincident particles: no direction */
-            s = -kij * (si + w->sigma[j]) * sps_world_kernel_derivative(w, r) / r * w->vol[j];
+            dw = sps_world_kernel_derivative(w, r);
+            s = -kij * (si + w->sigma[j]) * dw / r * w->vol[j];
             for (a = 0; a < w->dim; ++a) f[a] += s * d[a];
+            if (w->pair_friction) sps__pair_friction(w, bi, i, j, d, r, dw, s * r, f);
         }
     for (k = 0; k < w->nwalls && !bi->model.mirrored; ++k) { /* fluids' and granular walls: sps__mirror_force */
         const sps__wall* wl = &w->walls[k];
@@ -5921,6 +6217,8 @@ static void sps__contact_force(sps_world* w, int i) {
         if (wl->slip == SPS_WALL_NO_SLIP) {
             for (a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];
             for (a = 0; a < w->dim; ++a) f[a] -= 2 * bi->z_riemann * plane * (w->vel[a][i] - vn * wl->normal[a]);
+        } else if (w->friction) {
+            sps__wall_friction(w, bi, i, wl, 2 * bi->mat.K * si * plane, dt, f);
         }
     }
     for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += vi_mi * f[a];
@@ -5929,13 +6227,13 @@ static void sps__contact_force(sps_world* w, int i) {
 
 /* The contact pass of a sub-step (after the pressure pass, before the kick): the contact
    densities of all particles, then their forces. Work-shared over the step's team. */
-static void sps__contact_pass(sps_world* w) {
+static void sps__contact_pass(sps_world* w, sps_real dt) {
     int i;
     if (!w->contact_bodies && w->nwalls == 0) return;
     SPS__PRAGMA(omp for schedule(static))
     for (i = 0; i < w->n; ++i) w->sigma[i] = sps__contact_density(w, i);
     SPS__PRAGMA(omp for schedule(static))
-    for (i = 0; i < w->n; ++i) sps__contact_force(w, i);
+    for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
 }
 
 /* >>step: the per-particle updates of a sub-step */
@@ -6404,6 +6702,7 @@ static sps__energies sps__body_energies(const sps_world* w, const sps__body* b) 
     }
     for (i = 0; b->driven_work && i < b->end - b->begin; ++i) e.work += b->driven_work[i];
     for (i = 0; b->plastic_work && i < b->end - b->begin && i < b->field_count; ++i) e.plastic += b->plastic_work[i];
+    for (i = 0; b->viscous_work && i < b->end - b->begin && i < b->field_count; ++i) e.plastic += b->viscous_work[i]; /* dissipated too */
     return e;
 }
 
@@ -6593,7 +6892,7 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt) {
     sps__half_drift(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.stress, dt); /* TL */
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
-    sps__contact_pass(w);
+    sps__contact_pass(w, dt);
     vmax2 = sps__kick(w, t, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
@@ -6706,6 +7005,7 @@ static sps_result sps__update_configuration(sps_world* w) {
 static sps_real sps__substep_dt(const sps_world* w, sps_real t, sps_real vmax, int sub, sps_real elapsed, sps_real dt_ad,
                                 sps_real t_limit) {
     sps_real dt = w->def.cfl_acoustic * w->h / (w->c0_max + vmax);
+    if (dt > w->viscous_dt) dt = w->viscous_dt; /* Kelvin-Voigt bodies (INFINITY without) */
     if (sub > 0 && elapsed + dt > dt_ad) dt = dt_ad - elapsed;
     if (t + dt > t_limit) dt = t_limit - t;
     return dt;
@@ -7095,6 +7395,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
             out->plastic_work += b->plastic_work[i - b->begin];
             if (alpha > out->max_plastic_strain) out->max_plastic_strain = alpha;
         }
+        if (b->viscous_work && i - b->begin < b->field_count) out->viscous_work += b->viscous_work[i - b->begin];
         if (SPS__SQRT(v2) > out->max_speed) out->max_speed = SPS__SQRT(v2);
         if (w->rho[i] < out->min_density) out->min_density = w->rho[i];
         if (w->rho[i] > out->max_density) out->max_density = w->rho[i];
@@ -7111,20 +7412,21 @@ SPSDEF const char* sps_diagnostics_csv_header(void) {
     return "time,kinetic_energy,strain_energy,total_energy,momentum_x,momentum_y,momentum_z,"
            "angular_momentum_x,angular_momentum_y,angular_momentum_z,max_speed,min_density,max_density,"
            "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic,contact_energy,potential_energy,prescribed_work,"
-           "plastic_work,max_plastic_strain,surface_particles";
+           "plastic_work,max_plastic_strain,surface_particles,viscous_work";
 }
 
 SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t size) {
     if (!d || (!buf && size)) return -1;
-    /* total_energy: kinetic + strain + plastic work */
-    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g,%.9g,%.6g,%d",
+    /* total_energy: kinetic + strain + plastic work + viscous work */
+    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%.9g",
                     (double)d->time, (double)d->kinetic_energy, (double)d->strain_energy,
-                    (double)(d->kinetic_energy + d->strain_energy + d->plastic_work), (double)d->linear_momentum[0],
+                    (double)(d->kinetic_energy + d->strain_energy + d->plastic_work + d->viscous_work), (double)d->linear_momentum[0],
                     (double)d->linear_momentum[1], (double)d->linear_momentum[2], (double)d->angular_momentum[0],
                     (double)d->angular_momentum[1], (double)d->angular_momentum[2], (double)d->max_speed,
                     (double)d->min_density, (double)d->max_density, (double)d->hourglass, (double)d->min_spacing, d->acoustic_steps,
                     d->advection_steps, (double)d->dt_acoustic, (double)d->contact_energy, (double)d->potential_energy,
-                    (double)d->prescribed_work, (double)d->plastic_work, (double)d->max_plastic_strain, d->surface_particles);
+                    (double)d->prescribed_work, (double)d->plastic_work, (double)d->max_plastic_strain, d->surface_particles,
+                    (double)d->viscous_work);
 }
 
 /* >>access */

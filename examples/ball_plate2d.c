@@ -82,11 +82,13 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.015, .vtk_every = 0.001, .csv_every = 5e-5,
                         .E = BALL_PLATE_E, .nu = BALL_PLATE_NU, .rho0 = BALL_PLATE_RHO0, .out = "out/" BP_NAME, .jitter = 0, .seed = 1,
                         PNG_DEFAULTS};
+    damping_options k = {0, 0};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &p.dp, "particle spacing [m] (paper: 0.0025)", 5e-4, 0.02, NULL},
         {"v0", OPT_REAL, &p.v0, "ball speed in units of c0 (paper: 0.02, 0.06, 0.12)", 0, 1, NULL},
         {"fill", OPT_CHOICE, &fill, "ball particles: body-fitted (sps_body_add_sdf_relaxed) or the lattice", 0, 0, "relaxed|lattice"},
         {"relax-iterations", OPT_INT, &p.relax_iterations, "shifting steps of the relaxed fill, 0 = the library's 300", 0, 100000, NULL},
+        DAMPING_OPTION_SPECS(k),
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -100,6 +102,7 @@ int main(int argc, char** argv) {
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, BP_ABOUT, opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
+    apply_damping(&k, &bd);
     p.relaxed = fill == 0;
     wd.log = ex_log;
     memset(&s, 0, sizeof s);
@@ -132,7 +135,7 @@ int main(int argc, char** argv) {
                "energy_end=%.6g energy_end_rel=%.2f%% energy_max_rise=%.3f%% energy_ok=%s kinetic_max_rel=%.4f ball_kinetic_end=%.6g ball_strain_end=%.6g "
                "plate_kinetic_end=%.6g plate_strain_end=%.6g min_gap_dp=%.3f t_min_gap=%.5f gap_ok=%s t_contact=%.5f "
                "ball_py_start=%.6g ball_py_end=%.6g rebound=%.3f paper=%s %s particles=%d steps=%ld advection_steps=%ld "
-               "us_per_step=%.1f setup_s=%.2f wall_s=%.2f out=%s\n",
+               "us_per_step=%.1f setup_s=%.2f wall_s=%.2f%s out=%s\n",
                BP_NAME, shear_name(c.shear), p.v0, v0_ms, (double)c0r, p.dp, fill ? "lattice" : "relaxed", c.t_end,
                s.output.hourglass_max, (double)d.hourglass, s.plate_hourglass_max, (double)dpl.hourglass, s.output.min_spacing,
                (double)d.min_spacing, s.e_start, e_end, 100 * (e_end - s.e_start) / s.e_start,
@@ -141,7 +144,7 @@ int main(int argc, char** argv) {
                s.t_gap_min, s.gap_min > 0.5 ? "yes" : "NO", s.t_contact, py0, (double)db.linear_momentum[1],
                py0 != 0 ? -db.linear_momentum[1] / py0 : 0, paper_expectation(c.shear, p.v0), common_result_fields(&c),
                sps_world_particle_count(w), d.acoustic_steps, d.advection_steps,
-               d.acoustic_steps > 0 ? 1e6 * wall / (double)d.acoustic_steps : 0, setup, wall, c.out);
+               d.acoustic_steps > 0 ? 1e6 * wall / (double)d.acoustic_steps : 0, setup, wall, damping_result_fields(&k), c.out);
     }
     sps_world_destroy(w);
     return 0;

@@ -58,7 +58,7 @@ typedef struct {
 #define EX_HOURGLASS_OPTIONS(form, q1)                                                                                     \
     {"hourglass", OPT_CHOICE, &(form), "TL hourglass force: variational (-grad of the springs' energy) or paper (TL eq. 32 alone)", \
      0, 0, "variational|paper"},                                                                                               \
-    {"viscosity", OPT_REAL, &(q1), "TL artificial viscosity q1 (Monaghan's linear term; the TL author's LAMMPS input 0.06)", 0, 1, NULL}
+    {"artificial-viscosity", OPT_REAL, &(q1), "TL artificial viscosity q1 (Monaghan's linear term; the TL author's LAMMPS input 0.06)", 0, 1, NULL}
 EX_UNUSED static const char* ex_hourglass_name(int form) { return form == SPS_HOURGLASS_PAPER ? "paper" : "variational"; }
 
 EX_UNUSED static void opt_usage(const char* prog, const char* about, const opt_spec* o, int n) {
@@ -302,6 +302,27 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->rotation = (sps_rotation)c->rotation; /* choices in enum order */
     bd->transport = (sps_transport)c->transport; /* likewise */
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
+}
+
+/* ---- contact friction and material damping (CONTACT and DAMPING in the header's manual) ---- */
+typedef struct {
+    double friction;  /* Coulomb mu of the bodies (a pair's: sqrt(mu_a mu_b)) */
+    double viscosity; /* Kelvin-Voigt eta of the solids [Pa s] */
+} damping_options;
+#define DAMPING_OPTION_SPECS(k)                                                                      \
+    {"friction", OPT_REAL, &(k).friction, "Coulomb friction coefficient mu of the bodies", 0, 10, NULL}, \
+    {"viscosity", OPT_REAL, &(k).viscosity, "Kelvin-Voigt material damping eta [Pa s]", 0, 1e9, NULL}
+/* Copies them into a solid's body def. */
+EX_UNUSED static void apply_damping(const damping_options* k, sps_body_def* bd) {
+    bd->friction = (sps_real)k->friction;
+    bd->material.viscosity = (sps_real)k->viscosity;
+}
+/* The RESULT fields of the options, when set ("" otherwise: the default scene's line is unchanged). */
+EX_UNUSED static const char* damping_result_fields(const damping_options* k) {
+    static char fields[96];
+    fields[0] = 0;
+    if (k->friction > 0 || k->viscosity > 0) snprintf(fields, sizeof fields, " friction=%g viscosity=%g", k->friction, k->viscosity);
+    return fields;
 }
 
 /* 1 if bodies made with these options integrate the shear stress (von Mises, strain energy):

@@ -4,7 +4,10 @@
    holder for x < 0 whose particles are clamped (set-up: scenes/plate2d.h). It starts from the
    first bending mode, v_y(x) = v_f c0 f(x)/f(L), and swings freely. We measure the first period at the free end
    (x = L, y = 0) and compare it with the papers' (ANG Table 1, H/dp = 30) and with thin-plate
-   theory (0.254 s).
+   theory (0.254 s). With --viscosity eta (Kelvin-Voigt material damping) the amplitude decays:
+   zeta is the damping ratio fitted to the cycles' amplitudes (ln A_k = c - 2 pi zeta k; the
+   Riemann dissipation's share is what eta = 0 gives), zeta_kv_theory the share of eta,
+   omega E'_v / (2 E') of a viscoelastic plane-strain beam (kelvin_voigt_ratio).
 
    With --shear og --transport tvf|utvf it is benchmark C3 (UTVF 4.3): the original shear
    formulation held together by a transport-velocity correction.
@@ -35,7 +38,8 @@ typedef struct {
     period_detector period;
     output_plan output;
     double amp_first, amp_last, amp_cur, t_end, wall0; /* amplitudes: max |deflection| per cycle */
-    int quiet;
+    double amp[64];       /* every cycle's (--viscosity: the decay fit) */
+    int quiet, cycles;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -49,6 +53,7 @@ static int on_step(sps_world* w, void* user) {
     if (period_feed(&s->period, t, u[1])) { /* a cycle ended */
         if (s->amp_first == 0) s->amp_first = s->amp_cur;
         s->amp_last = s->amp_cur;
+        if (s->cycles < 64) s->amp[s->cycles++] = s->amp_cur;
         s->amp_cur = 0;
     }
     snprintf(extra, sizeof extra, ",%.9g", (double)u[1]);
@@ -57,12 +62,34 @@ static int on_step(sps_world* w, void* user) {
     return 0;
 }
 
+/* The modal damping ratio from the cycles' amplitudes: ln A_k = c - 2 pi zeta k, a line fit. */
+static double decay_ratio(const double* amp, int n) {
+    double sk = 0, sy = 0, skk = 0, sky = 0;
+    int k;
+    for (k = 0; k < n; ++k) {
+        sk += k; sy += log(amp[k]); skk += (double)k * k; sky += k * log(amp[k]);
+    }
+    return n > 1 ? -(n * sky - sk * sy) / (n * skk - sk * sk) / (2 * PI) : 0;
+}
+
+/* The damping ratio a Kelvin-Voigt viscosity eta adds to a plane-strain beam's bending mode of
+   angular frequency omega: zeta = omega E'_v / (2 E'), E' = 4 mu (lambda + mu)/(lambda + 2 mu) and
+   E'_v = eta (dE'/dlambda + dE'/dmu), the library's viscous stress having Lame viscosities
+   lambda_v = mu_v = eta (the correspondence principle, to first order in omega eta / E'). */
+static double kelvin_voigt_ratio(double E, double nu, double eta, double omega) {
+    const double mu = E / (2 * (1 + nu)), lambda = 2 * mu * nu / (1 - 2 * nu), D = lambda + 2 * mu;
+    const double e_plane = 4 * mu * (lambda + mu) / D;
+    const double d_lambda = 4 * mu * mu / (D * D), d_mu = (4 * D * D - 8 * mu * (lambda + mu)) / (D * D);
+    return omega * eta * (d_lambda + d_mu) / (2 * e_plane);
+}
+
 int main(int argc, char** argv) {
     plate2d_params p = {.res = 10, .vf = 0.05};
     int solver = 0;       /* ul | tl */
     double alpha = 50;    /* TL eq. 32 */
-    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
+    double viscosity = 0; /* Kelvin-Voigt eta [Pa s] */
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 1.0, .vtk_every = 0.1, .csv_every = 0.002,
                         .E = PLATE2D_E, .nu = PLATE2D_NU, .rho0 = PLATE2D_RHO0, .out = "out/plate2d", .jitter = 0, .seed = 1,
                         PNG_DEFAULTS};
@@ -71,7 +98,8 @@ int main(int argc, char** argv) {
         {"vf", OPT_REAL, &p.vf, "initial velocity factor v_f", 0, 1, NULL},
         {"solver", OPT_CHOICE, &solver, "ul: updated Lagrangian (--shear); tl: total Lagrangian, Saint Venant-Kirchhoff", 0, 0, "ul|tl"},
         {"alpha", OPT_REAL, &alpha, "tl: hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
-        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
+        EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
+        {"viscosity", OPT_REAL, &viscosity, "Kelvin-Voigt viscosity eta [Pa s]: material damping (prints the decay ratio)", 0, 1e9, NULL},
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -89,8 +117,9 @@ int main(int argc, char** argv) {
         bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
         bd.hourglass_alpha = alpha;
         bd.hourglass = (sps_hourglass)hourglass_form;
-        bd.artificial_viscosity = (sps_real)viscosity;
+        bd.artificial_viscosity = (sps_real)artificial_viscosity;
     }
+    bd.material.viscosity = viscosity;
     p.jitter = c.jitter;
     p.seed = c.seed;
     wd.log = ex_log;
@@ -108,13 +137,15 @@ int main(int argc, char** argv) {
         sps_diagnostics d;
         sps_body all = {0};
         ex_check(w, sps_world_diagnostics(w, all, &d));
-        printf("RESULT case=plate2d solver=%s alpha=%g hourglass=%s viscosity=%g shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
+        printf("RESULT case=plate2d solver=%s alpha=%g hourglass=%s artificial_viscosity=%g shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
                "analytical=%.6f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
-               "hourglass_end=%.3g min_spacing=%.3f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
-               solver ? "tl" : "ul", solver ? alpha : 0, solver ? ex_hourglass_name(hourglass_form) : "-", solver ? viscosity : 0, solver ? "-" : shear_name(c.shear), p.res, p.vf, c.stepping ? "single" : "dual", c.nu, c.jitter, period, paper, analytical,
+               "hourglass_end=%.3g min_spacing=%.3f viscosity=%g zeta=%.5f zeta_kv_theory=%.5f %s particles=%d steps=%ld advection_steps=%ld "
+               "wall_s=%.2f out=%s\n",
+               solver ? "tl" : "ul", solver ? alpha : 0, solver ? ex_hourglass_name(hourglass_form) : "-", solver ? artificial_viscosity : 0,
+               solver ? "-" : shear_name(c.shear), p.res, p.vf, c.stepping ? "single" : "dual", c.nu, c.jitter, period, paper, analytical,
                period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
-               s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing,
-               common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
+               s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing, viscosity,
+               decay_ratio(s.amp, s.cycles), period > 0 ? kelvin_voigt_ratio(c.E, c.nu, viscosity, 2 * PI / period) : 0, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
     }
     sps_world_destroy(w);
     return 0;

@@ -68,11 +68,13 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.012, .vtk_every = 0.001, .csv_every = 0.0001,
                         .E = RINGS2D_E, .nu = RINGS2D_NU, .rho0 = RINGS2D_RHO0, .out = "out/rings2d", .seed = 1, PNG_DEFAULTS};
     int fill = 0;
+    damping_options k = {0, 0};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &p.dp, "particle spacing [m]", 1e-4, 0.01, NULL},
         {"v0", OPT_REAL, &p.v0_c0, "speed of each ring [c0]", 0, 1, NULL},
         {"fill", OPT_CHOICE, &fill, "particles: body-fitted (sps_body_add_sdf_relaxed) or lattice", 0, 0, "relaxed|lattice"},
         {"iterations", OPT_INT, &p.iterations, "relaxation iterations, 0 = the library's default", 0, 100000, NULL},
+        DAMPING_OPTION_SPECS(k),
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -85,6 +87,7 @@ int main(int argc, char** argv) {
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "two rubber rings colliding (benchmark A5, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
+    apply_damping(&k, &bd);
     p.relaxed = fill == 0;
     wd.log = ex_log;
     memset(&s, 0, sizeof s);
@@ -107,10 +110,11 @@ int main(int argc, char** argv) {
         printf("RESULT case=rings2d shear=%s dp=%g v0=%g fill=%s ke0=%.4f ke0_analytical=%.4f energy_ring_start=%.4f energy_ring_end=%.4f "
                "paper_start=65.88 paper_end=55.61 energy_rise_max=%.3g%% mirror_err=%.3g ke_min=%.4f ke_min_t=%.5f paper_ke_min_t=0.005 "
                "momentum_x=%.3g hourglass_max=%.3g hourglass_end=%.3g min_spacing=%.3f gap_min=%.3f %s particles=%d steps=%ld "
-               "advection_steps=%ld wall_s=%.2f out=%s\n",
+               "advection_steps=%ld wall_s=%.2f%s out=%s\n",
                shear_name(c.shear), p.dp, p.v0_c0, p.relaxed ? "relaxed" : "lattice", s.ke0, ke_analytical, 0.5 * s.energy0, e_end, 100 * (s.energy_max - s.energy0) / s.energy0, s.mirror_err, s.kinetic_min,
                s.kinetic_min_t, (double)d.linear_momentum[0], s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing,
-               s.gap_min, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
+               s.gap_min, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
+               damping_result_fields(&k), c.out);
     }
     sps_world_destroy(w);
     return 0;

@@ -42,6 +42,9 @@ typedef struct pinned_case {
     int tl;                /* 0: updated Lagrangian; else the material kind of a total-Lagrangian body (J2 with plastic) */
     int damage;            /* total Lagrangian with damage (TL eqs. 45-46; a threshold the motion passes): its damage is hashed too */
 } pinned_case;
+/* A case named "...-damped-friction" has Kelvin-Voigt viscosity and friction 0.5 on a floor wall
+   with friction 0.5, and no clamp (issue 38). */
+#define DAMPED(c) (strstr((c)->name, "-damped-friction") != NULL)
 
 #define W SPS_KERNEL_WENDLAND_C2
 #define S SPS_KERNEL_CUBIC_SPLINE
@@ -108,6 +111,11 @@ static const pinned_case g_cases[] = {
     {"3d/tl-neo-hookean", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN, 0},
     {"3d/tl-j2", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_J2, 0},
     {"3d/tl-svk-damage", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 1},
+    /* issue 38: friction and Kelvin-Voigt damping in every pressure-pass variant and the TL force pass */
+    {"2d/all-shears-damped-friction", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/eno-a-pair-damped-friction", 3, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/j2-gno-a-pair-damped-friction", 2, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
+    {"2d/tl-neo-hookean-damped-friction", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN, 0},
 };
 #define NCASES ((int)(sizeof g_cases / sizeof g_cases[0]))
 
@@ -178,6 +186,10 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
         bd.material.kind = (sps_material_kind)c->tl;
         bd.damage_strain = c->damage ? (sps_real)1e-3 : 0;
     }
+    if (DAMPED(c)) {
+        bd.material.viscosity = 20;
+        bd.friction = (sps_real)0.5;
+    }
     if (sps_world_add_body(w, &bd, &b) != SPS_OK) return -1;
     lo[0] = (sps_real)x0; lo[1] = 0; lo[2] = 0;
     hi[0] = (sps_real)(x0 + len); hi[1] = (sps_real)hgt; hi[2] = (sps_real)dep;
@@ -188,6 +200,12 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
         sps_real tank_hi[3];
         tank_hi[0] = hi[0]; tank_hi[1] = 2 * hi[1]; tank_hi[2] = hi[2];
         return sps_world_add_box_walls(w, lo, tank_hi, c->dim == 2 ? SPS_FACE_Y_HI : SPS_FACE_Z_HI, SPS_WALL_NO_SLIP) == SPS_OK ? added : -1;
+    }
+    if (DAMPED(c)) { /* a floor with friction within the support of the lowest particles */
+        const sps_real point[3] = {0, (sps_real)-0.01, 0}, up[3] = {0, 1, 0};
+        if (index == 0 && (sps_world_add_wall(w, point, up, SPS_WALL_FREE_SLIP) != SPS_OK || sps_world_set_wall_friction(w, 0, (sps_real)0.5) != SPS_OK))
+            return -1;
+        return added;
     }
     clo[0] = lo[0] - 1; clo[1] = -1; clo[2] = -1;
     chi[0] = (sps_real)(x0 + 0.021); chi[1] = 1; chi[2] = 1;

@@ -113,6 +113,11 @@ SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear)
     static const double x_of[5] = {-0.7, 0.3, -0.2, 0.75, -0.45};
     jelly_drop* d = &s->drops[s->n_drops];
     sps_body_def bd = jelly_body_def(shear, "dropped");
+    /* dropped blocks settle: friction among them (the scene's other bodies have none, so the
+       pair's sqrt(mu_a mu_b) is 0 there) and Kelvin-Voigt damping low enough (nu / h = 0.4 m/s
+       against c0 18 m/s) to leave the sub-step as it is (DAMPING, CONTACT) */
+    bd.friction = (sps_real)0.5;
+    bd.material.viscosity = 20;
     /* just above the view, clear of the spinning wheels' corners (bodies must not start overlapping) */
     const double cx = x_of[s->n_drops % 5], cy = JELLY_VIEW_H + JELLY_BLOCK / 2 + 0.06;
     sps_real centre[3] = {cx, cy, 0};

@@ -1,0 +1,189 @@
+/* bounce.c - a rubber disc (2D) or ball (3D) dropped on, or thrown at, a floor: Kelvin-Voigt
+   material damping brings it to rest, Coulomb friction makes a thrown one leave rolling
+   (DAMPING and CONTACT in the header's manual).
+
+   A disc or ball of radius 0.05 (body-fitted, sps_body_add_sdf_relaxed), rho0 1000, E 1e6,
+   nu 0.3, Kelvin-Voigt viscosity --viscosity eta [Pa s], ENO-A with pair rotation and the shear
+   stress tracked (the strain energy's shear part is in the account), set here so that a change
+   of the library's defaults does not move the figures; the floor is the analytic wall y = 0 with
+   friction --mu (the body's too: the pair's sqrt(mu mu) = mu); gravity 9.81 down.
+   Dropped (--speed 0): released at rest with its lowest point --height above the floor. We
+   report when its kinetic energy first stays below 1e-6 of the energy it fell through, m g
+   height (t_rest; "never" within --tend), the number of bounces (contacts that ended), and the
+   energy account E = kinetic + strain + contact + gravity potential + dissipated work (the
+   Kelvin-Voigt and Riemann viscous work, sps_diagnostics.viscous_work): its largest departure
+   from the start over the run relative to m g height (account_error).
+   Thrown (--speed V > 0): starts just above the floor moving at V, --angle degrees below the
+   horizontal. A rigid disc (I = m R^2 / 2) that reaches rolling during the impact leaves with
+   v_t = omega R = 2/3 of its tangential speed (ball: 5/7), which takes a friction impulse of
+   1/3 (2/7) of m v_t; we report v_t and omega R (about the centre of mass) at the end of the
+   first flight (both stay constant in the air), and their ratio next to 1.
+
+   Build: make build/bounce      Run: ./build/bounce --viscosity 20
+   Expect: t_rest within a few seconds and account_error below 2 %; thrown with --speed 2 --angle 20
+   --mu 0.5: rolling_ratio = omega R / v_t within 3 % of 1. */
+#include "common.h"
+
+#define G 9.81
+#define RADIUS 0.05
+
+typedef struct {
+    output_plan output;
+    sps_body body;
+    double t_end, wall0, e_fall, account0, account_error, t_rest, t_below, v_t, omega_r;
+    int quiet, dim, bounces, touching, thrown;
+} run_state;
+
+typedef struct {
+    int dim;
+    double centre_y;
+} ball_shape;
+static sps_real ball_sdf(const sps_real x[3], void* user) {
+    const ball_shape* b = (const ball_shape*)user;
+    const double dy = x[1] - b->centre_y, dz = b->dim == 3 ? x[2] : 0;
+    return (sps_real)(sqrt(x[0] * x[0] + dy * dy + dz * dz) - RADIUS);
+}
+
+typedef struct {
+    double v[2];
+} launch;
+static void launch_velocity(const sps_real x[3], sps_real v[3], void* user) {
+    const launch* l = (const launch*)user;
+    (void)x;
+    v[0] = (sps_real)l->v[0];
+    v[1] = (sps_real)l->v[1];
+    v[2] = 0;
+}
+
+/* The body's mean velocity along x and its spin omega R about its centre of mass (z axis; the
+   sign of rolling towards +x). */
+static void slide_and_spin(const sps_world* w, double* v_t, double* omega_r) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    const sps_real *vx = sps_world_field(w, SPS_FIELD_VELOCITY_X), *vy = sps_world_field(w, SPS_FIELD_VELOCITY_Y);
+    const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
+    double mass = 0, c[2] = {0, 0}, v[2] = {0, 0}, moment = 0, inertia = 0;
+    int i, n = sps_world_particle_count(w);
+    for (i = 0; i < n; ++i) {
+        mass += m[i];
+        c[0] += m[i] * x[i]; c[1] += m[i] * y[i];
+        v[0] += m[i] * vx[i]; v[1] += m[i] * vy[i];
+    }
+    c[0] /= mass; c[1] /= mass; v[0] /= mass; v[1] /= mass;
+    for (i = 0; i < n; ++i) {
+        const double rx = x[i] - c[0], ry = y[i] - c[1];
+        moment += m[i] * (rx * (vy[i] - v[1]) - ry * (vx[i] - v[0]));
+        inertia += m[i] * (rx * rx + ry * ry);
+    }
+    *v_t = v[0];
+    *omega_r = -moment / inertia * RADIUS;
+}
+
+static int on_step(sps_world* w, void* user) {
+    run_state* s = (run_state*)user;
+    sps_diagnostics d;
+    double t = sps_world_time(w), account;
+    int touching;
+    ex_check(w, sps_world_diagnostics(w, s->body, &d));
+    touching = d.contact_energy > 0;
+    if (s->touching && !touching) ++s->bounces;
+    if (!touching && s->bounces == 1) slide_and_spin(w, &s->v_t, &s->omega_r); /* the first flight: until it lands again */
+    s->touching = touching;
+    if (d.kinetic_energy < 1e-6 * s->e_fall) {
+        if (s->t_below < 0) s->t_below = t;
+    } else {
+        s->t_below = -1;
+    }
+    account = d.kinetic_energy + d.strain_energy + d.contact_energy + d.potential_energy + d.viscous_work;
+    if (t == 0) s->account0 = account;
+    if (fabs(account - s->account0) > s->account_error) s->account_error = fabs(account - s->account0);
+    if (t >= s->output.next_csv - 1e-12) {
+        char extra[64];
+        snprintf(extra, sizeof extra, ",%.9g", account);
+        output_tick(w, &s->output, extra, &d);
+    }
+    progress(t, s->t_end, s->wall0, s->quiet);
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    int dim = 2;
+    double height = 0.2, viscosity = 20, mu = 0, speed = 0, angle = 20, dp = 0.005;
+    common_options c = {.shear = SPS_SHEAR_ENO_A, .rotation = SPS_ROTATION_PAIR, .cfl = 0.4, .t_end = 3, .vtk_every = 0.05,
+                        .csv_every = 0.002, .E = 1e6, .nu = 0.3, .rho0 = 1000, .out = "out/bounce", PNG_DEFAULTS};
+    opt_spec opts[] = {
+        {"dim", OPT_INT, &dim, "space dimension (2: disc, 3: ball)", 2, 3, NULL},
+        {"height", OPT_REAL, &height, "drop height of the lowest point above the floor [m]", 0.001, 100, NULL},
+        {"viscosity", OPT_REAL, &viscosity, "Kelvin-Voigt viscosity eta [Pa s] (0: none)", 0, 1e9, NULL},
+        {"mu", OPT_REAL, &mu, "Coulomb friction coefficient of the floor and the body", 0, 10, NULL},
+        {"speed", OPT_REAL, &speed, "throw speed [m/s] (0: dropped)", 0, 100, NULL},
+        {"angle", OPT_REAL, &angle, "throw angle below the horizontal [degrees]", 0, 90, NULL},
+        {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.001, 0.025, NULL},
+        COMMON_OPTION_SPECS(c),
+    };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    run_state s;
+    sps_diagnostics d;
+    ball_shape ball;
+    double wall, mass, gap;
+
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, "a rubber disc or ball dropped on, or thrown at, a floor", opts, (int)(sizeof opts / sizeof *opts));
+    apply_common(&c, &wd, &bd);
+    wd.dim = dim;
+    wd.dp = (sps_real)dp;
+    wd.gravity[1] = (sps_real)-G;
+    bd.name = "ball";
+    bd.track_stress = 1;
+    bd.friction = (sps_real)mu;
+    bd.material.viscosity = (sps_real)viscosity;
+    w = ex_create(&wd);
+    memset(&s, 0, sizeof s);
+    ex_check(w, sps_world_add_body(w, &bd, &s.body));
+    gap = speed > 0 ? 3 * dp : height; /* thrown: just outside the contact's reach (2h = 2.6 dp) */
+    ball.dim = dim;
+    ball.centre_y = RADIUS + gap;
+    {
+        const sps_real lo[3] = {-RADIUS, (sps_real)gap, -RADIUS}, hi[3] = {RADIUS, (sps_real)(2 * RADIUS + gap), RADIUS};
+        const sps_real point[3] = {0, 0, 0}, normal[3] = {0, 1, 0};
+        ex_check(w, sps_body_add_sdf_relaxed(w, s.body, lo, hi, ball_sdf, &ball, 0, NULL));
+        ex_check(w, sps_world_add_wall(w, point, normal, SPS_WALL_FREE_SLIP));
+        if (mu > 0) ex_check(w, sps_world_set_wall_friction(w, 0, (sps_real)mu));
+    }
+    if (speed > 0) {
+        launch l = {{speed * cos(angle * PI / 180), -speed * sin(angle * PI / 180)}};
+        ex_check(w, sps_body_set_velocity(w, s.body, launch_velocity, &l));
+    }
+    ex_check(w, sps_world_diagnostics(w, s.body, &d));
+    mass = 0;
+    {
+        const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
+        int i;
+        for (i = 0; i < sps_world_particle_count(w); ++i) mass += m[i];
+    }
+    s.e_fall = speed > 0 ? 0.5 * mass * speed * speed : mass * G * height;
+    s.t_end = c.t_end; s.quiet = c.quiet; s.dim = dim; s.thrown = speed > 0; s.t_below = -1;
+    output_open(&s.output, &c, "bounce", "velocity", ",account");
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
+    ex_check(w, sps_world_diagnostics(w, s.body, &d));
+    if (s.thrown) {
+        const double ideal = dim == 2 ? 2.0 / 3 : 5.0 / 7;
+        printf("RESULT case=bounce dim=%d thrown speed=%g angle=%g mu=%g viscosity=%g dp=%g v_t_out=%.5g omega_R_out=%.5g rolling_ratio=%.4f "
+               "theory=1 rel_error=%.2f%% v_t_over_v_t0=%.4f rigid_rolling=%.4f shear=%s %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
+               dim, speed, angle, mu, viscosity, dp, s.v_t, s.omega_r, s.v_t != 0 ? s.omega_r / s.v_t : 0,
+               100 * fabs(s.v_t != 0 ? s.omega_r / s.v_t - 1 : 1), s.v_t / (speed * cos(angle * PI / 180)), ideal, shear_name(c.shear),
+               common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
+    } else {
+        char rest[32];
+        if (s.t_below >= 0) snprintf(rest, sizeof rest, "%.3f", s.t_below);
+        else snprintf(rest, sizeof rest, "never");
+        printf("RESULT case=bounce dim=%d dropped height=%g mu=%g viscosity=%g dp=%g t_rest=%s kinetic_end_rel=%.3g bounces=%d "
+               "viscous_work=%.5g fall_energy=%.5g account_error=%.3f%% target=2%% shear=%s %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
+               dim, height, mu, viscosity, dp, rest, (double)d.kinetic_energy / s.e_fall, s.bounces, (double)d.viscous_work, s.e_fall,
+               100 * s.account_error / s.e_fall, shear_name(c.shear), common_result_fields(&c), sps_world_particle_count(w),
+               d.acoustic_steps, wall, c.out);
+    }
+    sps_world_destroy(w);
+    return 0;
+}
