@@ -184,9 +184,24 @@
       a column stands on its floor at its hydrostatic pressure; a backstop (the solids' contact
       pressure counted from dp/2) keeps particles out of corners, where the image across both
       walls is missing. sps_body_set_pressure gives an initial pressure field (hydrostatic,
-      or one that goes with an initial flow). Stored energy: p^2/(2 K), K = rho0 c0^2. Contact
-      between a fluid and another body uses the solids' penalty (no fluid-structure coupling
-      beyond it).
+      or one that goes with an initial flow). Stored energy: p^2/(2 K), K = rho0 c0^2. A fluid
+      meets a solid body through FLUID-STRUCTURE, another fluid or a granular body through the
+      solids' contact penalty.
+
+   FLUID-STRUCTURE (chapter >>coupling: fluid-structure; Zhang, Rezavand and Hu 2021, JCP)
+      A fluid body and a solid body (elastic, J2, total Lagrangian or rigid) that touch (CONTACT:
+      contact = 1 on both, the pair not separated) are coupled instead of held apart by the
+      penalty: the fluid sees each solid particle within 2h as a wall image, with the solid's
+      velocity (the image velocity 2 v_s - v_f) and the wall pressure p_f + rho_f g . (x_s -
+      x_f), in its pressure force (Riemann solver) and continuity sums, and the solid receives
+      the opposite of each pair's force: momentum is exact. Water at rest stands on a solid as on
+      an analytic wall, its first layer dp from the solid's surface particles, and water filled
+      up to a solid on the lattice starts at rest. Rigid bodies built from particles make tanks
+      and obstacles of any shape. Cost: a fluid particle pays only for the solid particles
+      within 2h of it; a scene without a fluid-solid pair runs none of it. The time step is
+      each body's own (no added-mass iteration): measured stable down to a solid lighter than
+      the water (bench/VALIDATION.md, fluid-structure). A fluid-solid pair that does not touch
+      is warned of (the water would flow through the solid).
 
    TRANSPORT (transport = SPS_TRANSPORT_TVF or SPS_TRANSPORT_UTVF; UTVF sections 3.2-3.3)
       After every acoustic sub-step each particle is shifted by dr = -2 alpha h^2 sum_j grad W_ij V_j
@@ -1494,6 +1509,7 @@ struct sps_world {
     long ct_pair_cap;
     sps_real* sigma;
     int sigma_cap;
+    sps_real coupling_c0; /* the fluid-structure coupling's signal speed, 0 without it (sps__coupling_speed) */
 
     /* time */
     sps_real time, dt, c0_max;
@@ -4757,6 +4773,28 @@ static void sps__warn_uncoupled(const sps_world* w) {
                           w->bodies[b].def.contact);
 }
 
+/* The signal speed of the coupled pairs: a solid particle held by a fluid's pressure moves as
+   in a medium of the fluid's bulk modulus and the solid's density, c = c0_f sqrt(rho0_f /
+   rho0_s), which exceeds both bodies' own speeds when the solid is light and soft (the added-
+   mass limit of an explicit coupling); the time step takes it beside the bodies' speeds. Measured
+   (bench/VALIDATION.md, fluid-structure): without it a block of density 20 and E = 4 kPa
+   in water blew up in the first steps. 0 without coupled pairs (the touch table set). */
+static sps_real sps__coupling_speed(const sps_world* w) {
+    sps_real c_max = 0;
+    int a, b;
+    for (a = 0; a < w->nbodies; ++a)
+        for (b = 0; b < w->nbodies; ++b) {
+            const sps__body *fluid = &w->bodies[a], *solid = &w->bodies[b];
+            sps_real c;
+            if (w->touch[(size_t)a * w->nbodies + b] != SPS__TOUCH_COUPLED || fluid->model.material->kind != SPS_MATERIAL_FLUID ||
+                solid->model.material->kinematic)
+                continue;
+            c = fluid->mat.c0 * SPS__SQRT(fluid->rho0 / solid->rho0);
+            if (c > c_max) c_max = c;
+        }
+    return c_max;
+}
+
 /* Whether the bodies of particles i and j are a coupled fluid-solid pair (their touch flag). */
 static int sps__coupled_pair(const sps_world* w, int i, int j) {
     return w->touch[(size_t)w->body[i] * w->nbodies + w->body[j]] == SPS__TOUCH_COUPLED;
@@ -5792,6 +5830,7 @@ static sps_result sps__commit_contact(sps_world* w) {
     int a, b;
     sps__warn_uncoupled(w);
     for (a = 0; a < w->nbodies; ++a) w->bodies[a].coupled = 0; /* set below for the pairs that touch */
+    w->coupling_c0 = 0;
     w->contact_bodies = sps__any_contact(w);
     if (!w->contact_bodies && w->nwalls == 0) return SPS_OK;
     if (w->touch_n != w->nbodies) {
@@ -5807,6 +5846,7 @@ static sps_result sps__commit_contact(sps_world* w) {
                                                                    : coupled ? SPS__TOUCH_COUPLED : SPS__TOUCH_CONTACT);
             if (w->touch[(size_t)a * w->nbodies + b] == SPS__TOUCH_COUPLED) w->bodies[a].coupled = w->bodies[b].coupled = 1;
         }
+    w->coupling_c0 = sps__coupling_speed(w);
     if (w->sigma_cap < w->cap) {
         sps__free(w, w->sigma);
         w->sigma_cap = 0;
@@ -6675,6 +6715,7 @@ static sps_result sps__update_configuration(sps_world* w) {
     sps__report_fragments(w);
     if ((w->contact_dirty || w->sigma_cap < w->cap) && sps__commit_contact(w) != SPS_OK) return sps__oom(w, "the contact tables");
     w->contact_dirty = 0;
+    if (w->coupling_c0 > w->c0_max) w->c0_max = w->coupling_c0; /* after the bodies' own speeds (sps__tl_signal_speeds) */
     if (w->contact_bodies && (r = sps__find_contact_pairs(w)) != SPS_OK) return r;
     w->lists_valid = 1;
     sps__save_good_state(w);
