@@ -198,10 +198,11 @@
       an analytic wall, its first layer dp from the solid's surface particles, and water filled
       up to a solid on the lattice starts at rest. Rigid bodies built from particles make tanks
       and obstacles of any shape. Cost: a fluid particle pays only for the solid particles
-      within 2h of it; a scene without a fluid-solid pair runs none of it. The time step is
-      each body's own (no added-mass iteration): measured stable down to a solid lighter than
-      the water (bench/VALIDATION.md, fluid-structure). A fluid-solid pair that does not touch
-      is warned of (the water would flow through the solid).
+      within 2h of it; a scene without a fluid-solid pair runs none of it. Added mass: the time
+      step takes the coupling's signal speed c0_f sqrt(rho0_f / rho0_s) beside the bodies' own
+      (a light, soft solid held by the fluid's pressure); measured stable down to rho_s/rho_f =
+      1/200 (bench/VALIDATION.md, fluid-structure). A fluid-solid pair that does not touch is
+      warned of (the water would flow through the solid).
 
    TRANSPORT (transport = SPS_TRANSPORT_TVF or SPS_TRANSPORT_UTVF; UTVF sections 3.2-3.3)
       After every acoustic sub-step each particle is shifted by dr = -2 alpha h^2 sum_j grad W_ij V_j
@@ -4800,7 +4801,7 @@ static int sps__coupled_pair(const sps_world* w, int i, int j) {
     return w->touch[(size_t)w->body[i] * w->nbodies + w->body[j]] == SPS__TOUCH_COUPLED;
 }
 
-/* Solid particle s as the wall image of fluid particle f of body fluid (see the chapter's head). */
+/* Solid particle s as the wall image of fluid particle f (see the chapter's head). */
 static void sps__solid_image(const sps_world* w, int f, int s, sps__image* image) {
     sps_real gd = 0;
     int a;
