@@ -31,7 +31,7 @@ BUILD    = build
 # the examples built with sps_real = float (defined before the rules that name it)
 FLOAT    = $(BUILD)/float
 EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl tensile3d cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
-           taylor_square taylor_round impact2d incline bounce
+           taylor_square taylor_round impact2d incline bounce floating_block hydrostatic_fsi
 HEADER   = sphsolid.h
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
@@ -134,7 +134,8 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "taylor_square --res 8" "taylor_round --res 6" "impact2d" \
                "column_collapse2d" "soil_failure2d --transport utvf" "soil_failure3d --res 25 --png-view iso" \
                "flume3d --dp 0.08 --tend 2 --png-view iso" "debris_barrier3d --png-view iso" \
-               "tensile3d --res 4 --png-field damage --png-view iso"
+               "tensile3d --res 4 --png-field damage --png-view iso" "floating_block --drop 0.1 --tend 0.45" \
+               "hydrostatic_fsi --res 5 --tend 0.1"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \
@@ -182,7 +183,8 @@ SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 -
              "punch_tl --dp 0.3 --compression 0.02" "taylor2d_tl --dp 1 --tend 2e-6" "tensile3d --res 4 --tend 2e-6" \
              "column_collapse2d --dp 0.01 --tend 0.01" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
              "flume3d --dp 0.2 --tend 0.01" "debris_barrier3d --dp 0.3 --distance 2 --tend 0.01" \
-             "incline --dp 0.01 --settle 0.01 --tend 0.02" "bounce --dp 0.01 --tend 0.01"
+             "incline --dp 0.01 --settle 0.01 --tend 0.02" "bounce --dp 0.01 --tend 0.01" \
+             "floating_block --dp 0.05 --tend 0.01" "hydrostatic_fsi --res 2 --tend 0.005"
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@
 examples-smoke: examples $(BUILD)/check_picture
@@ -266,12 +268,15 @@ memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 bench: examples
 	sh bench/run_bench.sh
 # probes that reach into the library's private state (sps__ functions): built only on request
-probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith
+probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith $(BUILD)/fsi_cost
 # each neighbour pass against its gathers alone and its arithmetic alone (bench/pass_bound.sh)
 $(BUILD)/pass_bound: bench/pass_bound.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/pass_bound_arith: bench/pass_bound.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) -DPASS_BOUND_ARITHMETIC $< -o $@ $(LDLIBS)
+# the fluid-structure coupling's cost against the fluid passes alone
+$(BUILD)/fsi_cost: bench/fsi_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/torque_probe: bench/torque_probe.c bench/kick_shear.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/rotation_probe: bench/rotation_probe.c bench/kick_shear.h $(HEADER) | $(BUILD)

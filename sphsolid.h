@@ -184,9 +184,25 @@
       a column stands on its floor at its hydrostatic pressure; a backstop (the solids' contact
       pressure counted from dp/2) keeps particles out of corners, where the image across both
       walls is missing. sps_body_set_pressure gives an initial pressure field (hydrostatic,
-      or one that goes with an initial flow). Stored energy: p^2/(2 K), K = rho0 c0^2. Contact
-      between a fluid and another body uses the solids' penalty (no fluid-structure coupling
-      beyond it).
+      or one that goes with an initial flow). Stored energy: p^2/(2 K), K = rho0 c0^2. A fluid
+      meets a solid body through FLUID-STRUCTURE, another fluid or a granular body through the
+      solids' contact penalty.
+
+   FLUID-STRUCTURE (chapter >>coupling: fluid-structure; Zhang, Rezavand and Hu 2021, JCP)
+      A fluid body and a solid body (elastic, J2, total Lagrangian or rigid) that touch (CONTACT:
+      contact = 1 on both, the pair not separated) are coupled instead of held apart by the
+      penalty: the fluid sees each solid particle within 2h as a wall image, with the solid's
+      velocity (the image velocity 2 v_s - v_f) and the wall pressure p_f + rho_f g . (x_s -
+      x_f), in its pressure force (Riemann solver) and continuity sums, and the solid receives
+      the opposite of each pair's force: momentum is exact. Water at rest stands on a solid as on
+      an analytic wall, its first layer dp from the solid's surface particles, and water filled
+      up to a solid on the lattice starts at rest. Rigid bodies built from particles make tanks
+      and obstacles of any shape. Cost: a fluid particle pays only for the solid particles
+      within 2h of it; a scene without a fluid-solid pair runs none of it. Added mass: the time
+      step takes the coupling's signal speed c0_f sqrt(rho0_f / rho0_s) beside the bodies' own
+      (a light, soft solid held by the fluid's pressure); measured stable down to rho_s/rho_f =
+      1/200 (bench/VALIDATION.md, fluid-structure). A fluid-solid pair that does not touch is
+      warned of (the water would flow through the solid).
 
    TRANSPORT (transport = SPS_TRANSPORT_TVF or SPS_TRANSPORT_UTVF; UTVF sections 3.2-3.3)
       After every acoustic sub-step each particle is shifted by dr = -2 alpha h^2 sum_j grad W_ij V_j
@@ -1481,7 +1497,13 @@ typedef struct sps__body {
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
     sps_real tl_c_ref;   /* total Lagrangian: its signal speed in the reference state (sps__tl_signal_speeds) */
+    int coupled;         /* a fluid that touches a solid body: its continuity pass takes the solid's
+                            particles as wall images (chapter >>coupling: fluid-structure) */
 } sps__body;
+
+/* How two bodies touch (the world's touch table): by the contact law, or a fluid and a solid
+   by the fluid-structure coupling (chapter >>coupling: fluid-structure). */
+enum { SPS__TOUCH_NONE, SPS__TOUCH_CONTACT, SPS__TOUCH_COUPLED };
 
 /* The transport correction's values per particle (chapter >>transport): the consistency sum
    g = sum_j grad W_ij V_j (then the shift), the position divergence, the unit surface normal. */
@@ -1577,7 +1599,7 @@ struct sps_world {
     sps_real wall_sigma[SPS__WALL_TABLE + 1], wall_plane[SPS__WALL_TABLE + 1];
     sps_real wall_sigma_half; /* a wall's contact density at dp/2 (the fluids' backstop, sps__mirror_force) */
     int *separate, nseparate;   /* body pairs turned off by sps_world_set_contact */
-    unsigned char* touch;       /* nbodies x nbodies: bodies a and b touch */
+    unsigned char* touch;       /* nbodies x nbodies: 0, or how bodies a and b touch (SPS__TOUCH_*) */
     int touch_n, contact_bodies, contact_dirty;
     int friction;           /* some contact has friction: the contact pass adds it (>>contact) */
     sps_real* pair_friction; /* nbodies x nbodies: the friction coefficient of two touching bodies
@@ -1586,6 +1608,7 @@ struct sps_world {
     long ct_pair_cap;
     sps_real* sigma;
     int sigma_cap;
+    sps_real coupling_c0; /* the fluid-structure coupling's signal speed, 0 without it (sps__coupling_speed) */
 
     /* time */
     sps_real time, dt, c0_max;
@@ -4910,6 +4933,124 @@ static void sps__mirror_continuity(sps_world* w, const sps__body* b, sps__group 
     }
 }
 
+/* >>coupling: fluid-structure (Zhang, Rezavand and Hu 2021, JCP 429, 110028, section 3; the
+   reference code's fluid-structure examples)
+
+   A fluid particle f sees the particles s of a solid body it touches (elastic, J2, total
+   Lagrangian, rigid) as a moving wall, as the walls' mirror images (>>walls for fluids) but
+   with the solid's own particles in place of the images: each is an image at x_s, of volume
+   V_s, with the velocity 2 v_s - v_f (the fluid's velocity reflected about the wall's, so the
+   Riemann solver's interface velocity is the solid's) and the wall pressure
+       p_w = p_f + rho_f g . (x_s - x_f)
+   (the fluid's own pressure continued by its acceleration relative to the wall; the solid's
+   acceleration is left out, and unlike the reference code the term is not clamped at 0, as
+   the mirror images' hydrostatic continuation: a clamp pushes a fluid at a vertical wall
+   down). The solid particles complete the fluid particle's kernel, so water at rest stands
+   on a solid as on an analytic wall (its first layer dp from the solid's surface particles)
+   and water filled up to a solid on the lattice starts at rest. The images enter the fluid's
+   pressure force (sps__image_force: 2 P* dW V_s with the limited Riemann dissipation, and the
+   no-slip viscous force of a viscous fluid) and its continuity sums (sps__image_continuity:
+   the density rate, the Riemann density term, the velocity gradient, B). The solid receives
+   the pair's force with the opposite sign, computed by the same function from the same
+   values: momentum is exact (the pair force is along e_fs only for an inviscid fluid, so
+   angular momentum is exact then). The pairs are the contact lists' (a fluid-solid pair of
+   bodies that touch: the contact penalty is not applied to it), so a fluid pays for the
+   coupling only where it is within 2h of a solid, and a scene without one runs none of it. */
+
+/* Whether bodies a and b are a fluid and a solid (in either order): a solid is a body whose
+   walls are not mirror images (elastic, J2, total Lagrangian, rigid; not granular). */
+static int sps__fluid_solid(const sps_world* w, int a, int b) {
+    const sps__material_model *ma = w->bodies[a].model.material, *mb = w->bodies[b].model.material;
+    return (ma->kind == SPS_MATERIAL_FLUID && !mb->mirrored) || (mb->kind == SPS_MATERIAL_FLUID && !ma->mirrored);
+}
+
+static int sps__bodies_touch(const sps_world* w, int a, int b);
+/* Warns of each fluid-solid pair of bodies that does not touch (a def's contact = 0 or
+   sps_world_set_contact(w, a, b, 0)): the fluid would flow through the solid. */
+static void sps__warn_uncoupled(const sps_world* w) {
+    int a, b;
+    for (a = 0; a < w->nbodies; ++a)
+        for (b = a + 1; b < w->nbodies; ++b)
+            if (sps__fluid_solid(w, a, b) && !sps__bodies_touch(w, a, b))
+                sps__warn(w, "bodies '%s' and '%s' (a fluid and a solid) do not touch (contact = %d and %d, or sps_world_set_contact "
+                          "turned the pair off): the fluid flows through the solid; the fluid-structure coupling needs contact = 1 on "
+                          "both and the pair not separated", w->bodies[a].name, w->bodies[b].name, w->bodies[a].def.contact,
+                          w->bodies[b].def.contact);
+}
+
+/* The signal speed of the coupled pairs: a solid particle held by a fluid's pressure moves as
+   in a medium of the fluid's bulk modulus and the solid's density, c = c0_f sqrt(rho0_f /
+   rho0_s), which exceeds both bodies' own speeds when the solid is light and soft (the added-
+   mass limit of an explicit coupling); the time step takes it beside the bodies' speeds. Measured
+   (bench/VALIDATION.md, fluid-structure): without it a block of density 20 and E = 4 kPa
+   in water blew up in the first steps. 0 without coupled pairs (the touch table set). */
+static sps_real sps__coupling_speed(const sps_world* w) {
+    sps_real c_max = 0;
+    int a, b;
+    for (a = 0; a < w->nbodies; ++a)
+        for (b = 0; b < w->nbodies; ++b) {
+            const sps__body *fluid = &w->bodies[a], *solid = &w->bodies[b];
+            sps_real c;
+            if (w->touch[(size_t)a * w->nbodies + b] != SPS__TOUCH_COUPLED || fluid->model.material->kind != SPS_MATERIAL_FLUID ||
+                solid->model.material->kinematic)
+                continue;
+            c = fluid->mat.c0 * SPS__SQRT(fluid->rho0 / solid->rho0);
+            if (c > c_max) c_max = c;
+        }
+    return c_max;
+}
+
+/* Whether the bodies of particles i and j are a coupled fluid-solid pair (their touch flag). */
+static int sps__coupled_pair(const sps_world* w, int i, int j) {
+    return w->touch[(size_t)w->body[i] * w->nbodies + w->body[j]] == SPS__TOUCH_COUPLED;
+}
+
+/* Solid particle s as the wall image of fluid particle f (see the chapter's head). */
+static void sps__solid_image(const sps_world* w, int f, int s, sps__image* image) {
+    sps_real gd = 0;
+    int a;
+    image->j = s;
+    image->wall = NULL; /* a fluid's image terms read no wall (that is a stress body's) */
+    for (a = 0; a < 3; ++a) {
+        image->x[a] = a < w->dim ? w->pos[a][s] : 0;
+        image->v[a] = image->vv[a] = a < w->dim ? 2 * w->vel[a][s] - w->vel[a][f] : 0;
+        gd += a < w->dim ? w->def.gravity[a] * (w->pos[a][s] - w->pos[a][f]) : 0;
+    }
+    image->p = w->p[f] + w->rho[f] * gd;
+}
+
+/* Adds the force of the pair (i, j) on particle i [N] (N/m in 2D) to force: one of them a fluid
+   particle f, the other a solid particle s. The force on f is V_f times sps__image_force's
+   sum; s gets its opposite. */
+static void sps__coupling_force(sps_world* w, int i, int j, sps_real force[3]) {
+    const int i_fluid = w->bodies[w->body[i]].model.material->kind == SPS_MATERIAL_FLUID;
+    const int f = i_fluid ? i : j, s = i_fluid ? j : i;
+    const sps_real sign = i_fluid ? w->vol[f] : -w->vol[f];
+    sps_real acc[3] = {0, 0, 0};
+    sps__image image;
+    int a;
+    sps__solid_image(w, f, s, &image);
+    sps__image_force(w, &w->bodies[w->body[f]], f, &image, acc);
+    for (a = 0; a < w->dim; ++a) force[a] += sign * acc[a];
+}
+
+/* Adds the solid images' terms to the continuity sums of lane group q of fluid body b. */
+static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__group q, sps_real sum[SPS__NSUM][SPS__LANES]) {
+    sps__image_sums sums;
+    sps__image image;
+    int l, k;
+    sums.sum = sum;
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        const int f = q.i0 + l;
+        sums.lane = l;
+        for (k = w->ct_first[f]; k < w->ct_first[f + 1]; ++k) {
+            if (!sps__coupled_pair(w, f, w->ct_j[k])) continue;
+            sps__solid_image(w, f, w->ct_j[k], &image);
+            sps__image_continuity(w, b, f, &image, &sums);
+        }
+    }
+}
+
 /* The pair loop of the continuity pass for lane group q (terms: see sps__continuity).
    gradient adds the sums of M and A; paired (SPS_ROTATION_PAIR) adds each ENO increment to its
    pair's force g_ij += 2 zeta G dt (v_ij . e_ij) dW/r V_i V_j instead of the particle's
@@ -4979,6 +5120,7 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
         for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
     sps__continuity_pairs(w, b, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, eno == SPS__ENO_PARTICLES, riemann, shear_rate, sum);
     if (b->model.mirrored && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
+    if (riemann && b->coupled) sps__coupling_continuity(w, b, q, sum);
     sps__continuity_lanes(w, b, q, dim, gradient, riemann, shear_rate, sum, da, L);
     /* a plastic body is never ENO (combination rules): ENO kernels carry no return map */
     if (plastic_possible && b->model.plastic == SPS__YIELD_DRUCKER_PRAGER)
@@ -6062,7 +6204,7 @@ static sps_result sps__commit_friction(sps_world* w) {
     for (a = 0; a < w->nbodies; ++a) {
         const sps_real mu = w->bodies[a].def.friction;
         for (k = 0; k < w->nwalls; ++k) w->friction |= sps__mix_friction(mu, w->walls[k].friction) > 0;
-        for (b = 0; b < w->nbodies; ++b) pairs |= w->touch[(size_t)a * w->nbodies + b] && sps__mix_friction(mu, w->bodies[b].def.friction) > 0;
+        for (b = 0; b < w->nbodies; ++b) pairs |= w->touch[(size_t)a * w->nbodies + b] == SPS__TOUCH_CONTACT && sps__mix_friction(mu, w->bodies[b].def.friction) > 0;
     }
     w->friction |= pairs;
     sps__free(w, w->pair_friction);
@@ -6079,6 +6221,9 @@ static sps_result sps__commit_friction(sps_world* w) {
    storage that the scene needs: none without walls or touching bodies. */
 static sps_result sps__commit_contact(sps_world* w) {
     int a, b;
+    sps__warn_uncoupled(w);
+    for (a = 0; a < w->nbodies; ++a) w->bodies[a].coupled = 0; /* set below for the pairs that touch */
+    w->coupling_c0 = 0;
     w->contact_bodies = sps__any_contact(w);
     w->friction = 0;
     if (!w->contact_bodies && w->nwalls == 0) return SPS_OK;
@@ -6089,7 +6234,13 @@ static sps_result sps__commit_contact(sps_world* w) {
         w->touch_n = w->nbodies;
     }
     for (a = 0; a < w->nbodies; ++a)
-        for (b = 0; b < w->nbodies; ++b) w->touch[(size_t)a * w->nbodies + b] = (unsigned char)(a != b && sps__bodies_touch(w, a, b));
+        for (b = 0; b < w->nbodies; ++b) {
+            const int coupled = sps__fluid_solid(w, a, b);
+            w->touch[(size_t)a * w->nbodies + b] = (unsigned char)(a == b || !sps__bodies_touch(w, a, b) ? SPS__TOUCH_NONE
+                                                                   : coupled ? SPS__TOUCH_COUPLED : SPS__TOUCH_CONTACT);
+            if (w->touch[(size_t)a * w->nbodies + b] == SPS__TOUCH_COUPLED) w->bodies[a].coupled = w->bodies[b].coupled = 1;
+        }
+    w->coupling_c0 = sps__coupling_speed(w);
     if (sps__commit_friction(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
     if (w->sigma_cap < w->cap) {
         sps__free(w, w->sigma);
@@ -6116,6 +6267,7 @@ static sps_real sps__pair_contact_density(const sps_world* w, int i) {
     for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
         const int j = w->ct_j[k];
         sps_real r2 = 0;
+        if (sps__coupled_pair(w, i, j)) continue; /* a fluid-solid pair: no contact density (>>coupling) */
         for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
         sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
     }
@@ -6192,13 +6344,17 @@ static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, c
 static void sps__contact_force(sps_world* w, int i, sps_real dt) {
     const sps__body* bi = &w->bodies[w->body[i]];
     const sps_real si = w->sigma[i], vi_mi = w->vol[i] / w->mass[i];
-    sps_real f[3] = {0, 0, 0};
+    sps_real f[3] = {0, 0, 0}, coupling[3] = {0, 0, 0};
     int k, a;
     if (w->contact_bodies)
         for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
             const int j = w->ct_j[k];
             const sps_real kij = sps__contact_stiffness(bi->mat.K, w->bodies[w->body[j]].mat.K);
             sps_real d[3] = {0, 0, 0}, r2 = 0, r, s, dw;
+            if (sps__coupled_pair(w, i, j)) { /* a fluid-solid pair: the coupling's force instead */
+                sps__coupling_force(w, i, j, coupling);
+                continue;
+            }
             for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
             r = SPS__SQRT(r2);
             if (!(r > 0)) continue; /* coincident particles: no direction */
@@ -6222,6 +6378,8 @@ static void sps__contact_force(sps_world* w, int i, sps_real dt) {
         }
     }
     for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += vi_mi * f[a];
+    if (bi->coupled)
+        for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += coupling[a] / w->mass[i];
     if (bi->model.mirrored && w->nwalls > 0) sps__mirror_force(w, bi, i);
 }
 
@@ -6993,6 +7151,7 @@ static sps_result sps__update_configuration(sps_world* w) {
     sps__report_fragments(w);
     if ((w->contact_dirty || w->sigma_cap < w->cap) && sps__commit_contact(w) != SPS_OK) return sps__oom(w, "the contact tables");
     w->contact_dirty = 0;
+    if (w->coupling_c0 > w->c0_max) w->c0_max = w->coupling_c0; /* after the bodies' own speeds (sps__tl_signal_speeds) */
     if (w->contact_bodies && (r = sps__find_contact_pairs(w)) != SPS_OK) return r;
     w->lists_valid = 1;
     sps__save_good_state(w);

@@ -37,7 +37,8 @@ typedef struct pinned_case {
     int all_shears;        /* one body of every formulation the dimension allows, side by side */
     int plastic;           /* 1: J2 material (yields within the run); 2: Drucker-Prager in a tank of walls;
                               its plastic strain and work are hashed too */
-    int fluid;             /* 1: a fluid in a tank of walls (mirror particles); 2: also viscous */
+    int fluid;             /* 1: a fluid in a tank of walls (mirror particles); 2: also viscous; 3: with an
+                              elastic block lying on it (the fluid-structure coupling) */
     sps_transport transport;
     int tl;                /* 0: updated Lagrangian; else the material kind of a total-Lagrangian body (J2 with plastic) */
     int damage;            /* total Lagrangian with damage (TL eqs. 45-46; a threshold the motion passes): its damage is hashed too */
@@ -116,6 +117,9 @@ static const pinned_case g_cases[] = {
     {"3d/eno-a-pair-damped-friction", 3, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
     {"2d/j2-gno-a-pair-damped-friction", 2, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},
     {"2d/tl-neo-hookean-damped-friction", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN, 0},
+    /* a fluid and an elastic body coupled (its shear: the block's) */
+    {"2d/fluid-elastic", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 3, SPS_TRANSPORT_NONE, 0, 0},
+    {"3d/fluid-elastic", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 3, SPS_TRANSPORT_NONE, 0, 0},
 };
 #define NCASES ((int)(sizeof g_cases / sizeof g_cases[0]))
 
@@ -151,6 +155,27 @@ static uint64_t fnv_bytes(uint64_t h, const void* p, size_t n) {
     size_t k;
     for (k = 0; k < n; ++k) h = (h ^ b[k]) * 1099511628211ull;
     return h;
+}
+
+/* An elastic block (of c's shear) lying on the fluid [lo, hi], at rest, over the middle third of
+   its length (and depth in 3D), 0.06 high. */
+static sps_result add_floating_block(sps_world* w, const pinned_case* c, const sps_real lo[3], const sps_real hi[3]) {
+    sps_body_def bd = sps_default_body_def();
+    sps_body b;
+    sps_real blo[3], bhi[3];
+    sps_result r;
+    int a;
+    bd.shear = c->shear;
+    bd.rotation = c->rotation;
+    bd.material.density = 600;
+    for (a = 0; a < 3; ++a) {
+        blo[a] = lo[a] + (hi[a] - lo[a]) / 3;
+        bhi[a] = hi[a] - (hi[a] - lo[a]) / 3;
+    }
+    blo[1] = hi[1];
+    bhi[1] = hi[1] + (sps_real)0.06;
+    if ((r = sps_world_add_body(w, &bd, &b)) != SPS_OK) return r;
+    return sps_body_add_box(w, b, blo, bhi, NULL);
 }
 
 /* Adds one block body with its velocity field; one end of it clamped (constraints). */
@@ -199,6 +224,7 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
     if (c->fluid || c->plastic == 2) { /* a tank with an open top: the walls' mirror particles */
         sps_real tank_hi[3];
         tank_hi[0] = hi[0]; tank_hi[1] = 2 * hi[1]; tank_hi[2] = hi[2];
+        if (c->fluid == 3 && add_floating_block(w, c, lo, hi) != SPS_OK) return -1;
         return sps_world_add_box_walls(w, lo, tank_hi, c->dim == 2 ? SPS_FACE_Y_HI : SPS_FACE_Z_HI, SPS_WALL_NO_SLIP) == SPS_OK ? added : -1;
     }
     if (DAMPED(c)) { /* a floor with friction within the support of the lowest particles */
