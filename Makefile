@@ -100,11 +100,13 @@ $(BUILD)/realtime: bench/realtime.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(FLOAT)/realtime: bench/realtime.c $(EXAMPLE_HEADERS) $(HEADER) $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
+$(BUILD)/user_scenes: bench/user_scenes.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/svgplot: bench/svgplot.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@ $(LDLIBS)
 $(BUILD)/io_cost: bench/io_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/svgplot $(BUILD)/io_cost
+bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh

@@ -1197,7 +1197,7 @@ static int test_validation_body_def(void) {
     bad = d; bad.xi = NAN;                       ENSURE(rejects_body_def(w, &bad, "xi = nan") == 0);
     bad = d; bad.oas_epsilon = -0.1;             ENSURE(rejects_body_def(w, &bad, "oas_epsilon = -0.1") == 0);
     bad = d; bad.oas_exponent = 13;              ENSURE(rejects_body_def(w, &bad, "oas_exponent = 13") == 0);
-    bad = d; bad.rotation = (sps_rotation)3;     ENSURE(rejects_body_def(w, &bad, "rotation = 3") == 0);
+    bad = d; bad.rotation = (sps_rotation)4;     ENSURE(rejects_body_def(w, &bad, "rotation = 4") == 0);
     bad = d; bad.track_stress = 2;               ENSURE(rejects_body_def(w, &bad, "track_stress = 2") == 0);
     bad = d; bad.damping = -1;                   ENSURE(rejects_body_def(w, &bad, "damping = -1, allowed finite >= 0") == 0);
     bad = d; bad.damping = NAN;                  ENSURE(rejects_body_def(w, &bad, "damping = nan") == 0);
