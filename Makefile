@@ -44,10 +44,16 @@ $(BUILD):
 # ---- header checks: every configuration a user may compile it in ----
 CHECK_SRC = $(BUILD)/check_impl.c
 $(CHECK_SRC): | $(BUILD)
-	printf '#define SPHSOLID_IMPLEMENTATION\n#include "../sphsolid.h"\nint main(void){return 0;}\n' > $@
+	printf '%s\n' '#define SPHSOLID_IMPLEMENTATION' '#include "../sphsolid.h"' '#include <string.h>' \
+	  '/* threads = 2 warns exactly when the build has no OpenMP (issue 37) */' 'static int warned;' \
+	  'static void log_fn(int level, const char* m, void* u) { (void)u; warned += level == 1 && strstr(m, "no OpenMP") != 0; }' \
+	  'int main(void) {' '    sps_world_def d = sps_default_world_def();' '    sps_world* w = 0;' '    int ok;' \
+	  '    d.threads = 2; d.log = log_fn; ok = sps_world_create(&d, &w) == SPS_OK;' '    sps_world_destroy(w);' \
+	  '#ifdef _OPENMP' '    return ok && !warned ? 0 : 1;' '#else' '    return ok && warned == 1 ? 0 : 1;' '#endif' '}' > $@
 check: $(CHECK_SRC) $(HEADER) README.md
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp $(CHECK_SRC) -o $(BUILD)/check_omp $(LDLIBS)
 	$(CC) -std=c99 -O1 $(WARN) -Werror $(CHECK_SRC) -o $(BUILD)/check_serial $(LDLIBS)
+	./$(BUILD)/check_omp && ./$(BUILD)/check_serial
 	$(CC) -std=c99 -O1 $(WARN) -Werror -DSPHSOLID_FLOAT $(CHECK_SRC) -o $(BUILD)/check_float $(LDLIBS)
 	$(CC) -std=c11 -O1 -Wall -Wextra -Werror -DSPHSOLID_STATIC $(CHECK_SRC) -o $(BUILD)/check_static $(LDLIBS)
 	cp $(CHECK_SRC) $(BUILD)/check_cpp.cpp

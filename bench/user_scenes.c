@@ -4,10 +4,14 @@
               gravity; --slip noslip|free
      ramp     the 2D disc (or 3D cube) released on a 30-degree no-slip ramp, rolling (or tumbling) down
      collide  two such bodies spinning in opposite senses, thrown at each other at 2 m/s each
-   It prints one RESULT line: the largest energy gain over the run, (E(t) - E(0)) / E_mech(0),
-   with E = kinetic + strain + contact + gravity potential - prescribed work and E_mech(0) the
-   kinetic + strain energy at the start (the issue's acceptance: below 0.02), the watchdog's
-   count (sps_diagnostics.energy_growth_events), and the run's status.
+   It prints one RESULT line: watchdog_growth, the energy watchdog's largest finding
+   (sps_diagnostics.energy_growth: the account kinetic + volumetric strain + contact + gravity
+   potential - prescribed work above its start, as a fraction of the largest mechanical energy
+   seen; the acceptance of issue 37: below 0.02) and its count of checks above 2 %; max_gain,
+   the diagnostics' E = kinetic + strain (with the shear part of the tracked stress) + contact +
+   potential above its start over the start's kinetic + strain energy (or its potential energy
+   above the floor when it starts at rest): with ENO and ENO-A the tracked Jaumann stress is not
+   the stress their forces come from, and reads high during an impact; and the run's status.
    The stability map (bench/stability_map.sh, user-scene rows) runs it for every formulation x
    rotation. --rotation default keeps sps_default_body_def()'s.
 
@@ -84,6 +88,11 @@ static sps_result add_block(sps_world* w, const sps_body_def* bd, int dim, const
     return dim == 3 ? sps_body_add_box(w, *out, lo, hi, NULL) : sps_body_add_sdf(w, *out, lo, hi, disc_sdf_real, (void*)c, NULL);
 }
 
+static void quiet_log(int level, const char* message, void* user) {
+    (void)user;
+    if (level == 0) fprintf(stderr, "%s\n", message);
+}
+
 static double total_energy(const sps_diagnostics* d) {
     return d->kinetic_energy + d->strain_energy + d->contact_energy + d->potential_energy - d->prescribed_work;
 }
@@ -100,7 +109,8 @@ static sps_result build(const scene_options* o, sps_world** out) {
     wd.threads = 1;
     if (o->cfl > 0) wd.cfl_acoustic = (sps_real)o->cfl;
     wd.gravity[1] = -9.81;
-    wd.energy_growth_limit = INFINITY; /* this program measures the growth itself */
+    wd.energy_growth_limit = 0.02; /* the watchdog reports the growth above 2 % (sps_diagnostics.energy_growth) */
+    wd.log = quiet_log;
     if (o->shear >= 0) bd.shear = (sps_shear)o->shear;
     if (o->rotation >= 0) bd.rotation = (sps_rotation)o->rotation;
     bd.track_stress = 1; /* the strain energy of the ENO family needs the stress */
@@ -150,14 +160,13 @@ int main(int argc, char** argv) {
         if ((r = sps_world_step(w)) != SPS_OK) break;
         sps_world_diagnostics(w, all, &d);
         if ((total_energy(&d) - e0) / mech0 > gain) gain = (total_energy(&d) - e0) / mech0;
-        if (getenv("TRACE")) printf("%g %g %g %g %g %g\n", (double)d.time, (double)d.kinetic_energy, (double)d.strain_energy, (double)d.contact_energy, (double)d.potential_energy, (double)d.prescribed_work);
     }
     sps_world_diagnostics(w, all, &d);
     printf("RESULT scene=%s dim=%d slip=%s spin=%g shear=%s rotation=%s t=%.4f status=%s energy_start=%.6g mech_start=%.6g "
-           "max_gain=%.5f target=0.02 max_speed=%.4g min_spacing=%.3f particles=%d\n",
+           "max_gain=%.5f watchdog_growth=%.5f target=0.02 watchdog_events=%d max_speed=%.4g min_spacing=%.3f particles=%d\n",
            o.scene, o.dim, o.noslip ? "noslip" : "free", o.spin, o.shear < 0 ? "default" : shear_names[o.shear],
            o.rotation < 0 ? "default" : rotation_names[o.rotation], (double)sps_world_time(w), r == SPS_OK ? "ok" : "unstable", e0,
-           mech0, gain, (double)d.max_speed, (double)d.min_spacing, d.particles);
+           mech0, gain, (double)d.energy_growth, d.energy_growth_events, (double)d.max_speed, (double)d.min_spacing, d.particles);
     if (r != SPS_OK) fprintf(stderr, "user_scenes: %s\n", sps_world_last_error(w));
     sps_world_destroy(w);
     return r == SPS_OK ? 0 : 2;
