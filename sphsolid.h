@@ -19,8 +19,9 @@
       a -mtune that allows gather instructions (e.g. -mtune=icelake-server; GCC's generic
       tuning has none) and, on CPUs with AVX-512, -mprefer-vector-width=512 (GCC keeps 256-bit
       vectors otherwise; 1.2x on the 2D plate). The neighbour loops run one particle per SIMD
-      lane (an OpenMP simd loop, also honoured with -fopenmp-simd); on the 2D plate this is
-      1.6x the scalar speed.
+      lane (an OpenMP simd loop: build with -fopenmp, also for one thread; without it, or with
+      -fopenmp-simd only, the pragmas are left out and one thread is 1.45x (2D) to 2x (3D)
+      slower); on the 2D plate this is 1.6x the scalar speed.
 
    QUICK START (a clamped rubber strip that swings under gravity)
          sps_world_def wd = sps_default_world_def();
@@ -98,21 +99,22 @@
       shorter, which drifts the plate's period by 0.55% per cycle and gives the spinning plate
       33% angular-momentum error (see sps__pair).
 
-   REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
-      A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
-      cut short so that the frame ends on the count (the next frame starts with a configuration
-      update; with single stepping nothing is cut). Without a wall budget a frame is
-      deterministic: the same k from the same state gives the same state, bit for bit, for any
-      thread count, and covered is the simulated time of its k sub-steps. To show simulated time
-      at wall-clock speed at F frames per second, run a first frame of k0 sub-steps without a
-      budget and then take k = k0 / (F covered): the mean sub-step is shorter than
-      CFL_ac h/(c0 + |v|max), since every advection step ends on a shortened one. A wall budget
-      below 1/F (say 80% of it) keeps the loop at F frames per second on a machine too slow for
-      k sub-steps per frame: the frame stops early, between advection steps, and the scene runs
-      in slow motion (covered < 1/F) instead of dropping frames. The budget is measured with
-      SPHSOLID_WALL_SECONDS() (CONFIG MACROS). Cutting advection steps at frame ends costs one
-      extra neighbour-list rebuild per frame; bench/realtime.c measures a whole loop (simulated
-      seconds per wall second).
+   REAL-TIME FRAMES (demos, games: sps_world_advance_frame, sps_body_drag_begin)
+      sps_world_advance_frame(w, 1.0 / F, budget, &covered) advances one frame of simulated time
+      at F frames per second; the library picks the sub-steps and the last step lands on the
+      frame's end. Without a budget the frame is deterministic (bit-identical for any thread
+      count). With a wall budget (say 80 % of 1/F) the budget is a hard cap: each advection step
+      is cut to the sub-steps that still fit (at the cost per sub-step measured in this frame, or
+      in the last budgeted one, one sub-step's time kept for the neighbour-list rebuild), so a
+      frame overruns by about one sub-step at most on an idle core, and a machine too slow for
+      the scene shows slow motion (covered < 1/F) instead of dropping frames. Every frame starts
+      a fresh advection step (one extra neighbour-list rebuild per frame). The budget is measured
+      with SPHSOLID_WALL_SECONDS() (CONFIG MACROS). sps_world_advance_substeps runs a fixed
+      count of sub-steps instead. sps_body_drag_begin grabs a body for the mouse: a spring of
+      the caller's stiffness and damping towards drag.target, spread by the kernel over a
+      neighbourhood of the grabbed material point, so that no particle is torn out (a 2D jelly
+      of 1024 particles dragged round a circle for 3 s keeps every particle within 1.03 dp of a
+      neighbour; tested). bench/realtime.c measures a whole loop; examples/demo.c drags blocks.
 
    SHEAR FORMULATIONS (per body, sps_body_def.shear)
       SPS_SHEAR_OG     original: tau by the Jaumann rate, a = (1/rho) div tau (ENO eq. 17).
@@ -8202,7 +8204,8 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, 
         if (wall_budget_s > 0) {
             const double spent = SPHSOLID_WALL_SECONDS() - start;
             const double per_substep = done > 0 ? spent / (double)done : w->substep_wall_s;
-            fitting = per_substep > 0 ? (wall_budget_s - spent) / per_substep : 1;
+            /* one sub-step's time kept for the step's neighbour-list rebuild */
+            fitting = per_substep > 0 ? (wall_budget_s - spent) / per_substep - 1 : 1;
             if (fitting < 1) break;
         }
         if (fitting < w->def.max_substeps) { /* cut this step to what fits: sps__capped_step's cap */
