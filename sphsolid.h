@@ -132,11 +132,11 @@
       -A variants: rotation = SPS_ROTATION_MEAN uses the body's mean Rodrigues matrix (linear
       momentum exact, ANG eq. 41; the papers' choice, which the examples pass explicitly);
       SPS_ROTATION_PER_PARTICLE each particle's own (eq. 34). The default, SPS_ROTATION_AUTO, is
-      SPS_ROTATION_PAIR below (a Drucker-Prager body with GNO-A, which keeps its penalty per
-      particle: mean): the mean rotation gains energy when a body tumbles or hits something (a
-      0.1 m rubber cube spinning at 20 rad/s dropped on a no-slip floor: the energy account
-      grew by a factor 500 within 1 s; with the pair rotation it only falls; bench/VALIDATION.md,
-      user scenes).
+      SPS_ROTATION_PAIR below for ENO-A and the mean for GNO-A: with ENO-A the mean rotation
+      gains energy when a body tumbles or hits something (a 0.1 m rubber cube spinning at 20
+      rad/s dropped on a no-slip floor: the energy account grew by a factor 500 within 1 s; with
+      the pair rotation it only falls), while GNO-A with the mean rotation gained in none of the
+      user scenes and with the pair rotation in some (bench/VALIDATION.md, user scenes).
       SPS_ROTATION_PAIR (our extension, not in the papers) does what eq. 32 asks of the rotation,
       that every stored increment stay aligned with its pair, exactly: each ENO increment (or
       GNO-A penalty increment, eq. 46) is a force along e_ij, so the library stores one scalar
@@ -684,8 +684,8 @@ typedef enum sps_rotation {
     SPS_ROTATION_MEAN = 0,         /* the body's mean Rodrigues matrix (ANG eq. 41-42) */
     SPS_ROTATION_PER_PARTICLE = 1, /* each particle's own matrix (ANG eq. 34) */
     SPS_ROTATION_PAIR = 2,         /* each increment turned with its own pair (see SHEAR FORMULATIONS) */
-    SPS_ROTATION_AUTO = 3          /* pair, except for a Drucker-Prager body with GNO-A (which keeps its
-                                      penalty per particle): mean (the default; SHEAR FORMULATIONS) */
+    SPS_ROTATION_AUTO = 3          /* pair for ENO-A, mean for GNO-A: what survives tumbling and
+                                      impacts (the default; SHEAR FORMULATIONS) */
 } sps_rotation;
 
 /* Axis masks for velocity constraints. */
@@ -826,7 +826,8 @@ typedef struct sps_body_def {
     const char* name;          /* for messages and output; copied (first 31 chars). Default "body". */
     sps_material_def material; /* Default sps_default_material_def(). */
     sps_shear shear;           /* Default SPS_SHEAR_ENO_A. */
-    sps_rotation rotation;     /* the -A variants (ENO-A, GNO-A). Default SPS_ROTATION_AUTO (pair). */
+    sps_rotation rotation;     /* the -A variants (ENO-A, GNO-A). Default SPS_ROTATION_AUTO (ENO-A:
+                                  pair; GNO-A: mean). */
     sps_real zeta;             /* ENO coefficient; 0 selects 0.7 d + 2.1 (ENO section 4). Default 0. */
     sps_real xi;               /* GNO penalty coefficient xi_G; 0 selects 2 (ANG section 4.2). Default 0. */
     sps_real oas_epsilon;      /* OAS artificial-stress factor, [0, 1]. Default 0.3 (Gray et al.). */
@@ -2324,12 +2325,15 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
 /* The pass kernels of a model in the world's dimension and pair geometry (chapter >>forces). */
 static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m);
 
-/* SPS_ROTATION_AUTO: the pair rotation wherever a body can keep its increments per pair. */
+/* SPS_ROTATION_AUTO: the rotation measured best for the formulation (bench/VALIDATION.md, user
+   scenes). ENO-A: pair, whose forces are central pair forces (momentum exact, no energy gained
+   by a tumbling body; the mean rotation gains). GNO-A: mean, ANG's choice: its stress
+   divergence is not central, and the pair rotation gained energy where the mean did not (a disc
+   spinning at 50 rad/s on a free-slip floor: 5.9 % against none); granular GNO-A bodies cannot
+   keep per-pair increments anyway. */
 static sps_rotation sps__rotation_of(const sps_body_def* def) {
-    sps_body_def pair = *def;
     if (def->rotation != SPS_ROTATION_AUTO) return def->rotation;
-    pair.rotation = SPS_ROTATION_PAIR;
-    return sps__granular_pair_rotation(0, &pair) ? SPS_ROTATION_MEAN : SPS_ROTATION_PAIR;
+    return def->shear == SPS_SHEAR_GNO_A ? SPS_ROTATION_MEAN : SPS_ROTATION_PAIR;
 }
 
 /* The model of a checked def (pass kernels excepted: sps__choose_passes). */
@@ -6463,9 +6467,12 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
     const sps_real stable = st->stable_cfl[w->dim - 2];
     int causes = 0, k, behind = 0;
     out[0] = 0;
-    if (b->model.turn == SPS__TURN_MEAN || b->model.turn == SPS__TURN_PARTICLE)
-        sps__rule(out, size, &causes, "its rotation = %s, which gains energy when a body spins, tumbles or hits something: set rotation = "
-                  "SPS_ROTATION_PAIR (or SPS_ROTATION_AUTO, the default)", b->model.turn == SPS__TURN_MEAN ? "mean" : "per particle");
+    if (st->eno && b->model.turn != SPS__TURN_NONE) /* ENO-A: the pair rotation (SPS_ROTATION_AUTO) holds */
+        sps__rule(out, size, &causes, "its rotation = %s, which gains energy when an ENO-A body spins, tumbles or hits something: set "
+                  "rotation = SPS_ROTATION_PAIR (or SPS_ROTATION_AUTO, the default)", b->model.turn == SPS__TURN_MEAN ? "mean" : "per particle");
+    if (st->penalty && st->rotated && b->model.turn != SPS__TURN_MEAN) /* GNO-A: the mean rotation (SPS_ROTATION_AUTO) holds */
+        sps__rule(out, size, &causes, "its rotation = %s, which gains energy when a GNO-A body spins fast: set rotation = "
+                  "SPS_ROTATION_MEAN (or SPS_ROTATION_AUTO, the default)", b->model.paired ? "pair" : "per particle");
     if (stable > 0 && w->def.cfl_acoustic > stable)
         sps__rule(out, size, &causes, "cfl_acoustic = %g is above %g, the largest measured stable for %s in %dD: lower it",
                   (double)w->def.cfl_acoustic, (double)stable, st->name, w->dim);

@@ -8,6 +8,7 @@
    angular-momentum error of the run.
 
    Build: make        Run: ./build/realtime --dp 0.05 --fps 60 --threads 1
+   The acceptance of issue 37 (1089 particles, 600 frames): ./build/realtime --dp 0.03 --fps 60 --threads 1 --frames 600 --tend 100
    Also: ./build/float/realtime (sps_real = float). --budget 0 runs the deterministic frames
    only: the loop then shows how far from real time the machine is. --substeps k > 0 runs k
    sub-steps per frame instead (sps_world_advance_substeps). */
@@ -20,7 +21,7 @@
 int main(int argc, char** argv) {
     spinning_params p = {.dim = 2, .dp = 0.05, .omega = 50};
     double fps = 60, budget = 0.8, period, start, next, physics = 0, physics_max = 0, max_err = 0, substep_max = 0;
-    int substeps = 0;
+    int substeps = 0, max_frames = 0;
     long frames = 0, over_budget = 0, over_one_substep = 0;
     common_options c = {.shear = SPS_SHEAR_GNO_A, .cfl = 0.4, .t_end = 0.5, .vtk_every = 0, .csv_every = 0.01, .E = SPINNING_E,
                         .nu = SPINNING_NU_2D, .rho0 = SPINNING_RHO0, .out = "out/realtime", .jitter = 0, .seed = 1, PNG_DEFAULTS};
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
         {"omega", OPT_REAL, &p.omega, "angular velocity [rad/s]", 0, 1e4, NULL},
         {"fps", OPT_REAL, &fps, "frames per second", 1, 1000, NULL},
         {"budget", OPT_REAL, &budget, "wall budget of a frame's physics, fraction of the frame period; 0 = none", 0, 1, NULL},
+        {"frames", OPT_INT, &max_frames, "stop after this many frames (0: at --tend of simulated time)", 0, 1e7, NULL},
         {"substeps", OPT_INT, &substeps, "acoustic sub-steps per frame (sps_world_advance_substeps); 0 = one frame period of simulated time", 0, 1e7, NULL},
         COMMON_OPTION_SPECS(c),
     };
@@ -52,7 +54,7 @@ int main(int argc, char** argv) {
     output_open(&output, &c, "realtime", "velocity", ",frame_physics_ms");
 
     start = next = wall_seconds();
-    while (sps_world_time(w) < c.t_end) {
+    while (sps_world_time(w) < c.t_end && (max_frames == 0 || frames < max_frames)) {
         const long steps_before = sps_world_diagnostics(w, all, &d) == SPS_OK ? d.acoustic_steps : 0;
         const double t0 = wall_seconds();
         double spent;

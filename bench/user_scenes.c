@@ -117,7 +117,9 @@ static sps_result build(const scene_options* o, sps_world** out) {
     if ((r = sps_world_create(&wd, out)) != SPS_OK) return r;
     if (!strcmp(o->scene, "ramp")) { /* a 30-degree ramp through the origin, going down towards +x */
         const sps_real normal[3] = {(sps_real)sin(PI / 6), (sps_real)cos(PI / 6), 0};
-        const double lift = 0.05 + 0.5 * o->dp; /* the body's half size, plus half a spacing of air */
+        /* the disc's radius, or the axis-aligned cube's deepest corner (half side (sin + cos 30 deg)),
+           plus half a spacing of air */
+        const double lift = (o->dim == 2 ? 0.05 : 0.05 * (normal[0] + normal[1])) + 0.5 * o->dp;
         centre[0][0] = -0.3 + lift * normal[0];
         centre[0][1] = 0.3 * tan(PI / 6) + lift * normal[1];
         if ((r = sps_world_add_wall(*out, origin, normal, SPS_WALL_NO_SLIP)) != SPS_OK) return r;
@@ -165,7 +167,7 @@ int main(int argc, char** argv) {
     printf("RESULT scene=%s dim=%d slip=%s spin=%g shear=%s rotation=%s t=%.4f status=%s energy_start=%.6g mech_start=%.6g "
            "max_gain=%.5f watchdog_growth=%.5f target=0.02 watchdog_events=%d max_speed=%.4g min_spacing=%.3f particles=%d\n",
            o.scene, o.dim, o.noslip ? "noslip" : "free", o.spin, o.shear < 0 ? "default" : shear_names[o.shear],
-           o.rotation < 0 ? "default" : rotation_names[o.rotation], (double)sps_world_time(w), r == SPS_OK ? "ok" : "unstable", e0,
+           o.rotation < 0 ? "default" : rotation_names[o.rotation], (double)sps_world_time(w), r == SPS_OK ? "ok" : r == SPS_ERR_UNSTABLE ? "unstable" : "refused", e0,
            mech0, gain, (double)d.energy_growth, d.energy_growth_events, (double)d.max_speed, (double)d.min_spacing, d.particles);
     if (r != SPS_OK) fprintf(stderr, "user_scenes: %s\n", sps_world_last_error(w));
     sps_world_destroy(w);

@@ -5,16 +5,16 @@
 #   ramp     rolling (2D) or tumbling (3D) down a 30-degree no-slip ramp
 #   collide  two spinning bodies thrown at each other
 # Classes: stable (the watchdog's growth below 2 % of the largest mechanical energy, to the end),
-# unstable (stopped with a clean SPS_ERR_UNSTABLE message), rejected (a refused combination, e.g.
-# OAS in 3D), GAINED (ran to the end with growth >= 2 %: counted in sps_diagnostics, not silent,
+# unstable (stopped with a clean SPS_ERR_UNSTABLE message), refused (a set-up check at the first
+# step), rejected (a refused combination, e.g. OAS in 3D), GAINED (ran to the end with growth >= 2 %: counted in sps_diagnostics, not silent,
 # but not stable either), CRASH (anything else: must never happen).
 # Usage: sh bench/user_scenes_map.sh [dims] [t_end]     (default "2 3" 0.3; writes
-# bench/results/<machine>/user_scenes_map.csv, machine = $MACHINE or c-2core-xeon)
+# bench/results/<machine>/user_scenes_map_<dims>d.csv, machine = $MACHINE or c-2core-xeon)
 set -eu
 cd "$(dirname "$0")/.."
 dims=${1:-"2 3"}
 t_end=${2:-0.3}
-out=bench/results/${MACHINE:-c-2core-xeon}/user_scenes_map.csv
+out=bench/results/${MACHINE:-c-2core-xeon}/user_scenes_map_$(echo "$dims" | tr -d " ")d.csv
 mkdir -p "$(dirname "$out")"
 make -s build/user_scenes
 echo "dim,scene,slip,spin,shear,rotation,class,watchdog_growth,events,message" > "$out"
@@ -30,6 +30,7 @@ run() { # dim scene slip spin shear rotation
     if [ "$status" -eq 0 ] && [ -n "$growth" ]; then
         if [ "$(echo "$growth < 0.02" | bc)" -eq 1 ]; then class=stable; else class=GAINED; fi
     elif [ "$status" -eq 2 ] && printf '%s' "$line" | grep -q 'status=unstable'; then class=unstable
+    elif [ "$status" -eq 2 ] && printf '%s' "$line" | grep -q 'status=refused'; then class=refused
     elif [ "$status" -eq 2 ] && [ -z "$line" ]; then class=rejected
     else class=CRASH; fi
     echo "$1,$2,$3,$4,$5,$6,$class,$growth,$events,$message" >> "$out"

@@ -4426,7 +4426,8 @@ static int stop_after_one_step(sps_world* w, void* user) {
 /* The tumbling body of issue 37 with the public API: a rubber cube (3D, side 0.1 m, E 1e6,
    dp 0.01) or disc (2D, radius 0.05 m) spinning at spin rad/s about z, its lowest point 0.2 m
    above a no-slip floor, under gravity; the watchdog's limit 2 % (the issue's acceptance). */
-static sps_world* tumbling_body(int dim, sps_rotation rotation, int use_default, double spin, int stops, sps_body* out) {
+static sps_world* tumbling_body(int dim, sps_shear shear, sps_rotation rotation, int use_default, double spin, int stops,
+                                sps_wall_slip slip, sps_body* out) {
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
     const sps_real lo[3] = {-0.05, 0.2, -0.05}, hi[3] = {0.05, 0.3, 0.05}, origin[3] = {0, 0, 0}, up[3] = {0, 1, 0};
@@ -4439,12 +4440,13 @@ static sps_world* tumbling_body(int dim, sps_rotation rotation, int use_default,
     wd.energy_growth_limit = 0.02;
     wd.energy_growth_stops = stops;
     wd.log = warning_log;
+    bd.shear = shear;
     if (!use_default) bd.rotation = rotation;
     if (sps_world_create(&wd, &w) != SPS_OK || sps_world_add_body(w, &bd, out) != SPS_OK) return NULL;
     if (dim == 3 ? sps_body_add_box(w, *out, lo, hi, NULL) != SPS_OK
                  : sps_body_add_sdf(w, *out, lo, hi, disc_at_quarter_metre, NULL, NULL) != SPS_OK)
         return NULL;
-    if (sps_world_add_wall(w, origin, up, SPS_WALL_NO_SLIP) != SPS_OK || sps_body_set_rigid_motion(w, *out, still, omega) != SPS_OK)
+    if (sps_world_add_wall(w, origin, up, slip) != SPS_OK || sps_body_set_rigid_motion(w, *out, still, omega) != SPS_OK)
         return NULL;
     return w;
 }
@@ -4460,7 +4462,7 @@ static int test_default_body_survives_tumbling(void) {
         const double t_end = dim == 2 ? 1.0 : 0.3;
         sps_diagnostics d_default, d_mean;
         sps_body b;
-        sps_world* w = tumbling_body(dim, SPS_ROTATION_MEAN, 1, 20, 0, &b);
+        sps_world* w = tumbling_body(dim, SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 1, 20, 0, SPS_WALL_NO_SLIP, &b);
         ENSURE(w != NULL && sps_world_advance(w, t_end, NULL, NULL) == SPS_OK);
         ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d_default) == SPS_OK);
         sps_world_destroy(w);
@@ -4468,12 +4470,22 @@ static int test_default_body_survives_tumbling(void) {
                d_default.energy_growth_events);
         ENSURE(d_default.energy_growth < 0.02 && d_default.energy_growth_events == 0); /* issue 37's acceptance: 2 % */
         if (dim == 3) break;
-        w = tumbling_body(dim, SPS_ROTATION_MEAN, 0, 20, 0, &b);
+        w = tumbling_body(dim, SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 20, 0, SPS_WALL_NO_SLIP, &b);
         ENSURE(w != NULL && sps_world_advance(w, t_end, NULL, NULL) == SPS_OK); /* warns, returns SPS_OK ... */
         ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d_mean) == SPS_OK);
         sps_world_destroy(w);
         printf("    %dD mean rotation: growth %.4f (%d events)\n", dim, (double)d_mean.energy_growth, d_mean.energy_growth_events);
         ENSURE(d_mean.energy_growth > 0.02 && d_mean.energy_growth_events > 0); /* ... but the caller can tell */
+    }
+    { /* GNO-A's default (auto = mean) in the user-scene map's worst cell for GNO-A with the pair
+         rotation: the 2D disc at 50 rad/s on a free-slip floor (pair: 5.9 % growth) */
+        sps_diagnostics d;
+        sps_body b;
+        sps_world* w = tumbling_body(2, SPS_SHEAR_GNO_A, SPS_ROTATION_MEAN, 1, 50, 0, SPS_WALL_FREE_SLIP, &b);
+        ENSURE(w != NULL && sps_world_advance(w, 1.0, NULL, NULL) == SPS_OK && sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
+        sps_world_destroy(w);
+        printf("    2D GNO-A default, 50 rad/s, free slip: growth %.4f (%d events)\n", (double)d.energy_growth, d.energy_growth_events);
+        ENSURE(d.energy_growth < 0.02 && d.energy_growth_events == 0); /* issue 37: 2 % */
     }
     return 0;
 }
@@ -4482,13 +4494,13 @@ static int test_default_body_survives_tumbling(void) {
    energy_growth_stops = 1 the run stops with SPS_ERR_UNSTABLE instead. */
 static int test_watchdog_names_rotation(void) {
     sps_body b;
-    sps_world* w = tumbling_body(2, SPS_ROTATION_MEAN, 0, 20, 0, &b);
+    sps_world* w = tumbling_body(2, SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 20, 0, SPS_WALL_NO_SLIP, &b);
     g_warnings = 0;
     ENSURE(w != NULL && sps_world_advance(w, 1.0, NULL, NULL) == SPS_OK);
     printf("    %s\n", g_warning_last);
     ENSURE(g_warnings == 1 && strstr(g_warning_last, "rotation = mean") && strstr(g_warning_last, "SPS_ROTATION_PAIR"));
     sps_world_destroy(w);
-    w = tumbling_body(2, SPS_ROTATION_MEAN, 0, 20, 1, &b);
+    w = tumbling_body(2, SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 20, 1, SPS_WALL_NO_SLIP, &b);
     ENSURE(w != NULL && sps_world_advance(w, 1.0, NULL, NULL) == SPS_ERR_UNSTABLE && sps_world_time(w) < 1.0);
     ENSURE(strstr(sps_world_last_error(w), "unstable: energy watchdog") && strstr(sps_world_last_error(w), "rotation = mean"));
     sps_world_destroy(w);
@@ -4538,6 +4550,8 @@ static int test_setup_mistakes_named(void) {
     ENSURE(strstr(g_warning_last, "friction_angle = 0.52") && strstr(g_warning_last, "look like radians"));
     bd.material.friction_angle = 30; /* degrees: no warning */
     ENSURE(sps_world_add_body(w, &bd, &sand) == SPS_OK && g_warnings == 1);
+    bd.shear = SPS_SHEAR_GNO_A; /* the default rotation (auto) keeps a granular GNO-A body valid: mean, not pair */
+    ENSURE(bd.rotation == SPS_ROTATION_AUTO && sps_world_add_body(w, &bd, &sand) == SPS_OK);
     sps_world_destroy(w);
     wd.gravity[1] = 0;
     bd = sps_default_body_def();
