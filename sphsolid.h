@@ -6465,6 +6465,7 @@ static int sps__particles_behind_wall(const sps_world* w, int bi, int k) {
 static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out, size_t size) {
     const sps__stabilisation* st = b->model.stabilisation;
     const sps_real stable = st->stable_cfl[w->dim - 2];
+    const int uses_shear = b->model.material->shear && !b->model.material->stabilisation; /* the def's shear is used */
     int causes = 0, k, behind = 0;
     out[0] = 0;
     if (st->eno && b->model.turn != SPS__TURN_NONE) /* ENO-A: the pair rotation (SPS_ROTATION_AUTO) holds */
@@ -6483,8 +6484,9 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
         sps__rule(out, size, &causes, "%d of its particles are on the solid side of a wall: check that each wall's normal points into "
                   "the free side", behind);
     if (causes == 0)
-        sps__rule(out, size, &causes, "the time step or the shear formulation beyond its stable range for this scene: halve cfl_acoustic "
-                  "(now %g) or try shear = GNO-A (bench/VALIDATION.md, stability map)", (double)w->def.cfl_acoustic);
+        sps__rule(out, size, &causes, "the time step%s beyond its stable range for this scene: halve cfl_acoustic (now %g)%s "
+                  "(bench/VALIDATION.md, stability map)", uses_shear ? " or the shear formulation" : "", (double)w->def.cfl_acoustic,
+                  uses_shear ? " or try shear = GNO-A" : "");
 }
 
 /* Takes the start of the account (after a user's change: sps__rearm_watchdog) or compares with
