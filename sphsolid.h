@@ -19,8 +19,9 @@
       a -mtune that allows gather instructions (e.g. -mtune=icelake-server; GCC's generic
       tuning has none) and, on CPUs with AVX-512, -mprefer-vector-width=512 (GCC keeps 256-bit
       vectors otherwise; 1.2x on the 2D plate). The neighbour loops run one particle per SIMD
-      lane (an OpenMP simd loop, also honoured with -fopenmp-simd); on the 2D plate this is
-      1.6x the scalar speed.
+      lane (an OpenMP simd loop: build with -fopenmp, also for one thread; without it, or with
+      -fopenmp-simd only, the pragmas are left out and one thread is 1.45x (2D) to 2x (3D)
+      slower); on the 2D plate this is 1.6x the scalar speed.
 
    QUICK START (a clamped rubber strip that swings under gravity)
          sps_world_def wd = sps_default_world_def();
@@ -98,21 +99,22 @@
       shorter, which drifts the plate's period by 0.55% per cycle and gives the spinning plate
       33% angular-momentum error (see sps__pair).
 
-   REAL-TIME FRAMES (demos, games: sps_world_advance_frame)
-      A frame runs a fixed number k of acoustic sub-steps: whole advection steps, the last one
-      cut short so that the frame ends on the count (the next frame starts with a configuration
-      update; with single stepping nothing is cut). Without a wall budget a frame is
-      deterministic: the same k from the same state gives the same state, bit for bit, for any
-      thread count, and covered is the simulated time of its k sub-steps. To show simulated time
-      at wall-clock speed at F frames per second, run a first frame of k0 sub-steps without a
-      budget and then take k = k0 / (F covered): the mean sub-step is shorter than
-      CFL_ac h/(c0 + |v|max), since every advection step ends on a shortened one. A wall budget
-      below 1/F (say 80% of it) keeps the loop at F frames per second on a machine too slow for
-      k sub-steps per frame: the frame stops early, between advection steps, and the scene runs
-      in slow motion (covered < 1/F) instead of dropping frames. The budget is measured with
-      SPHSOLID_WALL_SECONDS() (CONFIG MACROS). Cutting advection steps at frame ends costs one
-      extra neighbour-list rebuild per frame; bench/realtime.c measures a whole loop (simulated
-      seconds per wall second).
+   REAL-TIME FRAMES (demos, games: sps_world_advance_frame, sps_body_drag_begin)
+      sps_world_advance_frame(w, 1.0 / F, budget, &covered) advances one frame of simulated time
+      at F frames per second; the library picks the sub-steps and the last step lands on the
+      frame's end. Without a budget the frame is deterministic (bit-identical for any thread
+      count). With a wall budget (say 80 % of 1/F) the budget is a hard cap: each advection step
+      is cut to the sub-steps that still fit (at the cost per sub-step measured in this frame, or
+      in the last budgeted one, one sub-step's time kept for the neighbour-list rebuild), so a
+      frame overruns by about one sub-step at most on an idle core, and a machine too slow for
+      the scene shows slow motion (covered < 1/F) instead of dropping frames. Every frame starts
+      a fresh advection step (one extra neighbour-list rebuild per frame). The budget is measured
+      with SPHSOLID_WALL_SECONDS() (CONFIG MACROS). sps_world_advance_substeps runs a fixed
+      count of sub-steps instead. sps_body_drag_begin grabs a body for the mouse: a spring of
+      the caller's stiffness and damping towards drag.target, spread by the kernel over a
+      neighbourhood of the grabbed material point, so that no particle is torn out (a 2D jelly
+      of 1024 particles dragged round a circle for 3 s keeps every particle within 1.03 dp of a
+      neighbour; tested). bench/realtime.c measures a whole loop; examples/demo.c drags blocks.
 
    SHEAR FORMULATIONS (per body, sps_body_def.shear)
       SPS_SHEAR_OG     original: tau by the Jaumann rate, a = (1/rho) div tau (ENO eq. 17).
@@ -127,8 +129,14 @@
                        part of the velocity difference a linear field does not explain (ANG eq. 43).
       SPS_SHEAR_GNO_A  GNO with the penalty projected on e_ij (ANG eq. 46) and rotated like ENO-A
                        (ANG Algorithm 2). xi_G = 2.
-      -A variants: rotation = SPS_ROTATION_MEAN (default) uses the body's mean Rodrigues matrix
-      (linear momentum exact, ANG eq. 41); SPS_ROTATION_PER_PARTICLE each particle's own (eq. 34).
+      -A variants: rotation = SPS_ROTATION_MEAN uses the body's mean Rodrigues matrix (linear
+      momentum exact, ANG eq. 41; the papers' choice, which the examples pass explicitly);
+      SPS_ROTATION_PER_PARTICLE each particle's own (eq. 34). The default, SPS_ROTATION_AUTO, is
+      SPS_ROTATION_PAIR below for ENO-A and the mean for GNO-A: with ENO-A the mean rotation
+      gains energy when a body tumbles or hits something (a 0.1 m rubber cube spinning at 20
+      rad/s dropped on a no-slip floor: the energy account grew by a factor 500 within 1 s; with
+      the pair rotation it only falls), while GNO-A with the mean rotation gained in none of the
+      user scenes and with the pair rotation in some (bench/VALIDATION.md, user scenes).
       SPS_ROTATION_PAIR (our extension, not in the papers) does what eq. 32 asks of the rotation,
       that every stored increment stay aligned with its pair, exactly: each ENO increment (or
       GNO-A penalty increment, eq. 46) is a force along e_ij, so the library stores one scalar
@@ -481,7 +489,8 @@
       Functions return sps_result (SPS_OK = 0, negative = error); sps_result_string() names it.
       Each world keeps the message of its last error (sps_world_last_error); there is no global
       error state. Every error of a call on a world sets that message and sends it to the world
-      def's log callback (default: stderr); sps_world_create's errors go to the log only.
+      def's log callback (default: stderr); sps_world_create's errors go to the log, and
+      sps_world_def_check(def, msg, size) returns them to the caller.
       Messages read "field = value, allowed range". A NULL world never crashes a call: fallible
       calls return SPS_ERR_INVALID_ARG, queries a neutral value (0, NULL, -1).
       Validated (SPS_ERR_INVALID_ARG, every broken rule of a def listed at once):
@@ -494,7 +503,7 @@
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
       c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
-      rotation (0..2), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
+      rotation (0..3), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
       track_stress 0/1, damping finite >= 0 (0 for a wall body), friction finite >= 0 (0 without
       contact and for fluid and Drucker-Prager bodies), material.viscosity finite >= 0 (0 for
       wall and Drucker-Prager bodies), wall friction (finite >= 0, an existing free-slip wall),
@@ -508,13 +517,20 @@
       at most 2e8), coordinates, volumes, points and velocities (finite, volumes > 0),
       constraint masks (1..7), particle ids [0, n), field enums, t_end (finite).
       Stepping: a world without particles, or a body without particles, gives SPS_ERR_STATE
-      naming the body (a box narrower than dp holds no lattice point).
+      naming the body (a box narrower than dp holds no lattice point); at the first step, a
+      deformable body with particles on the solid side of a wall gives SPS_ERR_STATE naming the
+      wall, the body and the count (a normal that points into the body). sps_world_advance to a
+      t_end before the world's time is SPS_ERR_INVALID_ARG; sps_body_set_velocity or
+      _set_rigid_motion on a body without particles SPS_ERR_STATE.
       Warnings (log level 1, the call returns SPS_OK; the last error is untouched): a fill that
       adds no particle, a constraint box that matches none, a Poisson ratio within 1e-3 of 0.5
       (with the factor it shortens the time step by), bodies that can touch (or a body and the
       walls) moving at more than 0.2 c0 relative to each other (once per world), a CFL number
       above the measured stable limit of a body's formulation (STABLE CFL), the energy
-      watchdog, and with report_fragments = 1 a particle that broke off its body.
+      watchdog, threads > 1 in a build without OpenMP, a Drucker-Prager friction angle in
+      (0, pi/2] (radians given for degrees), an sps_world_advance of more than 1e10 particle
+      sub-steps (the estimated count), and with report_fragments = 1 a particle that broke off
+      its body.
       Run-time guards (SPS_ERR_UNSTABLE; the message names time, body, particle and value):
       - at every configuration update (once per advection step, ~0.25 % of its time): a
         non-finite velocity, position, pressure, shear stress or accumulated shear acceleration,
@@ -526,8 +542,14 @@
       - energy watchdog, at most every 10 sub-steps: the energy account (DIAGNOSTICS; without
         the shear strain energy, so a lower bound) above its start by more than
         energy_growth_limit (default 5 %) of the largest kinetic + volumetric + contact energy
-        seen: a warning (log level 1) naming time, growth and the body that
-        gained most, once; with energy_growth_stops = 1, SPS_ERR_UNSTABLE. A run past its stable
+        seen: a warning (log level 1) naming time, growth, the body that gained most and the
+        likely cause with its fix (the mean or per-particle rotation, a CFL number above the
+        measured stable one, a formulation without hourglass control, particles behind a wall),
+        once; with energy_growth_stops = 1, SPS_ERR_UNSTABLE. The default warns and goes on: the
+        user scenes with the default body never reach 2 % (bench/VALIDATION.md), and a game or
+        demo loop should not die of a warning; every check above the limit is counted in
+        sps_diagnostics.energy_growth_events (and the largest growth in .energy_growth), so a
+        run that returned SPS_OK can still be told from a clean one. A run past its stable
         time step or formulation stays finite and would return SPS_OK silently (the 3D
         cantilever at cfl_acoustic = 0.8, the spinning plate with ENO-A at 100 rad/s; tested).
         A new start is taken after every call that changes the state on purpose (velocities,
@@ -733,7 +755,9 @@ typedef enum sps_shear {
 typedef enum sps_rotation {
     SPS_ROTATION_MEAN = 0,         /* the body's mean Rodrigues matrix (ANG eq. 41-42) */
     SPS_ROTATION_PER_PARTICLE = 1, /* each particle's own matrix (ANG eq. 34) */
-    SPS_ROTATION_PAIR = 2          /* each increment turned with its own pair (see SHEAR FORMULATIONS) */
+    SPS_ROTATION_PAIR = 2,         /* each increment turned with its own pair (see SHEAR FORMULATIONS) */
+    SPS_ROTATION_AUTO = 3          /* pair for ENO-A, mean for GNO-A: what survives tumbling and
+                                      impacts (the default; SHEAR FORMULATIONS) */
 } sps_rotation;
 
 /* Axis masks for velocity constraints. */
@@ -784,7 +808,9 @@ typedef struct sps_world_def {
                                          energy (kinetic + strain + gravity potential - work of
                                          the prescribed motions) exceeds its value at the start by
                                          more than this fraction of the largest mechanical energy
-                                         (kinetic + strain) seen; > 0, INFINITY: off. Default 0.05. */
+                                         (kinetic + strain) seen (every such check is counted in
+                                         sps_diagnostics.energy_growth_events); > 0, INFINITY:
+                                         off. Default 0.05. */
     int energy_growth_stops;          /* 1: the watchdog's finding stops the run with
                                          SPS_ERR_UNSTABLE instead. Default 0. */
     int keep_last_good_state;         /* 1: copy positions, velocities, densities, pressures and
@@ -883,7 +909,8 @@ typedef struct sps_body_def {
     const char* name;          /* for messages and output; copied (first 31 chars). Default "body". */
     sps_material_def material; /* Default sps_default_material_def(). */
     sps_shear shear;           /* Default SPS_SHEAR_ENO_A. */
-    sps_rotation rotation;     /* the -A variants (ENO-A, GNO-A). Default SPS_ROTATION_MEAN. */
+    sps_rotation rotation;     /* the -A variants (ENO-A, GNO-A). Default SPS_ROTATION_AUTO (ENO-A:
+                                  pair; GNO-A: mean). */
     sps_real zeta;             /* ENO coefficient; 0 selects 0.7 d + 2.1 (ENO section 4). Default 0. */
     sps_real xi;               /* GNO penalty coefficient xi_G; 0 selects 2 (ANG section 4.2). Default 0. */
     sps_real oas_epsilon;      /* OAS artificial-stress factor, [0, 1]. Default 0.3 (Gray et al.). */
@@ -957,6 +984,13 @@ typedef struct sps_diagnostics {
     long acoustic_steps, advection_steps;
     sps_real dt_acoustic;         /* last acoustic time step [s] */
     int particles;
+    sps_real energy_growth;       /* the energy watchdog's largest finding so far (world-wide): the
+                                     account's growth above its start as a fraction of the largest
+                                     mechanical energy seen (ERRORS); 0 with the watchdog off */
+    int energy_growth_events;     /* the watchdog's checks that found the growth above
+                                     energy_growth_limit (world-wide): 0 for a clean run. A run
+                                     that warned (energy_growth_stops = 0) returned SPS_OK, and
+                                     this is how the caller knows */
 } sps_diagnostics;
 
 /* Per-particle output state (sps_world_particle). */
@@ -1003,8 +1037,8 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out);
 SPSDEF void sps_world_destroy(sps_world* w);
 /* The effective def (after defaults); NULL for a NULL world. */
 SPSDEF const sps_world_def* sps_world_get_def(const sps_world* w);
-/* The message of the last error of this world ("" if none; "world is NULL" for NULL). Valid
-   until the next call. */
+/* The message of the last error of this world ("" if none; for NULL, "world is NULL" and how
+   to read the errors of sps_world_create: sps_world_def_check). Valid until the next call. */
 SPSDEF const char* sps_world_last_error(const sps_world* w);
 /* Debug check of the whole world: the def, every body def, bodies not empty, every particle's
    state finite (density, mass, volume > 0), ids, constraints and observers consistent, and
@@ -1054,8 +1088,15 @@ SPSDEF sps_result sps_measure_fill(const sps_world* w, int n, const sps_real* xy
 /* Adds n particles at xyz (3 reals each; z ignored in 2D) with volumes vol (NULL: dp^d each). */
 SPSDEF sps_result sps_body_add_particles(sps_world* w, sps_body b, int n, const sps_real* xyz, const sps_real* vol);
 
-/* Sets the velocity of every particle of the body from fn(reference position). */
+/* Sets the velocity of every particle of the body from fn(reference position). SPS_ERR_STATE for
+   a body without particles (add them first: a fill starts particles at rest). */
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user);
+/* Sets the body's velocity to a rigid motion about its CURRENT centre of mass x_cm:
+   v_i = velocity + omega x (x_i - x_cm) (length-3 arrays; in 2D only omega[2] is used). For
+   throwing, spinning or stopping a body that has moved (sps_body_set_velocity sees the
+   reference positions only). SPS_ERR_INVALID_ARG for NULL or non-finite values, SPS_ERR_STATE
+   for a body without particles. No allocation; O(N). */
+SPSDEF sps_result sps_body_set_rigid_motion(sps_world* w, sps_body b, const sps_real velocity[3], const sps_real omega[3]);
 /* Sets the pressure of every particle of the body from fn(reference position) [Pa], and its
    density from the body's equation of state, rho = rho0 + p / c0^2 (its mass is kept, so its
    volume becomes m / rho): an initial pressure field such as the hydrostatic one. p must be
@@ -1110,7 +1151,49 @@ SPSDEF sps_real sps_world_time(const sps_world* w);
    range) or an error of sps_world_step. No allocation (except, like sps_world_step, at the
    first step after particles were added). O(N neighbours) per sub-step. Not for two threads on
    one world at once. */
-SPSDEF sps_result sps_world_advance_frame(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered);
+SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered);
+/* One frame of a game loop in simulated seconds (REAL-TIME FRAMES): advances the world by
+   frame_seconds of simulated time, the sub-step count chosen by the library (the last step
+   lands on the frame's end), or less when wall_budget_s > 0 and the wall clock runs out: a hard
+   cap, overshot by at most about one sub-step (each step is cut to the sub-steps that fit at
+   the cost per sub-step measured so far, or in the last budgeted frame), and the scene then
+   runs in slow motion instead of dropping frames.
+     frame_seconds  (0, 1] [s], e.g. 1/60 (a larger value is refused: the old sub-step count
+                    passed here by mistake; sub-steps: sps_world_advance_substeps).
+     wall_budget_s  0: none; the frame is deterministic (bit-identical for any thread count).
+                    > 0 (finite) [s]: wall time allowed from the call.
+     covered        (may be NULL) the simulated time advanced [s], also on error.
+   Errors as sps_world_advance_substeps. */
+SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, double wall_budget_s, sps_real* covered);
+
+/* Drag (a mouse joint): pulls the particles of a body around a grabbed material point towards
+   a target that the caller moves, by a spring of the caller's stiffness and damping spread over
+   a kernel neighbourhood, so that no single particle is torn out. Particle i gets the external
+   acceleration phi_i (stiffness (target - x_i) - damping v_i) / m_i with phi_i = m_i W(s_i) /
+   sum_j m_j W(s_j), s_i its reference distance from the grabbed point scaled so the kernel's
+   support is the radius: the total force is stiffness (target - x_grab) - damping v_grab, x_grab
+   and v_grab the phi-weighted means. Keep the sps_drag alive and write drag.target each frame. */
+typedef struct sps_drag {
+    sps_real target[3];   /* where the grabbed point is pulled to [m]; the caller moves it */
+    sps_real stiffness;   /* [N/m] (N/m per metre of depth in 2D), finite >= 0 */
+    sps_real damping;     /* [N s/m], finite >= 0 */
+    /* set by sps_body_drag_begin */
+    sps_body body;
+    const sps_world* world;
+    sps_real anchor[3];   /* the grabbed material point (reference position of the nearest particle) */
+    sps_real radius;      /* of the neighbourhood [m] */
+    sps_real weight_sum;  /* sum_j m_j W(s_j) */
+} sps_drag;
+/* Grabs body b at the particle nearest to point (current positions): radius [m] of the
+   neighbourhood, 0 selects the kernel's support 2h, else >= 2h (wider spreads the pull over
+   more of the body). Installs the body's external acceleration (sps_body_set_acceleration; it
+   replaces one the body had); drag->target starts at point. SPS_ERR_INVALID_ARG for NULL, a
+   wall body, stiffness or damping not finite >= 0 or a radius below 2h; SPS_ERR_STATE for a
+   body without particles. O(N). */
+SPSDEF sps_result sps_body_drag_begin(sps_world* w, sps_body b, const sps_real point[3], sps_real stiffness, sps_real damping,
+                                      sps_real radius, sps_drag* drag);
+/* Lets go: removes the body's external acceleration. */
+SPSDEF sps_result sps_body_drag_end(sps_world* w, sps_drag* drag);
 
 /* Diagnostics for the whole world (b.id == 0) or one body. Allocates scratch on first call. O(N). */
 SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body b, sps_diagnostics* out);
@@ -1546,6 +1629,8 @@ struct sps_world {
         int armed, fired;          /* its start is taken; it has warned */
         long checked_at;           /* acoustic steps at its last check */
         sps_real start, scale, start_time; /* the account at the start, the largest mechanical energy since */
+        sps_real worst;            /* the largest growth / scale found (sps_diagnostics.energy_growth) */
+        int events;                /* checks above the limit (sps_diagnostics.energy_growth_events) */
     } watch;
     int lists_valid;               /* the neighbour lists match the particle order (a failed
                                       configuration update may leave them half built) */
@@ -1624,6 +1709,7 @@ struct sps_world {
     sps_real thread_max[SPS__MAX_THREADS]; /* per-thread max |v|^2 of the kick */
     long acoustic_steps, advection_steps;
     int allocated_for; /* particles the neighbour storage was sized for (sps__ensure_neighbor_storage) */
+    double substep_wall_s; /* wall seconds of one sub-step in the last budgeted frame (>>realtime) */
 };
 
 /* >>fields */
@@ -1927,7 +2013,7 @@ SPSDEF sps_body_def sps_default_body_def(void) {
     d.name = "body";
     d.material = sps_default_material_def();
     d.shear = SPS_SHEAR_ENO_A;
-    d.rotation = SPS_ROTATION_MEAN;
+    d.rotation = SPS_ROTATION_AUTO; /* the pair rotation survives tumbling and impacts (bench/VALIDATION.md, user scenes) */
     d.oas_epsilon = SPS_R(0.3);
     d.oas_exponent = 4;
     d.contact = 1;
@@ -2421,8 +2507,9 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
     SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= SPS__OAS_MAX_EXPONENT, "oas_exponent = %g, allowed [1, %d]", (double)def->oas_exponent, SPS__OAS_MAX_EXPONENT);
-    SPS__CHECK(def->rotation == SPS_ROTATION_MEAN || def->rotation == SPS_ROTATION_PER_PARTICLE || def->rotation == SPS_ROTATION_PAIR,
-               "rotation = %d, allowed 0 (mean), 1 (per particle) or 2 (pair)", (int)def->rotation);
+    SPS__CHECK(def->rotation == SPS_ROTATION_MEAN || def->rotation == SPS_ROTATION_PER_PARTICLE || def->rotation == SPS_ROTATION_PAIR ||
+                   def->rotation == SPS_ROTATION_AUTO,
+               "rotation = %d, allowed 0 (mean), 1 (per particle), 2 (pair) or 3 (auto)", (int)def->rotation);
     SPS__CHECK(def->zeta >= 0 && def->zeta <= 100, "zeta = %g, allowed 0 (default 0.7 d + 2.1) or (0, 100]", (double)def->zeta);
     SPS__CHECK(def->track_stress == 0 || def->track_stress == 1, "track_stress = %d, allowed 0 or 1", def->track_stress);
     SPS__CHECK(def->contact == 0 || def->contact == 1, "contact = %d, allowed 0 or 1", def->contact);
@@ -2438,17 +2525,29 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
 /* The pass kernels of a model in the world's dimension and pair geometry (chapter >>forces). */
 static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m);
 
+/* SPS_ROTATION_AUTO: the rotation measured best for the formulation (bench/VALIDATION.md, user
+   scenes). ENO-A: pair, whose forces are central pair forces (momentum exact, no energy gained
+   by a tumbling body; the mean rotation gains). GNO-A: mean, ANG's choice: its stress
+   divergence is not central, and the pair rotation gained energy where the mean did not (a disc
+   spinning at 50 rad/s on a free-slip floor: 5.9 % against none); granular GNO-A bodies cannot
+   keep per-pair increments anyway. */
+static sps_rotation sps__rotation_of(const sps_body_def* def) {
+    if (def->rotation != SPS_ROTATION_AUTO) return def->rotation;
+    return def->shear == SPS_SHEAR_GNO_A ? SPS_ROTATION_MEAN : SPS_ROTATION_PAIR;
+}
+
 /* The model of a checked def (pass kernels excepted: sps__choose_passes). */
 static sps__model sps__resolve_model(const sps_body_def* def) {
+    const sps_rotation rotation = sps__rotation_of(def);
     sps__model m;
     memset(&m, 0, sizeof m);
     m.material = sps__material_of(def->material.kind);
     m.stabilisation = m.material->stabilisation ? m.material->stabilisation : sps__stabilisation_of(def->shear);
     if (m.material->plastic == SPS__YIELD_DRUCKER_PRAGER && (def->shear == SPS_SHEAR_GNO || def->shear == SPS_SHEAR_GNO_A))
         m.stabilisation = sps__stabilisation_of(def->shear); /* a granular body with ANG's penalty (GRANULAR) */
-    m.paired = m.stabilisation->rotated && def->rotation == SPS_ROTATION_PAIR;
+    m.paired = m.stabilisation->rotated && rotation == SPS_ROTATION_PAIR;
     m.turn = !m.stabilisation->rotated || m.paired ? SPS__TURN_NONE
-             : def->rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
+             : rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
     m.stress = m.stabilisation->stress_force || def->track_stress;
     m.gradient = m.turn != SPS__TURN_NONE || m.stress;
     m.artificial_stress = m.stabilisation->artificial_stress;
@@ -2624,6 +2723,8 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
     if (w->threads <= 0) w->threads = omp_get_max_threads();
     if (w->threads > SPS__MAX_THREADS) w->threads = SPS__MAX_THREADS;
 #else
+    if (w->threads > 1)
+        sps__warn(w, "threads = %d, but this build has no OpenMP: the world runs on 1 thread (compile with -fopenmp)", w->threads);
     w->threads = 1;
 #endif
     w->tag = sps__next_world_tag();
@@ -2680,7 +2781,9 @@ SPSDEF void sps_world_destroy(sps_world* w) {
 }
 
 SPSDEF const sps_world_def* sps_world_get_def(const sps_world* w) { return w ? &w->def : NULL; }
-SPSDEF const char* sps_world_last_error(const sps_world* w) { return w ? w->error : "world is NULL"; }
+SPSDEF const char* sps_world_last_error(const sps_world* w) {
+    return w ? w->error : "world is NULL (sps_world_create failed? sps_world_def_check(&def, msg, size) lists every broken rule of its def)";
+}
 SPSDEF sps_real sps_world_time(const sps_world* w) { return w ? w->time : 0; }
 SPSDEF int sps_world_particle_count(const sps_world* w) { return w ? w->n : 0; }
 
@@ -2748,6 +2851,11 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
         sps__warn(w, "body '%s': cfl_acoustic = %g is above %g, the largest value measured stable for %s in %dD (bench/VALIDATION.md, "
                   "stability map): the run may blow up, which the energy watchdog reports", b->name, (double)w->def.cfl_acoustic,
                   (double)b->model.stabilisation->stable_cfl[w->dim - 2], b->model.stabilisation->name, w->dim);
+    if (b->model.plastic == SPS__YIELD_DRUCKER_PRAGER && def->material.friction_angle > 0 &&
+        def->material.friction_angle <= SPS__PI / 2) /* soils and granular media: 20 to 45 degrees */
+        sps__warn(w, "body '%s': material.friction_angle = %g and dilatancy_angle = %g look like radians (%g and %g degrees); both are "
+                  "in degrees, plausible range [5, 60]", b->name, (double)def->material.friction_angle, (double)def->material.dilatancy_angle,
+                  (double)(def->material.friction_angle * 180 / SPS__PI), (double)(def->material.dilatancy_angle * 180 / SPS__PI));
     if (def->material.poisson_ratio > SPS_R(0.499)) { /* nearly incompressible: say what it costs */
         sps_material_def ref = def->material;
         ref.poisson_ratio = SPS_R(0.3);
@@ -2902,11 +3010,23 @@ SPSDEF sps_result sps_body_add_particles(sps_world* w, sps_body b, int n, const 
     return SPS_OK;
 }
 
+/* A velocity set on a body before its particles are added would be lost silently (the fill
+   starts them at rest): say so instead. */
+static int sps__body_is_empty(sps_world* w, int k, const char* fn) {
+    int i;
+    for (i = 0; i < w->n; ++i)
+        if (w->body[i] == k) return 0;
+    sps__set_error(w, 0, "%s: body '%s' has no particles yet: add them first (sps_body_add_box, _sdf, _particles), then set its "
+                   "velocity", fn, w->bodies[k].name);
+    return 1;
+}
+
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user) {
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
     if ((k = sps__check_body(w, b, "sps_body_set_velocity")) < 0) return SPS_ERR_INVALID_ARG;
     if (!fn) { sps__set_error(w, 0, "sps_body_set_velocity: fn must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    if (sps__body_is_empty(w, k, "sps_body_set_velocity")) return SPS_ERR_STATE;
     for (i = 0; i < w->n; ++i) {
         sps_real x[3], v[3] = {0, 0, 0}, before;
         if (w->body[i] != k) continue;
@@ -2916,6 +3036,39 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
             if (!sps__finite(v[a])) { sps__set_error(w, 0, "sps_body_set_velocity: velocity component %d = %g at particle %d, allowed finite", a, (double)v[a], w->id[i]); return SPS_ERR_INVALID_ARG; }
         before = sps__kinetic(w, i);
         for (a = 0; a < w->dim; ++a) w->vel[a][i] = v[a];
+        sps__watch_adjust(w, k, sps__kinetic(w, i) - before, 0);
+    }
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_set_rigid_motion(sps_world* w, sps_body b, const sps_real velocity[3], const sps_real omega[3]) {
+    sps_real centre[3] = {0, 0, 0}, mass = 0;
+    int k, i, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, "sps_body_set_rigid_motion")) < 0) return SPS_ERR_INVALID_ARG;
+    if (!velocity || !omega) { sps__set_error(w, 0, "sps_body_set_rigid_motion: velocity and omega must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    for (a = 0; a < 3; ++a)
+        if (!sps__finite(velocity[a]) || !sps__finite(omega[a])) {
+            sps__set_error(w, 0, "sps_body_set_rigid_motion: velocity[%d] = %g, omega[%d] = %g, allowed finite", a, (double)velocity[a], a,
+                           (double)omega[a]);
+            return SPS_ERR_INVALID_ARG;
+        }
+    if (sps__body_is_empty(w, k, "sps_body_set_rigid_motion")) return SPS_ERR_STATE;
+    for (i = 0; i < w->n; ++i) /* the current centre of mass, in particle order (deterministic) */
+        if (w->body[i] == k) {
+            for (a = 0; a < w->dim; ++a) centre[a] += w->mass[i] * w->pos[a][i];
+            mass += w->mass[i];
+        }
+    for (a = 0; a < w->dim; ++a) centre[a] /= mass;
+    for (i = 0; i < w->n; ++i) {
+        sps_real r[3] = {0, 0, 0}, before;
+        if (w->body[i] != k) continue;
+        for (a = 0; a < w->dim; ++a) r[a] = w->pos[a][i] - centre[a];
+        before = sps__kinetic(w, i);
+        /* v + omega x r; in 2D only omega_z turns the plane */
+        w->vel[0][i] = velocity[0] + omega[1] * r[2] - omega[2] * r[1];
+        w->vel[1][i] = velocity[1] + omega[2] * r[0] - omega[0] * r[2];
+        if (w->dim == 3) w->vel[2][i] = velocity[2] + omega[0] * r[1] - omega[1] * r[0];
         sps__watch_adjust(w, k, sps__kinetic(w, i) - before, 0);
     }
     return SPS_OK;
@@ -6886,6 +7039,49 @@ static void sps__energy_account(const sps_world* w, sps_real* account, sps_real*
     }
 }
 
+/* Particles of body bi on the solid side of wall k ((x - point) . normal < 0). */
+static int sps__particles_behind_wall(const sps_world* w, int bi, int k) {
+    const sps__wall* wall = &w->walls[k];
+    int i, a, count = 0;
+    for (i = 0; i < w->n; ++i) {
+        sps_real depth = 0;
+        if (w->body[i] != bi) continue;
+        for (a = 0; a < w->dim; ++a) depth += (w->pos[a][i] - wall->point[a]) * wall->normal[a];
+        count += depth < 0;
+    }
+    return count;
+}
+
+/* The watchdog's diagnosis, most likely first: what in body b's model or the world's settings
+   is known to gain energy (the stability map and the user scenes of bench/VALIDATION.md), and
+   the setting that fixes it. */
+static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out, size_t size) {
+    const sps__stabilisation* st = b->model.stabilisation;
+    const sps_real stable = st->stable_cfl[w->dim - 2];
+    const int uses_shear = b->model.material->shear && !b->model.material->stabilisation; /* the def's shear is used */
+    int causes = 0, k, behind = 0;
+    out[0] = 0;
+    if (st->eno && b->model.turn != SPS__TURN_NONE) /* ENO-A: the pair rotation (SPS_ROTATION_AUTO) holds */
+        sps__rule(out, size, &causes, "its rotation = %s, which gains energy when an ENO-A body spins, tumbles or hits something: set "
+                  "rotation = SPS_ROTATION_PAIR (or SPS_ROTATION_AUTO, the default)", b->model.turn == SPS__TURN_MEAN ? "mean" : "per particle");
+    if (st->penalty && st->rotated && b->model.turn != SPS__TURN_MEAN) /* GNO-A: the mean rotation (SPS_ROTATION_AUTO) holds */
+        sps__rule(out, size, &causes, "its rotation = %s, which gains energy when a GNO-A body spins fast: set rotation = "
+                  "SPS_ROTATION_MEAN (or SPS_ROTATION_AUTO, the default)", b->model.paired ? "pair" : "per particle");
+    if (stable > 0 && w->def.cfl_acoustic > stable)
+        sps__rule(out, size, &causes, "cfl_acoustic = %g is above %g, the largest measured stable for %s in %dD: lower it",
+                  (double)w->def.cfl_acoustic, (double)stable, st->name, w->dim);
+    if (!st->eno && !st->penalty && !b->model.material->kinematic && b->model.material->shear && b->model.plastic == SPS__YIELD_NONE)
+        sps__rule(out, size, &causes, "shear = %s resists no hourglass mode: use ENO-A or GNO-A", st->name);
+    for (k = 0; k < w->nwalls; ++k) behind += sps__particles_behind_wall(w, (int)(b - w->bodies), k);
+    if (behind > 0)
+        sps__rule(out, size, &causes, "%d of its particles are on the solid side of a wall: check that each wall's normal points into "
+                  "the free side", behind);
+    if (causes == 0)
+        sps__rule(out, size, &causes, "the time step%s beyond its stable range for this scene: halve cfl_acoustic (now %g)%s "
+                  "(bench/VALIDATION.md, stability map)", uses_shear ? " or the shear formulation" : "", (double)w->def.cfl_acoustic,
+                  uses_shear ? " or try shear = GNO-A" : "");
+}
+
 /* Takes the start of the account (after a user's change: sps__rearm_watchdog) or compares with
    it: a growth above energy_growth_limit times the largest mechanical energy seen is reported
    once (log level 1), naming the body whose kinetic + strain energy grew most, or stops the run
@@ -6894,7 +7090,7 @@ static sps_result sps__watch_energy(sps_world* w) {
     char msg[768];
     sps_real account, mechanical, growth, gain = 0;
     int bi, most = 0;
-    if (!sps__watchdog_on(w) || w->watch.fired || (w->watch.armed && w->acoustic_steps - w->watch.checked_at < 10)) return SPS_OK;
+    if (!sps__watchdog_on(w) || (w->watch.armed && w->acoustic_steps - w->watch.checked_at < 10)) return SPS_OK;
     w->watch.checked_at = w->acoustic_steps;
     sps__energy_account(w, &account, &mechanical);
     if (!w->watch.armed) {
@@ -6910,7 +7106,10 @@ static sps_result sps__watch_energy(sps_world* w) {
     }
     if (mechanical > w->watch.scale) w->watch.scale = mechanical;
     growth = account - w->watch.start;
+    if (w->watch.scale > 0 && growth / w->watch.scale > w->watch.worst) w->watch.worst = growth / w->watch.scale;
     if (!(growth > w->def.energy_growth_limit * w->watch.scale)) return SPS_OK;
+    ++w->watch.events; /* counted at every check above the limit: the caller's evidence (diagnostics) */
+    if (w->watch.fired && !w->def.energy_growth_stops) return SPS_OK; /* warned once */
     w->watch.fired = 1;
     for (bi = 0; bi < w->nbodies; ++bi) { /* the body that gained most: where it went wrong */
         sps_real share, m;
@@ -6921,11 +7120,11 @@ static sps_result sps__watch_energy(sps_world* w) {
              "energy watchdog at t = %g: the energy (kinetic + volumetric strain + contact + gravity potential + plastic work - work of "
              "prescribed motions) "
              "grew from %g J to %g J since t = %g, by %.3g %% of the largest mechanical energy %g J (energy_growth_limit = %g %%); "
-             "body '%s' gained most (%g J). The time step (cfl_acoustic = %g) or the shear formulation is beyond its stable "
-             "range for this scene (bench/VALIDATION.md, stability map)",
+             "body '%s' gained most (%g J). Likely cause: ",
              (double)w->time, (double)w->watch.start, (double)account, (double)w->watch.start_time,
              (double)(100 * growth / w->watch.scale), (double)w->watch.scale, (double)(100 * w->def.energy_growth_limit),
-             w->bodies[most].name, (double)gain, (double)w->def.cfl_acoustic);
+             w->bodies[most].name, (double)gain);
+    sps__growth_causes(w, &w->bodies[most], msg + strlen(msg), sizeof msg - strlen(msg));
     if (!w->def.energy_growth_stops) { sps__warn(w, "%s", msg); return SPS_OK; }
     sps__set_error(w, 0, "unstable: %s", msg);
     return SPS_ERR_UNSTABLE;
@@ -7128,6 +7327,25 @@ static sps_real sps__frame_speeds(sps_world* w) {
 /* A scene that can step, with the storage its state needs (after adds: sorted by body, the
    neighbour lists, the step fields, the last good state). Allocates only after adds (or after a
    refusal). */
+/* At the first step: a deformable body that starts (partly) on the solid side of a wall is
+   thrown out at contact stiffness, or sinks through, so it is refused with the count. */
+static sps_result sps__check_bodies_outside_walls(sps_world* w) {
+    int k, bi;
+    for (k = 0; k < w->nwalls; ++k)
+        for (bi = 0; bi < w->nbodies; ++bi) {
+            const sps__wall* wall = &w->walls[k];
+            const int behind = w->bodies[bi].model.material->kinematic ? 0 : sps__particles_behind_wall(w, bi, k);
+            if (behind == 0) continue;
+            sps__set_error(w, 0, "wall %d (point (%g, %g, %g), normal (%g, %g, %g)): %d of the %d particles of body '%s' start on its "
+                           "solid side ((x - point) . normal < 0); the normal points from the solid into the free side: flip it or "
+                           "move the body", k, (double)wall->point[0], (double)wall->point[1], (double)wall->point[2],
+                           (double)wall->normal[0], (double)wall->normal[1], (double)wall->normal[2], behind,
+                           w->bodies[bi].count, w->bodies[bi].name);
+            return SPS_ERR_STATE;
+        }
+    return SPS_OK;
+}
+
 static sps_result sps__ready_to_step(sps_world* w) {
     sps_result r;
     if ((r = sps__check_bodies_filled(w)) != SPS_OK) return r;
@@ -7282,6 +7500,7 @@ static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
         sps__set_error(w, 0, "the world stopped at an instability and cannot step further (read or destroy it): %s", w->failure);
         return SPS_ERR_UNSTABLE;
     }
+    if (w->acoustic_steps == 0 && (r = sps__check_bodies_outside_walls(w)) != SPS_OK) return r;
     r = sps__step_until(w, t_limit);
     if (r == SPS_ERR_UNSTABLE) {
         w->stopped = 1;
@@ -7296,9 +7515,26 @@ SPSDEF sps_result sps_world_step(sps_world* w) {
     return sps__step_guarded(w, (sps_real)INFINITY);
 }
 
+/* A run of more than 1e10 particle sub-steps (hours on a desktop core) gets a one-line hint of
+   its size before it starts, so that a t_end given in the wrong unit does not look like a hang. */
+static void sps__hint_run_length(const sps_world* w, sps_real t_end) {
+    const double substep = (double)(w->def.cfl_acoustic * w->h / (w->c0_max + w->vmax));
+    const double substeps = (double)(t_end - w->time) / substep;
+    if (w->c0_max > 0 && substeps * (double)w->n > 1e10)
+        sps__warn(w, "sps_world_advance: t_end = %g s is about %.3g acoustic sub-steps of %.3g s (c0 = %g m/s) for %d particles, %.3g "
+                  "particle sub-steps: a long run (sps_world_step in a loop shows progress)", (double)t_end, substeps, substep,
+                  (double)w->c0_max, w->n, substeps * (double)w->n);
+}
+
 SPSDEF sps_result sps_world_advance(sps_world* w, sps_real t_end, sps_step_fn fn, void* user) {
     if (!w) return SPS_ERR_INVALID_ARG;
     if (!sps__finite(t_end)) { sps__set_error(w, 0, "sps_world_advance: t_end = %g, allowed finite", (double)t_end); return SPS_ERR_INVALID_ARG; }
+    if (t_end < w->time) {
+        sps__set_error(w, 0, "sps_world_advance: t_end = %g s is before the world's time %g s, allowed >= it (t_end is an absolute time: "
+                       "pass sps_world_time(w) + duration)", (double)t_end, (double)w->time);
+        return SPS_ERR_INVALID_ARG;
+    }
+    sps__hint_run_length(w, t_end);
     while (w->time < t_end) {
         sps_result r = sps__step_guarded(w, t_end);
         if (r != SPS_OK) return r;
@@ -7564,6 +7800,8 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
         for (i = 0; b->driven_work && (k < 0 || bi == k) && i < b->end - b->begin; ++i) out->prescribed_work += b->driven_work[i];
     }
     out->hourglass = sps__hourglass(w, begin, end, &out->min_spacing, &out->surface_particles);
+    out->energy_growth = w->watch.worst;
+    out->energy_growth_events = w->watch.events;
     return SPS_OK;
 }
 
@@ -7610,7 +7848,13 @@ static const sps__field_info* sps__field_of_name(const sps_world* w, const char*
         }
     if (!f && (f = sps__field_named(name)) && f->axes) f = NULL;
     if (!f || f->is_int) {
-        sps__set_error_const(w, "%s: name = '%s', allowed a real field of sps_world_field_by_name's list", fn, name);
+        char names[768] = "";
+        size_t used = 0;
+        for (k = 0; k < SPS__NFIELDS && used < sizeof names; ++k)
+            if (!sps__fields[k].is_int)
+                used += (size_t)snprintf(names + used, sizeof names - used, "%s%s%s", used ? ", " : "", sps__fields[k].name,
+                                         sps__fields[k].axes ? "_x/_y/_z" : "");
+        sps__set_error_const(w, "%s: name = '%s', allowed %s", fn, name, names);
         return NULL;
     }
     if (*axis >= w->dim) { sps__set_error_const(w, "%s: '%s' with dim = %d", fn, name, w->dim); return NULL; }
@@ -7644,7 +7888,10 @@ SPSDEF const sps_real* sps_body_field(const sps_world* w, sps_body body, const c
     b = &w->bodies[k];
     if (w->needs_sort_by_body) { sps__set_error_const(w, "sps_body_field: particles were added since the last step: step first"); return NULL; }
     if (!(x = sps__body_values(w, b, f, axis))) {
-        sps__set_error_const(w, "sps_body_field: body '%s' has no '%s' (its model does not need it)", b->name, name);
+        sps__set_error_const(w, "sps_body_field: body '%s' has no '%s' (its model does not need it)%s", b->name, name,
+                             f->need == SPS__NEED_STRESS || f->need == SPS__NEED_GRADIENT
+                                 ? "; an ENO or ENO-A body integrates the stress (and the velocity gradient) with track_stress = 1 in its body def"
+                                 : "");
         return NULL;
     }
     if (components) *components = f->components;
@@ -8505,7 +8752,7 @@ static double sps__substeps_fitting(double budget_s, double spent_s, int done) {
     return (budget_s - spent_s) / (spent_s / done);
 }
 
-SPSDEF sps_result sps_world_advance_frame(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered) {
+SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered) {
     sps_result r = SPS_OK;
     sps_real t0;
     double start = 0;
@@ -8519,7 +8766,7 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, int max_substeps, double
         if (max_substeps < 1) sps__rule(msg, sizeof msg, &broken, "max_substeps = %d, allowed >= 1", max_substeps);
         if (!budget_ok)
             sps__rule(msg, sizeof msg, &broken, "wall_budget_s = %g, allowed 0 (no budget) or finite > 0", wall_budget_s);
-        sps__set_error(w, 0, "sps_world_advance_frame: %s", msg);
+        sps__set_error(w, 0, "sps_world_advance_substeps: %s", msg);
         return SPS_ERR_INVALID_ARG;
     }
     t0 = w->time;
@@ -8537,6 +8784,105 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, int max_substeps, double
     }
     if (covered) *covered = w->time - t0;
     return r;
+}
+
+/* A budgeted frame in seconds: every step is cut to the sub-steps that fit in what is left of
+   the budget, at the cost per sub-step measured so far in this frame or, for its first step,
+   in the last budgeted frame (a first frame ever runs one sub-step to measure it). The step
+   lands on the frame's end like any step of sps_world_advance. */
+SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, double wall_budget_s, sps_real* covered) {
+    sps_result r = SPS_OK;
+    const sps_real t0 = w ? w->time : 0, t_end = t0 + frame_seconds;
+    double start = 0;
+    long done = 0;
+    if (covered) *covered = 0;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!(frame_seconds > 0 && frame_seconds <= 1) || !(wall_budget_s >= 0 && wall_budget_s - wall_budget_s == 0)) {
+        sps__set_error(w, 0, "sps_world_advance_frame: frame_seconds = %g, allowed (0, 1] s of simulated time (for a count of sub-steps "
+                       "use sps_world_advance_substeps); wall_budget_s = %g, allowed 0 (no budget) or finite > 0",
+                       (double)frame_seconds, wall_budget_s);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (wall_budget_s > 0) start = SPHSOLID_WALL_SECONDS();
+    while (w->time < t_end) {
+        const long before = w->acoustic_steps;
+        double fitting = 1e18;
+        if (wall_budget_s > 0) {
+            const double spent = SPHSOLID_WALL_SECONDS() - start;
+            const double per_substep = done > 0 ? spent / (double)done : w->substep_wall_s;
+            /* one sub-step's time kept for the step's neighbour-list rebuild */
+            fitting = per_substep > 0 ? (wall_budget_s - spent) / per_substep - 1 : 1;
+            if (fitting < 1) break;
+        }
+        if (fitting < w->def.max_substeps) { /* cut this step to what fits: sps__capped_step's cap */
+            const int cap_of_def = w->def.max_substeps;
+            w->def.max_substeps = (int)fitting;
+            r = sps__step_guarded(w, t_end);
+            w->def.max_substeps = cap_of_def;
+        } else
+            r = sps__step_guarded(w, t_end);
+        if (r != SPS_OK) break;
+        done += w->acoustic_steps - before;
+    }
+    if (wall_budget_s > 0 && done > 0) w->substep_wall_s = (SPHSOLID_WALL_SECONDS() - start) / (double)done;
+    if (covered) *covered = w->time - t0;
+    return r;
+}
+
+/* The drag's external acceleration (sps_body_drag_begin): the kernel weight of the particle's
+   reference distance from the anchor, scaled to the drag's radius. */
+static void sps__drag_acceleration(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3],
+                                   void* user) {
+    const sps_drag* drag = (const sps_drag*)user;
+    const sps_world* w = drag->world;
+    sps_real r2 = 0, weight;
+    int k;
+    (void)t;
+    for (k = 0; k < w->dim; ++k) r2 += (x0[k] - drag->anchor[k]) * (x0[k] - drag->anchor[k]);
+    if (r2 >= drag->radius * drag->radius) return;
+    weight = sps_world_kernel(w, SPS__SQRT(r2) * w->support / drag->radius) / drag->weight_sum; /* phi_i / m_i */
+    for (k = 0; k < w->dim; ++k) a[k] = weight * (drag->stiffness * (drag->target[k] - x[k]) - drag->damping * v[k]);
+}
+
+SPSDEF sps_result sps_body_drag_begin(sps_world* w, sps_body b, const sps_real point[3], sps_real stiffness, sps_real damping,
+                                      sps_real radius, sps_drag* drag) {
+    int k, i, a, nearest = -1;
+    sps_real best = 0;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, "sps_body_drag_begin")) < 0) return SPS_ERR_INVALID_ARG;
+    if (!point || !drag) { sps__set_error(w, 0, "sps_body_drag_begin: point and drag must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    if (!(stiffness >= 0 && sps__finite(stiffness)) || !(damping >= 0 && sps__finite(damping)) ||
+        !(radius == 0 || (radius >= w->support && sps__finite(radius)))) {
+        sps__set_error(w, 0, "sps_body_drag_begin: stiffness = %g, allowed finite >= 0 N/m; damping = %g, allowed finite >= 0 N s/m; "
+                       "radius = %g, allowed 0 (2h) or >= 2h = %g m", (double)stiffness, (double)damping, (double)radius, (double)w->support);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (sps__body_is_empty(w, k, "sps_body_drag_begin")) return SPS_ERR_STATE;
+    for (i = 0; i < w->n; ++i) { /* the grabbed material point: the particle nearest to point now */
+        sps_real d2 = 0;
+        if (w->body[i] != k) continue;
+        for (a = 0; a < w->dim; ++a) d2 += (w->pos[a][i] - point[a]) * (w->pos[a][i] - point[a]);
+        if (nearest < 0 || d2 < best) { best = d2; nearest = i; }
+    }
+    memset(drag, 0, sizeof *drag);
+    drag->stiffness = stiffness;
+    drag->damping = damping;
+    drag->body = b;
+    drag->world = w;
+    drag->radius = radius > 0 ? radius : w->support;
+    for (a = 0; a < 3; ++a) { drag->target[a] = point[a]; drag->anchor[a] = a < w->dim ? w->ref[a][nearest] : 0; }
+    for (i = 0; i < w->n; ++i) { /* the normalisation, in particle order */
+        sps_real r2 = 0;
+        if (w->body[i] != k) continue;
+        for (a = 0; a < w->dim; ++a) r2 += (w->ref[a][i] - drag->anchor[a]) * (w->ref[a][i] - drag->anchor[a]);
+        if (r2 < drag->radius * drag->radius) drag->weight_sum += w->mass[i] * sps_world_kernel(w, SPS__SQRT(r2) * w->support / drag->radius);
+    }
+    return sps_body_set_acceleration(w, b, sps__drag_acceleration, drag);
+}
+
+SPSDEF sps_result sps_body_drag_end(sps_world* w, sps_drag* drag) {
+    if (!w || !drag) return SPS_ERR_INVALID_ARG;
+    return sps_body_set_acceleration(w, drag->body, NULL, NULL);
 }
 
 #endif /* SPHSOLID_IMPLEMENTATION_INCLUDED */
