@@ -5925,8 +5925,17 @@ static sps_result sps__commit_friction(sps_world* w) {
     int a, b, k, pairs = 0;
     for (a = 0; a < w->nbodies; ++a) {
         const sps_real mu = w->bodies[a].def.friction;
-        for (k = 0; k < w->nwalls; ++k) w->friction |= sps__mix_friction(mu, w->walls[k].friction) > 0;
-        for (b = 0; b < w->nbodies; ++b) pairs |= w->touch[(size_t)a * w->nbodies + b] && sps__mix_friction(mu, w->bodies[b].def.friction) > 0;
+        int rubs = 0; /* some contact of body a has friction */
+        for (k = 0; k < w->nwalls; ++k) rubs |= sps__mix_friction(mu, w->walls[k].friction) > 0;
+        w->friction |= rubs;
+        for (b = 0; b < w->nbodies; ++b) {
+            const int pair = w->touch[(size_t)a * w->nbodies + b] && sps__mix_friction(mu, w->bodies[b].def.friction) > 0;
+            pairs |= pair;
+            rubs |= pair;
+        }
+        if (mu > 0 && !rubs) /* a setting that does nothing is said, not ignored silently */
+            sps__warn(w, "body '%s': friction = %g, but none of its contacts has friction (a contact's mu is sqrt(mu_a mu_b): it needs a "
+                      "wall with sps_world_set_wall_friction > 0 or a touching body with friction > 0)", w->bodies[a].name, (double)mu);
     }
     w->friction |= pairs;
     sps__free(w, w->pair_friction);
@@ -5945,7 +5954,13 @@ static sps_result sps__commit_contact(sps_world* w) {
     int a, b;
     w->contact_bodies = sps__any_contact(w);
     w->friction = 0;
-    if (!w->contact_bodies && w->nwalls == 0) return SPS_OK;
+    if (!w->contact_bodies && w->nwalls == 0) {
+        for (a = 0; a < w->nbodies; ++a)
+            if (w->bodies[a].def.friction > 0)
+                sps__warn(w, "body '%s': friction = %g in a scene without contact (no walls, no other body it touches): it does nothing",
+                          w->bodies[a].name, (double)w->bodies[a].def.friction);
+        return SPS_OK;
+    }
     if (w->touch_n != w->nbodies) {
         sps__free(w, w->touch);
         w->touch_n = 0;

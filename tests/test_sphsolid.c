@@ -4636,6 +4636,18 @@ static int test_friction_damping_bad_input(void) {
     ENSURE(sps_world_set_wall_friction(w, 1, 0.3) == SPS_OK);
     ENSURE(sps_world_set_wall_friction(NULL, 0, 0.3) == SPS_ERR_INVALID_ARG);
     sps_world_destroy(w);
+    { /* friction where no contact has any: a warning naming the body and the value, not silence */
+        const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0};
+        sps_body_def bd = issue38_body(0.4, 0);
+        sps_body b;
+        w = new_world(2, 0.01);
+        ENSURE(w);
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK && sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK);
+        g_log_last[0] = 0;
+        ENSURE(sps_world_step(w) == SPS_OK);
+        ENSURE(strstr(g_log_last, "friction = 0.4 in a scene without contact") != NULL);
+        sps_world_destroy(w);
+    }
     return 0;
 }
 
