@@ -6129,16 +6129,19 @@ static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
    is the geometric mean sqrt(mu_a mu_b), Box2D's b2MixFriction) is that drag bounded by mu
    times the normal force of the same pair or wall:
        F_t = -min(D |v_t|, mu F_n) v_t / |v_t|,
-   a velocity-regularised law: below the bound the contact sticks through the drag D (a creep
-   at the speed that makes D |v_t| carry the load: for a block of height H on a slope, about
-   g H sin(theta) / c0, since the drag of a layer sums to the impedance rho0 c0 per unit area;
-   measured 0.2-0.5 % of the frictionless distance, bench/VALIDATION.md, "Friction"), above it
-   the contact slides with the Coulomb force. Why not a tangential spring (elastic stick, no
-   creep): it needs a history per contact pair and per particle and wall, carried over list
-   rebuilds and saved in restarts, for a creep that the drag already keeps below 1 % of the
-   motion it stops. For a wall, F_n = 2 V_i K sigma_i W_plane(d) and D = 2 V_i rho0 c0 W_plane(d)
-   (the no-slip drag: SPS_WALL_NO_SLIP is this law with mu = infinity, and keeps its meaning);
-   for a pair of particles of two bodies, F_n = -V_i V_j K_ij (sigma_i + sigma_j) dW_ij (the
+   a velocity-regularised law: below the bound the contact sticks through the drag D (it creeps
+   at the speed that makes D |v_t| carry the load), above it the contact slides with the
+   Coulomb force. Why not a tangential spring (elastic stick, no creep): it needs a history per
+   contact pair and per particle and wall, carried over list rebuilds and saved in restarts, for
+   a creep that the drag already keeps below 1 % of the motion it stops. For a wall,
+   F_n = 2 V_i K sigma_i W_plane(d) and D = rho_i V_i / (2 dt), the strongest drag the explicit
+   kick carries (it halves v_t in a sub-step): a block with mu = 0.3 on a 10-degree slope creeps
+   0.36 % of its frictionless distance in 1 s, against 4.5 % with the no-slip wall's impedance
+   drag 2 V_i rho0 c0 W_plane(d), which lives in the kernel's tail where a resting body sits
+   (bench/VALIDATION.md, "Friction and material damping"). SPS_WALL_NO_SLIP keeps its meaning,
+   that impedance drag with no Coulomb bound (mu = infinity). For a pair of particles of two
+   bodies (a particle has many partners, whose drags add up: the kick's bound rules out the
+   wall's), F_n = -V_i V_j K_ij (sigma_i + sigma_j) dW_ij (the
    repulsion's magnitude) and D = -2 V_i V_j Z_ij dW_ij, Z_ij the harmonic mean of the bodies'
    impedances rho0 c0, v_t the tangential part of v_i - v_j: both symmetric in i and j and v_t
    antisymmetric, so F_t,ji = -F_t,ij and linear momentum stays exact (a tangential pair force
@@ -6356,8 +6359,17 @@ static sps_result sps__commit_friction(sps_world* w) {
     int a, b, k, pairs = 0;
     for (a = 0; a < w->nbodies; ++a) {
         const sps_real mu = w->bodies[a].def.friction;
-        for (k = 0; k < w->nwalls; ++k) w->friction |= sps__mix_friction(mu, w->walls[k].friction) > 0;
-        for (b = 0; b < w->nbodies; ++b) pairs |= w->touch[(size_t)a * w->nbodies + b] == SPS__TOUCH_CONTACT && sps__mix_friction(mu, w->bodies[b].def.friction) > 0;
+        int rubs = 0; /* some contact of body a has friction */
+        for (k = 0; k < w->nwalls; ++k) rubs |= sps__mix_friction(mu, w->walls[k].friction) > 0;
+        w->friction |= rubs;
+        for (b = 0; b < w->nbodies; ++b) {
+            const int pair = w->touch[(size_t)a * w->nbodies + b] == SPS__TOUCH_CONTACT && sps__mix_friction(mu, w->bodies[b].def.friction) > 0;
+            pairs |= pair;
+            rubs |= pair;
+        }
+        if (mu > 0 && !rubs) /* a setting that does nothing is said, not ignored silently */
+            sps__warn(w, "body '%s': friction = %g, but none of its contacts has friction (a contact's mu is sqrt(mu_a mu_b): it needs a "
+                      "wall with sps_world_set_wall_friction > 0 or a touching body with friction > 0)", w->bodies[a].name, (double)mu);
     }
     w->friction |= pairs;
     sps__free(w, w->pair_friction);
@@ -6379,7 +6391,13 @@ static sps_result sps__commit_contact(sps_world* w) {
     w->coupling_c0 = 0;
     w->contact_bodies = sps__any_contact(w);
     w->friction = 0;
-    if (!w->contact_bodies && w->nwalls == 0) return SPS_OK;
+    if (!w->contact_bodies && w->nwalls == 0) {
+        for (a = 0; a < w->nbodies; ++a)
+            if (w->bodies[a].def.friction > 0)
+                sps__warn(w, "body '%s': friction = %g in a scene without contact (no walls, no other body it touches): it does nothing",
+                          w->bodies[a].name, (double)w->bodies[a].def.friction);
+        return SPS_OK;
+    }
     if (w->touch_n != w->nbodies) {
         sps__free(w, w->touch);
         w->touch_n = 0;
@@ -6481,8 +6499,8 @@ static void sps__pair_friction(const sps_world* w, const sps__body* bi, int i, i
     sps__add_friction(mu, f_n, -2 * sps__contact_stiffness(bi->z_riemann, bj->z_riemann) * dw * w->vol[j], v_t, w->dim, f);
 }
 
-/* The friction of particle i with wall wl (plane = W_plane(d)): the no-slip drag bounded by mu
-   times the wall's normal force per volume f_n (chapter's head). */
+/* The friction of particle i with wall wl in a sub-step dt: the stick drag rho_i / (2 dt) per
+   volume bounded by mu times the wall's normal force per volume f_n (chapter's head). */
 static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, const sps__wall* wl, sps_real f_n, sps_real dt, sps_real f[3]) {
     const sps_real mu = sps__mix_friction(bi->def.friction, wl->friction);
     sps_real v_t[3] = {0, 0, 0}, vn = 0;

@@ -19,9 +19,11 @@
    1/3 (2/7) of m v_t; we report v_t and omega R (about the centre of mass) at the end of the
    first flight (both stay constant in the air), and their ratio next to 1.
 
-   Build: make build/bounce      Run: ./build/bounce --viscosity 20
-   Expect: t_rest within a few seconds and account_error below 2 %; thrown with --speed 2 --angle 20
-   --mu 0.5: rolling_ratio = omega R / v_t within 3 % of 1. */
+   Build: make build/bounce      Run: ./build/bounce --viscosity 200
+   Expect (bench/VALIDATION.md, "Friction and material damping"): eta 20 and 200 still bounce at
+   3 s (the contact itself has no normal damping), eta 1000 with --tend 6 rests from t = 4.77 s;
+   account_error 1.8-3.9 % (ENO-A's strain energy is not its force's potential). Thrown with
+   --speed 2 --angle 20 --mu 0.5: rolling_ratio 1.09 (rolling: 1). */
 #include "common.h"
 
 #define G 9.81
