@@ -462,6 +462,7 @@
    DIAGNOSTICS (sps_world_diagnostics)
       kinetic energy     sum 1/2 m |v|^2
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.
+                         Total-Lagrangian bodies: sum V0 psi(F) plus the hourglass springs' Phi.
       contact energy     sum V (1/2 K sigma^2 + K sigma_w^2): the potential of the contact forces
                          (sigma: contact density from the other bodies, sigma_w: from the walls).
       potential energy   -sum m g.x over the deformable bodies (gravity).

@@ -13,7 +13,8 @@
 
    Build: make examples   Run: for n in 4 8 16; do ./build/beam_tl --n $n --alpha 50; done
    The paper: rate about 2 with alpha 50, 6.6e-4 at n = 16. Measured (bench/VALIDATION.md): alpha 0
-   errors 0.34 / 0.12 / 0.048 at n = 4 / 8 / 16; alpha 50 0.70 / 0.22 and unstable at n = 16. */
+   errors 0.34 / 0.12 / 0.048 at n = 4 / 8 / 16; alpha 50 (variational) +0.107 / +0.0021 / -0.0056;
+   alpha 50 with --hourglass paper (TL eq. 32) 0.70 / 0.22 and unstable at n = 16. */
 #include "common.h"
 
 typedef struct {

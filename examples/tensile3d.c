@@ -24,8 +24,9 @@
    Build: make examples   Run: ./build/tensile3d; ./build/tensile3d --alpha 0
    The paper: FEM peak 110.1 kN at 4.04 mm, stabilised SPH 108.7 kN at 3.82 mm, unstabilised
    91.0 kN at 3.32 mm; failure at the centre (stabilised) or off it (unstabilised). Measured
-   (bench/VALIDATION.md, res 6): alpha 50 109.5 kN at 4.30 mm, failure at the centre; alpha 0
-   81.5 kN at 3.42 mm, failure at the shoulders. */
+   (bench/VALIDATION.md, res 6): alpha 50 101.3 kN at 4.08 mm, failure at the shoulders (with
+   --hourglass paper, TL eq. 32: 109.5 kN at 4.30 mm, failure at the centre); alpha 0 81.5 kN at
+   3.42 mm, failure at the shoulders. */
 #include "common.h"
 
 #define GAUGE 17.5e-3    /* half-length of the gauge [m] */
