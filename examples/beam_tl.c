@@ -57,14 +57,14 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     int n = 8;
     double alpha = 50, u = 1e-4, periods = 4, ramp = 1;
-    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 1e-6, .E = 100e9, .nu = 0.3, .rho0 = 1000,
                         .out = "out/beam_tl", .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"n", OPT_INT, &n, "particles across the depth (the beam: (3 + 8n) x n)", 2, 64, NULL},
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
-        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
+        EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
         {"u", OPT_REAL, &u, "tip displacement [m] (0.1 mm; 8 mm: the large deflection)", 1e-9, 0.02, NULL},
         {"periods", OPT_REAL, &periods, "run time in first-mode periods (--ramp of them to push, the rest to settle)", 2, 1000, NULL},
         {"ramp", OPT_REAL, &ramp, "time of the push in first-mode periods", 0.1, 1000, NULL},
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
     bd.hourglass_alpha = (sps_real)alpha;
     bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)viscosity;
+    bd.artificial_viscosity = (sps_real)artificial_viscosity;
     bd.damping = (sps_real)(2 * omega); /* critical for the first mode */
     memset(&s, 0, sizeof s);
     s.t_ramp = ramp * 2 * PI / omega;
@@ -129,9 +129,9 @@ int main(int argc, char** argv) {
     {
         sps_diagnostics d;
         ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
-        printf("RESULT case=beam_tl n=%d alpha=%g hourglass=%s viscosity=%g u=%g particles=%d tip_uy=%.6g reaction_N_per_m=%.6g C_kN_per_mm=%.6f theory=%.6f "
+        printf("RESULT case=beam_tl n=%d alpha=%g hourglass=%s artificial_viscosity=%g u=%g particles=%d tip_uy=%.6g reaction_N_per_m=%.6g C_kN_per_mm=%.6f theory=%.6f "
                "rel_error=%.3e hourglass=%.3g max_speed=%.3g %s steps=%ld wall_s=%.2f out=%s\n",
-               n, alpha, ex_hourglass_name(hourglass_form), viscosity, u, sps_world_particle_count(w), (double)p.displacement[1], f, C, theory, err, (double)d.hourglass,
+               n, alpha, ex_hourglass_name(hourglass_form), artificial_viscosity, u, sps_world_particle_count(w), (double)p.displacement[1], f, C, theory, err, (double)d.hourglass,
                (double)d.max_speed, common_result_fields(&c), d.acoustic_steps, wall, c.out);
     }
     sps_world_destroy(w);

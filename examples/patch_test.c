@@ -14,7 +14,7 @@
    Build: make examples   Run: ./build/patch_test --alpha 50 --periods 300; ./build/patch_test --alpha 0
    Measured (bench/VALIDATION.md): alpha 0 stops at once (0.06 s); alpha 50 (the variational
    hourglass force) after 37 periods (103 on the regular lattice, --jitter 0) with its energy
-   kept (-0.7 % over 300 periods with --fail 10); with --viscosity 0.005 it runs 300 periods
+   kept (-0.7 % over 300 periods with --fail 10); with --artificial-viscosity 0.005 it runs 300 periods
    (indicator at most 0.038); --hourglass paper (TL eq. 32) stops after 3.4 periods (17.5
    regular), its force feeding energy in. */
 #include "common.h"
@@ -129,14 +129,14 @@ static void add_patch(sps_world* w, sps_body patch, int n, double jitter, int se
 int main(int argc, char** argv) {
     int n = 21, periods = 300;
     double alpha = 50, fail = 0.05, h_over_dp = 1;
-    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0.01, .E = 1, .nu = 0.3, .rho0 = 1,
                         .out = "out/patch_test", .jitter = 0.4, .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"n", OPT_INT, &n, "particles per side (n^2 in all; 21: 441, the paper 444)", 4, 400, NULL},
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
-        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
+        EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
         {"periods", OPT_INT, &periods, "breathing periods to run (the end time is periods x the period estimate)", 1, 100000, NULL},
         {"h", OPT_REAL, &h_over_dp, "smoothing length / dp (1: support 2 dp, about 12 neighbours)", 0.8, 3, NULL},
         {"fail", OPT_REAL, &fail, "stop when the hourglass indicator exceeds this", 1e-6, 10, NULL},
@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
     bd.hourglass_alpha = (sps_real)alpha;
     bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)viscosity;
+    bd.artificial_viscosity = (sps_real)artificial_viscosity;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_body(w, &bd, &patch));
     add_patch(w, patch, n, c.jitter, c.seed);
@@ -179,9 +179,9 @@ int main(int argc, char** argv) {
     output_open(&st.output, &c, "patch_test", "velocity", ",radial_strain");
     wall = ex_run(w, c.t_end, on_step, &st, &st.wall0, &st.output);
     if (st.crossings >= 3) period = 2 * (st.crossing_last - st.crossing_first) / (st.crossings - 1);
-    printf("RESULT case=patch_test alpha=%g hourglass=%s viscosity=%g n=%d jitter=%g particles=%d period=%.6f periods_run=%.1f failed=%d t_fail=%.4g "
+    printf("RESULT case=patch_test alpha=%g hourglass=%s artificial_viscosity=%g n=%d jitter=%g particles=%d period=%.6f periods_run=%.1f failed=%d t_fail=%.4g "
            "periods_at_fail=%.1f hourglass_max=%.3g paper_stiffening=3%% %s steps=%ld wall_s=%.2f out=%s\n",
-           alpha, ex_hourglass_name(hourglass_form), viscosity, n, c.jitter, sps_world_particle_count(w), period, period > 0 ? sps_world_time(w) / period : 0, st.failed, st.t_fail,
+           alpha, ex_hourglass_name(hourglass_form), artificial_viscosity, n, c.jitter, sps_world_particle_count(w), period, period > 0 ? sps_world_time(w) / period : 0, st.failed, st.t_fail,
            st.failed && period > 0 ? st.t_fail / period : 0, st.hourglass_max, common_result_fields(&c), (long)0, wall, c.out);
     sps_world_destroy(w);
     return 0;

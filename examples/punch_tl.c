@@ -75,13 +75,13 @@ static void tool_velocity(const sps_real x[3], sps_real v[3], void* user) {
 
 int main(int argc, char** argv) {
     double alpha = 50, v = 5, compression = 0.5, dp_mm = 1.0 / 15;
-    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0, .E = 1e9, .nu = 0.45, .rho0 = 1000,
                         .out = "out/punch_tl", .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
-        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
+        EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
         {"v", OPT_REAL, &v, "speed of each tool [m/s]", 1e-6, 1000, NULL},
         {"compression", OPT_REAL, &compression, "final compression (closure / height)", 0.01, 0.9, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.005, 1, NULL},
@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
     bd.hourglass_alpha = (sps_real)alpha;
     bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)viscosity;
+    bd.artificial_viscosity = (sps_real)artificial_viscosity;
     td.material = bd.material;
     td.material.kind = SPS_MATERIAL_RIGID;
     memset(&st, 0, sizeof st);
@@ -146,9 +146,9 @@ int main(int argc, char** argv) {
         if (c.rho0 / p.density < jmin) jmin = c.rho0 / p.density;
         if (c.rho0 / p.density > jmax) jmax = c.rho0 / p.density;
     }
-    printf("RESULT case=punch_tl alpha=%g hourglass=%s viscosity=%g v=%g dp_mm=%g particles=%d compression_pct=%.1f J_min=%.4f J_max=%.4f hourglass_max=%.3g "
+    printf("RESULT case=punch_tl alpha=%g hourglass=%s artificial_viscosity=%g v=%g dp_mm=%g particles=%d compression_pct=%.1f J_min=%.4f J_max=%.4f hourglass_max=%.3g "
            "%s wall_s=%.2f out=%s\n",
-           alpha, ex_hourglass_name(hourglass_form), viscosity, v, dp_mm, n, 100 * 2 * v * sps_world_time(w) / H, jmin, jmax, st.hourglass_max, common_result_fields(&c), wall, c.out);
+           alpha, ex_hourglass_name(hourglass_form), artificial_viscosity, v, dp_mm, n, 100 * 2 * v * sps_world_time(w) / H, jmin, jmax, st.hourglass_max, common_result_fields(&c), wall, c.out);
     sps_world_destroy(w);
     return 0;
 }

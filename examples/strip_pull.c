@@ -36,13 +36,13 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     double alpha = 50, v = 10, length = 12e-3, dp_mm = 1.0 / 15, h_over_dp = 1;
-    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0, .E = 1e9, .nu = 0.45, .rho0 = 1000,
                         .out = "out/strip_pull", .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
-        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
+        EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
         {"v", OPT_REAL, &v, "pull speed of each clamped row [m/s]", 1e-6, 1000, NULL},
         {"length", OPT_REAL, &length, "final length [m] (12 mm: +500 %)", 2.1e-3, 0.1, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.005, 1, NULL},
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
     bd.hourglass_alpha = (sps_real)alpha;
     bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)viscosity;
+    bd.artificial_viscosity = (sps_real)artificial_viscosity;
     if (c.t_end <= 0) c.t_end = (length - H) / (2 * v);
     if (c.csv_every <= 0) c.csv_every = c.t_end / 200;
     if (c.vtk_every == 0) c.vtk_every = c.t_end / 5;
@@ -107,9 +107,9 @@ int main(int argc, char** argv) {
             if (c.rho0 / p.density > jmax) jmax = c.rho0 / p.density;
         }
         width = xmax - xmin + dp;
-        printf("RESULT case=strip_pull alpha=%g hourglass=%s viscosity=%g v=%g dp_mm=%g particles=%d length_mm=%.4f strain_pct=%.1f neck_width_mm=%.4f "
+        printf("RESULT case=strip_pull alpha=%g hourglass=%s artificial_viscosity=%g v=%g dp_mm=%g particles=%d length_mm=%.4f strain_pct=%.1f neck_width_mm=%.4f "
                "incompressible_mm=%.4f J_min=%.4f J_max=%.4f hourglass_max=%.3g min_spacing=%.3f %s wall_s=%.2f out=%s\n",
-               alpha, ex_hourglass_name(hourglass_form), viscosity, v, dp_mm, n, 1e3 * (ymax - ymin + dp), 100 * ((ymax - ymin + dp) / H - 1), 1e3 * width, 1e3 * H * H / (ymax - ymin + dp),
+               alpha, ex_hourglass_name(hourglass_form), artificial_viscosity, v, dp_mm, n, 1e3 * (ymax - ymin + dp), 100 * ((ymax - ymin + dp) / H - 1), 1e3 * width, 1e3 * H * H / (ymax - ymin + dp),
                jmin, jmax, s.hourglass_max, s.spacing_min, common_result_fields(&c), wall, c.out);
     }
     sps_world_destroy(w);

@@ -40,13 +40,13 @@ static void impact_velocity(const sps_real x[3], sps_real v[3], void* user) {
 
 int main(int argc, char** argv) {
     double alpha = 50, yield = 1.0e9, v0 = 373, dp_mm = 0.35;
-    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     common_options c = {.cfl = 0.4, .t_end = 50e-6, .vtk_every = 10e-6, .csv_every = 0.5e-6, .E = 78.2e9, .nu = 0.3, .rho0 = 2700,
                         .out = "out/taylor2d_tl", .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
-        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
+        EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
         {"yield", OPT_REAL, &yield, "yield stress sigma_Y [Pa]", 1e3, 1e12, NULL},
         {"v0", OPT_REAL, &v0, "impact speed [m/s]", 0, 1e4, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.02, 2, NULL},
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     bd.material.yield_stress = (sps_real)yield;
     bd.hourglass_alpha = (sps_real)alpha;
     bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)viscosity;
+    bd.artificial_viscosity = (sps_real)artificial_viscosity;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_body(w, &bd, &bar));
     lo[1] = (sps_real)(0.5 * dp); /* the foot half a spacing above the wall */
@@ -106,9 +106,9 @@ int main(int argc, char** argv) {
             if (p.position[0] > xmax) xmax = p.position[0];
         }
     }
-    printf("RESULT case=taylor2d_tl alpha=%g hourglass=%s viscosity=%g yield=%g v0=%g dp_mm=%g particles=%d t=%g length_mm=%.3f length0_mm=%.3f foot_width_mm=%.3f "
+    printf("RESULT case=taylor2d_tl alpha=%g hourglass=%s artificial_viscosity=%g yield=%g v0=%g dp_mm=%g particles=%d t=%g length_mm=%.3f length0_mm=%.3f foot_width_mm=%.3f "
            "width0_mm=%.3f max_plastic_strain=%.3f kinetic_end_rel=%.4f account_max_dev=%.4f hourglass=%.3g %s steps=%ld wall_s=%.2f out=%s\n",
-           alpha, ex_hourglass_name(hourglass_form), viscosity, yield, v0, dp_mm, n, (double)sps_world_time(w), 1e3 * (ymax - ymin + dp), 1e3 * L, 1e3 * (xmax - xmin + dp), 1e3 * W,
+           alpha, ex_hourglass_name(hourglass_form), artificial_viscosity, yield, v0, dp_mm, n, (double)sps_world_time(w), 1e3 * (ymax - ymin + dp), 1e3 * L, 1e3 * (xmax - xmin + dp), 1e3 * W,
            (double)d.max_plastic_strain, d.kinetic_energy / s.e0, s.account_dev, (double)d.hourglass, common_result_fields(&c),
            d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);

@@ -105,14 +105,14 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     double alpha = 50, v = 10, eps_max = 0.08;
-    double viscosity = 0;  /* TL artificial viscosity q1 (none: the paper's) */
+    double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     int res = 6, law = 0;
     common_options c = {.cfl = 0.4, .t_end = 4e-4, .vtk_every = 0, .csv_every = 1e-6, .E = 10e9, .nu = 0.3, .rho0 = 2700,
                         .out = "out/tensile3d", .seed = 1, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
-        EX_HOURGLASS_OPTIONS(hourglass_form, viscosity),
+        EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
         {"res", OPT_INT, &res, "particles across the 10 mm thickness (even)", 2, 20, NULL},
         {"v", OPT_REAL, &v, "speed of each grip [m/s]", 1e-3, 1000, NULL},
         {"law", OPT_CHOICE, &law, "elastic law: J2 that never yields (Hencky, in log strains) or Saint Venant-Kirchhoff", 0, 0, "hencky|svk"},
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
     bd.material.yield_stress = (sps_real)AUTHORS_YIELD;
     bd.hourglass_alpha = (sps_real)alpha;
     bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)viscosity;
+    bd.artificial_viscosity = (sps_real)artificial_viscosity;
     bd.damage_strain = (sps_real)eps_max;
     ex_check(NULL, sps_world_create(&wd, &w));
     memset(&s, 0, sizeof s);
@@ -165,8 +165,8 @@ int main(int argc, char** argv) {
                "is +-17.5 mm)\n", s.broken_at_first, 1e3 * s.break_lo, 1e3 * s.break_hi, 1e3 * s.break_mean_abs);
     else
         printf("no particle broke by t = %g s\n", (double)sps_world_time(w));
-    printf("RESULT case=tensile3d alpha=%g hourglass=%s viscosity=%g res=%d particles=%d peak_kN=%.2f peak_mm=%.3f fem_kN=110.1 fem_mm=4.04 break_mean_abs_x_mm=%.2f "
-           "broken=%d displacement_mm=%.3f %s wall_s=%.2f out=%s\n", alpha, ex_hourglass_name(hourglass_form), viscosity, res, n, 1e-3 * s.peak, 1e3 * s.peak_at,
+    printf("RESULT case=tensile3d alpha=%g hourglass=%s artificial_viscosity=%g res=%d particles=%d peak_kN=%.2f peak_mm=%.3f fem_kN=110.1 fem_mm=4.04 break_mean_abs_x_mm=%.2f "
+           "broken=%d displacement_mm=%.3f %s wall_s=%.2f out=%s\n", alpha, ex_hourglass_name(hourglass_form), artificial_viscosity, res, n, 1e-3 * s.peak, 1e3 * s.peak_at,
            1e3 * s.break_mean_abs, s.broken_at_first, 2e3 * v * sps_world_time(w), common_result_fields(&c), wall, c.out);
     sps_world_destroy(w);
     return 0;
