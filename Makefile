@@ -45,7 +45,7 @@ $(BUILD):
 CHECK_SRC = $(BUILD)/check_impl.c
 $(CHECK_SRC): | $(BUILD)
 	printf '%s\n' '#define SPHSOLID_IMPLEMENTATION' '#include "../sphsolid.h"' '#include <string.h>' \
-	  '/* threads = 2 warns exactly when the build has no OpenMP (issue 37) */' 'static int warned;' \
+	  '/* threads = 2 warns exactly when the build has no OpenMP */' 'static int warned;' \
 	  'static void log_fn(int level, const char* m, void* u) { (void)u; warned += level == 1 && strstr(m, "no OpenMP") != 0; }' \
 	  'int main(void) {' '    sps_world_def d = sps_default_world_def();' '    sps_world* w = 0;' '    int ok;' \
 	  '    d.threads = 2; d.log = log_fn; ok = sps_world_create(&d, &w) == SPS_OK;' '    sps_world_destroy(w);' \
@@ -168,7 +168,7 @@ test-fast: $(BUILD)/test_sphsolid
 # the thread-count determinism and allocation-counting tests run in the plain runner only: the
 # sanitizers add nothing to comparing hashes or counting allocations, and they took 42 s there;
 # nor do the longest physics runs (the energy watchdog's scenes, momentum, translation, the
-# hydrostatic tank, the granular block at rest, issue 37's tumbling body and dragged jelly: 21 s + 62 s there), whose code every shorter sanitized test and the sanitized
+# hydrostatic tank, the granular block at rest, the tumbling body and the dragged jelly: 21 s + 62 s there), whose code every shorter sanitized test and the sanitized
 # random API test (walls, fluids, the watchdog on by default) run too
 test-sanitize: $(BUILD)/test_sanitize
 	ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/test_sanitize --quick --exclude determinism_threads --exclude memory_no_allocation \
@@ -290,7 +290,7 @@ $(BUILD)/torque_probe: bench/torque_probe.c bench/kick_shear.h $(HEADER) | $(BUI
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/rotation_probe: bench/rotation_probe.c bench/kick_shear.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-# the variational TL hourglass force's cost against the paper's, in one process (bench/VALIDATION.md, issue 39)
+# the variational TL hourglass force's cost against the paper's, in one process (bench/VALIDATION.md)
 $(BUILD)/tl_hourglass_cost: bench/tl_hourglass_cost.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 # beam-theory reference for the 2D plate's period: plain C99, libm only (no header, no OpenMP)

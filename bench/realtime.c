@@ -8,7 +8,7 @@
    angular-momentum error of the run.
 
    Build: make        Run: ./build/realtime --dp 0.05 --fps 60 --threads 1
-   The acceptance of issue 37 (1089 particles, 600 frames): ./build/realtime --dp 0.03 --fps 60 --threads 1 --frames 600 --tend 100
+   The acceptance (1089 particles, 600 frames): ./build/realtime --dp 0.03 --fps 60 --threads 1 --frames 600 --tend 100
    Also: ./build/float/realtime (sps_real = float). --budget 0 runs the deterministic frames
    only: the loop then shows how far from real time the machine is. --substeps k > 0 runs k
    sub-steps per frame instead (sps_world_advance_substeps). */

@@ -1,4 +1,4 @@
-/* user_scenes.c - the scenes a new user writes first (issue 37), with the public API only:
+/* user_scenes.c - the scenes a new user writes first, with the public API only:
      drop     a rubber cube (3D, side 0.1 m) or disc (2D, radius 0.05 m), E 1e6, nu 0.3, rho0 1000,
               spinning at --spin rad/s about z, its lowest point 0.2 m above a floor (y = 0), under
               gravity; --slip noslip|free
@@ -7,7 +7,7 @@
    It prints one RESULT line: watchdog_growth, the energy watchdog's largest finding
    (sps_diagnostics.energy_growth: the account kinetic + volumetric strain + contact + gravity
    potential - prescribed work above its start, as a fraction of the largest mechanical energy
-   seen; the acceptance of issue 37: below 0.02) and its count of checks above 2 %; max_gain,
+   seen; the acceptance: below 0.02) and its count of checks above 2 %; max_gain,
    the diagnostics' E = kinetic + strain (with the shear part of the tracked stress) + contact +
    potential above its start over the start's kinetic + strain energy (or its potential energy
    above the floor when it starts at rest): with ENO and ENO-A the tracked Jaumann stress is not

@@ -1,5 +1,5 @@
 #!/bin/sh
-# user_scenes_map.sh - the stability map's rows for the scenes users write (issue 37): every shear
+# user_scenes_map.sh - the stability map's rows for the scenes users write: every shear
 # formulation x rotation on bench/user_scenes.c's scenes (short runs, one thread):
 #   drop     2D disc / 3D cube dropped on a no-slip and a free-slip floor, spin 0, 20, 50 rad/s
 #   ramp     rolling (2D) or tumbling (3D) down a 30-degree no-slip ramp

@@ -265,7 +265,7 @@ static sps_body_def random_body_def(void) {
     d.oas_exponent = maybe_hostile(uniform(1, 12), p);
     d.track_stress = chance(p) ? hostile_int() : below(2);
     d.damping = chance(0.7) ? 0 : maybe_hostile(exp(uniform(log(1e-2), log(1e6))), p);
-    d.friction = chance(0.6) ? 0 : maybe_hostile(uniform(0, 1), p); /* issue 38: Coulomb friction */
+    d.friction = chance(0.6) ? 0 : maybe_hostile(uniform(0, 1), p); /* Coulomb friction */
     if (chance(0.01)) d.internal_cookie = 12345;
     return d;
 }
@@ -492,7 +492,7 @@ static int random_call(fuzz_state* s) {
             random_box(dp, dim, lo, hi);
             CALL(s, w, sps_world_add_box_walls(w, lo, hi, (unsigned)below(80), (sps_wall_slip)below(3)));
         }
-        if (chance(0.5)) /* issue 38: wall friction, on any wall or all of them, sometimes hostile */
+        if (chance(0.5)) /* wall friction, on any wall or all of them, sometimes hostile */
             CALL(s, w, sps_world_set_wall_friction(w, (int)below(4) - 1, chance(0.05) ? hostile_real() : uniform(0, 1)));
     } break;
     case 28: /* which bodies touch */

@@ -44,7 +44,7 @@ typedef struct pinned_case {
     int damage;            /* total Lagrangian with damage (TL eqs. 45-46; a threshold the motion passes): its damage is hashed too */
 } pinned_case;
 /* A case named "...-damped-friction" has Kelvin-Voigt viscosity and friction 0.5 on a floor wall
-   with friction 0.5, and no clamp (issue 38). */
+   with friction 0.5, and no clamp. */
 #define DAMPED(c) (strstr((c)->name, "-damped-friction") != NULL)
 
 #define W SPS_KERNEL_WENDLAND_C2
@@ -112,7 +112,7 @@ static const pinned_case g_cases[] = {
     {"3d/tl-neo-hookean", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_NEO_HOOKEAN, 0},
     {"3d/tl-j2", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_J2, 0},
     {"3d/tl-svk-damage", 3, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, 1},
-    /* issue 38: friction and Kelvin-Voigt damping in every pressure-pass variant and the TL force pass */
+    /* friction and Kelvin-Voigt damping in every pressure-pass variant and the TL force pass */
     {"2d/all-shears-damped-friction", 2, SPS_SHEAR_ENO_A, MEAN, 0, W, 0, 0, 1, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
     {"3d/eno-a-pair-damped-friction", 3, SPS_SHEAR_ENO_A, PAIR, 0, W, 0, 0, 0, 0, 0, SPS_TRANSPORT_NONE, 0, 0},
     {"2d/j2-gno-a-pair-damped-friction", 2, SPS_SHEAR_GNO_A, PAIR, 0, W, 0, 0, 0, 1, 0, SPS_TRANSPORT_NONE, 0, 0},

@@ -4408,7 +4408,7 @@ static int test_tl_damage_tension_only(void) {
 }
 
 /* ============================================================================================ */
-/* Issue 39, chapter >>solver: total Lagrangian: the variational hourglass force. Phi, the
+/* Chapter >>solver: total Lagrangian: the variational hourglass force. Phi, the
    springs' energy sum_i sum_j 1/2 k_ij (delta^i_ij)^2, is read through sps__tl_energy (the law's
    energy plus the springs'), and the forces through the two passes at the current positions. */
 
@@ -4670,11 +4670,11 @@ static int test_tl_artificial_viscosity(void) {
 }
 
 /* ============================================================================================ */
-/* >>contact: Coulomb friction; >>material: Kelvin-Voigt (issue 38)                            */
+/* >>contact: Coulomb friction; >>material: Kelvin-Voigt                                       */
 
 /* A 2D body def of the friction and damping tests: ENO-A with pair rotation (set here, not the
    library's default, so a change of defaults does not move these figures). */
-static sps_body_def issue38_body(double friction, double viscosity) {
+static sps_body_def friction_test_body(double friction, double viscosity) {
     sps_body_def bd = sps_default_body_def();
     bd.shear = SPS_SHEAR_ENO_A;
     bd.rotation = SPS_ROTATION_PAIR;
@@ -4709,7 +4709,7 @@ static double centre_x(const sps_world* w) {
    t_slide. Returns the distance its centre slid, or -1 on failure. */
 static double slope_slide(double mu, double angle_deg, double t_slide) {
     sps_world_def wd = sps_default_world_def();
-    sps_body_def bd = issue38_body(mu, 0);
+    sps_body_def bd = friction_test_body(mu, 0);
     const double theta = angle_deg * 3.14159265358979323846 / 180;
     const sps_real lo[3] = {-0.05, 0.0075, 0}, hi[3] = {0.05, 0.0575, 0}, point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
     sps_world* w = NULL;
@@ -4756,7 +4756,7 @@ static int test_friction_momentum_exact(void) {
     int with;
     for (with = 0; with < 2; ++with) {
         sps_world* w = new_world(2, 0.01);
-        sps_body_def bd = issue38_body(with ? 0.5 : 0, 0);
+        sps_body_def bd = friction_test_body(with ? 0.5 : 0, 0);
         const sps_real lo1[3] = {0, 0, 0}, hi1[3] = {0.3, 0.1, 0}, lo2[3] = {0.05, 0.12, 0}, hi2[3] = {0.2, 0.2, 0};
         sps_body lower, upper;
         sps_diagnostics d0, d1, du;
@@ -4797,7 +4797,7 @@ static int test_friction_unused_is_free(void) {
     int k, same;
     for (k = 0; k < 3; ++k) {
         sps_world* w = new_world(2, 0.01);
-        sps_body_def bd = issue38_body(k == 1 ? 0.5 : 0, 0);
+        sps_body_def bd = friction_test_body(k == 1 ? 0.5 : 0, 0);
         const sps_real lo[3] = {0, 0.02, 0}, hi[3] = {0.1, 0.1, 0}, point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
         sps_real v[3] = {1, -1, 0};
         sps_body b;
@@ -4829,7 +4829,7 @@ static int test_kelvin_voigt_rigid_motion_free(void) {
     int k;
     for (k = 0; k < 3; ++k) {
         sps_world_def wd = sps_default_world_def();
-        sps_body_def bd = issue38_body(0, 50);
+        sps_body_def bd = friction_test_body(0, 50);
         const sps_real lo[3] = {-0.05, -0.05, 0}, hi[3] = {0.05, 0.05, 0};
         sps_world* w = NULL;
         sps_body b;
@@ -4872,7 +4872,7 @@ static int test_kelvin_voigt_rigid_motion_free(void) {
    walls. */
 static int test_friction_damping_bad_input(void) {
     sps_world* w = new_world(2, 0.01);
-    sps_body_def d = issue38_body(0, 0), bad;
+    sps_body_def d = friction_test_body(0, 0), bad;
     const sps_real point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
     ENSURE(w);
     bad = d; bad.friction = -0.1;                 ENSURE(rejects_body_def(w, &bad, "friction = -0.1, allowed finite >= 0") == 0);
@@ -4900,7 +4900,7 @@ static int test_friction_damping_bad_input(void) {
     sps_world_destroy(w);
     { /* friction where no contact has any: a warning naming the body and the value, not silence */
         const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0};
-        sps_body_def bd = issue38_body(0.4, 0);
+        sps_body_def bd = friction_test_body(0.4, 0);
         sps_body b;
         w = new_world(2, 0.01);
         ENSURE(w);
@@ -4929,7 +4929,7 @@ static int test_kelvin_voigt_decay_account(void) {
     int k;
     for (k = 0; k < 2; ++k) {
         sps_world* w = new_world(2, 0.01);
-        sps_body_def bd = issue38_body(0, k ? 25 : 0);
+        sps_body_def bd = friction_test_body(0, k ? 25 : 0);
         const sps_real lo[3] = {0, 0, 0}, hi[3] = {1, 0.1, 0};
         sps_body b;
         sps_diagnostics d0, d1;
@@ -4953,7 +4953,7 @@ static int test_kelvin_voigt_decay_account(void) {
     return 0;
 }
 
-/* ---- fluid-structure coupling (chapter >>coupling: fluid-structure; issue 40) ---- */
+/* ---- fluid-structure coupling (chapter >>coupling: fluid-structure) ---- */
 
 /* Adds the lattice of [x0, x1] x [y0, y1] to body b (2D). */
 static int fsi_box(sps_world* w, sps_body b, double x0, double y0, double x1, double y1) {
@@ -5174,7 +5174,7 @@ static int test_coupling_bad_input(void) {
 }
 
 /* ============================================================================================ */
-/* >>issue 37: safe for the scenes users write (default rotation, watchdog, set-up checks, game API) */
+/* >>user scenes: safe for the scenes users write (default rotation, watchdog, set-up checks, game API) */
 
 static sps_real disc_at_quarter_metre(const sps_real x[3], void* user) {
     (void)user;
@@ -5189,7 +5189,7 @@ static int stop_after_one_step(sps_world* w, void* user) {
     return 1;
 }
 
-/* The tumbling body of issue 37 with the public API: a rubber cube (3D, side 0.1 m, E 1e6,
+/* The tumbling body with the public API: a rubber cube (3D, side 0.1 m, E 1e6,
    dp 0.01) or disc (2D, radius 0.05 m) spinning at spin rad/s about z, its lowest point 0.2 m
    above a no-slip floor, under gravity; the watchdog's limit 2 % (the issue's acceptance). */
 static sps_world* tumbling_body(int dim, sps_shear shear, sps_rotation rotation, int use_default, double spin, int stops,
@@ -5234,7 +5234,7 @@ static int test_user_scene_tumbling_default(void) {
         sps_world_destroy(w);
         printf("    %dD to t = %g s: default growth %.4f (%d events)\n", dim, t_end, (double)d_default.energy_growth,
                d_default.energy_growth_events);
-        ENSURE(d_default.energy_growth < 0.02 && d_default.energy_growth_events == 0); /* issue 37's acceptance: 2 % */
+        ENSURE(d_default.energy_growth < 0.02 && d_default.energy_growth_events == 0); /* the default must not gain: 2 % of the mechanical energy, the watchdog's noise */
         if (dim == 3) break;
         w = tumbling_body(dim, SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 20, 0, SPS_WALL_NO_SLIP, &b);
         ENSURE(w != NULL && sps_world_advance(w, t_end, NULL, NULL) == SPS_OK); /* warns, returns SPS_OK ... */
@@ -5251,7 +5251,7 @@ static int test_user_scene_tumbling_default(void) {
         ENSURE(w != NULL && sps_world_advance(w, 1.0, NULL, NULL) == SPS_OK && sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
         sps_world_destroy(w);
         printf("    2D GNO-A default, 50 rad/s, free slip: growth %.4f (%d events)\n", (double)d.energy_growth, d.energy_growth_events);
-        ENSURE(d.energy_growth < 0.02 && d.energy_growth_events == 0); /* issue 37: 2 % */
+        ENSURE(d.energy_growth < 0.02 && d.energy_growth_events == 0); /* 2 % of the mechanical energy: the watchdog's noise */
     }
     return 0;
 }
@@ -5414,7 +5414,7 @@ static int test_frame_in_seconds(void) {
 /* The drag: a 2D jelly of 1024 particles (0.32 m square, E 1e5) on a floor under gravity,
    grabbed at a corner region and pulled around a circle of radius 0.2 m (period 2 s, starting
    with a lift) for 3 s with advance_frame at 60 frames per second. Every particle keeps a
-   neighbour within 2 dp (issue 37's acceptance: none torn out), and the grabbed point follows
+   neighbour within 2 dp (none torn out), and the grabbed point follows
    the target (within 0.1 m at the end: the spring's sag under the jelly's weight is 0.05 m). */
 static int test_user_scene_dragged_jelly(void) {
     sps_world_def wd = sps_default_world_def();
@@ -5455,7 +5455,7 @@ static int test_user_scene_dragged_jelly(void) {
     ENSURE(sps_world_particle(w, grabbed, &ps) == SPS_OK);
     miss = hypot(ps.position[0] - drag.target[0], ps.position[1] - drag.target[1]);
     printf("    3 s dragged: largest nearest-neighbour distance %.3f dp (limit 2); grabbed point %.3f m from the target\n", worst_gap, miss);
-    ENSURE(worst_gap < 2);  /* issue 37: no particle torn out */
+    ENSURE(worst_gap < 2);  /* no particle torn out: 2 dp is past the kernel's reach of a neighbour */
     ENSURE(miss < 0.1);     /* it follows: sag 0.05 m plus the lag of the moving target */
     ENSURE(sps_body_drag_end(w, &drag) == SPS_OK);
     ENSURE(sps_body_drag_begin(w, b, grab, -1, 0, 0, &drag) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "stiffness = -1"));
@@ -5577,7 +5577,7 @@ int main(int argc, char** argv) {
     RUN(test_tl_hourglass_is_energy_gradient);
     RUN(test_tl_hourglass_stiffness_symmetric);
     RUN(test_tl_artificial_viscosity);
-    /* issue 38: friction and material damping */
+    /* friction and material damping */
     RUN(test_friction_block_on_slope);
     RUN(test_friction_momentum_exact);
     RUN(test_friction_unused_is_free);
@@ -5588,7 +5588,7 @@ int main(int argc, char** argv) {
     RUN(test_coupling_floating_block);
     RUN(test_coupling_light_soft_block);
     RUN(test_coupling_bad_input);
-    /* issue 37: safe for the scenes users write */
+    /* the scenes users write */
     RUN(test_user_scene_tumbling_default);
     RUN(test_watchdog_names_rotation);
     RUN(test_setup_body_behind_wall);
