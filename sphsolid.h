@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.8.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.9.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -631,6 +631,21 @@
       normal damping of contacts (a rigid bounce on the contact's stiffness is not damped).
 
    REVISION HISTORY
+      0.9.0 (2026-12-03) default rotation SPS_ROTATION_AUTO (pair for ENO-A, mean for GNO-A):
+                         the default body survives tumbling and impacts; the watchdog names the
+                         likely cause and counts in sps_diagnostics (energy_growth,
+                         energy_growth_events); set-up checks (bodies behind walls, velocity on
+                         an empty body, angles in radians, past times, threads without OpenMP);
+                         sps_world_advance_frame in simulated seconds (the old call is
+                         sps_world_advance_substeps), the drag (sps_body_drag_begin/_end),
+                         sps_body_set_rigid_motion; Coulomb friction (sps_body_def.friction,
+                         sps_world_set_wall_friction) and Kelvin-Voigt damping
+                         (material.viscosity of solids, sps_diagnostics.viscous_work); the
+                         fluid-structure coupling (fluids see solids as moving walls); the
+                         variational hourglass force of total-Lagrangian bodies as the default
+                         (hourglass = SPS_HOURGLASS_PAPER keeps TL eq. 32), their artificial
+                         viscosity. Results of earlier scenes unchanged except total-Lagrangian
+                         bodies (tests/pinned.c).
       0.8.0 (2026-12-02) granular media (SPS_MATERIAL_DRUCKER_PRAGER, material kind 6: cohesion,
                          friction_angle, dilatancy_angle; stress_diffusion;
                          sps_body_set_geostatic_stress; mirror walls with the images' stress);
@@ -689,9 +704,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 8
+#define SPHSOLID_VERSION_MINOR 9
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.8.0"
+#define SPHSOLID_VERSION_STRING "0.9.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
