@@ -412,6 +412,24 @@
       (2D disc on 30 degrees, mu 0.5: a 3.9 % low at R/dp = 10, 2.0 % at 20). Fluids and
       Drucker-Prager bodies have no friction (walls act on them through mirror particles). A
       scene without friction runs none of it (bit-identical, pinned).
+      Normal contact damping (sps_body_def.contact_damping = zeta in [0, 1]): the penalty is
+      elastic (a dropped rubber disc bounced on at 3 s even with eta 200 Pa s); a dashpot on the
+      normal relative velocity v_n of each contact force takes the bounce's energy: at a wall
+      F_n,i -= zeta 2 V_i rho0 c0 W_plane(d) v_n (the no-slip drag's impedance, on the normal
+      velocity), between bodies the pair friction's drag zeta_ij D on (v_i - v_j) . e_ij,
+      zeta_ij = (zeta_a + zeta_b) / 2 (a damped ball on an undamped floor body still loses
+      energy). The pair's forces are equal, opposite and central: linear momentum stays exact
+      (tested to 1e-12), and angular momentum with it. While a contact opens the dashpot is bounded by the
+      repulsion (a contact cannot pull). Its work goes to "viscous_work" and
+      sps_diagnostics.viscous_work. Why a damping ratio of the contact's own impedance and not a
+      restitution e converted the DEM way (zeta = -ln e / sqrt(pi^2 + ln^2 e)): that conversion
+      holds for one mass on one spring-dashpot, but the dashpot acts on the contact layer's
+      particles, in parallel with the stiff penalty, not on the body's mass: zeta = 1 (e = 0 by
+      DEM) gives a measured restitution 0.83 for the rubber disc, 0.54 for two blocks meeting
+      head on, 0.74 for a block on a wall at zeta 0.5 (bench/VALIDATION.md, "Friction and
+      material damping"). zeta is dimensionless and its bound 1 keeps the explicit kick stable
+      (the no-slip drag's size); the body-level restitution is a measured figure of the scene.
+      Bodies without it run none of it (bit-identical, pinned).
       Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
       them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
 
@@ -471,7 +489,8 @@
       plastic work       sum over J2 particles of the energy their return maps dissipated
                          (PLASTICITY); max_plastic_strain the largest alpha.
       viscous work       sum over Kelvin-Voigt bodies (material.viscosity > 0) of the work their
-                         viscous and Riemann dissipation forces dissipated (DAMPING).
+                         viscous and Riemann dissipation forces dissipated (DAMPING), and over
+                         bodies with contact_damping of the work of the contact dashpot (CONTACT).
       The account kinetic + strain + contact + potential + plastic work + viscous work - prescribed work is
       conserved by the continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
       numerical: the energy watchdog (ERRORS) reports it. The shear part of the strain energy,
@@ -974,7 +993,8 @@ typedef struct sps_diagnostics {
                                      (J2 bodies; 0 for the others): kinetic + strain + plastic work
                                      is the energy account */
     sps_real viscous_work;        /* [J] (J/m in 2D) work dissipated by the Kelvin-Voigt viscosity
-                                     (material.viscosity of a solid) since the start; part of the
+                                     (material.viscosity of a solid) and the contact dashpot
+                                     (contact_damping) since the start; part of the
                                      energy account like plastic_work */
     sps_real max_plastic_strain;  /* largest equivalent plastic strain alpha (J2 bodies; else 0) */
     int surface_particles;        /* particles whose position divergence sum_j -r_ij . grad W_ij V_j
@@ -1229,7 +1249,7 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
    Drucker-Prager body "plastic_strain" (accumulated deviatoric), "plastic_work" and, with
    stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR); a body with a
-   Kelvin-Voigt viscosity "viscous_work" [J] (DAMPING).
+   Kelvin-Voigt viscosity or contact damping "viscous_work" [J] (DAMPING, CONTACT).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
@@ -6164,7 +6184,13 @@ static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
    antisymmetric, so F_t,ji = -F_t,ij and linear momentum stays exact (a tangential pair force
    has a torque about the pair's midpoint: angular momentum is not exact with friction between
    bodies, as the torque is real for two bodies in contact only when the forces act at one
-   point). A scene without friction runs none of this (w->friction = 0). */
+   point). A scene without friction runs none of this (w->friction = 0).
+   Normal contact damping (contact_damping = zeta of a body, CONTACT in the manual): a dashpot
+   on the normal relative velocity v_n of the same contact forces, F_d = -c v_n n, with the
+   friction's drags as its scale: c = zeta 2 rho0 c0 W_plane(d) V_i at a wall (zeta times the
+   no-slip wall's impedance drag), c = zeta_ij D between bodies (zeta_ij the mean of the two
+   bodies'); bounded by the repulsion while the contact opens (no pull). Its work is summed
+   into viscous_work. A scene without it runs none of this (w->contact_damped = 0). */
 
 SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], const sps_real normal[3], sps_wall_slip slip) {
     sps__wall wall;

@@ -5553,6 +5553,40 @@ static int test_contact_damping_wall(void) {
     return 0;
 }
 
+/* The dashpot is a gather like the rest of the contact pass: two damped blocks (800 particles,
+   above the size where the step goes parallel) meeting head on give the same bits with 1 and 2
+   threads. */
+static int test_contact_damping_thread_count(void) {
+    double* s[2];
+    int threads, same;
+    for (threads = 1; threads <= 2; ++threads) {
+        sps_world_def wd = sps_default_world_def();
+        sps_body_def bd = issue38_body(0, 1e-3);
+        const sps_real lo1[3] = {0, 0, 0}, hi1[3] = {0.1, 0.1, 0}, lo2[3] = {0.115, 0, 0}, hi2[3] = {0.215, 0.1, 0};
+        sps_world* w = NULL;
+        sps_body left, right;
+        sps_real c0, v;
+        wd.dim = 2; wd.dp = 0.005; wd.threads = threads; wd.log = quiet_log;
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        bd.contact_damping = 1;
+        ENSURE(sps_world_add_body(w, &bd, &left) == SPS_OK && sps_body_add_box(w, left, lo1, hi1, NULL) == SPS_OK);
+        ENSURE(sps_world_add_body(w, &bd, &right) == SPS_OK && sps_body_add_box(w, right, lo2, hi2, NULL) == SPS_OK);
+        ENSURE(sps_body_material_constants(w, left, &c0, NULL, NULL) == SPS_OK);
+        v = (sps_real)(0.02 * c0);
+        ENSURE(sps_body_set_velocity(w, left, velocity_x, &v) == SPS_OK);
+        ENSURE(sps_world_advance(w, (sps_real)(0.5 / c0), NULL, NULL) == SPS_OK); /* into the impact */
+        s[threads - 1] = snapshot(w);
+        ENSURE(s[threads - 1]);
+        if (threads == 2) {
+            same = memcmp(s[0], s[1], sizeof(double) * 6 * (size_t)sps_world_particle_count(w)) == 0;
+            ENSURE(same);
+        }
+        sps_world_destroy(w);
+    }
+    free(s[0]); free(s[1]);
+    return 0;
+}
+
 /* Bad contact_damping is refused with a message naming the field, the value and the range. */
 static int test_contact_damping_bad_input(void) {
     sps_world* w = new_world(2, 0.01);
@@ -5705,6 +5739,7 @@ int main(int argc, char** argv) {
     RUN(test_kelvin_voigt_decay_account);
     RUN(test_contact_damping_pair);
     RUN(test_contact_damping_wall);
+    RUN(test_contact_damping_thread_count);
     RUN(test_contact_damping_bad_input);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
