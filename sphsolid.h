@@ -419,8 +419,8 @@
       velocity), between bodies the pair friction's drag zeta_ij D on (v_i - v_j) . e_ij,
       zeta_ij = (zeta_a + zeta_b) / 2 (a damped ball on an undamped floor body still loses
       energy). The pair's forces are equal, opposite and central: linear momentum stays exact
-      (tested to 1e-12), and angular momentum with it. While a contact opens the dashpot is bounded by the
-      repulsion (a contact cannot pull). Its work goes to "viscous_work" and
+      (tested to 1e-12), and angular momentum with it. While a contact opens the dashpot is
+      bounded by the repulsion (a contact cannot pull). Its work goes to "viscous_work" and
       sps_diagnostics.viscous_work. Why a damping ratio of the contact's own impedance and not a
       restitution e converted the DEM way (zeta = -ln e / sqrt(pi^2 + ln^2 e)): that conversion
       holds for one mass on one spring-dashpot, but the dashpot acts on the contact layer's
@@ -963,8 +963,9 @@ typedef struct sps_body_def {
     sps_real contact_damping;  /* normal contact damping: the damping ratio zeta of a dashpot on
                                   the normal relative velocity of its contacts with walls and
                                   bodies (CONTACT), [0, 1]; a pair's is the mean (zeta_a +
-                                  zeta_b) / 2. 1: the dashpot has the body's impedance rho0 c0 (it
-                                  absorbs a normal wave). Needs contact = 1; not for fluid and
+                                  zeta_b) / 2. 1: at a wall, the no-slip wall's impedance drag
+                                  on the normal velocity. The bounce's restitution it gives is
+                                  measured, not set (CONTACT). Needs contact = 1; not for fluid and
                                   Drucker-Prager bodies. 0: none (elastic contact). Default 0. */
     sps_real damage_strain;    /* total-Lagrangian bodies: the damage threshold eps_max of TL
                                   section 4.6, a principal Green-Lagrange strain (dimensionless),
