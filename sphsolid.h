@@ -412,6 +412,24 @@
       (2D disc on 30 degrees, mu 0.5: a 3.9 % low at R/dp = 10, 2.0 % at 20). Fluids and
       Drucker-Prager bodies have no friction (walls act on them through mirror particles). A
       scene without friction runs none of it (bit-identical, pinned).
+      Normal contact damping (sps_body_def.contact_damping = zeta in [0, 1]): the penalty is
+      elastic (a dropped rubber disc bounced on at 3 s even with eta 200 Pa s); a dashpot on the
+      normal relative velocity v_n of each contact force takes the bounce's energy: at a wall
+      F_n,i -= zeta 2 V_i rho0 c0 W_plane(d) v_n (the no-slip drag's impedance, on the normal
+      velocity), between bodies the pair friction's drag zeta_ij D on (v_i - v_j) . e_ij,
+      zeta_ij = (zeta_a + zeta_b) / 2 (a damped ball on an undamped floor body still loses
+      energy). The pair's forces are equal, opposite and central: linear momentum stays exact
+      (tested to 1e-12), and angular momentum with it. While a contact opens the dashpot is
+      bounded by the repulsion (a contact cannot pull). Its work goes to "viscous_work" and
+      sps_diagnostics.viscous_work. Why a damping ratio of the contact's own impedance and not a
+      restitution e converted the DEM way (zeta = -ln e / sqrt(pi^2 + ln^2 e)): that conversion
+      holds for one mass on one spring-dashpot, but the dashpot acts on the contact layer's
+      particles, in parallel with the stiff penalty, not on the body's mass: zeta = 1 (e = 0 by
+      DEM) gives a measured restitution 0.83 for the rubber disc, 0.54 for two blocks meeting
+      head on, 0.74 for a block on a wall at zeta 0.5 (bench/VALIDATION.md, "Friction and
+      material damping"). zeta is dimensionless and its bound 1 keeps the explicit kick stable
+      (the no-slip drag's size); the body-level restitution is a measured figure of the scene.
+      Bodies without it run none of it (bit-identical, pinned).
       Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
       them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
 
@@ -472,7 +490,8 @@
       plastic work       sum over J2 particles of the energy their return maps dissipated
                          (PLASTICITY); max_plastic_strain the largest alpha.
       viscous work       sum over Kelvin-Voigt bodies (material.viscosity > 0) of the work their
-                         viscous and Riemann dissipation forces dissipated (DAMPING).
+                         viscous and Riemann dissipation forces dissipated (DAMPING), and over
+                         bodies with contact_damping of the work of the contact dashpot (CONTACT).
       The account kinetic + strain + contact + potential + plastic work + viscous work - prescribed work is
       conserved by the continuous equations; the Riemann dissipation and no-slip walls lower it. Its growth is
       numerical: the energy watchdog (ERRORS) reports it. The shear part of the strain energy,
@@ -957,6 +976,13 @@ typedef struct sps_body_def {
                                   mean sqrt(mu_a mu_b), so a frictionless partner (0) gives none.
                                   Needs contact = 1; not for fluid and Drucker-Prager bodies
                                   (their walls act through mirror particles). Default 0. */
+    sps_real contact_damping;  /* normal contact damping: the damping ratio zeta of a dashpot on
+                                  the normal relative velocity of its contacts with walls and
+                                  bodies (CONTACT), [0, 1]; a pair's is the mean (zeta_a +
+                                  zeta_b) / 2. 1: at a wall, the no-slip wall's impedance drag
+                                  on the normal velocity. The bounce's restitution it gives is
+                                  measured, not set (CONTACT). Needs contact = 1; not for fluid and
+                                  Drucker-Prager bodies. 0: none (elastic contact). Default 0. */
     sps_real damage_strain;    /* total-Lagrangian bodies: the damage threshold eps_max of TL
                                   section 4.6, a principal Green-Lagrange strain (dimensionless),
                                   [0, 100]; past it the damage D grows and degrades the tensile
@@ -984,7 +1010,8 @@ typedef struct sps_diagnostics {
                                      (J2 bodies; 0 for the others): kinetic + strain + plastic work
                                      is the energy account */
     sps_real viscous_work;        /* [J] (J/m in 2D) work dissipated by the Kelvin-Voigt viscosity
-                                     (material.viscosity of a solid) since the start; part of the
+                                     (material.viscosity of a solid) and the contact dashpot
+                                     (contact_damping) since the start; part of the
                                      energy account like plastic_work */
     sps_real max_plastic_strain;  /* largest equivalent plastic strain alpha (J2 bodies; else 0) */
     int surface_particles;        /* particles whose position divergence sum_j -r_ij . grad W_ij V_j
@@ -1239,7 +1266,7 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
    Drucker-Prager body "plastic_strain" (accumulated deviatoric), "plastic_work" and, with
    stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR); a body with a
-   Kelvin-Voigt viscosity "viscous_work" [J] (DAMPING).
+   Kelvin-Voigt viscosity or contact damping "viscous_work" [J] (DAMPING, CONTACT).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
    sps_world_field. sps_body_field: the values of body b's particles for any field, the world's
@@ -1703,6 +1730,7 @@ struct sps_world {
     unsigned char* touch;       /* nbodies x nbodies: 0, or how bodies a and b touch (SPS__TOUCH_*) */
     int touch_n, contact_bodies, contact_dirty;
     int friction;           /* some contact has friction: the contact pass adds it (>>contact) */
+    int contact_damped;     /* some body has contact_damping: the contact pass adds the dashpot */
     sps_real* pair_friction; /* nbodies x nbodies: the friction coefficient of two touching bodies
                                 (allocated when a body has friction) */
     int *ct_first, *ct_j, *ct_cell, *ct_order, *ct_cell_start, ct_cap;
@@ -1750,7 +1778,8 @@ typedef enum {
     SPS__NEED_TOTAL_LAGRANGIAN, /* a total-Lagrangian body */
     SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC, /* a total-Lagrangian J2 body */
     SPS__NEED_DAMAGE,      /* a total-Lagrangian body with damage (damage_strain > 0) */
-    SPS__NEED_KELVIN_VOIGT /* a solid with material damping (material.viscosity > 0) */
+    SPS__NEED_KELVIN_VOIGT /* a solid with material damping (material.viscosity > 0) or contact
+                              damping (contact_damping > 0): the dissipated work */
 } sps__need;
 
 enum {
@@ -2465,6 +2494,10 @@ static int sps__friction_of_mirrored(int dim, const sps_body_def* def) {
     (void)dim;
     return def->friction > 0 && (def->material.kind == SPS_MATERIAL_FLUID || def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER);
 }
+static int sps__contact_damping_without_contact(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->contact_damping > 0 && (!def->contact || def->material.kind == SPS_MATERIAL_FLUID || def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER);
+}
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__viscous_wall_or_granular, "material.viscosity > 0 with material.kind = rigid or Drucker-Prager: the Kelvin-Voigt damping is "
                                     "for elastic, J2, Saint Venant-Kirchhoff and Neo-Hookean bodies (a wall body moves as given; a "
@@ -2472,6 +2505,9 @@ static const sps__combination_rule sps__combination_rules[] = {
     {sps__friction_without_contact, "friction > 0 with contact = 0: a body without contact has no friction"},
     {sps__friction_of_mirrored, "friction > 0 with material.kind = fluid or Drucker-Prager: walls act on these through mirror particles "
                                 "(a no-slip wall holds them), not the solids' contact, so there is no Coulomb friction to set"},
+    {sps__contact_damping_without_contact, "contact_damping > 0 with contact = 0 or material.kind = fluid or Drucker-Prager: the "
+                                           "dashpot acts in the solids' contact (walls act on fluid and granular bodies through mirror "
+                                           "particles)"},
     {sps__granular_pair_rotation, "material.kind = Drucker-Prager with shear = GNO-A and rotation = pair: a granular body keeps its "
                                   "penalty per particle; use rotation = mean or per particle"},
     {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
@@ -2532,6 +2568,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->damping >= 0 && sps__finite(def->damping), "damping = %g, allowed finite >= 0 1/s (0: off)", (double)def->damping);
     SPS__CHECK(def->friction >= 0 && sps__finite(def->friction), "friction = %g, allowed finite >= 0 (Coulomb coefficient; 0: none)",
                (double)def->friction);
+    SPS__CHECK(def->contact_damping >= 0 && def->contact_damping <= 1,
+               "contact_damping = %g, allowed [0, 1] (the damping ratio of the normal contact dashpot; 0: none)", (double)def->contact_damping);
     if (material && material->shear)
         SPS__CHECK(def->material.viscosity >= 0 && sps__finite(def->material.viscosity),
                    "material.viscosity = %g, allowed finite >= 0 Pa s (the Kelvin-Voigt viscosity eta; 0: none)", (double)def->material.viscosity);
@@ -4115,7 +4153,7 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
            (need == SPS__NEED_GRANULAR && m->plastic == SPS__YIELD_DRUCKER_PRAGER) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic) ||
-           (need == SPS__NEED_DAMAGE && m->damage) || (need == SPS__NEED_KELVIN_VOIGT && m->viscous == SPS__VISCOUS_KELVIN_VOIGT);
+           (need == SPS__NEED_DAMAGE && m->damage) || (need == SPS__NEED_KELVIN_VOIGT && (m->viscous == SPS__VISCOUS_KELVIN_VOIGT || b->def.contact_damping > 0));
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -6163,7 +6201,13 @@ static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
    antisymmetric, so F_t,ji = -F_t,ij and linear momentum stays exact (a tangential pair force
    has a torque about the pair's midpoint: angular momentum is not exact with friction between
    bodies, as the torque is real for two bodies in contact only when the forces act at one
-   point). A scene without friction runs none of this (w->friction = 0). */
+   point). A scene without friction runs none of this (w->friction = 0).
+   Normal contact damping (contact_damping = zeta of a body, CONTACT in the manual): a dashpot
+   on the normal relative velocity v_n of the same contact forces, F_d = -c v_n n, with the
+   friction's drags as its scale: c = zeta 2 rho0 c0 W_plane(d) V_i at a wall (zeta times the
+   no-slip wall's impedance drag), c = zeta_ij D between bodies (zeta_ij the mean of the two
+   bodies'); bounded by the repulsion while the contact opens (no pull). Its work is summed
+   into viscous_work. A scene without it runs none of this (w->contact_damped = 0). */
 
 SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], const sps_real normal[3], sps_wall_slip slip) {
     sps__wall wall;
@@ -6406,7 +6450,7 @@ static sps_result sps__commit_contact(sps_world* w) {
     for (a = 0; a < w->nbodies; ++a) w->bodies[a].coupled = 0; /* set below for the pairs that touch */
     w->coupling_c0 = 0;
     w->contact_bodies = sps__any_contact(w);
-    w->friction = 0;
+    w->friction = w->contact_damped = 0;
     if (!w->contact_bodies && w->nwalls == 0) {
         for (a = 0; a < w->nbodies; ++a)
             if (w->bodies[a].def.friction > 0)
@@ -6428,6 +6472,7 @@ static sps_result sps__commit_contact(sps_world* w) {
             if (w->touch[(size_t)a * w->nbodies + b] == SPS__TOUCH_COUPLED) w->bodies[a].coupled = w->bodies[b].coupled = 1;
         }
     w->coupling_c0 = sps__coupling_speed(w);
+    for (a = 0; a < w->nbodies; ++a) w->contact_damped |= w->bodies[a].def.contact_damping > 0;
     if (sps__commit_friction(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
     if (w->sigma_cap < w->cap) {
         sps__free(w, w->sigma);
@@ -6515,6 +6560,34 @@ static void sps__pair_friction(const sps_world* w, const sps__body* bi, int i, i
     sps__add_friction(mu, f_n, -2 * sps__contact_stiffness(bi->z_riemann, bj->z_riemann) * dw * w->vol[j], v_t, w->dim, f);
 }
 
+/* The normal contact dashpot of one contact, added to f (force per volume of the particle):
+   -c v_n n for the normal relative velocity v_n = v . n (n pointing from the other side to the
+   particle) and the dashpot coefficient c, bounded while the contact opens (v_n > 0) so that
+   it never pulls harder than the repulsion f_n pushes: a contact cannot stick (the usual
+   clip of a linear spring-dashpot, whose dashpot would otherwise pull the bodies together as
+   they part). */
+static void sps__add_contact_dashpot(sps_real c, sps_real v_n, sps_real f_n, const sps_real n[3], int dim, sps_real f[3]) {
+    sps_real f_d = -c * v_n;
+    int a;
+    if (f_d < -f_n) f_d = -f_n;
+    for (a = 0; a < dim; ++a) f[a] += f_d * n[a];
+}
+
+/* The normal dashpot of particle i with particle j of another body (the chapter's head):
+   coefficient c = zeta_ij D, D = -2 V_j Z_ij dW_ij the pair friction's drag per volume of i,
+   zeta_ij = (zeta_a + zeta_b) / 2; symmetric in i and j with v_n and e_ij antisymmetric, so
+   the pair's dashpot forces are equal, opposite and central. */
+static void sps__pair_dashpot(const sps_world* w, const sps__body* bi, int i, int j, const sps_real d[3], sps_real r, sps_real dw,
+                              sps_real f_n, sps_real f[3]) {
+    const sps__body* bj = &w->bodies[w->body[j]];
+    const sps_real zeta = SPS_R(0.5) * (bi->def.contact_damping + bj->def.contact_damping);
+    sps_real e[3] = {0, 0, 0}, v_n = 0;
+    int a;
+    if (!(zeta > 0)) return;
+    for (a = 0; a < w->dim; ++a) { e[a] = d[a] / r; v_n += (w->vel[a][i] - w->vel[a][j]) * e[a]; }
+    sps__add_contact_dashpot(-2 * zeta * sps__contact_stiffness(bi->z_riemann, bj->z_riemann) * dw * w->vol[j], v_n, f_n, e, w->dim, f);
+}
+
 /* The friction of particle i with wall wl in a sub-step dt: the stick drag rho_i / (2 dt) per
    volume bounded by mu times the wall's normal force per volume f_n (chapter's head). */
 static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, const sps__wall* wl, sps_real f_n, sps_real dt, sps_real f[3]) {
@@ -6527,11 +6600,20 @@ static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, c
     sps__add_friction(mu, f_n, w->rho[i] / (2 * dt), v_t, w->dim, f);
 }
 
+/* Adds the dashpot force per volume of particle i to acc_p and its work in a sub-step dt, at
+   the velocity it was evaluated with, to the body's dissipated work (field "viscous_work"). */
+static void sps__add_dashpot_acceleration(sps_world* w, const sps__body* bi, int i, const sps_real dashpot[3], sps_real dt) {
+    int a;
+    for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += w->vol[i] / w->mass[i] * dashpot[a];
+    if (bi->viscous_work && i - bi->begin < bi->field_count)
+        bi->viscous_work[i - bi->begin] -= dt * w->vol[i] * (dashpot[0] * w->vel[0][i] + dashpot[1] * w->vel[1][i] + dashpot[2] * w->vel[2][i]);
+}
+
 /* Adds the contact accelerations of particle i to acc_p (see the chapter's head). */
 static void sps__contact_force(sps_world* w, int i, sps_real dt) {
     const sps__body* bi = &w->bodies[w->body[i]];
     const sps_real si = w->sigma[i], vi_mi = w->vol[i] / w->mass[i];
-    sps_real f[3] = {0, 0, 0}, coupling[3] = {0, 0, 0};
+    sps_real f[3] = {0, 0, 0}, coupling[3] = {0, 0, 0}, dashpot[3] = {0, 0, 0};
     int k, a;
     if (w->contact_bodies)
         for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
@@ -6549,6 +6631,7 @@ static void sps__contact_force(sps_world* w, int i, sps_real dt) {
             s = -kij * (si + w->sigma[j]) * dw / r * w->vol[j];
             for (a = 0; a < w->dim; ++a) f[a] += s * d[a];
             if (w->pair_friction) sps__pair_friction(w, bi, i, j, d, r, dw, s * r, f);
+            if (w->contact_damped) sps__pair_dashpot(w, bi, i, j, d, r, dw, s * r, dashpot);
         }
     for (k = 0; k < w->nwalls && !bi->model.mirrored; ++k) { /* fluids' and granular walls: sps__mirror_force */
         const sps__wall* wl = &w->walls[k];
@@ -6563,8 +6646,14 @@ static void sps__contact_force(sps_world* w, int i, sps_real dt) {
         } else if (w->friction) {
             sps__wall_friction(w, bi, i, wl, 2 * bi->mat.K * si * plane, dt, f);
         }
+        if (w->contact_damped && bi->def.contact_damping > 0) {
+            for (vn = 0, a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];
+            sps__add_contact_dashpot(2 * bi->def.contact_damping * bi->z_riemann * plane, vn, 2 * bi->mat.K * si * plane, wl->normal, w->dim,
+                                     dashpot);
+        }
     }
     for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += vi_mi * f[a];
+    if (w->contact_damped) sps__add_dashpot_acceleration(w, bi, i, dashpot, dt);
     if (bi->coupled)
         for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += coupling[a] / w->mass[i];
     if (bi->model.mirrored && w->nwalls > 0) sps__mirror_force(w, bi, i);

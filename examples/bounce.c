@@ -1,28 +1,35 @@
-/* bounce.c - a rubber disc (2D) or ball (3D) dropped on, or thrown at, a floor: Kelvin-Voigt
-   material damping brings it to rest, Coulomb friction makes a thrown one leave rolling
-   (DAMPING and CONTACT in the header's manual).
+/* bounce.c - a rubber disc (2D) or ball (3D) dropped on, or thrown at, a floor: the normal
+   contact damping and Kelvin-Voigt material damping bring it to rest, Coulomb friction makes a
+   thrown one leave rolling (DAMPING and CONTACT in the header's manual).
 
    A disc or ball of radius 0.05 (body-fitted, sps_body_add_sdf_relaxed), rho0 1000, E 1e6,
    nu 0.3, Kelvin-Voigt viscosity --viscosity eta [Pa s], ENO-A with pair rotation and the shear
    stress tracked (the strain energy's shear part is in the account), set here so that a change
    of the library's defaults does not move the figures; the floor is the analytic wall y = 0 with
-   friction --mu (the body's too: the pair's sqrt(mu mu) = mu); gravity 9.81 down.
+   friction --mu (the body's too: the pair's sqrt(mu mu) = mu); the body's normal contact
+   damping ratio --contact-damping zeta (sps_body_def.contact_damping); gravity 9.81 down.
    Dropped (--speed 0): released at rest with its lowest point --height above the floor. We
    report when its kinetic energy first stays below 1e-6 of the energy it fell through, m g
    height (t_rest; "never" within --tend), the number of bounces (contacts that ended), and the
    energy account E = kinetic + strain + contact + gravity potential + dissipated work (the
    Kelvin-Voigt and Riemann viscous work, sps_diagnostics.viscous_work): its largest departure
-   from the start over the run relative to m g height (account_error).
+   from the start over the run relative to m g height (account_error); and the restitution of
+   the first bounce, e = v_out / v_in of the centre of mass (v_in when the first contact starts,
+   v_out when it ends), next to spring_dashpot_restitution = exp(-pi zeta / sqrt(1 - zeta^2)),
+   the DEM closed form of one mass on one linear spring-dashpot (which this contact is not: the
+   figures in bench/VALIDATION.md).
    Thrown (--speed V > 0): starts just above the floor moving at V, --angle degrees below the
    horizontal. A rigid disc (I = m R^2 / 2) that reaches rolling during the impact leaves with
    v_t = omega R = 2/3 of its tangential speed (ball: 5/7), which takes a friction impulse of
    1/3 (2/7) of m v_t; we report v_t and omega R (about the centre of mass) at the end of the
    first flight (both stay constant in the air), and their ratio next to 1.
 
-   Build: make build/bounce      Run: ./build/bounce --viscosity 200
-   Expect (bench/VALIDATION.md, "Friction and material damping"): eta 20 and 200 still bounce at
-   3 s (the contact itself has no normal damping), eta 1000 with --tend 6 rests from t = 4.77 s;
-   account_error 1.8-3.9 % (ENO-A's strain energy is not its force's potential). Thrown with
+   Build: make build/bounce      Run: ./build/bounce --contact-damping 1
+   Expect (bench/VALIDATION.md, "Friction and material damping"): with --contact-damping 1 it
+   rests from t = 2.558 s (eta 20) and 1.985 s (--viscosity 200), account_error 1.27 % and
+   1.37 %, restitution 0.832 and 0.727; without contact damping eta 20 and 200 still bounce at
+   3 s, eta 1000 with --tend 6 rests from t = 4.77 s; account_error 1.8-3.9 % (ENO-A's strain
+   energy is not its force's potential). Thrown with
    --speed 2 --angle 20 --mu 0.5: rolling_ratio 1.09 (rolling: 1). */
 #include "common.h"
 
@@ -32,7 +39,7 @@
 typedef struct {
     output_plan output;
     sps_body body;
-    double t_end, wall0, e_fall, account0, account_error, t_rest, t_below, v_t, omega_r;
+    double t_end, wall0, e_fall, account0, account_error, t_rest, t_below, v_t, omega_r, v_y_before, v_in, v_out;
     int quiet, dim, bounces, touching, thrown;
 } run_state;
 
@@ -57,9 +64,9 @@ static void launch_velocity(const sps_real x[3], sps_real v[3], void* user) {
     v[2] = 0;
 }
 
-/* The body's mean velocity along x and its spin omega R about its centre of mass (z axis; the
-   sign of rolling towards +x). */
-static void slide_and_spin(const sps_world* w, double* v_t, double* omega_r) {
+/* The body's mean velocity along x and y and its spin omega R about its centre of mass (z axis;
+   the sign of rolling towards +x). */
+static void slide_and_spin(const sps_world* w, double* v_t, double* v_y, double* omega_r) {
     const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
     const sps_real *vx = sps_world_field(w, SPS_FIELD_VELOCITY_X), *vy = sps_world_field(w, SPS_FIELD_VELOCITY_Y);
     const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
@@ -77,19 +84,23 @@ static void slide_and_spin(const sps_world* w, double* v_t, double* omega_r) {
         inertia += m[i] * (rx * rx + ry * ry);
     }
     *v_t = v[0];
+    *v_y = v[1];
     *omega_r = -moment / inertia * RADIUS;
 }
 
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
-    double t = sps_world_time(w), account;
+    double t = sps_world_time(w), account, v_t, v_y, omega_r;
     int touching;
     ex_check(w, sps_world_diagnostics(w, s->body, &d));
     touching = d.contact_energy > 0;
-    if (s->touching && !touching) ++s->bounces;
-    if (!touching && s->bounces == 1) slide_and_spin(w, &s->v_t, &s->omega_r); /* the first flight: until it lands again */
+    slide_and_spin(w, &v_t, &v_y, &omega_r);
+    if (touching && !s->touching && s->bounces == 0) s->v_in = -s->v_y_before; /* the first impact: the speed of the fall */
+    if (s->touching && !touching && ++s->bounces == 1) s->v_out = v_y;   /* the first rebound: e = v_out / v_in */
+    if (!touching && s->bounces == 1) { s->v_t = v_t; s->omega_r = omega_r; } /* the first flight: until it lands again */
     s->touching = touching;
+    s->v_y_before = v_y;
     if (d.kinetic_energy < 1e-6 * s->e_fall) {
         if (s->t_below < 0) s->t_below = t;
     } else {
@@ -107,15 +118,20 @@ static int on_step(sps_world* w, void* user) {
     return 0;
 }
 
+/* The restitution of a mass on a linear spring-dashpot of damping ratio zeta, the standard DEM
+   closed form e = exp(-pi zeta / sqrt(1 - zeta^2)) (0 from critical damping on). */
+static double spring_dashpot_restitution(double zeta) { return zeta < 1 ? exp(-PI * zeta / sqrt(1 - zeta * zeta)) : 0; }
+
 int main(int argc, char** argv) {
     int dim = 2;
-    double height = 0.2, viscosity = 20, mu = 0, speed = 0, angle = 20, dp = 0.005;
+    double height = 0.2, viscosity = 20, mu = 0, speed = 0, angle = 20, dp = 0.005, contact_damping = 0;
     common_options c = {.shear = SPS_SHEAR_ENO_A, .rotation = SPS_ROTATION_PAIR, .cfl = 0.4, .t_end = 3, .vtk_every = 0.05,
                         .csv_every = 0.002, .E = 1e6, .nu = 0.3, .rho0 = 1000, .out = "out/bounce", PNG_DEFAULTS};
     opt_spec opts[] = {
         {"dim", OPT_INT, &dim, "space dimension (2: disc, 3: ball)", 2, 3, NULL},
         {"height", OPT_REAL, &height, "drop height of the lowest point above the floor [m]", 0.001, 100, NULL},
         {"viscosity", OPT_REAL, &viscosity, "Kelvin-Voigt viscosity eta [Pa s] (0: none)", 0, 1e9, NULL},
+        {"contact-damping", OPT_REAL, &contact_damping, "damping ratio zeta of the normal contact dashpot (0: none)", 0, 1, NULL},
         {"mu", OPT_REAL, &mu, "Coulomb friction coefficient of the floor and the body", 0, 10, NULL},
         {"speed", OPT_REAL, &speed, "throw speed [m/s] (0: dropped)", 0, 100, NULL},
         {"angle", OPT_REAL, &angle, "throw angle below the horizontal [degrees]", 0, 90, NULL},
@@ -140,6 +156,7 @@ int main(int argc, char** argv) {
     bd.track_stress = 1;
     bd.friction = (sps_real)mu;
     bd.material.viscosity = (sps_real)viscosity;
+    bd.contact_damping = (sps_real)contact_damping;
     w = ex_create(&wd);
     memset(&s, 0, sizeof s);
     ex_check(w, sps_world_add_body(w, &bd, &s.body));
@@ -180,9 +197,11 @@ int main(int argc, char** argv) {
         char rest[32];
         if (s.t_below >= 0) snprintf(rest, sizeof rest, "%.3f", s.t_below);
         else snprintf(rest, sizeof rest, "never");
-        printf("RESULT case=bounce dim=%d dropped height=%g mu=%g viscosity=%g dp=%g t_rest=%s kinetic_end_rel=%.3g bounces=%d "
-               "viscous_work=%.5g fall_energy=%.5g account_error=%.3f%% target=2%% shear=%s %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
-               dim, height, mu, viscosity, dp, rest, (double)d.kinetic_energy / s.e_fall, s.bounces, (double)d.viscous_work, s.e_fall,
+        printf("RESULT case=bounce dim=%d dropped height=%g mu=%g viscosity=%g contact_damping=%g dp=%g t_rest=%s "
+               "kinetic_end_rel=%.3g bounces=%d restitution=%.4f spring_dashpot_restitution=%.4f v_in=%.4f v_out=%.4f viscous_work=%.5g fall_energy=%.5g "
+               "account_error=%.3f%% target=2%% shear=%s %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
+               dim, height, mu, viscosity, contact_damping, dp, rest, (double)d.kinetic_energy / s.e_fall, s.bounces,
+               s.v_in > 0 && s.bounces > 0 ? s.v_out / s.v_in : 0, spring_dashpot_restitution(contact_damping), s.v_in, s.v_out, (double)d.viscous_work, s.e_fall,
                100 * s.account_error / s.e_fall, shear_name(c.shear), common_result_fields(&c), sps_world_particle_count(w),
                d.acoustic_steps, wall, c.out);
     }

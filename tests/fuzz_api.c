@@ -266,6 +266,7 @@ static sps_body_def random_body_def(void) {
     d.track_stress = chance(p) ? hostile_int() : below(2);
     d.damping = chance(0.7) ? 0 : maybe_hostile(exp(uniform(log(1e-2), log(1e6))), p);
     d.friction = chance(0.6) ? 0 : maybe_hostile(uniform(0, 1), p); /* Coulomb friction */
+    d.contact_damping = chance(0.6) ? 0 : maybe_hostile(uniform(0, 1), p); /* normal contact damping */
     if (chance(0.01)) d.internal_cookie = 12345;
     return d;
 }
