@@ -647,7 +647,9 @@
 
    DOES NOT (yet)
       self-contact, damage of updated-Lagrangian bodies, removing particles; rolling friction;
-      normal damping of contacts (a rigid bounce on the contact's stiffness is not damped).
+      a prescribed coefficient of restitution (contact_damping is a damping ratio of the
+      contact layer: the restitution it gives is measured, bench/VALIDATION.md); friction on
+      the contact surface's velocity (a thrown disc leaves with omega R / v_t 1.09-1.21).
 
    REVISION HISTORY
       0.9.0 (2026-12-03) default rotation SPS_ROTATION_AUTO (pair for ENO-A, mean for GNO-A):
@@ -659,7 +661,8 @@
                          sps_world_advance_substeps), the drag (sps_body_drag_begin/_end),
                          sps_body_set_rigid_motion; Coulomb friction (sps_body_def.friction,
                          sps_world_set_wall_friction) and Kelvin-Voigt damping
-                         (material.viscosity of solids, sps_diagnostics.viscous_work); the
+                         (material.viscosity of solids, sps_diagnostics.viscous_work), normal
+                         contact damping (contact_damping); the
                          fluid-structure coupling (fluids see solids as moving walls); the
                          variational hourglass force of total-Lagrangian bodies as the default
                          (hourglass = SPS_HOURGLASS_PAPER keeps TL eq. 32), their artificial

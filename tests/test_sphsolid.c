@@ -5463,7 +5463,7 @@ static int test_user_scene_dragged_jelly(void) {
     return 0;
 }
 
-/* ---- >>contact: normal contact damping (issue 38, follow-up: bodies that come to rest) ---- */
+/* ---- >>contact: normal contact damping (bodies that come to rest) ---- */
 
 /* The x momentum of body b. */
 static double body_momentum_x(sps_world* w, sps_body b) {
@@ -5480,7 +5480,7 @@ static int test_contact_damping_pair(void) {
     int damped;
     for (damped = 0; damped < 2; ++damped) {
         sps_world* w = new_world(2, 0.01);
-        sps_body_def bd = issue38_body(0, 1e-3); /* a vanishing eta: the Riemann dissipation's work is counted too */
+        sps_body_def bd = friction_test_body(0, 1e-3); /* a vanishing eta: the Riemann dissipation's work is counted too */
         const sps_real lo1[3] = {0, 0, 0}, hi1[3] = {0.1, 0.1, 0}, lo2[3] = {0.13, 0, 0}, hi2[3] = {0.23, 0.1, 0};
         sps_body left, right;
         sps_diagnostics d0, d1;
@@ -5524,7 +5524,7 @@ static int test_contact_damping_wall(void) {
     int damped;
     for (damped = 0; damped < 2; ++damped) {
         sps_world* w = new_world(2, 0.01);
-        sps_body_def bd = issue38_body(0, 1e-3);
+        sps_body_def bd = friction_test_body(0, 1e-3);
         const sps_real lo[3] = {0, 0.03, 0}, hi[3] = {0.1, 0.13, 0}, point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
         sps_body b;
         sps_diagnostics d0, d1;
@@ -5561,7 +5561,7 @@ static int test_contact_damping_thread_count(void) {
     int threads, same;
     for (threads = 1; threads <= 2; ++threads) {
         sps_world_def wd = sps_default_world_def();
-        sps_body_def bd = issue38_body(0, 1e-3);
+        sps_body_def bd = friction_test_body(0, 1e-3);
         const sps_real lo1[3] = {0, 0, 0}, hi1[3] = {0.1, 0.1, 0}, lo2[3] = {0.115, 0, 0}, hi2[3] = {0.215, 0.1, 0};
         sps_world* w = NULL;
         sps_body left, right;
@@ -5590,7 +5590,7 @@ static int test_contact_damping_thread_count(void) {
 /* Bad contact_damping is refused with a message naming the field, the value and the range. */
 static int test_contact_damping_bad_input(void) {
     sps_world* w = new_world(2, 0.01);
-    sps_body_def bad = issue38_body(0, 0);
+    sps_body_def bad = friction_test_body(0, 0);
     ENSURE(w);
     bad.contact_damping = -0.1; ENSURE(rejects_body_def(w, &bad, "contact_damping = -0.1, allowed [0, 1]") == 0);
     bad.contact_damping = 2;    ENSURE(rejects_body_def(w, &bad, "contact_damping = 2, allowed [0, 1]") == 0);
