@@ -6024,6 +6024,7 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
     const sps_real half_alpha = SPS_R(0.5) * b->def.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
     const int springs = half_alpha > 0, turn = b->def.hourglass == SPS_HOURGLASS_VARIATIONAL;
     const sps_real viscosity = b->def.artificial_viscosity * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) * w->h * b->rho0;
+    const int pair_terms = springs || viscosity > 0 || b->viscous_work; /* the terms below that need X_ij and x_ij */
     int l, a, c, k;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
@@ -6040,27 +6041,25 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
                 for (c = 0; c < dim; ++c) s += (Qi[3 * a + c] + Qj[3 * a + c]) * dir[c];
                 f[a] += vv * e.dw * s;
             }
+            sps_real X[3], x[3], x2;
+            if (!pair_terms) continue;
+            x2 = sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
             if (springs) {
                 const sps_real spring = half_alpha * vv * e.w / (e.r * e.r), ki = spring * Ei, kj = spring * sps__tl_hourglass_modulus(b, oj, E, Y, plastic);
-                sps_real X[3], x[3], pi[3], pj[3], di, dj, inv_x2;
-                inv_x2 = 1 / sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
+                const sps_real inv_x2 = 1 / x2;
+                sps_real pi[3], pj[3], di, dj;
                 di = sps__tl_spring(Fi, X, x, inv_x2, dim, pi);
                 dj = sps__tl_spring(Fj, X, x, inv_x2, dim, pj);
                 for (a = 0; a < dim; ++a) f[a] -= (ki * di + kj * dj) * x[a]; /* TL eq. 32 */
                 for (a = 0; turn && a < dim; ++a) f[a] += ki * di * (pi[a] - di * x[a]) + kj * dj * (pj[a] - dj * x[a]);
             }
             if (viscosity > 0) {
-                sps_real X[3], x[3], vx = 0, x2, damper;
-                x2 = sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
+                sps_real vx = 0, damper;
                 for (a = 0; a < dim; ++a) vx += (w->vel[a][j] - w->vel[a][i]) * x[a];
                 damper = -viscosity * vv * e.dw * vx / (SPS__SQRT(x2) * (x2 + SPS_R(0.01) * w->h * w->h));
                 for (a = 0; a < dim; ++a) f[a] += damper * x[a];
             }
-            if (b->viscous_work) {
-                sps_real X[3], x[3];
-                const sps_real inv_r = 1 / SPS__SQRT(sps__tl_pair_vectors(w, i, j, &e, dim, X, x));
-                sps__tl_kelvin_voigt(w, b, i, j, x, inv_r, vv * e.dw / e.r, dim, damp);
-            }
+            if (b->viscous_work) sps__tl_kelvin_voigt(w, b, i, j, x, 1 / SPS__SQRT(x2), vv * e.dw / e.r, dim, damp);
         }
         for (a = 0; a < dim; ++a) w->acc_p[a][i] = f[a] / w->mass[i];
         if (b->viscous_work) {
