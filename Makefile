@@ -31,7 +31,7 @@ BUILD    = build
 # the examples built with sps_real = float (defined before the rules that name it)
 FLOAT    = $(BUILD)/float
 EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl tensile3d cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
-           taylor_square taylor_round impact2d incline bounce floating_block hydrostatic_fsi
+           taylor_square taylor_round impact2d incline bounce floating_block hydrostatic_fsi elastic_gate
 HEADER   = sphsolid.h
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
@@ -143,7 +143,7 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "column_collapse2d" "soil_failure2d --transport utvf" "soil_failure3d --res 25 --png-view iso" \
                "flume3d --dp 0.08 --tend 2 --png-view iso" "debris_barrier3d --png-view iso" \
                "tensile3d --res 4 --png-field damage --png-view iso" "floating_block --drop 0.1 --tend 0.45" \
-               "hydrostatic_fsi --res 5 --tend 0.1"
+               "hydrostatic_fsi --res 5 --tend 0.1" "elastic_gate --res 3 --tend 0.15"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \
@@ -152,6 +152,7 @@ gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	  ./$(BUILD)/check_picture bench/gallery/$$1.png || { echo "gallery: $$run failed"; exit 1; }; \
 	done
 	@./$(BUILD)/demo --headless --frames 140 --png bench/gallery/demo.png >/dev/null && ./$(BUILD)/check_picture bench/gallery/demo.png
+	@./$(BUILD)/demo --headless --scene tank --frames 45 --png bench/gallery/demo_tank.png >/dev/null && ./$(BUILD)/check_picture bench/gallery/demo_tank.png
 	@echo "gallery: bench/gallery/*.png, one per example"
 
 # ---- tests ----
@@ -193,7 +194,7 @@ SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 -
              "column_collapse2d --dp 0.01 --tend 0.01" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
              "flume3d --dp 0.2 --tend 0.01" "debris_barrier3d --dp 0.3 --distance 2 --tend 0.01" \
              "incline --dp 0.01 --settle 0.01 --tend 0.02" "bounce --dp 0.01 --tend 0.01" "bounce --dp 0.01 --height 0.05 --tend 0.2 --contact-damping 1" \
-             "floating_block --dp 0.05 --tend 0.01" "hydrostatic_fsi --res 2 --tend 0.005"
+             "floating_block --dp 0.05 --tend 0.01" "hydrostatic_fsi --res 2 --tend 0.005" "elastic_gate --res 2 --tend 0.002"
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@
 examples-smoke: examples $(BUILD)/check_picture
@@ -210,13 +211,15 @@ examples-smoke: examples $(BUILD)/check_picture
 	./$(BUILD)/plate2d --res 3 --tend 0.01 --quiet --png-every 0.005 --png-field velocity --out $$out >/dev/null && \
 	./$(BUILD)/check_picture $$out/plate2d_0000.png $$out/plate2d_0001.png || { echo "examples-smoke: --png-every failed"; exit 1; }
 	@echo "examples-smoke: every example ran, wrote CSV, VTK, PNG and SVG, and refused a bad option"
-# the demo, headless for 25 frames (a block dropped at frame 10): its RESULT line, and the same
-# checksum with 1 and 2 threads (frames without a wall budget are deterministic)
+# the demo, headless for 25 frames (a block dropped at frame 10), in each scene: its RESULT line,
+# and the same checksum with 1 and 2 threads (frames without a wall budget are deterministic)
 demo-smoke: $(BUILD)/demo
-	@one=$$(OMP_NUM_THREADS=1 ./$(BUILD)/demo --headless --frames 25) && two=$$(./$(BUILD)/demo --headless --frames 25 --threads 2) && \
-	echo "$$one" | grep -Eq '^RESULT case=demo frames=25 .*blocks=1 .*checksum=[0-9a-f]{16} .*ms_per_frame=[0-9.]+ .*fps=[0-9.]+ ' && \
+	@for scene in playground tank; do \
+	one=$$(OMP_NUM_THREADS=1 ./$(BUILD)/demo --headless --frames 25 --scene $$scene) && two=$$(./$(BUILD)/demo --headless --frames 25 --threads 2 --scene $$scene) && \
+	echo "$$one" | grep -Eq "^RESULT case=demo frames=25 .*blocks=1 .*checksum=[0-9a-f]{16} .*ms_per_frame=[0-9.]+ .*fps=[0-9.]+ .*scene=$$scene" && \
 	test "$$(echo "$$one" | sed 's/.*checksum=\([0-9a-f]*\).*/\1/')" = "$$(echo "$$two" | sed 's/.*checksum=\([0-9a-f]*\).*/\1/')" || \
-	{ echo "demo-smoke failed: $$one / $$two"; exit 1; }; echo "demo-smoke: 25 headless frames, same checksum with 1 and 2 threads"
+	{ echo "demo-smoke failed ($$scene): $$one / $$two"; exit 1; }; done; \
+	echo "demo-smoke: 25 headless frames in each scene, same checksum with 1 and 2 threads"
 # ---- pinned results: hashes of short runs over every formulation, bit for bit (tests/pinned.c) ----
 $(BUILD)/pinned: tests/pinned.c tests/pinned_double.inc $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)

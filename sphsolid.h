@@ -210,7 +210,11 @@
       step takes the coupling's signal speed c0_f sqrt(rho0_f / rho0_s) beside the bodies' own
       (a light, soft solid held by the fluid's pressure); measured stable down to rho_s/rho_f =
       1/200 (bench/VALIDATION.md, fluid-structure). A fluid-solid pair that does not touch is
-      warned of (the water would flow through the solid).
+      warned of (the water would flow through the solid). Examples: hydrostatic_fsi (a plate
+      under water, against beam theory), floating_block (Archimedes), elastic_gate (a dam break
+      through a rubber gate, Antoci et al. 2007), the demo's water tank. Over tens of seconds a
+      fluid at rest between analytic walls drifts (its pressure and surface rise slowly) and a
+      floating body rises with it (bench/VALIDATION.md, the elastic gate and the demo's tank).
 
    TRANSPORT (transport = SPS_TRANSPORT_TVF or SPS_TRANSPORT_UTVF; UTVF sections 3.2-3.3)
       After every acoustic sub-step each particle is shifted by dr = -2 alpha h^2 sum_j grad W_ij V_j

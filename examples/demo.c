@@ -1,11 +1,12 @@
 /* demo.c - jelly in the terminal, in real time: a cantilever, a tree and two spinning wheels
-   swing under gravity (scenes/jelly.h), and `space` drops new jelly blocks while it runs.
+   swing under gravity (scenes/jelly.h), and `space` drops new jelly blocks while it runs; or
+   (--scene tank, key t) a water tank into which `space` drops jelly rafts that float.
    No dependency: 24-bit ANSI colours and the half block (two pixel rows per character cell),
    termios raw mode (the terminal is restored on exit and on Ctrl-C).
 
    Keys: space  drop a block (with the formulation shown)     f  next shear formulation
          g      grab / let go of the last block (a drag)       h j k l  move the grab left, down, up, right
-         p      pause                                          q  quit
+         t      the other scene (playground / water tank)      p  pause      q  quit
    The blocks land in a tank (rigid walls) and bounce off the floor, each other and the rest.
 
    Each frame runs sps_world_advance_frame (sphsolid.h, REAL-TIME FRAMES): 1/fps of simulated
@@ -15,7 +16,11 @@
    --headless runs --frames frames with no terminal and no budget (deterministic: the same
    checksum for any thread count), drops a block every 20 frames, grabs the first block at frame
    15 and pulls it to the right, and prints a RESULT line with a checksum of the positions and
-   the frame timing (physics and drawing).
+   the frame timing (physics and drawing). In the tank scene it drops one raft at frame 10 and
+   prints its submerged fraction, the mean over 2-5 s (the splash sets the water sloshing:
+   period 2.4 s, undamped; later the raft rises as the water's density drifts up at its free
+   surface: bench/VALIDATION.md, fluid-structure), next to Archimedes' (its density over the
+   water's, 0.5), and the water level.
 
    Build: make demo        Run: ./build/demo      Measure: OMP_NUM_THREADS=1 ./build/demo --headless
    Expect: >= 30 frames per second on one core of a 2020s machine at 80 x 24. */
@@ -172,6 +177,7 @@ static void toggle_drag(jelly_scene* scene, sps_drag* drag, int* dragging) {
    headless, shown in the hint line in the terminal, where a printed line would scroll the
    picture away. */
 static int g_in_terminal;
+static const char* const scene_names[] = {"playground", "tank"};
 static char g_warning[256];
 static void demo_log(int level, const char* message, void* user) {
     if (level == 0 || !g_in_terminal) ex_log(level, message, user);
@@ -179,7 +185,7 @@ static void demo_log(int level, const char* message, void* user) {
 }
 
 int main(int argc, char** argv) {
-    int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, frame, shear = 0, paused = 0, resets = 0, dragging = 0;
+    int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, frame, shear = 0, paused = 0, resets = 0, dragging = 0, tank = 0;
     sps_drag drag;
     double fps = 30, start, physics = 0, drawing = 0, slowest = 0, next, shown_fps = 0, fps_clock;
     const char* png = "";
@@ -190,24 +196,28 @@ int main(int argc, char** argv) {
         {"threads", OPT_INT, &threads, "OpenMP threads, 0 = all", 0, 1024, NULL},
         {"size", OPT_PAIR, size, "headless: screen columns,rows (interactive: the terminal's)", 20, 1000, NULL},
         {"png", OPT_STRING, &png, "write the last frame as a PNG picture (600 x 400) to this file; empty = none", 0, 0, NULL},
+        {"scene", OPT_CHOICE, &tank, "the scene at the start (key t switches)", 0, 0, "playground|tank"},
     };
     jelly_scene scene;
     screen scr;
-    char status[256], hint[256] = "space drop  f formulation  g grab  hjkl move  p pause  q quit";
+    char status[256], hint[256] = "space drop  f formulation  g grab  hjkl move  t tank/playground  p pause  q quit";
+    double level = 0, submerged = 0; /* the tank scene's water level and the rafts' summed submerged fraction */
+    int float_frames = 0;
     int fps_frames = 0;
 
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "jelly in the terminal, in real time (scenes/jelly.h)", opts, (int)(sizeof opts / sizeof *opts));
     if (!headless) terminal_size(size);
     g_in_terminal = !headless;
-    ex_check(NULL, jelly_create(threads, demo_log, &scene));
+    ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
     screen_open(&scr, size[0], size[1]);
     if (!headless) terminal_raw();
     start = next = fps_clock = wall_seconds();
     for (frame = 0; headless ? frame < frames : !g_stop; ++frame) {
         double t0 = wall_seconds(), t1;
-        int key = headless ? (frame % 20 == 10 ? ' ' : frame % 20 == 0 && frame ? 'f' : frame == 15 ? 'g' : frame > 15 && frame % 3 == 0 ? 'l' : -1)
-                           : read_key();
+        int key = !headless ? read_key()
+                  : tank    ? (frame == 10 ? ' ' : -1)
+                            : (frame % 20 == 10 ? ' ' : frame % 20 == 0 && frame ? 'f' : frame == 15 ? 'g' : frame > 15 && frame % 3 == 0 ? 'l' : -1);
         if (key == 'q') break;
         if (key == 'p') paused = !paused;
         /* headless cycles the -A variants only (the first two): ENO and GNO do not turn the stored
@@ -215,13 +225,19 @@ int main(int argc, char** argv) {
            (interactive: the scene resets with the message) */
         if (key == 'f') shear = (shear + 1) % (headless ? 2 : FORMULATIONS);
         if (key == 'g') toggle_drag(&scene, &drag, &dragging);
+        if (key == 't') { /* the other scene, afresh */
+            tank = !tank;
+            dragging = 0;
+            sps_world_destroy(scene.w);
+            ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
+        }
         if (dragging && (key == 'h' || key == 'l')) drag.target[0] += key == 'l' ? DRAG_STEP : -DRAG_STEP;
         if (dragging && (key == 'j' || key == 'k')) drag.target[1] += key == 'k' ? DRAG_STEP : -DRAG_STEP;
         if (key == ' ') {
             if (scene.n_drops == JELLY_MAX_DROPS) { /* particles cannot be removed: start afresh */
                 dragging = 0;
                 sps_world_destroy(scene.w);
-                ex_check(NULL, jelly_create(threads, demo_log, &scene));
+                ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
                 snprintf(hint, sizeof hint, "scene reset after %d blocks: particles cannot be removed yet", JELLY_MAX_DROPS);
             }
             ex_check(scene.w, jelly_drop_block(&scene, formulations[shear]));
@@ -233,13 +249,19 @@ int main(int argc, char** argv) {
                 snprintf(hint, sizeof hint, "%.*s: scene reset", (int)sizeof hint - 16, sps_world_last_error(scene.w));
                 dragging = 0;
                 sps_world_destroy(scene.w);
-                ex_check(NULL, jelly_create(threads, demo_log, &scene));
+                ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
                 ++resets;
             } else {
                 ex_check(scene.w, r);
             }
         }
         t1 = wall_seconds();
+        if (tank && frame >= 2 * fps && frame < 5 * fps) { /* the mean float depth over 2-5 s */
+            double fraction;
+            jelly_float_report(&scene, &level, &fraction);
+            submerged += fraction;
+            ++float_frames;
+        }
         if (*g_warning) { /* the last warning, until the next */
             snprintf(hint, sizeof hint, "%s", g_warning);
             *g_warning = 0;
@@ -270,12 +292,18 @@ int main(int argc, char** argv) {
         const double wall = wall_seconds() - start;
         sps_diagnostics d;
         sps_body all = {0};
+        char floating[160] = "";
         ex_check(scene.w, sps_world_diagnostics(scene.w, all, &d));
+        if (float_frames) submerged /= float_frames;
+        if (submerged > 0)
+            snprintf(floating, sizeof floating, " water_level=%.4f submerged=%.4f archimedes=%.4f rel_error=%+.2f%%", level, submerged,
+                     JELLY_RAFT_RHO0 / 1000.0, 100 * (submerged / (JELLY_RAFT_RHO0 / 1000.0) - 1));
         printf("RESULT case=demo frames=%d substeps_per_frame=%.1f sim_s=%.4f particles=%d blocks=%d resets=%d checksum=%016llx "
-               "size=%dx%d ms_per_frame=%.2f physics_ms=%.2f drawing_ms=%.2f slowest_frame_ms=%.2f fps=%.1f threads=%d steps=%ld wall_s=%.2f\n",
-               frame, (double)d.acoustic_steps / frame, (double)sps_world_time(scene.w), sps_world_particle_count(scene.w), scene.n_drops, resets,
-               (unsigned long long)position_checksum(scene.w), size[0], size[1], 1e3 * (physics + drawing) / frame, 1e3 * physics / frame,
-               1e3 * drawing / frame, 1e3 * slowest, frame / (physics + drawing), threads, d.acoustic_steps, wall);
+               "size=%dx%d ms_per_frame=%.2f physics_ms=%.2f drawing_ms=%.2f slowest_frame_ms=%.2f fps=%.1f threads=%d steps=%ld wall_s=%.2f scene=%s%s\n",
+               frame, (double)d.acoustic_steps / frame, (double)sps_world_time(scene.w), sps_world_particle_count(scene.w),
+               scene.n_drops, resets, (unsigned long long)position_checksum(scene.w), size[0], size[1], 1e3 * (physics + drawing) / frame,
+               1e3 * physics / frame, 1e3 * drawing / frame, 1e3 * slowest, frame / (physics + drawing), threads, d.acoustic_steps, wall,
+               scene_names[tank], floating);
     }
     sps_world_destroy(scene.w);
     free(scr.img.pixels);

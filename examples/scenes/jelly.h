@@ -7,7 +7,10 @@
    - blocks dropped from the top while the scene runs (sps_world_add_body after steps): they
      land on the floor, on each other and on the others, and bounce (bodies touch by default).
      Particles cannot be removed, so after JELLY_MAX_DROPS the scene starts afresh.
-   Needs only sphsolid.h. */
+   The tank scene (jelly_create with tank = 1) is water 0.32 m deep in the same tank (free-slip
+   walls) and nothing else: the dropped blocks are jelly rafts half as dense as water, which
+   splash in and float at the depth Archimedes gives (sphsolid.h FLUID-STRUCTURE: the water
+   pushes on them through its own pressure). Needs only sphsolid.h. */
 #ifndef SPS_SCENE_JELLY_H
 #define SPS_SCENE_JELLY_H
 #include "scene.h"
@@ -20,6 +23,10 @@
 #define JELLY_NU 0.3
 #define JELLY_MAX_DROPS 16  /* then the scene starts afresh (particles cannot be removed) */
 #define JELLY_BLOCK 0.24    /* side of a dropped block [m] */
+#define JELLY_WATER_DEPTH 0.32 /* the tank scene's water [m] (8 particles: 400, a frame in real time) */
+#define JELLY_RAFT_W 0.40   /* a raft of the tank scene [m]: wider than twice its height, so that it */
+#define JELLY_RAFT_H 0.20   /* floats flat (metacentre above the centre of mass: W/H > 1.22 at half density) */
+#define JELLY_RAFT_RHO0 500 /* half as dense as water: it floats half immersed */
 
 typedef struct {
     sps_body body;
@@ -30,6 +37,8 @@ typedef struct {
     sps_world* w;
     jelly_drop drops[JELLY_MAX_DROPS];
     int n_drops;
+    int tank;               /* 1: the water tank scene */
+    sps_body water;         /* the tank scene's water */
 } jelly_scene;
 
 SCENE_UNUSED static sps_body_def jelly_body_def(sps_shear shear, const char* name) {
@@ -71,8 +80,29 @@ SCENE_UNUSED static sps_result jelly_add_block(sps_world* w, sps_body b, double 
     return axle ? sps_body_constrain_box(w, b, axle_lo, axle_hi, SPS_AXIS_ALL, NULL, NULL) : SPS_OK;
 }
 
-/* Builds the scene with `threads` OpenMP threads (0: all) into s; log receives the errors. */
-SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, jelly_scene* s) {
+/* The tank scene's water at rest: hydrostatic pressure. */
+SCENE_UNUSED static sps_real jelly_hydrostatic(const sps_real x[3], void* user) {
+    (void)user;
+    return (sps_real)(1000 * 9.81 * (JELLY_WATER_DEPTH - x[1]));
+}
+
+/* The tank scene (see the head): water at rest filling the tank's floor to JELLY_WATER_DEPTH. */
+SCENE_UNUSED static sps_result jelly_add_water(jelly_scene* s) {
+    sps_body_def water_def = sps_default_body_def();
+    const sps_real lo[3] = {-JELLY_VIEW_W / 2, 0, 0}, hi[3] = {JELLY_VIEW_W / 2, JELLY_WATER_DEPTH, 0};
+    sps_result r;
+    water_def.name = "water";
+    water_def.material.kind = SPS_MATERIAL_FLUID;
+    water_def.material.density = 1000;
+    water_def.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * JELLY_WATER_DEPTH)); /* 10 times the fastest flow */
+    if ((r = sps_world_add_body(s->w, &water_def, &s->water)) != SPS_OK || (r = sps_body_add_box(s->w, s->water, lo, hi, NULL)) != SPS_OK)
+        return r;
+    return sps_body_set_pressure(s->w, s->water, jelly_hydrostatic, NULL);
+}
+
+/* Builds the scene (tank = 0: the playground; 1: the water tank) with `threads` OpenMP threads
+   (0: all) into s; log receives the errors. */
+SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, int tank, jelly_scene* s) {
     sps_world_def wd = sps_default_world_def();
     sps_body_def cantilever_def = jelly_body_def(SPS_SHEAR_ENO_A, "cantilever"), tree_def = jelly_body_def(SPS_SHEAR_ENO_A, "tree");
     sps_body_def wheel_def = jelly_body_def(SPS_SHEAR_GNO_A, "wheel");
@@ -88,9 +118,14 @@ SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, jelly_s
     wd.threads = threads;
     wd.log = log;
     if ((r = sps_world_create(&wd, &s->w)) != SPS_OK) return r;
+    s->tank = tank;
     {   /* the tank: the view's floor and sides, open at the top */
         const sps_real tank_lo[3] = {-JELLY_VIEW_W / 2, 0, 0}, tank_hi[3] = {JELLY_VIEW_W / 2, 4 * JELLY_VIEW_H, 0};
-        SCENE_TRY(&s->w, sps_world_add_box_walls(s->w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+        SCENE_TRY(&s->w, sps_world_add_box_walls(s->w, tank_lo, tank_hi, SPS_FACE_Y_HI, tank ? SPS_WALL_FREE_SLIP : SPS_WALL_NO_SLIP));
+    }
+    if (tank) {
+        SCENE_TRY(&s->w, jelly_add_water(s));
+        return SPS_OK;
     }
     SCENE_TRY(&s->w, sps_world_add_body(s->w, &cantilever_def, &cantilever));
     SCENE_TRY(&s->w, sps_body_add_box(s->w, cantilever, beam_lo, beam_hi, NULL));
@@ -108,7 +143,10 @@ SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, jelly_s
 }
 
 /* Drops block number s->n_drops (shear formulation `shear`) from above the view, at an
-   x that cycles over the view's width. SPS_ERR_STATE when JELLY_MAX_DROPS are out. */
+   x that cycles over the view's width: a spinning block, or in the tank scene a raft (at rest,
+   density JELLY_RAFT_RHO0, its heave damped at 2/s so that it comes to float) from 0.28 m above
+   the water (it hits it at 2.3 m/s, a tenth of the water's c0). SPS_ERR_STATE when
+   JELLY_MAX_DROPS are out. */
 SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear) {
     static const double x_of[5] = {-0.7, 0.3, -0.2, 0.75, -0.45};
     jelly_drop* d = &s->drops[s->n_drops];
@@ -123,11 +161,45 @@ SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear)
     sps_real centre[3] = {cx, cy, 0};
     sps_result r;
     if (s->n_drops == JELLY_MAX_DROPS) return SPS_ERR_STATE;
-    if ((r = sps_world_add_body(s->w, &bd, &d->body)) != SPS_OK || (r = jelly_add_block(s->w, d->body, cx, cy, JELLY_BLOCK, 3, 0)) != SPS_OK)
+    if (s->tank) {
+        const sps_real lo[3] = {cx - JELLY_RAFT_W / 2, JELLY_WATER_DEPTH + 0.28, 0}, hi[3] = {cx + JELLY_RAFT_W / 2, lo[1] + JELLY_RAFT_H, 0};
+        bd.material.density = JELLY_RAFT_RHO0;
+        bd.friction = 0; /* rafts meet only water, and each other now and then */
+        bd.damping = 2;
+        if ((r = sps_world_add_body(s->w, &bd, &d->body)) != SPS_OK || (r = sps_body_add_box(s->w, d->body, lo, hi, NULL)) != SPS_OK) return r;
+    } else if ((r = sps_world_add_body(s->w, &bd, &d->body)) != SPS_OK || (r = jelly_add_block(s->w, d->body, cx, cy, JELLY_BLOCK, 3, 0)) != SPS_OK)
         return r;
     d->centre_id = sps_world_nearest_particle(s->w, d->body, centre);
     ++s->n_drops;
     return SPS_OK;
+}
+
+/* The tank scene's floating rafts against Archimedes: the water level (the water's area at rho0
+   and the rafts' parts below the level fill the tank's width: solved by fixed-point iteration)
+   and the rafts' submerged fraction (each particle's dp x dp cell counted by its part below the
+   level), which a raft of density rho floats at: rho / 1000. *fraction is 0 without rafts. */
+SCENE_UNUSED static void jelly_float_report(const jelly_scene* s, double* level_out, double* fraction) {
+    const sps_real *y = sps_world_field(s->w, SPS_FIELD_POSITION_Y), *m = sps_world_field(s->w, SPS_FIELD_MASS);
+    double water_area = 0, level = JELLY_WATER_DEPTH, below = 0;
+    int i, k, it, first, count, components, rafts = 0;
+    *fraction = 0;
+    if (!s->tank || !sps_body_field(s->w, s->water, "density", &components, &first, &count)) return;
+    for (i = first; i < first + count; ++i) water_area += m[i] / 1000;
+    for (it = 0; it < 20; ++it) {
+        below = 0;
+        rafts = 0;
+        for (k = 0; k < s->n_drops; ++k) {
+            if (!sps_body_field(s->w, s->drops[k].body, "density", &components, &first, &count)) continue;
+            ++rafts;
+            for (i = first; i < first + count; ++i) {
+                const double part = (level - y[i]) / JELLY_DP + 0.5;
+                below += JELLY_DP * JELLY_DP * (part < 0 ? 0 : part > 1 ? 1 : part);
+            }
+        }
+        level = (water_area + below) / JELLY_VIEW_W;
+    }
+    *level_out = level;
+    if (rafts) *fraction = below / (rafts * JELLY_RAFT_W * JELLY_RAFT_H);
 }
 
 #endif
