@@ -242,13 +242,14 @@
       by the lattice's kernel-gradient moment c = -(1/d) sum_j r_ij dW_ij V_j (0.974 for the
       Wendland kernel at h = 1.3 dp in 2D; the correction B_i of a particle inside a lattice),
       without which a layer at rest balanced its weight only at 1/c of its geostatic stress
-      and oscillated about it (+3.1 % at mid-depth). Hourglass control: ANG's GNO-A penalty
-      (the default: shear = ENO or ENO-A, which a granular body takes as GNO-A; GNO too) acts
-      between particles whose stress update was elastic: a particle on the cone (flowing, or a
-      free grain at the apex) takes a penalty factor 0 and drops its stored penalty, so the
-      penalty holds the zigzag mode of a layer at rest and leaves flow alone (J2's |s|/|s_trial|
-      left it on in flow: C4 clustered 521 particles). shear = SPS_SHEAR_OG is the paper's
-      formulation, without a penalty; the other shear values are not used. Stress diffusion
+      and oscillated about it (+3.1 % at mid-depth). No hourglass penalty by default, as in
+      the paper. Hourglass control, shear = SPS_SHEAR_GNO_A (or GNO; rotation mean or per
+      particle): ANG's penalty acts between particles whose stress update was elastic; a
+      particle on the cone (flowing, or a free grain at the apex) takes a penalty factor 0 and
+      drops its stored penalty, so the penalty holds the zigzag mode of a layer at rest and
+      leaves flow alone (J2's |s|/|s_trial| left it on in flow: C4 clustered 521 particles).
+      It is not the default: C4 at L = 0.1 shot a particle off at 0.60 s with it. The other
+      shear values are not used. Stress diffusion
       (Feng et al. 2021; stress_diffusion = zeta, default 0.1, 0: off): d sigma_i/dt +=
       2 zeta h c0 sum_j (sigma_i - sigma_j - sigma_geo,ij) r_ij dW/(r_ij^2 + 0.01 h^2) V_j, the
       geostatic difference sigma_geo,ij = -rho0 (g . x_ij) [g^ g^ + K0 (I - g^ g^)] left alone so
@@ -266,9 +267,9 @@
       the returned stress on the plastic strain increments (the energy account's dissipation),
       "shear_stress" the deviator tau (6 values, with zz in 2D). UTVF and TVF apply as to any
       body (TRANSPORT). Measured (bench/VALIDATION.md, "Granular media that hold their
-      shape"): a geostatic block at rest for 2 s keeps its mid-depth stress within 0.6 % and
-      its hourglass indicator at 0.0000 (OG: 0.11, the zigzag mode grows); a grain sent along
-      a floor stops where Coulomb's law stops it.
+      shape"): a geostatic block at rest for 2 s keeps its mid-depth stress within 0.6 % and,
+      with GNO-A, its hourglass indicator at 0.0000 (by default 0.11: the zigzag mode grows);
+      a grain sent along a floor stops where Coulomb's law stops it.
 
    TOTAL-LAGRANGIAN (sps_body_def.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; TL = Ganzenmueller's
    paper, chapter >>solver: total Lagrangian)
@@ -2520,17 +2521,9 @@ static int sps__viscosity_updated(int dim, const sps_body_def* def) {
     (void)dim;
     return def->artificial_viscosity > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
-/* The shear formulation a body's def asks for, as its material reads it: a Drucker-Prager body
-   takes ENO and ENO-A (the default), whose shear force is not the divergence of its stress, as
-   GNO-A, the hourglass penalty on the stress divergence (GRANULAR); OG is the paper's (no
-   penalty). */
-static sps_shear sps__shear_of(const sps_body_def* def) {
-    const int granular = def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER;
-    return granular && (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A) ? SPS_SHEAR_GNO_A : def->shear;
-}
 static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && sps__shear_of(def) == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
+    return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
 }
 static int sps__viscous_wall_or_granular(int dim, const sps_body_def* def) {
     (void)dim;
@@ -2634,7 +2627,7 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m);
    keep per-pair increments anyway. */
 static sps_rotation sps__rotation_of(const sps_body_def* def) {
     if (def->rotation != SPS_ROTATION_AUTO) return def->rotation;
-    return sps__shear_of(def) == SPS_SHEAR_GNO_A ? SPS_ROTATION_MEAN : SPS_ROTATION_PAIR;
+    return def->shear == SPS_SHEAR_GNO_A ? SPS_ROTATION_MEAN : SPS_ROTATION_PAIR;
 }
 
 /* The model of a checked def (pass kernels excepted: sps__choose_passes). */
@@ -2644,8 +2637,8 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     memset(&m, 0, sizeof m);
     m.material = sps__material_of(def->material.kind);
     m.stabilisation = m.material->stabilisation ? m.material->stabilisation : sps__stabilisation_of(def->shear);
-    if (m.material->plastic == SPS__YIELD_DRUCKER_PRAGER && (sps__shear_of(def) == SPS_SHEAR_GNO || sps__shear_of(def) == SPS_SHEAR_GNO_A))
-        m.stabilisation = sps__stabilisation_of(sps__shear_of(def)); /* a granular body with ANG's penalty (GRANULAR) */
+    if (m.material->plastic == SPS__YIELD_DRUCKER_PRAGER && (def->shear == SPS_SHEAR_GNO || def->shear == SPS_SHEAR_GNO_A))
+        m.stabilisation = sps__stabilisation_of(def->shear); /* a granular body with ANG's penalty (GRANULAR) */
     m.paired = m.stabilisation->rotated && rotation == SPS_ROTATION_PAIR;
     m.turn = !m.stabilisation->rotated || m.paired ? SPS__TURN_NONE
              : rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
@@ -4864,7 +4857,9 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
    energy difference e(t) - e(sigma) counted a cut-off from zero stress, a dilute front
    particle's every sub-step, as dissipation). With the GNO penalty (scaled, relax), the
    particle's penalty factor is 1 if the step was elastic and 0 if the return mapping acted (on
-   the cone: flowing, or a free grain at the apex), and its stored penalty is relaxed by it:
+   the cone: flowing) or its stress is at the apex (a free grain, whose few neighbours make its
+   velocity gradient, and so the penalty's v^_ij, meaningless: C4 at L = 0.1 shot one off at
+   0.60 s), and its stored penalty is relaxed by it:
    the penalty, an elastic stiffness xi G against the zigzag mode, acts between particles with
    an elastic reserve (a layer at rest) and not in flow, where a particle's stress is held on
    the cone. J2's |s|/|s_trial| (within O(dt) of 1 in a sub-step) left the penalty on in flow:
@@ -4916,7 +4911,7 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
             strain[l] += sqrt_2_3 * SPS__SQRT(sps__sym_contract(flow, flow)) / (2 * G);
             if (scaled) { /* the penalty's factor: 1 while elastic, 0 on the cone (see the function's head) */
                 const sps_real trial_norm2 = sps__sym_contract(s_trial, s_trial), norm2 = sps__sym_contract(s_next, s_next);
-                const sps_real r = trial_norm2 > norm2 ? 0 : 1;
+                const sps_real r = trial_norm2 > norm2 || cone.alpha_phi * i1 >= cone.k_c ? 0 : 1; /* returned, or at the apex */
                 int c;
                 factor[l] = r;
                 if (relax)
