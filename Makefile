@@ -30,7 +30,7 @@ SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recove
 BUILD    = build
 # the examples built with sps_real = float (defined before the rules that name it)
 FLOAT    = $(BUILD)/float
-EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl tensile3d cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
+EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl tensile3d cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d heap2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
            taylor_square taylor_round impact2d incline bounce floating_block hydrostatic_fsi elastic_gate
 HEADER   = sphsolid.h
 
@@ -114,7 +114,9 @@ $(BUILD)/io_cost: bench/io_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/damping_cost: bench/damping_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost
+$(BUILD)/granular_cost: bench/granular_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh
@@ -191,7 +193,7 @@ SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 -
              "taylor_square --res 4 --tend 2e-6" "taylor_round --res 3 --tend 2e-6" "impact2d --dp 0.0008 --tend 5e-7" \
              "patch_test --n 8 --tend 0.05" "beam_tl --n 3 --periods 2" "strip_pull --dp 0.2 --length 2.2e-3" \
              "punch_tl --dp 0.3 --compression 0.02" "taylor2d_tl --dp 1 --tend 2e-6" "tensile3d --res 4 --tend 2e-6" \
-             "column_collapse2d --dp 0.01 --tend 0.01" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
+             "column_collapse2d --dp 0.01 --tend 0.01" "heap2d --dp 0.01 --tend 0.01" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
              "flume3d --dp 0.2 --tend 0.01" "debris_barrier3d --dp 0.3 --distance 2 --tend 0.01" \
              "incline --dp 0.01 --settle 0.01 --tend 0.02" "bounce --dp 0.01 --tend 0.01" "bounce --dp 0.01 --height 0.05 --tend 0.2 --contact-damping 1" \
              "floating_block --dp 0.05 --tend 0.01" "hydrostatic_fsi --res 2 --tend 0.005" "elastic_gate --res 2 --tend 0.002"

@@ -1,0 +1,130 @@
+/* heap2d.c - the angle of repose of a cohesionless heap: a column lifted slowly (2D).
+
+   A column W = 0.05 m wide and H = 0.1 m high of cohesionless Drucker-Prager soil (the C4
+   material: rho0 = 2040, E = 5.84 MPa, nu = 0.3, c = 0, psi = 0; friction angle phi = --phi)
+   stands in the middle of a rough (no-slip) floor 0.5 m long, is released from zero stress under
+   g = 9.8 and slumps into a heap. The standard measurement lifts the cylinder slowly (the
+   "lifting cylinder" method), so that the heap forms without inertia; here the body's velocity
+   damping (--damping c [1/s], sps_body_def.damping) keeps the collapse quasi-static in the
+   same way (with --damping 0 it is the fast collapse, whose deposit runs out farther and stands
+   lower). At the end the heap's flanks are fitted by straight lines between 20 % and 80 % of its
+   height, on both sides: the angle of repose is the mean of the two slopes' angles. For a
+   cohesionless plane-strain Drucker-Prager soil matched to Mohr-Coulomb (UTVF eq. 14) an
+   infinite slope stands up to the friction angle, so the quasi-static heap's flanks should stand
+   at about phi (a heap of dry grains: angle of repose close to the internal friction angle).
+
+   Build: make examples     Run: ./build/heap2d --phi 30
+   Expect: angle within 3 degrees of phi (20, 30, 40). */
+#include "common.h"
+
+#define FLOOR_LENGTH 0.5
+#define COLUMN_WIDTH 0.05
+#define COLUMN_HEIGHT 0.1
+
+typedef struct {
+    output_plan output;
+    double wall0, t_end;
+} run_state;
+
+static int on_step(sps_world* w, void* user) {
+    run_state* s = (run_state*)user;
+    sps_diagnostics d;
+    output_tick(w, &s->output, "", &d);
+    progress(sps_world_time(w), s->t_end, s->wall0, 0);
+    return 0;
+}
+
+/* The surface of the deposit in columns dp wide: the highest particle + dp/2 of each column
+   (0 where a column holds fewer than 2 particles: loose grains are not the heap). */
+static void surface(const sps_world* w, double dp, int columns, double* top) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    int* count = (int*)calloc((size_t)columns, sizeof(int));
+    int i, k, n = sps_world_particle_count(w);
+    for (k = 0; k < columns; ++k) top[k] = 0;
+    if (!count) return;
+    for (i = 0; i < n; ++i) {
+        k = (int)(x[i] / dp);
+        if (k < 0 || k >= columns) continue;
+        if (y[i] + 0.5 * dp > top[k]) top[k] = y[i] + 0.5 * dp;
+        ++count[k];
+    }
+    for (k = 0; k < columns; ++k)
+        if (count[k] < 2) top[k] = 0;
+    free(count);
+}
+
+/* The slope [m/m] of the least-squares line through the columns (k0..k1, step +-1) whose top
+   is between 20 % and 80 % of the heap's height; 0 if fewer than 3 columns. */
+static double flank_slope(const double* top, double dp, int k0, int k1, double height) {
+    const int step = k1 > k0 ? 1 : -1;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int k, m = 0;
+    for (k = k0; k != k1 + step; k += step) {
+        const double x = (k + 0.5) * dp, y = top[k];
+        if (y < 0.2 * height || y > 0.8 * height) continue;
+        sx += x; sy += y; sxx += x * x; sxy += x * y; ++m;
+    }
+    if (m < 3) return 0;
+    return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+}
+
+int main(int argc, char** argv) {
+    common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 1.5, .vtk_every = 0.1, .csv_every = 0.01, .E = 5.84e6, .nu = 0.3,
+                        .rho0 = 2040, .out = "out/heap2d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
+    double dp = 0.0025, damping = 30;
+    granular_options g = {0, 30, 0.1};
+    opt_spec opts[] = {
+        {"dp", OPT_REAL, &dp, "particle spacing [m]", 5e-4, 0.01, NULL},
+        {"damping", OPT_REAL, &damping, "velocity damping c [1/s] that keeps the collapse quasi-static (0: the fast collapse)", 0, 1e3, NULL},
+        GRANULAR_OPTION_SPECS(g),
+        COMMON_OPTION_SPECS(c),
+    };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_body soil, all = {0};
+    sps_diagnostics d;
+    sps_real lo[3] = {0.5 * (FLOOR_LENGTH - COLUMN_WIDTH), 0, 0}, hi[3] = {0.5 * (FLOOR_LENGTH + COLUMN_WIDTH), COLUMN_HEIGHT, 0};
+    sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3] = {FLOOR_LENGTH, 2 * COLUMN_HEIGHT, 0};
+    run_state s;
+    double wall, height = 0, left, right, angle, *top;
+    int columns, k, peak = 0;
+
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, "2D angle of repose: a cohesionless column lifted slowly slumps into a heap", opts, (int)(sizeof opts / sizeof *opts));
+    apply_common(&c, &wd, &bd);
+    memset(&s, 0, sizeof s);
+    ex_granular_body(&bd, &g);
+    bd.damping = (sps_real)damping;
+    w = ex_granular_world(&wd, 2, dp);
+    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    ex_check(w, sps_world_add_body(w, &bd, &soil));
+    ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
+
+    s.t_end = c.t_end;
+    output_open(&s.output, &c, "heap2d", "velocity", "");
+    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
+    ex_check(w, sps_world_diagnostics(w, all, &d));
+
+    columns = (int)(FLOOR_LENGTH / dp) + 1;
+    top = (double*)calloc((size_t)columns, sizeof(double));
+    if (!top) return 1;
+    surface(w, dp, columns, top);
+    for (k = 0; k < columns; ++k)
+        if (top[k] > height) { height = top[k]; peak = k; }
+    left = flank_slope(top, dp, peak, 0, height);
+    right = flank_slope(top, dp, peak, columns - 1, height);
+    angle = 0.5 * (atan(fabs(left)) + atan(fabs(right))) * 180 / 3.14159265358979323846;
+    printf("heap: column %g m x %g m, dp = %g, %d particles, phi = %g deg, damping %g 1/s, t = %.3g s\n", COLUMN_WIDTH, COLUMN_HEIGHT, dp,
+           sps_world_particle_count(w), g.phi, damping, (double)d.time);
+    printf("  height %.4f m; flanks %.1f and %.1f degrees: angle of repose %.1f deg against phi = %g deg (%+.1f deg); largest speed %.3g m/s\n",
+           height, atan(fabs(left)) * 180 / 3.14159265358979323846, atan(fabs(right)) * 180 / 3.14159265358979323846, angle, g.phi,
+           angle - g.phi, (double)d.max_speed);
+    printf("RESULT case=heap2d angle=%.2f phi=%g height=%.4f damping=%g dp=%g t=%.4g max_speed=%.3g clustered=%d %s particles=%d steps=%ld "
+           "wall_s=%.2f out=%s\n",
+           angle, g.phi, height, damping, dp, (double)d.time, (double)d.max_speed, ex_clustered_particles(w, dp, 0.5), common_result_fields(&c),
+           sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
+    free(top);
+    sps_world_destroy(w);
+    return 0;
+}
