@@ -614,13 +614,13 @@
       restart code) in the current particle order, each body's mean rotation and spin, the
       kept pair forces, the last good state, the stopped flag and the neighbour lists (so that
       diagnostics right after a restore agree too). The file starts with a fingerprint that
-      must match the world: dimension, particle, body, wall and constraint counts, kernel,
-      dp, h_over_dp, neighbor_capacity, frozen_geometry, keep_last_good_state, each body's
-      count, material kind, shear, rotation and track_stress, and a hash of every particle's
-      body, reference position, mass and constraint; a difference is refused (SPS_ERR_STATE)
-      naming the item, before the world is changed. The other def fields (gravity, CFL numbers,
-      threads, guards) are the program's: a restart may change them, and the run then differs
-      from the saved one accordingly. Native byte order and sps_real, both checked; a payload
+      must match the world: every world and body def field that changes results (all but
+      threads, report_fragments, the body's name, callbacks, allocator and user data; one
+      table, sps__world_def_items and sps__body_def_items, from which the fingerprint is
+      written, checked and named), the particle, body, wall and constraint counts, each body's
+      count, and a hash of every particle's body, reference position, mass and constraint; a
+      difference is refused (SPS_ERR_STATE) naming the item (e.g. "body 0 ('plate') solver = 0
+      in the file, 1 in this world"), before the world is changed. Native byte order and sps_real, both checked; a payload
       checksum refuses truncated or damaged files (SPS_ERR_IO). Size: about the state's own
       size plus one int per neighbour pair (2D plate at H/dp 10: bench/VALIDATION.md).
 
@@ -1364,7 +1364,8 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
    neighbours) (the file holds the neighbour lists); does not change the world.
    restore: SPS_ERR_INVALID_ARG (NULL, not a restart file, another format version, byte order
    or sps_real), SPS_ERR_STATE (the file's scene differs from the world's: the message names
-   the first item, e.g. a body's shear or particle count, or the reference positions),
+   the first item, e.g. a def field such as gravity[1] or a body's shear, a particle count, or
+   the reference positions),
    SPS_ERR_IO (cannot open or read, truncated, checksum wrong); on error the world's state is
    unchanged (it may have been prepared for stepping, as the first step does). Allocates the
    file's size in scratch (freed) and, before the first step, what the first step allocates;
@@ -8382,7 +8383,7 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) { return s
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 1u
+#define SPS__RESTART_VERSION 2u /* 2: the fingerprint holds every def item (sps__world_def_items) */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */
@@ -8393,22 +8394,84 @@ static uint64_t sps__fnv(uint64_t hash, const void* data, size_t size) {
     return hash;
 }
 
-/* The world items a restart must agree on: the layout of the state and what shapes it. */
-static const char* const sps__world_print_names[] = {
-    "dim", "particle count", "body count", "wall count", "constraint count", "contact pairs turned off",
-    "kernel", "frozen_geometry", "keep_last_good_state", "dp", "h_over_dp", "neighbor_capacity"};
-#define SPS__WORLD_PRINT ((int)(sizeof sps__world_print_names / sizeof sps__world_print_names[0]))
-static void sps__world_print(const sps_world* w, double v[SPS__WORLD_PRINT]) {
-    const sps_world_def* d = &w->def;
-    v[0] = w->dim; v[1] = w->n; v[2] = w->nbodies; v[3] = w->nwalls; v[4] = w->ncons; v[5] = w->nseparate;
-    v[6] = d->kernel; v[7] = d->frozen_geometry; v[8] = d->keep_last_good_state;
-    v[9] = (double)d->dp; v[10] = (double)d->h_over_dp; v[11] = (double)d->neighbor_capacity;
+/* The def fields a restart must agree on: every field of sps_world_def and sps_body_def that
+   changes results, one row each, whatever the kind uses (a field the kind does not read is
+   still compared: the rule stays one line). Left out, by design: threads (results are bit for
+   bit the same at any thread count), report_fragments (a warning only), name, the callbacks,
+   allocator, user data and cookies. A new def field that changes results gets a row here, and
+   the fingerprint, its check and its message follow. */
+typedef enum sps__def_type { SPS__DEF_INT, SPS__DEF_REAL } sps__def_type;
+typedef struct sps__def_item {
+    const char* name;   /* the field as the user writes it */
+    size_t offset;      /* in the def */
+    sps__def_type type; /* SPS__DEF_INT: an int or an enum (the same size, checked below) */
+} sps__def_item;
+typedef char sps__enums_are_ints[sizeof(sps_kernel_type) == sizeof(int) && sizeof(sps_stepping) == sizeof(int) &&
+                                         sizeof(sps_shear) == sizeof(int) && sizeof(sps_rotation) == sizeof(int) &&
+                                         sizeof(sps_material_kind) == sizeof(int) && sizeof(sps_solver) == sizeof(int) &&
+                                         sizeof(sps_transport) == sizeof(int) && sizeof(sps_hourglass) == sizeof(int)
+                                     ? 1 : -1];
+#define SPS__WORLD_ITEM(field, type) {#field, offsetof(sps_world_def, field), type}
+#define SPS__BODY_ITEM(field, type) {#field, offsetof(sps_body_def, field), type}
+static const sps__def_item sps__world_def_items[] = {
+    SPS__WORLD_ITEM(dim, SPS__DEF_INT), SPS__WORLD_ITEM(dp, SPS__DEF_REAL), SPS__WORLD_ITEM(h_over_dp, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(kernel, SPS__DEF_INT), SPS__WORLD_ITEM(stepping, SPS__DEF_INT), SPS__WORLD_ITEM(cfl_acoustic, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(cfl_advection, SPS__DEF_REAL), SPS__WORLD_ITEM(max_substeps, SPS__DEF_INT),
+    SPS__WORLD_ITEM(gravity[0], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[1], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[2], SPS__DEF_REAL),
+    SPS__WORLD_ITEM(frozen_geometry, SPS__DEF_INT), SPS__WORLD_ITEM(neighbor_capacity, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(escape_distance, SPS__DEF_REAL), SPS__WORLD_ITEM(energy_growth_limit, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(energy_growth_stops, SPS__DEF_INT), SPS__WORLD_ITEM(keep_last_good_state, SPS__DEF_INT)};
+static const sps__def_item sps__body_def_items[] = {
+    SPS__BODY_ITEM(solver, SPS__DEF_INT), SPS__BODY_ITEM(material.kind, SPS__DEF_INT), SPS__BODY_ITEM(material.density, SPS__DEF_REAL),
+    SPS__BODY_ITEM(material.youngs_modulus, SPS__DEF_REAL), SPS__BODY_ITEM(material.poisson_ratio, SPS__DEF_REAL),
+    SPS__BODY_ITEM(material.yield_stress, SPS__DEF_REAL), SPS__BODY_ITEM(material.hardening_modulus, SPS__DEF_REAL),
+    SPS__BODY_ITEM(material.sound_speed, SPS__DEF_REAL), SPS__BODY_ITEM(material.viscosity, SPS__DEF_REAL),
+    SPS__BODY_ITEM(material.cohesion, SPS__DEF_REAL), SPS__BODY_ITEM(material.friction_angle, SPS__DEF_REAL),
+    SPS__BODY_ITEM(material.dilatancy_angle, SPS__DEF_REAL), SPS__BODY_ITEM(shear, SPS__DEF_INT),
+    SPS__BODY_ITEM(rotation, SPS__DEF_INT), SPS__BODY_ITEM(zeta, SPS__DEF_REAL), SPS__BODY_ITEM(xi, SPS__DEF_REAL),
+    SPS__BODY_ITEM(oas_epsilon, SPS__DEF_REAL), SPS__BODY_ITEM(oas_exponent, SPS__DEF_REAL),
+    SPS__BODY_ITEM(track_stress, SPS__DEF_INT), SPS__BODY_ITEM(transport, SPS__DEF_INT),
+    SPS__BODY_ITEM(contact, SPS__DEF_INT), SPS__BODY_ITEM(transport_coefficient, SPS__DEF_REAL),
+    SPS__BODY_ITEM(damping, SPS__DEF_REAL), SPS__BODY_ITEM(hourglass_alpha, SPS__DEF_REAL),
+    SPS__BODY_ITEM(hourglass, SPS__DEF_INT), SPS__BODY_ITEM(artificial_viscosity, SPS__DEF_REAL),
+    SPS__BODY_ITEM(stress_diffusion, SPS__DEF_REAL), SPS__BODY_ITEM(friction, SPS__DEF_REAL),
+    SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL), SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL)};
+#define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
+#define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
+/* The value of a def item, as a double (exact for ints and sps_real). */
+static double sps__def_value(const void* def, const sps__def_item* item) {
+    const char* at = (const char*)def + item->offset;
+    if (item->type == SPS__DEF_INT) {
+        int v;
+        memcpy(&v, at, sizeof v);
+        return v;
+    } else {
+        sps_real v;
+        memcpy(&v, at, sizeof v);
+        return (double)v;
+    }
 }
-/* ... and those of each body: its count and the model that decides its arrays. */
-static const char* const sps__body_print_names[] = {"particle count", "material.kind", "shear", "rotation", "track_stress"};
-#define SPS__BODY_PRINT ((int)(sizeof sps__body_print_names / sizeof sps__body_print_names[0]))
+
+/* The world items of the fingerprint: the def items (the causes, named first), then the counts
+   that lay out the state. */
+static const char* const sps__world_count_names[] = {"particle count", "body count", "wall count", "constraint count", "contact pairs turned off"};
+#define SPS__WORLD_PRINT (SPS__WORLD_DEF_ITEMS + (int)(sizeof sps__world_count_names / sizeof sps__world_count_names[0]))
+static const char* sps__world_print_name(int k) {
+    return k < SPS__WORLD_DEF_ITEMS ? sps__world_def_items[k].name : sps__world_count_names[k - SPS__WORLD_DEF_ITEMS];
+}
+static void sps__world_print(const sps_world* w, double v[SPS__WORLD_PRINT]) {
+    double* counts = v + SPS__WORLD_DEF_ITEMS;
+    int k;
+    for (k = 0; k < SPS__WORLD_DEF_ITEMS; ++k) v[k] = sps__def_value(&w->def, &sps__world_def_items[k]);
+    counts[0] = w->n; counts[1] = w->nbodies; counts[2] = w->nwalls; counts[3] = w->ncons; counts[4] = w->nseparate;
+}
+/* ... and those of each body: its def items, then its particle count. */
+#define SPS__BODY_PRINT (SPS__BODY_DEF_ITEMS + 1)
+static const char* sps__body_print_name(int k) { return k < SPS__BODY_DEF_ITEMS ? sps__body_def_items[k].name : "particle count"; }
 static void sps__body_print(const sps__body* b, double v[SPS__BODY_PRINT]) {
-    v[0] = b->count; v[1] = b->def.material.kind; v[2] = b->def.shear; v[3] = b->def.rotation; v[4] = b->def.track_stress;
+    int k;
+    for (k = 0; k < SPS__BODY_DEF_ITEMS; ++k) v[k] = sps__def_value(&b->def, &sps__body_def_items[k]);
+    v[SPS__BODY_DEF_ITEMS] = b->count;
 }
 /* The scene as built: body, reference position, mass and constraint of each particle by id. */
 static uint64_t sps__scene_hash(const sps_world* w) {
@@ -8748,7 +8811,7 @@ static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path)
     for (k = 0; k < SPS__WORLD_PRINT; ++k)
         if (!(file[k] == mine[k])) {
             sps__set_error(w, 0, "sps_world_restore: '%s' was saved from another scene: %s = %g in the file, %g in this world "
-                           "(build the scene as it was built before the save, then restore)", path, sps__world_print_names[k], file[k], mine[k]);
+                           "(build the scene as it was built before the save, then restore)", path, sps__world_print_name(k), file[k], mine[k]);
             return SPS_ERR_STATE;
         }
     for (bi = 0; bi < w->nbodies; ++bi) {
@@ -8761,7 +8824,7 @@ static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path)
             if (!(body_file[k] == body_mine[k])) {
                 sps__set_error(w, 0, "sps_world_restore: '%s' was saved from another scene: body %d ('%s') %s = %g in the file, %g in this "
                                "world (build the scene as it was built before the save, then restore)", path, bi, w->bodies[bi].name,
-                               sps__body_print_names[k], body_file[k], body_mine[k]);
+                               sps__body_print_name(k), body_file[k], body_mine[k]);
                 return SPS_ERR_STATE;
             }
     }
