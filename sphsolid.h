@@ -372,6 +372,16 @@
       volume; the shear stress, the velocity gradient, the mean-rotation increments and Gray's
       artificial stress belong to the bodies whose model needs them (an ENO body beside an OG
       body carries no stress). Read them by name: sps_world_field_by_name and sps_body_field.
+      One flat body def carries every kind's parameters; a field set away from its default on
+      a body that does not read it (cohesion on an elastic body, hourglass_alpha on an
+      updated-Lagrangian one, zeta on a GNO-A body, ...) gets one warning from
+      sps_world_add_body naming each such field (the reads column of sps__body_def_items);
+      fields whose combination cannot work are refused instead (the combination rules).
+      What zero means, one rule: a term that can be switched off reads 0 as off (damping,
+      hourglass_alpha, artificial_viscosity, stress_diffusion, damage_strain, viscosity,
+      hardening_modulus, cohesion, friction, contact_damping); a coefficient for which 0 would
+      be meaningless reads 0 as its published default, and SPS_AUTO (= 0) spells that: zeta
+      (0.7 d + 2.1), xi (2), transport_coefficient (0.2), escape_distance (10 body sizes).
 
    CONTACT (chapter >>contact)
       Bodies touch each other when both defs have contact = 1 (the default) and no
@@ -797,6 +807,10 @@ typedef enum sps_rotation {
     SPS_ROTATION_AUTO = 3          /* pair for ENO-A, mean for GNO-A: what survives tumbling and
                                       impacts (the default; SHEAR FORMULATIONS) */
 } sps_rotation;
+
+/* A def coefficient set to SPS_AUTO takes its published default (zeta, xi,
+   transport_coefficient, escape_distance; MODELS AND FIELDS: what zero means). */
+#define SPS_AUTO 0
 
 /* Axis masks for velocity constraints. */
 enum { SPS_AXIS_X = 1, SPS_AXIS_Y = 2, SPS_AXIS_Z = 4, SPS_AXIS_ALL = 7 };
@@ -2118,6 +2132,106 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
+/* The def fields that change results: every field of sps_world_def and sps_body_def, one row
+   each, with which bodies read it. A restart must agree on all of them (chapter >>restart: the
+   fingerprint is written, checked and named from these rows, whatever the kind reads, so the
+   rule stays one line); a body field set away from its default on a body that does not read
+   it gets a warning (sps__warn_unread_fields). Left out, by design: threads (results are bit
+   for bit the same at any thread count), report_fragments (a warning only), name, the
+   callbacks, allocator, user data and cookies. A new def field that changes results gets a row
+   here, and the fingerprint, its check, its message and the warning follow. */
+typedef enum sps__def_type { SPS__DEF_INT, SPS__DEF_REAL } sps__def_type;
+typedef struct sps__def_item {
+    const char* name;   /* the field as the user writes it */
+    size_t offset;      /* in the def */
+    sps__def_type type; /* SPS__DEF_INT: an int or an enum (the same size, checked below) */
+    int (*reads)(const sps_body_def* def); /* body rows: whether such a body reads it (NULL: every body) */
+} sps__def_item;
+typedef char sps__enums_are_ints[sizeof(sps_kernel_type) == sizeof(int) && sizeof(sps_stepping) == sizeof(int) &&
+                                         sizeof(sps_shear) == sizeof(int) && sizeof(sps_rotation) == sizeof(int) &&
+                                         sizeof(sps_material_kind) == sizeof(int) && sizeof(sps_solver) == sizeof(int) &&
+                                         sizeof(sps_transport) == sizeof(int) && sizeof(sps_hourglass) == sizeof(int)
+                                     ? 1 : -1];
+#define SPS__WORLD_ITEM(field, type) {#field, offsetof(sps_world_def, field), type, NULL}
+#define SPS__BODY_ITEM(field, type) {#field, offsetof(sps_body_def, field), type, NULL}
+#define SPS__BODY_ITEM_READ_BY(field, type, reads) {#field, offsetof(sps_body_def, field), type, reads}
+
+/* Which bodies read a field (the rows below): by the kind, the solver and the shear formulation
+   the model resolves from them (sps__resolve_model). */
+static int sps__updated_solid(const sps_body_def* d) {
+    return d->solver == SPS_SOLVER_UPDATED_LAGRANGIAN && d->material.kind != SPS_MATERIAL_FLUID && d->material.kind != SPS_MATERIAL_RIGID;
+}
+static int sps__reads_j2(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_J2; }
+static int sps__reads_fluid(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_FLUID; }
+static int sps__reads_elastic_moduli(const sps_body_def* d) { return d->material.kind != SPS_MATERIAL_FLUID; }
+static int sps__reads_drucker_prager(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_DRUCKER_PRAGER; }
+static int sps__reads_total_lagrangian(const sps_body_def* d) { return d->solver == SPS_SOLVER_TOTAL_LAGRANGIAN; }
+static int sps__reads_stress(const sps_body_def* d) { return d->material.kind != SPS_MATERIAL_FLUID && d->material.kind != SPS_MATERIAL_RIGID; }
+static int sps__reads_transport_coefficient(const sps_body_def* d) { return d->transport != SPS_TRANSPORT_NONE; }
+/* a granular body's own stress divergence replaces the shear formulation, unless GNO or GNO-A adds ANG's penalty */
+static int sps__reads_shear(const sps_body_def* d) {
+    return sps__updated_solid(d) &&
+           (d->material.kind != SPS_MATERIAL_DRUCKER_PRAGER || d->shear == SPS_SHEAR_GNO || d->shear == SPS_SHEAR_GNO_A);
+}
+static int sps__reads_rotation(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_ENO_A || d->shear == SPS_SHEAR_GNO_A); }
+static int sps__reads_zeta(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_ENO || d->shear == SPS_SHEAR_ENO_A); }
+static int sps__reads_xi(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_GNO || d->shear == SPS_SHEAR_GNO_A); }
+static int sps__reads_oas(const sps_body_def* d) { return sps__reads_shear(d) && d->shear == SPS_SHEAR_OAS; }
+static const sps__def_item sps__world_def_items[] = {
+    SPS__WORLD_ITEM(dim, SPS__DEF_INT), SPS__WORLD_ITEM(dp, SPS__DEF_REAL), SPS__WORLD_ITEM(h_over_dp, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(kernel, SPS__DEF_INT), SPS__WORLD_ITEM(stepping, SPS__DEF_INT), SPS__WORLD_ITEM(cfl_acoustic, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(cfl_advection, SPS__DEF_REAL), SPS__WORLD_ITEM(max_substeps, SPS__DEF_INT),
+    SPS__WORLD_ITEM(gravity[0], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[1], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[2], SPS__DEF_REAL),
+    SPS__WORLD_ITEM(frozen_geometry, SPS__DEF_INT), SPS__WORLD_ITEM(neighbor_capacity, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(escape_distance, SPS__DEF_REAL), SPS__WORLD_ITEM(energy_growth_limit, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(energy_growth_stops, SPS__DEF_INT), SPS__WORLD_ITEM(keep_last_good_state, SPS__DEF_INT)};
+static const sps__def_item sps__body_def_items[] = {
+    SPS__BODY_ITEM(solver, SPS__DEF_INT),
+    SPS__BODY_ITEM(material.kind, SPS__DEF_INT),
+    SPS__BODY_ITEM(material.density, SPS__DEF_REAL),
+    SPS__BODY_ITEM_READ_BY(material.youngs_modulus, SPS__DEF_REAL, sps__reads_elastic_moduli),
+    SPS__BODY_ITEM_READ_BY(material.poisson_ratio, SPS__DEF_REAL, sps__reads_elastic_moduli),
+    SPS__BODY_ITEM_READ_BY(material.yield_stress, SPS__DEF_REAL, sps__reads_j2),
+    SPS__BODY_ITEM_READ_BY(material.hardening_modulus, SPS__DEF_REAL, sps__reads_j2),
+    SPS__BODY_ITEM_READ_BY(material.sound_speed, SPS__DEF_REAL, sps__reads_fluid),
+    SPS__BODY_ITEM(material.viscosity, SPS__DEF_REAL), /* the kinds that do not read it refuse it (sps__combination_rules) */
+    SPS__BODY_ITEM_READ_BY(material.cohesion, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.friction_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.dilatancy_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(shear, SPS__DEF_INT, sps__reads_shear),
+    SPS__BODY_ITEM_READ_BY(rotation, SPS__DEF_INT, sps__reads_rotation),
+    SPS__BODY_ITEM_READ_BY(zeta, SPS__DEF_REAL, sps__reads_zeta),
+    SPS__BODY_ITEM_READ_BY(xi, SPS__DEF_REAL, sps__reads_xi),
+    SPS__BODY_ITEM_READ_BY(oas_epsilon, SPS__DEF_REAL, sps__reads_oas),
+    SPS__BODY_ITEM_READ_BY(oas_exponent, SPS__DEF_REAL, sps__reads_oas),
+    SPS__BODY_ITEM_READ_BY(track_stress, SPS__DEF_INT, sps__reads_stress),
+    SPS__BODY_ITEM(transport, SPS__DEF_INT),
+    SPS__BODY_ITEM(contact, SPS__DEF_INT),
+    SPS__BODY_ITEM_READ_BY(transport_coefficient, SPS__DEF_REAL, sps__reads_transport_coefficient),
+    SPS__BODY_ITEM(damping, SPS__DEF_REAL),
+    SPS__BODY_ITEM_READ_BY(hourglass_alpha, SPS__DEF_REAL, sps__reads_total_lagrangian),
+    SPS__BODY_ITEM_READ_BY(hourglass, SPS__DEF_INT, sps__reads_total_lagrangian),
+    SPS__BODY_ITEM(artificial_viscosity, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
+    SPS__BODY_ITEM_READ_BY(stress_diffusion, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM(friction, SPS__DEF_REAL),
+    SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
+    SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL)}; /* refused on updated-Lagrangian bodies */
+#define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
+#define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
+/* The value of a def item, as a double (exact for ints and sps_real). */
+static double sps__def_value(const void* def, const sps__def_item* item) {
+    const char* at = (const char*)def + item->offset;
+    if (item->type == SPS__DEF_INT) {
+        int v;
+        memcpy(&v, at, sizeof v);
+        return v;
+    } else {
+        sps_real v;
+        memcpy(&v, at, sizeof v);
+        return (double)v;
+    }
+}
+
 /* >>model */
 
 /* A body's model is data: a material row (sps__materials), a stabilisation row
@@ -2582,6 +2696,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
 
 /* The pass kernels of a model in the world's dimension and pair geometry (chapter >>forces). */
 static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m);
+static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* msg, size_t size);
 
 /* SPS_ROTATION_AUTO: the rotation measured best for the formulation (bench/VALIDATION.md, user
    scenes). ENO-A: pair, whose forces are central pair forces (momentum exact, no energy gained
@@ -2862,6 +2977,27 @@ static int sps__check_body(sps_world* w, sps_body b, const char* fn) {
     return k;
 }
 
+/* A body field set away from its default on a body that does not read it (sps__body_def_items'
+   reads column): one warning naming each, so that a parameter is never ignored without a word. */
+static void sps__warn_unread_fields(sps_world* w, const sps__body* b) {
+    const sps_body_def defaults = sps_default_body_def();
+    char list[512];
+    size_t used = 0;
+    int k;
+    list[0] = 0;
+    for (k = 0; k < SPS__BODY_DEF_ITEMS; ++k) {
+        const sps__def_item* item = &sps__body_def_items[k];
+        const double value = sps__def_value(&b->def, item);
+        if (!item->reads || item->reads(&b->def) || value == sps__def_value(&defaults, item) || used + 2 >= sizeof list) continue;
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s = %g", used ? ", " : "", item->name, value);
+        if (used >= sizeof list) used = sizeof list - 1; /* cut: the message ends where the buffer does */
+    }
+    if (used)
+        sps__warn(w, "body '%s': %s set, which this body (%s, %s%s%s) does not read: no effect (MODELS AND FIELDS)", b->name, list,
+                  b->model.material->name, b->def.solver == SPS_SOLVER_TOTAL_LAGRANGIAN ? "total Lagrangian" : "updated Lagrangian",
+                  sps__reads_shear(&b->def) ? ", " : "", sps__reads_shear(&b->def) ? b->model.stabilisation->name : "");
+}
+
 SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_body* out) {
     char msg[768];
     sps__body* b;
@@ -2887,6 +3023,10 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->def.name = b->name;
     b->model = sps__resolve_model(def);
     b->model.pass = sps__choose_passes(w, &b->model);
+    if (sps__missing_pass(&b->model, &b->model.pass, msg, sizeof msg)) {
+        sps__set_error(w, 0, "sps_world_add_body: body '%s': %s", b->name, msg);
+        return SPS_ERR_INVALID_ARG;
+    }
     b->rho0 = def->material.density;
     b->mat = b->model.material->constants(&def->material);
     b->zeta = def->zeta > 0 ? def->zeta : SPS_R(0.7) * w->dim + SPS_R(2.1); /* ENO section 4 */
@@ -2921,6 +3061,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
                   "nu = 0.3, and the time step as many times shorter", b->name, (double)def->material.poisson_ratio, (double)b->mat.c0,
                   (double)(b->mat.c0 / b->model.material->constants(&ref).c0));
     }
+    sps__warn_unread_fields(w, b);
     w->contact_dirty = 1;
     out->id = ((uint32_t)w->tag << 16) | (uint32_t)(w->nbodies + 1);
     w->nbodies++;
@@ -5471,11 +5612,12 @@ static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS
 static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
 static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
 
+/* The kernel of the row whose key is key, in mode; NULL when no row has that key (the caller
+   names the combination: sps__missing_pass). */
 static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[6], int mode) {
     int r;
     for (r = 0; r < nrows; ++r)
         if (memcmp(rows[r].key, key, sizeof rows[r].key) == 0) return rows[r].modes[mode];
-    SPS_ASSERT(0 && "no pass kernel for this model");
     return NULL;
 }
 
@@ -5498,6 +5640,27 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     p.penalty = st->penalty ? sps__find_kernel(sps__penalty_rows, (int)(sizeof sps__penalty_rows / sizeof sps__penalty_rows[0]), penalty_key, mode) : NULL;
     p.stress = NULL;
     return p;
+}
+
+/* A pass the model needs but sps__choose_passes found no instance for (a combination the
+   variant lists do not hold): its name and the model's choices into msg, 1; else 0. Checked by
+   sps_world_add_body in every build, so a missing instance is an error there and not a pass
+   the step would skip (sps__run_groups runs nothing for a NULL kernel). */
+static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* msg, size_t size) {
+    const sps__stabilisation* st = m->stabilisation;
+    const char* pass = NULL;
+    if (m->material->kinematic) return 0; /* a wall body runs no pass */
+    if (!p->pressure) pass = m->total_lagrangian ? "total-Lagrangian force" : "pressure";
+    else if (m->total_lagrangian && !p->stress) pass = "total-Lagrangian stress";
+    else if (!m->total_lagrangian && !p->continuity) pass = "continuity";
+    else if (!m->total_lagrangian && st->penalty && !p->penalty) pass = "penalty";
+    if (!pass) return 0;
+    snprintf(msg, size, "no %s pass instance for material.kind = %s with %s (stress force %d, artificial stress %d, pair forces %d, "
+             "limiter %d, viscous %d, stress diffusion %d, gradient %d, Riemann density %d, turn %d, scaled penalty %d): add its row "
+             "to the pass's variant list (SPS__PRESSURE_VARIANTS, SPS__CONTINUITY_VARIANTS, SPS__PENALTY_VARIANTS)", pass,
+             m->material->name, st->name, st->stress_force, st->artificial_stress, m->paired, m->limited, (int)m->viscous, m->diffusion,
+             m->gradient, m->riemann_density, (int)m->turn, m->scaled_penalty);
+    return 1;
 }
 
 /* >>solver: total Lagrangian (TL sections 2-3; TOTAL-LAGRANGIAN in the manual)
@@ -8392,64 +8555,6 @@ static uint64_t sps__fnv(uint64_t hash, const void* data, size_t size) {
     size_t k;
     for (k = 0; k < size; ++k) hash = (hash ^ c[k]) * 1099511628211ULL;
     return hash;
-}
-
-/* The def fields a restart must agree on: every field of sps_world_def and sps_body_def that
-   changes results, one row each, whatever the kind uses (a field the kind does not read is
-   still compared: the rule stays one line). Left out, by design: threads (results are bit for
-   bit the same at any thread count), report_fragments (a warning only), name, the callbacks,
-   allocator, user data and cookies. A new def field that changes results gets a row here, and
-   the fingerprint, its check and its message follow. */
-typedef enum sps__def_type { SPS__DEF_INT, SPS__DEF_REAL } sps__def_type;
-typedef struct sps__def_item {
-    const char* name;   /* the field as the user writes it */
-    size_t offset;      /* in the def */
-    sps__def_type type; /* SPS__DEF_INT: an int or an enum (the same size, checked below) */
-} sps__def_item;
-typedef char sps__enums_are_ints[sizeof(sps_kernel_type) == sizeof(int) && sizeof(sps_stepping) == sizeof(int) &&
-                                         sizeof(sps_shear) == sizeof(int) && sizeof(sps_rotation) == sizeof(int) &&
-                                         sizeof(sps_material_kind) == sizeof(int) && sizeof(sps_solver) == sizeof(int) &&
-                                         sizeof(sps_transport) == sizeof(int) && sizeof(sps_hourglass) == sizeof(int)
-                                     ? 1 : -1];
-#define SPS__WORLD_ITEM(field, type) {#field, offsetof(sps_world_def, field), type}
-#define SPS__BODY_ITEM(field, type) {#field, offsetof(sps_body_def, field), type}
-static const sps__def_item sps__world_def_items[] = {
-    SPS__WORLD_ITEM(dim, SPS__DEF_INT), SPS__WORLD_ITEM(dp, SPS__DEF_REAL), SPS__WORLD_ITEM(h_over_dp, SPS__DEF_REAL),
-    SPS__WORLD_ITEM(kernel, SPS__DEF_INT), SPS__WORLD_ITEM(stepping, SPS__DEF_INT), SPS__WORLD_ITEM(cfl_acoustic, SPS__DEF_REAL),
-    SPS__WORLD_ITEM(cfl_advection, SPS__DEF_REAL), SPS__WORLD_ITEM(max_substeps, SPS__DEF_INT),
-    SPS__WORLD_ITEM(gravity[0], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[1], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[2], SPS__DEF_REAL),
-    SPS__WORLD_ITEM(frozen_geometry, SPS__DEF_INT), SPS__WORLD_ITEM(neighbor_capacity, SPS__DEF_REAL),
-    SPS__WORLD_ITEM(escape_distance, SPS__DEF_REAL), SPS__WORLD_ITEM(energy_growth_limit, SPS__DEF_REAL),
-    SPS__WORLD_ITEM(energy_growth_stops, SPS__DEF_INT), SPS__WORLD_ITEM(keep_last_good_state, SPS__DEF_INT)};
-static const sps__def_item sps__body_def_items[] = {
-    SPS__BODY_ITEM(solver, SPS__DEF_INT), SPS__BODY_ITEM(material.kind, SPS__DEF_INT), SPS__BODY_ITEM(material.density, SPS__DEF_REAL),
-    SPS__BODY_ITEM(material.youngs_modulus, SPS__DEF_REAL), SPS__BODY_ITEM(material.poisson_ratio, SPS__DEF_REAL),
-    SPS__BODY_ITEM(material.yield_stress, SPS__DEF_REAL), SPS__BODY_ITEM(material.hardening_modulus, SPS__DEF_REAL),
-    SPS__BODY_ITEM(material.sound_speed, SPS__DEF_REAL), SPS__BODY_ITEM(material.viscosity, SPS__DEF_REAL),
-    SPS__BODY_ITEM(material.cohesion, SPS__DEF_REAL), SPS__BODY_ITEM(material.friction_angle, SPS__DEF_REAL),
-    SPS__BODY_ITEM(material.dilatancy_angle, SPS__DEF_REAL), SPS__BODY_ITEM(shear, SPS__DEF_INT),
-    SPS__BODY_ITEM(rotation, SPS__DEF_INT), SPS__BODY_ITEM(zeta, SPS__DEF_REAL), SPS__BODY_ITEM(xi, SPS__DEF_REAL),
-    SPS__BODY_ITEM(oas_epsilon, SPS__DEF_REAL), SPS__BODY_ITEM(oas_exponent, SPS__DEF_REAL),
-    SPS__BODY_ITEM(track_stress, SPS__DEF_INT), SPS__BODY_ITEM(transport, SPS__DEF_INT),
-    SPS__BODY_ITEM(contact, SPS__DEF_INT), SPS__BODY_ITEM(transport_coefficient, SPS__DEF_REAL),
-    SPS__BODY_ITEM(damping, SPS__DEF_REAL), SPS__BODY_ITEM(hourglass_alpha, SPS__DEF_REAL),
-    SPS__BODY_ITEM(hourglass, SPS__DEF_INT), SPS__BODY_ITEM(artificial_viscosity, SPS__DEF_REAL),
-    SPS__BODY_ITEM(stress_diffusion, SPS__DEF_REAL), SPS__BODY_ITEM(friction, SPS__DEF_REAL),
-    SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL), SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL)};
-#define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
-#define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
-/* The value of a def item, as a double (exact for ints and sps_real). */
-static double sps__def_value(const void* def, const sps__def_item* item) {
-    const char* at = (const char*)def + item->offset;
-    if (item->type == SPS__DEF_INT) {
-        int v;
-        memcpy(&v, at, sizeof v);
-        return v;
-    } else {
-        sps_real v;
-        memcpy(&v, at, sizeof v);
-        return (double)v;
-    }
 }
 
 /* The world items of the fingerprint: the def items (the causes, named first), then the counts

@@ -5771,6 +5771,109 @@ static int test_restart_ul_j2_into_tl_j2(void) {
     return 0;
 }
 
+/* ============================================================================================ */
+/* >>defaults (issue 36): a parameter a body does not read gets a warning naming it            */
+
+/* Adds a body of def bd to a fresh world; returns the warnings it logged (the last in g_log_last). */
+static int unread_warnings(const sps_body_def* bd) {
+    sps_world_def wd = sps_default_world_def();
+    sps_world* w = NULL;
+    sps_body b;
+    int before;
+    wd.log = quiet_log;
+    if (sps_world_create(&wd, &w) != SPS_OK) return -1;
+    g_log_last[0] = 0;
+    before = g_log_count;
+    if (sps_world_add_body(w, bd, &b) != SPS_OK) { sps_world_destroy(w); return -1; }
+    sps_world_destroy(w);
+    return g_log_count - before;
+}
+
+/* cohesion on an elastic body, hourglass_alpha on an updated-Lagrangian body, zeta on a GNO-A
+   body, sound_speed on a J2 body: one warning naming each field and its value; the same fields
+   on bodies that read them, and the defaults, give none. */
+static int test_unread_parameter_warned(void) {
+    sps_body_def bd = sps_default_body_def();
+    ENSURE(unread_warnings(&bd) == 0);
+    bd.material.cohesion = 5;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.cohesion = 5") && strstr(g_log_last, "(elastic, updated Lagrangian, ENO-A)"));
+    bd = sps_default_body_def();
+    bd.hourglass_alpha = 0;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "hourglass_alpha = 0") && strstr(g_log_last, "updated Lagrangian"));
+    bd = sps_default_body_def();
+    bd.shear = SPS_SHEAR_GNO_A; bd.zeta = 3; bd.material.kind = SPS_MATERIAL_J2; bd.material.yield_stress = 1e4;
+    bd.material.sound_speed = 20;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.sound_speed = 20, zeta = 3") && strstr(g_log_last, "(J2, updated Lagrangian, GNO-A)"));
+    /* the same fields where they are read: no warning */
+    bd = sps_default_body_def();
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER; bd.material.cohesion = 5; bd.material.friction_angle = 30; bd.shear = SPS_SHEAR_GNO_A;
+    bd.xi = 3; bd.rotation = SPS_ROTATION_MEAN;
+    ENSURE(unread_warnings(&bd) == 0);
+    bd = sps_default_body_def();
+    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN; bd.hourglass_alpha = 10;
+    ENSURE(unread_warnings(&bd) == 0);
+    bd.zeta = 3; /* a total-Lagrangian body has no ENO term */
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "zeta = 3") && strstr(g_log_last, "total Lagrangian"));
+    bd = sps_default_body_def();
+    bd.material.kind = SPS_MATERIAL_FLUID; bd.material.sound_speed = 20; bd.material.youngs_modulus = 5e6;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.youngs_modulus = 5e+06") && strstr(g_log_last, "(fluid, updated Lagrangian)"));
+    return 0;
+}
+
+/* ============================================================================================ */
+/* >>forces (issue 36): a missing pass instance is an error at sps_world_add_body               */
+
+/* A model whose pressure-pass key no variant row holds (stress diffusion on an ENO-A body) has
+   no kernel, and sps__missing_pass names the pass and the choices; and every body def the checks
+   accept finds all its kernels, in each of the eight world modes, in this (release) build. */
+static int test_missing_pass_instance(void) {
+    static const int shears[] = {SPS_SHEAR_ENO, SPS_SHEAR_ENO_A, SPS_SHEAR_OG, SPS_SHEAR_OAS, SPS_SHEAR_GNO, SPS_SHEAR_GNO_A};
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps__model m;
+    sps__passes p;
+    char msg[768];
+    int mode, kind, shear, variant, accepted = 0;
+    wd.log = quiet_log;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    m = sps__resolve_model(&bd);
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure && !sps__missing_pass(&m, &p, msg, sizeof msg));
+    m.diffusion = 1;
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure == NULL);
+    ENSURE(sps__missing_pass(&m, &p, msg, sizeof msg) && strstr(msg, "no pressure pass instance for material.kind = elastic with ENO-A"));
+    ENSURE(strstr(msg, "stress diffusion 1") != NULL);
+    sps_world_destroy(w);
+    for (mode = 0; mode < 8; ++mode) { /* dim x kernel x frozen_geometry: the six modes (frozen ones twice) */
+        wd.dim = 2 + (mode & 1); wd.kernel = (sps_kernel_type)((mode >> 1) & 1); wd.frozen_geometry = mode >> 2;
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        for (kind = 0; kind <= SPS_MATERIAL_DRUCKER_PRAGER; ++kind)
+            for (shear = 0; shear < 6; ++shear)
+                for (variant = 0; variant < 64; ++variant) { /* rotation, solver, viscosity, track_stress, stress diffusion */
+                    sps_body b;
+                    sps_result r;
+                    bd = sps_default_body_def();
+                    bd.material.kind = (sps_material_kind)kind; bd.shear = (sps_shear)shears[shear];
+                    bd.material.yield_stress = 1e4; bd.material.sound_speed = 20; bd.material.friction_angle = 30;
+                    bd.rotation = (sps_rotation)(variant & 3);
+                    bd.solver = (sps_solver)((variant >> 2) & 1);
+                    bd.material.viscosity = (variant >> 3) & 1 ? 0.1 : 0;
+                    bd.track_stress = (variant >> 4) & 1;
+                    bd.stress_diffusion = (variant >> 5) & 1 ? 0.1 : 0;
+                    r = sps_world_add_body(w, &bd, &b);
+                    if (r != SPS_OK && strstr(sps_world_last_error(w), "pass instance")) printf("    %s\n", sps_world_last_error(w));
+                    ENSURE(r == SPS_OK || !strstr(sps_world_last_error(w), "pass instance"));
+                    accepted += r == SPS_OK;
+                }
+        sps_world_destroy(w);
+    }
+    printf("    %d body defs accepted, each with all its pass kernels\n", accepted);
+    ENSURE(accepted > 1000); /* the loop reached the combinations (about a third of 2688 per mode are refused by the rules) */
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int i;
     /* OpenMP's default wait policy spins in barriers. On a machine whose cores are busy with
@@ -5911,6 +6014,8 @@ int main(int argc, char** argv) {
     RUN(test_contact_damping_bad_input);
     RUN(test_restart_every_def_field);
     RUN(test_restart_ul_j2_into_tl_j2);
+    RUN(test_unread_parameter_warned);
+    RUN(test_missing_pass_instance);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
