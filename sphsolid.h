@@ -5803,7 +5803,7 @@ SPS__INLINE sps_real sps__tl_spring(const sps_real F[9], const sps_real X[3], co
 }
 
 /* The laws, a literal in the stress pass. */
-enum { SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
+enum { SPS__LAW_NONE = -1, SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
 
 /* The first Piola-Kirchhoff stress P (row-major 3 x 3) of the deformation gradient F (row-major
    3 x 3; in 2D, plane strain, F_zz = 1 and the out-of-plane entries 0) and the stored energy per
@@ -6245,8 +6245,21 @@ static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real d
 static void sps__tl_force_plastic_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 1); }
 static void sps__tl_force_plastic_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 1); }
 
+/* The law of a total-Lagrangian body's kind; SPS__LAW_NONE for a kind without one (the
+   combination rules refuse it, and sps__tl_passes then finds no kernel, which
+   sps_world_add_body reports: sps__missing_pass). Every kind is a case and there is no default,
+   so -Wswitch names a new kind here. */
 static int sps__tl_law_of(sps_material_kind kind) {
-    return kind == SPS_MATERIAL_NEO_HOOKEAN ? SPS__LAW_NEO_HOOKEAN : kind == SPS_MATERIAL_J2 ? SPS__LAW_J2 : SPS__LAW_SAINT_VENANT_KIRCHHOFF;
+    switch (kind) {
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return SPS__LAW_SAINT_VENANT_KIRCHHOFF;
+    case SPS_MATERIAL_NEO_HOOKEAN: return SPS__LAW_NEO_HOOKEAN;
+    case SPS_MATERIAL_J2: return SPS__LAW_J2;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__LAW_NONE;
+    }
+    return SPS__LAW_NONE; /* a value outside the enum (refused by the def check) */
 }
 
 static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
@@ -6256,6 +6269,7 @@ static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
     const int law = sps__tl_law_of(m->material->kind), d = w->dim - 2;
     sps__passes p;
     memset(&p, 0, sizeof p);
+    if (law == SPS__LAW_NONE) return p; /* no kernel: sps__missing_pass names it */
     p.stress = stress[law][d];
     if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
     else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;

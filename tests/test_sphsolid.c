@@ -5823,8 +5823,9 @@ static int test_unread_parameter_warned(void) {
 /* ============================================================================================ */
 /* >>forces (issue 36): a missing pass instance is an error at sps_world_add_body               */
 
-/* A model whose pressure-pass key no variant row holds (stress diffusion on an ENO-A body) has
-   no kernel, and sps__missing_pass names the pass and the choices; and every body def the checks
+/* A model whose pressure-pass key no variant row holds (stress diffusion on an ENO-A body), or
+   a total-Lagrangian model of an elastic kind, has no kernel, and sps__missing_pass names the
+   pass and the choices; and every body def the checks
    accept finds all its kernels, in each of the eight world modes, in this (release) build. */
 static int test_missing_pass_instance(void) {
     static const int shears[] = {SPS_SHEAR_ENO, SPS_SHEAR_ENO_A, SPS_SHEAR_OG, SPS_SHEAR_OAS, SPS_SHEAR_GNO, SPS_SHEAR_GNO_A};
@@ -5845,6 +5846,13 @@ static int test_missing_pass_instance(void) {
     ENSURE(p.pressure == NULL);
     ENSURE(sps__missing_pass(&m, &p, msg, sizeof msg) && strstr(msg, "no pressure pass instance for material.kind = elastic with ENO-A"));
     ENSURE(strstr(msg, "stress diffusion 1") != NULL);
+    /* a total-Lagrangian model of a kind without a law of F (sps__tl_law_of maps no kind silently) */
+    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
+    m = sps__resolve_model(&bd);
+    m.material = sps__material_of(SPS_MATERIAL_ELASTIC);
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure == NULL && p.stress == NULL);
+    ENSURE(sps__missing_pass(&m, &p, msg, sizeof msg) && strstr(msg, "no total-Lagrangian force pass instance for material.kind = elastic"));
     sps_world_destroy(w);
     for (mode = 0; mode < 8; ++mode) { /* dim x kernel x frozen_geometry: the six modes (frozen ones twice) */
         wd.dim = 2 + (mode & 1); wd.kernel = (sps_kernel_type)((mode >> 1) & 1); wd.frozen_geometry = mode >> 2;
