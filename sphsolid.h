@@ -8555,7 +8555,8 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) { return s
      fingerprint  the world items of sps__world_print, a hash of the scene (reference
                   positions, masses, bodies and constraints by particle id), the body items of
                   sps__body_print for each body: all must equal the world's
-     payload      the state (sps__put_state), then its FNV-1a hash */
+     payload      the state (sps__transfer_state, one list of items for both ways), then its
+                  FNV-1a hash */
 #ifndef SPHSOLID_NO_STDIO
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
@@ -8638,123 +8639,9 @@ static void sps__put(sps__writer* s, const void* data, size_t size) {
 }
 static void sps__put_int(sps__writer* s, int v) { sps__put(s, &v, sizeof v); }
 
-/* The arrays of field f for body b (per-body fields) or the world (b NULL): count values per
-   array, the axes up to dim; a leading byte tells whether they exist. */
-static void sps__put_field(const sps_world* w, const sps__body* b, const sps__field_info* f, int count, sps__writer* s) {
-    const int arrays = f->axes ? w->dim : 1;
-    void* first;
-    unsigned char present;
-    int a;
-    memcpy(&first, sps__field_slot(w, b, f, 0), sizeof first);
-    present = first != NULL;
-    sps__put(s, &present, 1);
-    for (a = 0; a < arrays && present; ++a) {
-        void* x;
-        memcpy(&x, sps__field_slot(w, b, f, a), sizeof x);
-        sps__put(s, x, sps__field_bytes(f) * (size_t)count);
-    }
-}
-
-/* The payload, in the order sps__get_state reads it. */
-static void sps__put_state(const sps_world* w, sps__writer* s) {
-    const int64_t steps[2] = {w->acoustic_steps, w->advection_steps};
-    const int good_n = w->good ? w->good_n : 0, kept = w->pair_force ? w->kept_ids : 0;
-    int k, bi, i, id, m;
-    sps__put(s, &w->time, sizeof w->time);
-    sps__put(s, &w->dt, sizeof w->dt);
-    sps__put(s, &w->vmax, sizeof w->vmax);
-    sps__put(s, steps, sizeof steps);
-    sps__put_int(s, w->stopped);
-    sps__put(s, w->failure, sizeof w->failure);
-    sps__put_int(s, w->watch.armed); /* the guards' memory: the watchdog's start, what was said */
-    sps__put_int(s, w->watch.fired);
-    sps__put(s, &w->watch.checked_at, sizeof w->watch.checked_at);
-    sps__put(s, &w->watch.start, sizeof w->watch.start);
-    sps__put(s, &w->watch.scale, sizeof w->watch.scale);
-    sps__put(s, &w->watch.start_time, sizeof w->watch.start_time);
-    sps__put_int(s, w->impact_warned);
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__put(s, w->bodies[bi].mean_rotation, sizeof w->bodies[bi].mean_rotation);
-        sps__put(s, w->bodies[bi].mean_spin, sizeof w->bodies[bi].mean_spin);
-        sps__put(s, &w->bodies[bi].energy_start, sizeof w->bodies[bi].energy_start);
-        sps__put_int(s, w->bodies[bi].fragment_reported);
-    }
-    for (k = 0; k < SPS__NFIELDS; ++k) {
-        const sps__field_info* f = &sps__fields[k];
-        if (!(f->care & SPS__CARRIED)) continue;
-        if (!f->per_body) sps__put_field(w, NULL, f, w->n, s);
-        else
-            for (bi = 0; bi < w->nbodies; ++bi) sps__put_field(w, &w->bodies[bi], f, w->bodies[bi].count, s);
-    }
-    sps__put_int(s, w->lists_valid);
-    if (w->lists_valid) {
-        sps__put(s, w->nb_count, sizeof(int) * (size_t)w->n);
-        for (i = 0; i < w->n; ++i)
-            for (m = 0; m < w->nb_count[i]; ++m) sps__put_int(s, sps__neighbor(w, i, m));
-    }
-    sps__put_int(s, kept);
-    if (kept) {
-        sps__put(s, w->kept_count, sizeof(int) * (size_t)kept);
-        for (id = 0; id < kept; ++id) {
-            sps__put(s, w->kept_neighbor_id + w->kept_first[id], sizeof(int) * (size_t)w->kept_count[id]);
-            sps__put(s, w->kept_force + w->kept_first[id], sizeof(sps_real) * (size_t)w->kept_count[id]);
-        }
-    }
-    sps__put_int(s, good_n);
-    if (good_n) {
-        sps_real* block;
-        size_t length;
-        sps__put(s, &w->good_time, sizeof w->good_time);
-        sps__put(s, w->good_id, sizeof(int) * (size_t)good_n);
-        for (m = 0; (block = sps__good_block(w, good_n, m, &length)) != NULL; ++m) sps__put(s, block, sizeof(sps_real) * length);
-    }
-}
-
-static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__writer* s) {
-    const uint32_t words[3] = {SPS__RESTART_BYTE_ORDER, SPS__RESTART_VERSION, (uint32_t)sizeof(sps_real)};
-    double print[SPS__WORLD_PRINT], body[SPS__BODY_PRINT];
-    const uint64_t scene = sps__scene_hash(w);
-    int bi;
-    sps__put(s, sps__restart_magic, sizeof sps__restart_magic);
-    sps__put(s, words, sizeof words);
-    sps__put(s, &payload_bytes, sizeof payload_bytes);
-    sps__world_print(w, print);
-    sps__put(s, print, sizeof print);
-    sps__put(s, &scene, sizeof scene);
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__body_print(&w->bodies[bi], body);
-        sps__put(s, body, sizeof body);
-    }
-}
-
-SPSDEF sps_result sps_world_save(const sps_world* w, const char* path) {
-    sps__writer count = {NULL, 0, 0, 0}, out = {NULL, 0, SPS__FNV_OFFSET, 0};
-    if (!w) return SPS_ERR_INVALID_ARG;
-    if (!path) { sps__set_error_const(w, "sps_world_save: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
-    if (w->n == 0 || w->needs_sort_by_body) {
-        sps__set_error_const(w, "sps_world_save: %s: step first (a restart holds the state between steps)",
-                             w->n == 0 ? "the world has no particles" : "particles were added since the last step");
-        return SPS_ERR_STATE;
-    }
-    /* a world that cannot step (an empty body added since) has no state to go on from; the
-       check writes only the error message (see sps__set_error_const) */
-    if (sps__check_bodies_filled((sps_world*)w) != SPS_OK) return SPS_ERR_STATE;
-    sps__put_state(w, &count);
-    out.f = fopen(path, "wb");
-    if (!out.f) { sps__set_error_const(w, "sps_world_save: cannot open '%s' for writing", path); return SPS_ERR_IO; }
-    sps__put_header(w, count.bytes, &out);
-    out.hash = SPS__FNV_OFFSET; /* the checksum covers the payload */
-    sps__put_state(w, &out);
-    {
-        const uint64_t hash = out.hash;
-        sps__put(&out, &hash, sizeof hash);
-    }
-    if (fclose(out.f) != 0 || out.failed) { sps__set_error_const(w, "sps_world_save: error writing '%s'", path); return SPS_ERR_IO; }
-    return SPS_OK;
-}
-
-/* Reads from the payload in memory. apply = 0: a dry run that checks every length and index
-   against the world and writes nothing; apply = 1: the same reads, into the world. */
+/* Where the state comes from: the payload in memory. apply = 0: a dry run that checks every
+   length and index against the world and writes nothing; apply = 1: the same reads, into the
+   world. */
 typedef struct sps__reader {
     const unsigned char* at;
     size_t left;
@@ -8782,108 +8669,202 @@ static int sps__get_count(sps__reader* r, int limit, const char* what) {
     return r->bad ? 0 : v;
 }
 
-static void sps__get_field(sps_world* w, sps__body* b, const sps__field_info* f, int count, sps__reader* r) {
+/* The payload goes one way: out (sps_world_save) or in (sps_world_restore). Its items are
+   listed once, in sps__transfer_state, for both ways, so the layout written is the layout read. */
+typedef struct sps__stream {
+    sps__writer* out; /* saving: the writer; NULL when reading */
+    sps__reader* in;  /* restoring: the reader; NULL when writing */
+} sps__stream;
+static int sps__stream_bad(const sps__stream* s) { return s->in && s->in->bad; }
+/* size bytes at data: written, or read into data (when the reader applies). */
+static void sps__item(sps__stream* s, void* data, size_t size, const char* what) {
+    if (s->out) sps__put(s->out, data, size);
+    else sps__get(s->in, data, size, what);
+}
+/* An int in [0, limit]: written, or read (always, a dry run needs it too), checked and, when
+   the reader applies, stored. Returns the value. */
+static int sps__count_item(sps__stream* s, int* v, int limit, const char* what) {
+    int read;
+    if (s->out) { sps__put_int(s->out, *v); return *v; }
+    read = sps__get_count(s->in, limit, what);
+    if (s->in->apply && !s->in->bad) *v = read;
+    return read;
+}
+
+/* The arrays of field f for body b (per-body fields) or the world (b NULL): count values per
+   array, the axes up to dim; a leading byte tells whether they exist (the models decide it: a
+   file that disagrees is damaged). */
+static void sps__transfer_field(sps_world* w, sps__body* b, const sps__field_info* f, int count, sps__stream* s) {
     const int arrays = f->axes ? w->dim : 1;
-    const unsigned char* present = sps__take(r, 1, f->what);
     void* first;
+    unsigned char present;
     int a;
     memcpy(&first, sps__field_slot(w, b, f, 0), sizeof first);
-    if (present && (*present != 0) != (first != NULL)) r->bad = f->what; /* the models decide it: a mismatch is a damaged file */
-    for (a = 0; a < arrays && first && !r->bad; ++a) {
+    present = first != NULL;
+    if (s->out) sps__put(s->out, &present, 1);
+    else {
+        const unsigned char* in_file = sps__take(s->in, 1, f->what);
+        if (in_file && (*in_file != 0) != present) s->in->bad = f->what;
+    }
+    for (a = 0; a < arrays && present && !sps__stream_bad(s); ++a) {
         void* x;
         memcpy(&x, sps__field_slot(w, b, f, a), sizeof x);
-        sps__get(r, x, sps__field_bytes(f) * (size_t)count, f->what);
+        sps__item(s, x, sps__field_bytes(f) * (size_t)count, f->what);
     }
 }
 
-/* Reads the neighbour lists into the per-particle lists (nb_ell) the lane slots are built from. */
-static void sps__get_lists(sps_world* w, sps__reader* r) {
-    const unsigned char* counts = sps__take(r, sizeof(int) * (size_t)w->n, "neighbour counts");
+/* The neighbour lists: counts, then each particle's neighbours; read into the per-particle
+   lists (nb_ell) the lane slots are built from, each count and index checked. */
+static void sps__transfer_lists(sps_world* w, sps__stream* s) {
+    const unsigned char* counts;
     int i, m;
-    for (i = 0; i < w->n && counts && !r->bad; ++i) {
+    if (s->out) {
+        sps__put(s->out, w->nb_count, sizeof(int) * (size_t)w->n);
+        for (i = 0; i < w->n; ++i)
+            for (m = 0; m < w->nb_count[i]; ++m) sps__put_int(s->out, sps__neighbor(w, i, m));
+        return;
+    }
+    counts = sps__take(s->in, sizeof(int) * (size_t)w->n, "neighbour counts");
+    for (i = 0; i < w->n && counts && !s->in->bad; ++i) {
         int count;
         memcpy(&count, counts + sizeof(int) * (size_t)i, sizeof count);
-        if (count < 0 || count > w->ell_width) { r->bad = "neighbour counts"; break; }
-        if (r->apply) w->nb_count[i] = count;
-        for (m = 0; m < count && !r->bad; ++m) {
-            const int j = sps__get_count(r, w->n - 1, "neighbours");
-            if (r->apply) w->nb_ell[(size_t)i * w->ell_width + m] = j;
+        if (count < 0 || count > w->ell_width) { s->in->bad = "neighbour counts"; break; }
+        if (s->in->apply) w->nb_count[i] = count;
+        for (m = 0; m < count && !s->in->bad; ++m) {
+            const int j = sps__get_count(s->in, w->n - 1, "neighbours");
+            if (s->in->apply) w->nb_ell[(size_t)i * w->ell_width + m] = j;
         }
     }
 }
 
-/* SPS_ROTATION_PAIR: the kept pair forces, laid out by id. */
-static void sps__get_kept_forces(sps_world* w, int kept, sps__reader* r) {
-    const unsigned char* counts = sps__take(r, sizeof(int) * (size_t)kept, "kept pair counts");
+/* SPS_ROTATION_PAIR: the kept pair forces of `kept` ids, laid out by id: the counts, then each
+   id's neighbour ids and forces. */
+static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
+    const unsigned char* counts;
     long first = 0;
     int id;
-    for (id = 0; id < kept && counts && !r->bad; ++id) {
+    if (s->out) {
+        sps__put(s->out, w->kept_count, sizeof(int) * (size_t)kept);
+        for (id = 0; id < kept; ++id) {
+            sps__put(s->out, w->kept_neighbor_id + w->kept_first[id], sizeof(int) * (size_t)w->kept_count[id]);
+            sps__put(s->out, w->kept_force + w->kept_first[id], sizeof(sps_real) * (size_t)w->kept_count[id]);
+        }
+        return;
+    }
+    counts = sps__take(s->in, sizeof(int) * (size_t)kept, "kept pair counts");
+    for (id = 0; id < kept && counts && !s->in->bad; ++id) {
         int count;
         memcpy(&count, counts + sizeof(int) * (size_t)id, sizeof count);
-        if (count < 0 || first + count > w->pair_force_cap) { r->bad = "kept pair counts"; break; }
-        if (r->apply) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
-        sps__get(r, w->kept_neighbor_id + first, sizeof(int) * (size_t)count, "kept pairs");
-        sps__get(r, w->kept_force + first, sizeof(sps_real) * (size_t)count, "kept pair forces");
+        if (count < 0 || first + count > w->pair_force_cap) { s->in->bad = "kept pair counts"; break; }
+        if (s->in->apply) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
+        sps__get(s->in, w->kept_neighbor_id + first, sizeof(int) * (size_t)count, "kept pairs");
+        sps__get(s->in, w->kept_force + first, sizeof(sps_real) * (size_t)count, "kept pair forces");
         first += count;
     }
-    if (r->apply && !r->bad) w->kept_ids = kept;
 }
 
-/* The payload written by sps__put_state, into a world whose storage is committed
-   (sps__ready_to_step). Returns whether it held the neighbour lists. */
-static int sps__get_state(sps_world* w, sps__reader* r) {
-    int64_t steps[2] = {0, 0};
-    int k, bi, m, kept, good_n, stopped, lists, armed, fired, impact, fragment;
-    sps__get(r, &w->time, sizeof w->time, "time");
-    sps__get(r, &w->dt, sizeof w->dt, "time step");
-    sps__get(r, &w->vmax, sizeof w->vmax, "maximum speed");
-    sps__get(r, steps, sizeof steps, "step counters");
-    stopped = sps__get_count(r, 1, "stopped flag");
-    sps__get(r, w->failure, sizeof w->failure, "failure message");
-    armed = sps__get_count(r, 1, "energy watchdog flag");
-    fired = sps__get_count(r, 1, "energy watchdog flag");
-    sps__get(r, &w->watch.checked_at, sizeof w->watch.checked_at, "energy watchdog");
-    sps__get(r, &w->watch.start, sizeof w->watch.start, "energy watchdog");
-    sps__get(r, &w->watch.scale, sizeof w->watch.scale, "energy watchdog");
-    sps__get(r, &w->watch.start_time, sizeof w->watch.start_time, "energy watchdog");
-    impact = sps__get_count(r, 1, "impact warning flag");
+/* The payload, both ways: every item of the state once, in file order. Saving passes the
+   world cast from const (nothing is written into it); restoring runs it twice, a dry run that
+   checks and then the one that applies (sps__restore), into a world whose storage is committed
+   (sps__ready_to_step). Returns whether the payload holds the neighbour lists. */
+static int sps__transfer_state(sps_world* w, sps__stream* s) {
+    int64_t steps[2];
+    int k, bi, m, kept, good_n, lists;
+    steps[0] = w->acoustic_steps; steps[1] = w->advection_steps;
+    sps__item(s, &w->time, sizeof w->time, "time");
+    sps__item(s, &w->dt, sizeof w->dt, "time step");
+    sps__item(s, &w->vmax, sizeof w->vmax, "maximum speed");
+    sps__item(s, steps, sizeof steps, "step counters");
+    sps__count_item(s, &w->stopped, 1, "stopped flag");
+    sps__item(s, w->failure, sizeof w->failure, "failure message");
+    sps__count_item(s, &w->watch.armed, 1, "energy watchdog flag"); /* the guards' memory: the watchdog's start, what was said */
+    sps__count_item(s, &w->watch.fired, 1, "energy watchdog flag");
+    sps__item(s, &w->watch.checked_at, sizeof w->watch.checked_at, "energy watchdog");
+    sps__item(s, &w->watch.start, sizeof w->watch.start, "energy watchdog");
+    sps__item(s, &w->watch.scale, sizeof w->watch.scale, "energy watchdog");
+    sps__item(s, &w->watch.start_time, sizeof w->watch.start_time, "energy watchdog");
+    sps__count_item(s, &w->impact_warned, 1, "impact warning flag");
     for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__get(r, w->bodies[bi].mean_rotation, sizeof w->bodies[bi].mean_rotation, "mean rotation");
-        sps__get(r, w->bodies[bi].mean_spin, sizeof w->bodies[bi].mean_spin, "mean spin");
-        sps__get(r, &w->bodies[bi].energy_start, sizeof w->bodies[bi].energy_start, "energy watchdog");
-        fragment = sps__get_count(r, 1, "fragment warning flag");
-        if (r->apply) w->bodies[bi].fragment_reported = fragment;
+        sps__body* b = &w->bodies[bi];
+        sps__item(s, b->mean_rotation, sizeof b->mean_rotation, "mean rotation");
+        sps__item(s, b->mean_spin, sizeof b->mean_spin, "mean spin");
+        sps__item(s, &b->energy_start, sizeof b->energy_start, "energy watchdog");
+        sps__count_item(s, &b->fragment_reported, 1, "fragment warning flag");
     }
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];
         if (!(f->care & SPS__CARRIED)) continue;
-        if (!f->per_body) sps__get_field(w, NULL, f, w->n, r);
+        if (!f->per_body) sps__transfer_field(w, NULL, f, w->n, s);
         else
-            for (bi = 0; bi < w->nbodies; ++bi) sps__get_field(w, &w->bodies[bi], f, w->bodies[bi].count, r);
+            for (bi = 0; bi < w->nbodies; ++bi) sps__transfer_field(w, &w->bodies[bi], f, w->bodies[bi].count, s);
     }
-    if ((lists = sps__get_count(r, 1, "list flag")) != 0) sps__get_lists(w, r);
-    kept = sps__get_count(r, w->pair_force ? w->n : 0, "kept pair count");
-    if (kept) sps__get_kept_forces(w, kept, r);
-    good_n = sps__get_count(r, w->good ? w->n : 0, "last good state");
-    if (good_n) {
+    lists = w->lists_valid; /* saving: whether the lists are written; restoring: whether the file has them */
+    if ((lists = sps__count_item(s, &lists, 1, "list flag")) != 0) sps__transfer_lists(w, s);
+    kept = w->pair_force ? w->kept_ids : 0;
+    if ((kept = sps__count_item(s, &kept, w->pair_force ? w->n : 0, "kept pair count")) != 0) sps__transfer_kept_forces(w, kept, s);
+    good_n = w->good ? w->good_n : 0;
+    if ((good_n = sps__count_item(s, &good_n, w->good ? w->n : 0, "last good state")) != 0) {
         sps_real* block;
         size_t length;
-        sps__get(r, &w->good_time, sizeof w->good_time, "last good time");
-        sps__get(r, w->good_id, sizeof(int) * (size_t)good_n, "last good ids");
+        sps__item(s, &w->good_time, sizeof w->good_time, "last good time");
+        sps__item(s, w->good_id, sizeof(int) * (size_t)good_n, "last good ids");
         for (m = 0; (block = sps__good_block(w, good_n, m, &length)) != NULL; ++m)
-            sps__get(r, block, sizeof(sps_real) * length, "last good state");
+            sps__item(s, block, sizeof(sps_real) * length, "last good state");
     }
-    if (r->apply && !r->bad) {
-        w->stopped = stopped;
-        w->watch.armed = armed;
-        w->watch.fired = fired;
-        w->impact_warned = impact;
+    if (s->in && s->in->apply && !s->in->bad) {
+        if (kept) w->kept_ids = kept;
         w->good_n = good_n;
         w->acoustic_steps = (long)steps[0];
         w->advection_steps = (long)steps[1];
     }
-    if (!r->bad && r->left != 0) r->bad = "payload length";
+    if (s->in && !s->in->bad && s->in->left != 0) s->in->bad = "payload length";
     return lists;
+}
+
+static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__writer* s) {
+    const uint32_t words[3] = {SPS__RESTART_BYTE_ORDER, SPS__RESTART_VERSION, (uint32_t)sizeof(sps_real)};
+    double print[SPS__WORLD_PRINT], body[SPS__BODY_PRINT];
+    const uint64_t scene = sps__scene_hash(w);
+    int bi;
+    sps__put(s, sps__restart_magic, sizeof sps__restart_magic);
+    sps__put(s, words, sizeof words);
+    sps__put(s, &payload_bytes, sizeof payload_bytes);
+    sps__world_print(w, print);
+    sps__put(s, print, sizeof print);
+    sps__put(s, &scene, sizeof scene);
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps__body_print(&w->bodies[bi], body);
+        sps__put(s, body, sizeof body);
+    }
+}
+
+SPSDEF sps_result sps_world_save(const sps_world* w, const char* path) {
+    sps__writer count = {NULL, 0, 0, 0}, out = {NULL, 0, SPS__FNV_OFFSET, 0};
+    sps__stream counting = {NULL, NULL}, writing = {NULL, NULL};
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!path) { sps__set_error_const(w, "sps_world_save: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    if (w->n == 0 || w->needs_sort_by_body) {
+        sps__set_error_const(w, "sps_world_save: %s: step first (a restart holds the state between steps)",
+                             w->n == 0 ? "the world has no particles" : "particles were added since the last step");
+        return SPS_ERR_STATE;
+    }
+    /* a world that cannot step (an empty body added since) has no state to go on from; the
+       check writes only the error message (see sps__set_error_const) */
+    if (sps__check_bodies_filled((sps_world*)w) != SPS_OK) return SPS_ERR_STATE;
+    counting.out = &count;
+    sps__transfer_state((sps_world*)w, &counting); /* writes nothing into the world (see sps__transfer_state) */
+    out.f = fopen(path, "wb");
+    if (!out.f) { sps__set_error_const(w, "sps_world_save: cannot open '%s' for writing", path); return SPS_ERR_IO; }
+    sps__put_header(w, count.bytes, &out);
+    out.hash = SPS__FNV_OFFSET; /* the checksum covers the payload */
+    writing.out = &out;
+    sps__transfer_state((sps_world*)w, &writing);
+    {
+        const uint64_t hash = out.hash;
+        sps__put(&out, &hash, sizeof hash);
+    }
+    if (fclose(out.f) != 0 || out.failed) { sps__set_error_const(w, "sps_world_save: error writing '%s'", path); return SPS_ERR_IO; }
+    return SPS_OK;
 }
 
 /* The header: magic, byte order, version and sps_real of this build; the payload's length. */
@@ -8989,20 +8970,22 @@ static sps_result sps__restore(sps_world* w, FILE* f, const char* path) {
     uint64_t payload_bytes = 0;
     unsigned char* payload = NULL;
     sps__reader r;
+    sps__stream reading;
     sps_result res;
     int i, lists;
     if ((res = sps__read_header(w, f, path, &payload_bytes)) != SPS_OK || (res = sps__read_fingerprint(w, f, path)) != SPS_OK) return res;
     if ((res = sps__ready_to_step(w)) != SPS_OK) return res; /* the storage the state goes into */
     if ((res = sps__read_payload(w, f, path, payload_bytes, &payload)) != SPS_OK) { sps__free(w, payload); return res; }
+    reading.out = NULL; reading.in = &r;
     r.at = payload; r.left = (size_t)payload_bytes; r.apply = 0; r.bad = NULL;
-    sps__get_state(w, &r);
+    sps__transfer_state(w, &reading);
     if (r.bad) {
         sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: its %s do not fit this world", path, r.bad);
         sps__free(w, payload);
         return SPS_ERR_IO;
     }
     r.at = payload; r.left = (size_t)payload_bytes; r.apply = 1;
-    lists = sps__get_state(w, &r);
+    lists = sps__transfer_state(w, &reading);
     sps__free(w, payload);
     for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i;
     for (i = 0; lists && i < w->nbodies; ++i) /* total Lagrangian: the restored lists are the reference ones */
