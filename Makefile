@@ -50,7 +50,7 @@ $(CHECK_SRC): | $(BUILD)
 	  'int main(void) {' '    sps_world_def d = sps_default_world_def();' '    sps_world* w = 0;' '    int ok;' \
 	  '    d.threads = 2; d.log = log_fn; ok = sps_world_create(&d, &w) == SPS_OK;' '    sps_world_destroy(w);' \
 	  '#ifdef _OPENMP' '    return ok && !warned ? 0 : 1;' '#else' '    return ok && warned == 1 ? 0 : 1;' '#endif' '}' > $@
-check: $(CHECK_SRC) $(HEADER) README.md examples/hello.c
+check: $(CHECK_SRC) $(HEADER) README.md examples/hello.c tests/check_compile_out.c
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp $(CHECK_SRC) -o $(BUILD)/check_omp $(LDLIBS)
 	$(CC) -std=c99 -O1 $(WARN) -Werror $(CHECK_SRC) -o $(BUILD)/check_serial $(LDLIBS)
 	./$(BUILD)/check_omp && ./$(BUILD)/check_serial
@@ -67,7 +67,11 @@ check: $(CHECK_SRC) $(HEADER) README.md examples/hello.c
 	{ printf '#define SPHSOLID_IMPLEMENTATION\n#include "sphsolid.h"\n#include <stdio.h>\nint main(void) {\n'; \
 	  awk '/QUICK START/{q=1;next} q&&/CONFIG MACROS/{exit} q' $(HEADER); printf 'return 0;\n}\n'; } > $(BUILD)/header_quickstart.c
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp -I. $(BUILD)/header_quickstart.c -o $(BUILD)/header_quickstart $(LDLIBS)
-	@echo "header checks passed (and the quick starts of the README and of the header's manual compile)"
+	for out in FLUID GRANULAR PLASTICITY TOTAL_LAGRANGIAN "FLUID -DSPHSOLID_NO_GRANULAR -DSPHSOLID_NO_PLASTICITY -DSPHSOLID_NO_TOTAL_LAGRANGIAN"; do \
+	  $(CC) -std=c99 -O1 $(WARN) -Werror -DSPHSOLID_NO_$$out tests/check_compile_out.c -o $(BUILD)/check_compile_out $(LDLIBS) && \
+	  ./$(BUILD)/check_compile_out || { echo "check: SPHSOLID_NO_$$out failed"; exit 1; }; \
+	done
+	@echo "header checks passed (and the quick starts of the README and of the header's manual compile; each compile-out switch)"
 
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)

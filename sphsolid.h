@@ -48,6 +48,13 @@
                                default allocator (malloc/free); define both or neither.
       SPS_ASSERT(c)            assertion for programmer errors (default: assert.h).
       SPHSOLID_NO_STDIO        drop the file writers and the default stderr logger.
+      SPHSOLID_NO_FLUID, SPHSOLID_NO_GRANULAR, SPHSOLID_NO_PLASTICITY,
+      SPHSOLID_NO_TOTAL_LAGRANGIAN
+                               leave out the pass instances of fluids, Drucker-Prager bodies,
+                               J2 bodies and total-Lagrangian bodies: a smaller, faster-compiling
+                               build for a scene without them (e.g. elastic bodies only).
+                               sps_world_add_body refuses a body of a kind left out, naming the
+                               macro. Implementation-only.
       SPHSOLID_WALL_SECONDS()  wall clock in seconds for the frame budget of
                                sps_world_advance_frame. Implementation-only. Default:
                                clock_gettime(CLOCK_MONOTONIC) where <time.h> declares it (POSIX:
@@ -2648,6 +2655,24 @@ static const sps__combination_rule sps__combination_rules[] = {
                                         "limit it (ANG 5.2: ENO-A is for elastic materials); use GNO-A (or OG, OAS, GNO)"},
 };
 
+/* The macro that left this body's kind or solver out of the build (CONFIG MACROS), or NULL. */
+static const char* sps__left_out_by(const sps_body_def* def) {
+#ifdef SPHSOLID_NO_FLUID
+    if (def->material.kind == SPS_MATERIAL_FLUID) return "SPHSOLID_NO_FLUID";
+#endif
+#ifdef SPHSOLID_NO_GRANULAR
+    if (def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER) return "SPHSOLID_NO_GRANULAR";
+#endif
+#ifdef SPHSOLID_NO_PLASTICITY
+    if (def->material.kind == SPS_MATERIAL_J2) return "SPHSOLID_NO_PLASTICITY";
+#endif
+#ifdef SPHSOLID_NO_TOTAL_LAGRANGIAN
+    if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) return "SPHSOLID_NO_TOTAL_LAGRANGIAN";
+#endif
+    (void)def;
+    return NULL;
+}
+
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
@@ -2674,6 +2699,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                "transport_coefficient = %g, allowed 0 (default 0.2) or (0, 1]", (double)def->transport_coefficient);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
+    SPS__CHECK(!sps__left_out_by(def), "material.kind = %d with solver = %d: this build left it out (%s is defined)",
+               (int)def->material.kind, (int)def->solver, sps__left_out_by(def));
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
     SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= SPS__OAS_MAX_EXPONENT, "oas_exponent = %g, allowed [1, %d]", (double)def->oas_exponent, SPS__OAS_MAX_EXPONENT);
@@ -4719,16 +4746,30 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
 
 /* The pressure pass's variants: (stress force, artificial stress, pair forces, limited, viscous,
    stress diffusion). */
+/* The variants of the kinds a build can leave out (CONFIG MACROS: SPHSOLID_NO_FLUID,
+   SPHSOLID_NO_GRANULAR): an empty list there, and sps_world_add_body refuses the kind. */
+#ifdef SPHSOLID_NO_FLUID
+#define SPS__PRESSURE_FLUID_VARIANTS(X)
+#else
+#define SPS__PRESSURE_FLUID_VARIANTS(X)         \
+    X(fluid, 0, 0, 0, 1, 0, 0)                  \
+    X(fluid_viscous, 0, 0, 0, 1, SPS__VISCOUS_NEWTON, 0)
+#endif
+#ifdef SPHSOLID_NO_GRANULAR
+#define SPS__PRESSURE_GRANULAR_VARIANTS(X)
+#else
+#define SPS__PRESSURE_GRANULAR_VARIANTS(X)      \
+    X(granular, 1, 0, 0, 1, 0, 0)               \
+    X(granular_diffusion, 1, 0, 0, 1, 0, 1)
+#endif
 #define SPS__PRESSURE_VARIANTS(X)               \
     X(plain, 0, 0, 0, 0, 0, 0)                  \
     X(pairs, 0, 0, 1, 0, 0, 0)                  \
     X(stress, 1, 0, 0, 0, 0, 0)                 \
     X(stress_pairs, 1, 0, 1, 0, 0, 0)           \
     X(oas, 1, 1, 0, 0, 0, 0)                    \
-    X(fluid, 0, 0, 0, 1, 0, 0)                  \
-    X(fluid_viscous, 0, 0, 0, 1, SPS__VISCOUS_NEWTON, 0) \
-    X(granular, 1, 0, 0, 1, 0, 0)               \
-    X(granular_diffusion, 1, 0, 0, 1, 0, 1)     \
+    SPS__PRESSURE_FLUID_VARIANTS(X)             \
+    SPS__PRESSURE_GRANULAR_VARIANTS(X)          \
     X(plain_kv, 0, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
     X(pairs_kv, 0, 0, 1, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
     X(stress_kv, 1, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
@@ -5494,13 +5535,18 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
 }
 
 /* The continuity pass's variants: (gradient, eno, Riemann density term). */
+#ifdef SPHSOLID_NO_FLUID
+#define SPS__CONTINUITY_FLUID_VARIANTS(X)
+#else
+#define SPS__CONTINUITY_FLUID_VARIANTS(X) X(fluid, 1, SPS__ENO_NONE, 1)
+#endif
 #define SPS__CONTINUITY_VARIANTS(X)                  \
     X(eno, 0, SPS__ENO_PARTICLES, 0)                 \
     X(eno_gradient, 1, SPS__ENO_PARTICLES, 0)        \
     X(eno_pairs, 0, SPS__ENO_PAIRS, 0)               \
     X(eno_pairs_gradient, 1, SPS__ENO_PAIRS, 0)      \
     X(gradient, 1, SPS__ENO_NONE, 0)                 \
-    X(fluid, 1, SPS__ENO_NONE, 1)
+    SPS__CONTINUITY_FLUID_VARIANTS(X)
 #define SPS__CONTINUITY_INSTANCES(variant, gradient, eno, riemann) SPS__INSTANCES(continuity, variant, gradient, eno, riemann)
 SPS__CONTINUITY_VARIANTS(SPS__CONTINUITY_INSTANCES)
 
@@ -5592,10 +5638,18 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     X(gno_a_mean, 1, 0, SPS__TURN_MEAN, 0)                    \
     X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE, 0)            \
     X(gno_a_pairs, 1, 1, SPS__TURN_NONE, 0)                   \
+    SPS__PENALTY_PLASTIC_VARIANTS(X)
+/* the scaled penalty of plastic bodies (J2 and Drucker-Prager with GNO, GNO-A): out only when
+   both kinds are */
+#if defined(SPHSOLID_NO_PLASTICITY) && defined(SPHSOLID_NO_GRANULAR)
+#define SPS__PENALTY_PLASTIC_VARIANTS(X)
+#else
+#define SPS__PENALTY_PLASTIC_VARIANTS(X)                      \
     X(gno_j2, 0, 0, SPS__TURN_NONE, 1)                        \
     X(gno_a_mean_j2, 1, 0, SPS__TURN_MEAN, 1)                 \
     X(gno_a_particle_j2, 1, 0, SPS__TURN_PARTICLE, 1)         \
     X(gno_a_pairs_j2, 1, 1, SPS__TURN_NONE, 1)
+#endif
 #define SPS__PENALTY_INSTANCES(variant, projected, paired, turn, scaled) SPS__INSTANCES(penalty, variant, projected, paired, turn, scaled)
 SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
 
@@ -6234,6 +6288,7 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
 }
 
 /* The pass instances (named, for a profiler) and the choice of a total-Lagrangian model's. */
+#ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN /* else no instance: sps_world_add_body refuses the bodies */
 static void sps__tl_stress_svk_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
 static void sps__tl_stress_svk_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
 static void sps__tl_stress_neo_hookean_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_NEO_HOOKEAN); }
@@ -6244,6 +6299,7 @@ static void sps__tl_force_2d(sps_world* w, const sps__body* b, int g, sps_real d
 static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 0); }
 static void sps__tl_force_plastic_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 1); }
 static void sps__tl_force_plastic_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 1); }
+#endif
 
 /* The law of a total-Lagrangian body's kind; SPS__LAW_NONE for a kind without one (the
    combination rules refuse it, and sps__tl_passes then finds no kernel, which
@@ -6263,16 +6319,22 @@ static int sps__tl_law_of(sps_material_kind kind) {
 }
 
 static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
-    static const sps__group_kernel stress[3][2] = {{sps__tl_stress_svk_2d, sps__tl_stress_svk_3d},
-                                                   {sps__tl_stress_neo_hookean_2d, sps__tl_stress_neo_hookean_3d},
-                                                   {sps__tl_stress_j2_2d, sps__tl_stress_j2_3d}};
-    const int law = sps__tl_law_of(m->material->kind), d = w->dim - 2;
     sps__passes p;
     memset(&p, 0, sizeof p);
-    if (law == SPS__LAW_NONE) return p; /* no kernel: sps__missing_pass names it */
-    p.stress = stress[law][d];
-    if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
-    else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;
+#ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN
+    {
+        static const sps__group_kernel stress[3][2] = {{sps__tl_stress_svk_2d, sps__tl_stress_svk_3d},
+                                                       {sps__tl_stress_neo_hookean_2d, sps__tl_stress_neo_hookean_3d},
+                                                       {sps__tl_stress_j2_2d, sps__tl_stress_j2_3d}};
+        const int law = sps__tl_law_of(m->material->kind), d = w->dim - 2;
+        if (law == SPS__LAW_NONE) return p; /* no kernel: sps__missing_pass names it */
+        p.stress = stress[law][d];
+        if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
+        else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;
+    }
+#else
+    (void)w; (void)m;
+#endif
     return p;
 }
 
