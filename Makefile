@@ -36,7 +36,7 @@ HEADER   = sphsolid.h
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
-all: check examples $(BUILD)/beam_reference $(BUILD)/clamp_reference
+all: check examples $(BUILD)/hello $(BUILD)/beam_reference $(BUILD)/clamp_reference
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -50,7 +50,7 @@ $(CHECK_SRC): | $(BUILD)
 	  'int main(void) {' '    sps_world_def d = sps_default_world_def();' '    sps_world* w = 0;' '    int ok;' \
 	  '    d.threads = 2; d.log = log_fn; ok = sps_world_create(&d, &w) == SPS_OK;' '    sps_world_destroy(w);' \
 	  '#ifdef _OPENMP' '    return ok && !warned ? 0 : 1;' '#else' '    return ok && warned == 1 ? 0 : 1;' '#endif' '}' > $@
-check: $(CHECK_SRC) $(HEADER) README.md
+check: $(CHECK_SRC) $(HEADER) README.md examples/hello.c tests/check_compile_out.c
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp $(CHECK_SRC) -o $(BUILD)/check_omp $(LDLIBS)
 	$(CC) -std=c99 -O1 $(WARN) -Werror $(CHECK_SRC) -o $(BUILD)/check_serial $(LDLIBS)
 	./$(BUILD)/check_omp && ./$(BUILD)/check_serial
@@ -62,11 +62,16 @@ check: $(CHECK_SRC) $(HEADER) README.md
 	  clang -std=c99 -O1 $(WARN) -Werror $(CHECK_SRC) -o $(BUILD)/check_clang $(LDLIBS) && echo "clang: ok"; \
 	else echo "clang not found: skipped"; fi
 	awk '/^## Quick start/{q=1} q&&/^```c/{f=1;next} f&&/^```/{exit} f' README.md > $(BUILD)/quickstart.c
+	diff $(BUILD)/quickstart.c examples/hello.c || { echo "the README's quick start differs from examples/hello.c"; exit 1; }
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp -I. $(BUILD)/quickstart.c -o $(BUILD)/quickstart $(LDLIBS)
 	{ printf '#define SPHSOLID_IMPLEMENTATION\n#include "sphsolid.h"\n#include <stdio.h>\nint main(void) {\n'; \
 	  awk '/QUICK START/{q=1;next} q&&/CONFIG MACROS/{exit} q' $(HEADER); printf 'return 0;\n}\n'; } > $(BUILD)/header_quickstart.c
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp -I. $(BUILD)/header_quickstart.c -o $(BUILD)/header_quickstart $(LDLIBS)
-	@echo "header checks passed (and the quick starts of the README and of the header's manual compile)"
+	for out in FLUID GRANULAR PLASTICITY TOTAL_LAGRANGIAN "FLUID -DSPHSOLID_NO_GRANULAR -DSPHSOLID_NO_PLASTICITY -DSPHSOLID_NO_TOTAL_LAGRANGIAN"; do \
+	  $(CC) -std=c99 -O1 $(WARN) -Werror -DSPHSOLID_NO_$$out tests/check_compile_out.c -o $(BUILD)/check_compile_out $(LDLIBS) && \
+	  ./$(BUILD)/check_compile_out || { echo "check: SPHSOLID_NO_$$out failed"; exit 1; }; \
+	done
+	@echo "header checks passed (and the quick starts of the README and of the header's manual compile; each compile-out switch)"
 
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)
@@ -75,6 +80,9 @@ EXAMPLE_HEADERS = examples/common.h examples/render.h $(wildcard examples/scenes
 $(BUILD)/%: examples/%.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) $< $(BUILD)/impl.o -o $@ $(LDLIBS)
 examples: $(addprefix $(BUILD)/,$(EXAMPLES))
+# the README's quick start: one file, the implementation included, no harness
+$(BUILD)/hello: examples/hello.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) -I. $< -o $@ $(LDLIBS)
 # spinning_cube (A4) is examples/spinning_plate.c (A3) built in 3D
 $(BUILD)/spinning_cube: examples/spinning_plate.c $(EXAMPLE_HEADERS) $(BUILD)/impl.o
 	$(CC) $(CFLAGS) -DSPINNING_DIM=3 $< $(BUILD)/impl.o -o $@ $(LDLIBS)

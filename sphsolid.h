@@ -48,6 +48,13 @@
                                default allocator (malloc/free); define both or neither.
       SPS_ASSERT(c)            assertion for programmer errors (default: assert.h).
       SPHSOLID_NO_STDIO        drop the file writers and the default stderr logger.
+      SPHSOLID_NO_FLUID, SPHSOLID_NO_GRANULAR, SPHSOLID_NO_PLASTICITY,
+      SPHSOLID_NO_TOTAL_LAGRANGIAN
+                               leave out the pass instances of fluids, Drucker-Prager bodies,
+                               J2 bodies and total-Lagrangian bodies: a smaller, faster-compiling
+                               build for a scene without them (e.g. elastic bodies only).
+                               sps_world_add_body refuses a body of a kind left out, naming the
+                               macro. Implementation-only.
       SPHSOLID_WALL_SECONDS()  wall clock in seconds for the frame budget of
                                sps_world_advance_frame. Implementation-only. Default:
                                clock_gettime(CLOCK_MONOTONIC) where <time.h> declares it (POSIX:
@@ -385,6 +392,16 @@
       volume; the shear stress, the velocity gradient, the mean-rotation increments and Gray's
       artificial stress belong to the bodies whose model needs them (an ENO body beside an OG
       body carries no stress). Read them by name: sps_world_field_by_name and sps_body_field.
+      One flat body def carries every kind's parameters; a field set away from its default on
+      a body that does not read it (cohesion on an elastic body, hourglass_alpha on an
+      updated-Lagrangian one, zeta on a GNO-A body, ...) gets one warning from
+      sps_world_add_body naming each such field (the reads column of sps__body_def_items);
+      fields whose combination cannot work are refused instead (the combination rules).
+      What zero means, one rule: a term that can be switched off reads 0 as off (damping,
+      hourglass_alpha, artificial_viscosity, stress_diffusion, damage_strain, viscosity,
+      hardening_modulus, cohesion, friction, contact_damping); a coefficient for which 0 would
+      be meaningless reads 0 as its published default, and SPS_AUTO (= 0) spells that: zeta
+      (0.7 d + 2.1), xi (2), transport_coefficient (0.2), escape_distance (10 body sizes).
 
    CONTACT (chapter >>contact)
       Bodies touch each other when both defs have contact = 1 (the default) and no
@@ -627,13 +644,13 @@
       restart code) in the current particle order, each body's mean rotation and spin, the
       kept pair forces, the last good state, the stopped flag and the neighbour lists (so that
       diagnostics right after a restore agree too). The file starts with a fingerprint that
-      must match the world: dimension, particle, body, wall and constraint counts, kernel,
-      dp, h_over_dp, neighbor_capacity, frozen_geometry, keep_last_good_state, each body's
-      count, material kind, shear, rotation and track_stress, and a hash of every particle's
-      body, reference position, mass and constraint; a difference is refused (SPS_ERR_STATE)
-      naming the item, before the world is changed. The other def fields (gravity, CFL numbers,
-      threads, guards) are the program's: a restart may change them, and the run then differs
-      from the saved one accordingly. Native byte order and sps_real, both checked; a payload
+      must match the world: every world and body def field that changes results (all but
+      threads, report_fragments, the body's name, callbacks, allocator and user data; one
+      table, sps__world_def_items and sps__body_def_items, from which the fingerprint is
+      written, checked and named), the particle, body, wall and constraint counts, each body's
+      count, and a hash of every particle's body, reference position, mass and constraint; a
+      difference is refused (SPS_ERR_STATE) naming the item (e.g. "body 0 ('plate') solver = 0
+      in the file, 1 in this world"), before the world is changed. Native byte order and sps_real, both checked; a payload
       checksum refuses truncated or damaged files (SPS_ERR_IO). Size: about the state's own
       size plus one int per neighbour pair (2D plate at H/dp 10: bench/VALIDATION.md).
 
@@ -810,6 +827,10 @@ typedef enum sps_rotation {
     SPS_ROTATION_AUTO = 3          /* pair for ENO-A, mean for GNO-A: what survives tumbling and
                                       impacts (the default; SHEAR FORMULATIONS) */
 } sps_rotation;
+
+/* A def coefficient set to SPS_AUTO takes its published default (zeta, xi,
+   transport_coefficient, escape_distance; MODELS AND FIELDS: what zero means). */
+#define SPS_AUTO 0
 
 /* Axis masks for velocity constraints. */
 enum { SPS_AXIS_X = 1, SPS_AXIS_Y = 2, SPS_AXIS_Z = 4, SPS_AXIS_ALL = 7 };
@@ -1377,7 +1398,8 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
    neighbours) (the file holds the neighbour lists); does not change the world.
    restore: SPS_ERR_INVALID_ARG (NULL, not a restart file, another format version, byte order
    or sps_real), SPS_ERR_STATE (the file's scene differs from the world's: the message names
-   the first item, e.g. a body's shear or particle count, or the reference positions),
+   the first item, e.g. a def field such as gravity[1] or a body's shear, a particle count, or
+   the reference positions),
    SPS_ERR_IO (cannot open or read, truncated, checksum wrong); on error the world's state is
    unchanged (it may have been prepared for stepping, as the first step does). Allocates the
    file's size in scratch (freed) and, before the first step, what the first step allocates;
@@ -2132,6 +2154,106 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
+/* The def fields that change results: every field of sps_world_def and sps_body_def, one row
+   each, with which bodies read it. A restart must agree on all of them (chapter >>restart: the
+   fingerprint is written, checked and named from these rows, whatever the kind reads, so the
+   rule stays one line); a body field set away from its default on a body that does not read
+   it gets a warning (sps__warn_unread_fields). Left out, by design: threads (results are bit
+   for bit the same at any thread count), report_fragments (a warning only), name, the
+   callbacks, allocator, user data and cookies. A new def field that changes results gets a row
+   here, and the fingerprint, its check, its message and the warning follow. */
+typedef enum sps__def_type { SPS__DEF_INT, SPS__DEF_REAL } sps__def_type;
+typedef struct sps__def_item {
+    const char* name;   /* the field as the user writes it */
+    size_t offset;      /* in the def */
+    sps__def_type type; /* SPS__DEF_INT: an int or an enum (the same size, checked below) */
+    int (*reads)(const sps_body_def* def); /* body rows: whether such a body reads it (NULL: every body) */
+} sps__def_item;
+typedef char sps__enums_are_ints[sizeof(sps_kernel_type) == sizeof(int) && sizeof(sps_stepping) == sizeof(int) &&
+                                         sizeof(sps_shear) == sizeof(int) && sizeof(sps_rotation) == sizeof(int) &&
+                                         sizeof(sps_material_kind) == sizeof(int) && sizeof(sps_solver) == sizeof(int) &&
+                                         sizeof(sps_transport) == sizeof(int) && sizeof(sps_hourglass) == sizeof(int)
+                                     ? 1 : -1];
+#define SPS__WORLD_ITEM(field, type) {#field, offsetof(sps_world_def, field), type, NULL}
+#define SPS__BODY_ITEM(field, type) {#field, offsetof(sps_body_def, field), type, NULL}
+#define SPS__BODY_ITEM_READ_BY(field, type, reads) {#field, offsetof(sps_body_def, field), type, reads}
+
+/* Which bodies read a field (the rows below): by the kind, the solver and the shear formulation
+   the model resolves from them (sps__resolve_model). */
+static int sps__updated_solid(const sps_body_def* d) {
+    return d->solver == SPS_SOLVER_UPDATED_LAGRANGIAN && d->material.kind != SPS_MATERIAL_FLUID && d->material.kind != SPS_MATERIAL_RIGID;
+}
+static int sps__reads_j2(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_J2; }
+static int sps__reads_fluid(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_FLUID; }
+static int sps__reads_elastic_moduli(const sps_body_def* d) { return d->material.kind != SPS_MATERIAL_FLUID; }
+static int sps__reads_drucker_prager(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_DRUCKER_PRAGER; }
+static int sps__reads_total_lagrangian(const sps_body_def* d) { return d->solver == SPS_SOLVER_TOTAL_LAGRANGIAN; }
+static int sps__reads_stress(const sps_body_def* d) { return d->material.kind != SPS_MATERIAL_FLUID && d->material.kind != SPS_MATERIAL_RIGID; }
+static int sps__reads_transport_coefficient(const sps_body_def* d) { return d->transport != SPS_TRANSPORT_NONE; }
+/* a granular body's own stress divergence replaces the shear formulation, unless GNO or GNO-A adds ANG's penalty */
+static int sps__reads_shear(const sps_body_def* d) {
+    return sps__updated_solid(d) &&
+           (d->material.kind != SPS_MATERIAL_DRUCKER_PRAGER || d->shear == SPS_SHEAR_GNO || d->shear == SPS_SHEAR_GNO_A);
+}
+static int sps__reads_rotation(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_ENO_A || d->shear == SPS_SHEAR_GNO_A); }
+static int sps__reads_zeta(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_ENO || d->shear == SPS_SHEAR_ENO_A); }
+static int sps__reads_xi(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_GNO || d->shear == SPS_SHEAR_GNO_A); }
+static int sps__reads_oas(const sps_body_def* d) { return sps__reads_shear(d) && d->shear == SPS_SHEAR_OAS; }
+static const sps__def_item sps__world_def_items[] = {
+    SPS__WORLD_ITEM(dim, SPS__DEF_INT), SPS__WORLD_ITEM(dp, SPS__DEF_REAL), SPS__WORLD_ITEM(h_over_dp, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(kernel, SPS__DEF_INT), SPS__WORLD_ITEM(stepping, SPS__DEF_INT), SPS__WORLD_ITEM(cfl_acoustic, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(cfl_advection, SPS__DEF_REAL), SPS__WORLD_ITEM(max_substeps, SPS__DEF_INT),
+    SPS__WORLD_ITEM(gravity[0], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[1], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[2], SPS__DEF_REAL),
+    SPS__WORLD_ITEM(frozen_geometry, SPS__DEF_INT), SPS__WORLD_ITEM(neighbor_capacity, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(escape_distance, SPS__DEF_REAL), SPS__WORLD_ITEM(energy_growth_limit, SPS__DEF_REAL),
+    SPS__WORLD_ITEM(energy_growth_stops, SPS__DEF_INT), SPS__WORLD_ITEM(keep_last_good_state, SPS__DEF_INT)};
+static const sps__def_item sps__body_def_items[] = {
+    SPS__BODY_ITEM(solver, SPS__DEF_INT),
+    SPS__BODY_ITEM(material.kind, SPS__DEF_INT),
+    SPS__BODY_ITEM(material.density, SPS__DEF_REAL),
+    SPS__BODY_ITEM_READ_BY(material.youngs_modulus, SPS__DEF_REAL, sps__reads_elastic_moduli),
+    SPS__BODY_ITEM_READ_BY(material.poisson_ratio, SPS__DEF_REAL, sps__reads_elastic_moduli),
+    SPS__BODY_ITEM_READ_BY(material.yield_stress, SPS__DEF_REAL, sps__reads_j2),
+    SPS__BODY_ITEM_READ_BY(material.hardening_modulus, SPS__DEF_REAL, sps__reads_j2),
+    SPS__BODY_ITEM_READ_BY(material.sound_speed, SPS__DEF_REAL, sps__reads_fluid),
+    SPS__BODY_ITEM(material.viscosity, SPS__DEF_REAL), /* the kinds that do not read it refuse it (sps__combination_rules) */
+    SPS__BODY_ITEM_READ_BY(material.cohesion, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.friction_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.dilatancy_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(shear, SPS__DEF_INT, sps__reads_shear),
+    SPS__BODY_ITEM_READ_BY(rotation, SPS__DEF_INT, sps__reads_rotation),
+    SPS__BODY_ITEM_READ_BY(zeta, SPS__DEF_REAL, sps__reads_zeta),
+    SPS__BODY_ITEM_READ_BY(xi, SPS__DEF_REAL, sps__reads_xi),
+    SPS__BODY_ITEM_READ_BY(oas_epsilon, SPS__DEF_REAL, sps__reads_oas),
+    SPS__BODY_ITEM_READ_BY(oas_exponent, SPS__DEF_REAL, sps__reads_oas),
+    SPS__BODY_ITEM_READ_BY(track_stress, SPS__DEF_INT, sps__reads_stress),
+    SPS__BODY_ITEM(transport, SPS__DEF_INT),
+    SPS__BODY_ITEM(contact, SPS__DEF_INT),
+    SPS__BODY_ITEM_READ_BY(transport_coefficient, SPS__DEF_REAL, sps__reads_transport_coefficient),
+    SPS__BODY_ITEM(damping, SPS__DEF_REAL),
+    SPS__BODY_ITEM_READ_BY(hourglass_alpha, SPS__DEF_REAL, sps__reads_total_lagrangian),
+    SPS__BODY_ITEM_READ_BY(hourglass, SPS__DEF_INT, sps__reads_total_lagrangian),
+    SPS__BODY_ITEM(artificial_viscosity, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
+    SPS__BODY_ITEM_READ_BY(stress_diffusion, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM(friction, SPS__DEF_REAL),
+    SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
+    SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL)}; /* refused on updated-Lagrangian bodies */
+#define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
+#define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
+/* The value of a def item, as a double (exact for ints and sps_real). */
+static double sps__def_value(const void* def, const sps__def_item* item) {
+    const char* at = (const char*)def + item->offset;
+    if (item->type == SPS__DEF_INT) {
+        int v;
+        memcpy(&v, at, sizeof v);
+        return v;
+    } else {
+        sps_real v;
+        memcpy(&v, at, sizeof v);
+        return (double)v;
+    }
+}
+
 /* >>model */
 
 /* A body's model is data: a material row (sps__materials), a stabilisation row
@@ -2572,6 +2694,24 @@ static const sps__combination_rule sps__combination_rules[] = {
                                         "limit it (ANG 5.2: ENO-A is for elastic materials); use GNO-A (or OG, OAS, GNO)"},
 };
 
+/* The macro that left this body's kind or solver out of the build (CONFIG MACROS), or NULL. */
+static const char* sps__left_out_by(const sps_body_def* def) {
+#ifdef SPHSOLID_NO_FLUID
+    if (def->material.kind == SPS_MATERIAL_FLUID) return "SPHSOLID_NO_FLUID";
+#endif
+#ifdef SPHSOLID_NO_GRANULAR
+    if (def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER) return "SPHSOLID_NO_GRANULAR";
+#endif
+#ifdef SPHSOLID_NO_PLASTICITY
+    if (def->material.kind == SPS_MATERIAL_J2) return "SPHSOLID_NO_PLASTICITY";
+#endif
+#ifdef SPHSOLID_NO_TOTAL_LAGRANGIAN
+    if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) return "SPHSOLID_NO_TOTAL_LAGRANGIAN";
+#endif
+    (void)def;
+    return NULL;
+}
+
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
@@ -2598,6 +2738,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                "transport_coefficient = %g, allowed 0 (default 0.2) or (0, 1]", (double)def->transport_coefficient);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
+    SPS__CHECK(!sps__left_out_by(def), "material.kind = %d with solver = %d: this build left it out (%s is defined)",
+               (int)def->material.kind, (int)def->solver, sps__left_out_by(def));
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
     SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= SPS__OAS_MAX_EXPONENT, "oas_exponent = %g, allowed [1, %d]", (double)def->oas_exponent, SPS__OAS_MAX_EXPONENT);
@@ -2620,6 +2762,7 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
 
 /* The pass kernels of a model in the world's dimension and pair geometry (chapter >>forces). */
 static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m);
+static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* msg, size_t size);
 
 /* SPS_ROTATION_AUTO: the rotation measured best for the formulation (bench/VALIDATION.md, user
    scenes). ENO-A: pair, whose forces are central pair forces (momentum exact, no energy gained
@@ -2900,6 +3043,27 @@ static int sps__check_body(sps_world* w, sps_body b, const char* fn) {
     return k;
 }
 
+/* A body field set away from its default on a body that does not read it (sps__body_def_items'
+   reads column): one warning naming each, so that a parameter is never ignored without a word. */
+static void sps__warn_unread_fields(sps_world* w, const sps__body* b) {
+    const sps_body_def defaults = sps_default_body_def();
+    char list[512];
+    size_t used = 0;
+    int k;
+    list[0] = 0;
+    for (k = 0; k < SPS__BODY_DEF_ITEMS; ++k) {
+        const sps__def_item* item = &sps__body_def_items[k];
+        const double value = sps__def_value(&b->def, item);
+        if (!item->reads || item->reads(&b->def) || value == sps__def_value(&defaults, item) || used + 2 >= sizeof list) continue;
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s = %g", used ? ", " : "", item->name, value);
+        if (used >= sizeof list) used = sizeof list - 1; /* cut: the message ends where the buffer does */
+    }
+    if (used)
+        sps__warn(w, "body '%s': %s set, which this body (%s, %s%s%s) does not read: no effect (MODELS AND FIELDS)", b->name, list,
+                  b->model.material->name, b->def.solver == SPS_SOLVER_TOTAL_LAGRANGIAN ? "total Lagrangian" : "updated Lagrangian",
+                  sps__reads_shear(&b->def) ? ", " : "", sps__reads_shear(&b->def) ? b->model.stabilisation->name : "");
+}
+
 SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_body* out) {
     char msg[768];
     sps__body* b;
@@ -2925,6 +3089,10 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->def.name = b->name;
     b->model = sps__resolve_model(def);
     b->model.pass = sps__choose_passes(w, &b->model);
+    if (sps__missing_pass(&b->model, &b->model.pass, msg, sizeof msg)) {
+        sps__set_error(w, 0, "sps_world_add_body: body '%s': %s", b->name, msg);
+        return SPS_ERR_INVALID_ARG;
+    }
     b->rho0 = def->material.density;
     b->mat = b->model.material->constants(&def->material);
     b->zeta = def->zeta > 0 ? def->zeta : SPS_R(0.7) * w->dim + SPS_R(2.1); /* ENO section 4 */
@@ -2959,6 +3127,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
                   "nu = 0.3, and the time step as many times shorter", b->name, (double)def->material.poisson_ratio, (double)b->mat.c0,
                   (double)(b->mat.c0 / b->model.material->constants(&ref).c0));
     }
+    sps__warn_unread_fields(w, b);
     w->contact_dirty = 1;
     out->id = ((uint32_t)w->tag << 16) | (uint32_t)(w->nbodies + 1);
     w->nbodies++;
@@ -4620,16 +4789,30 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
 
 /* The pressure pass's variants: (stress force, artificial stress, pair forces, limited, viscous,
    stress diffusion). */
+/* The variants of the kinds a build can leave out (CONFIG MACROS: SPHSOLID_NO_FLUID,
+   SPHSOLID_NO_GRANULAR): an empty list there, and sps_world_add_body refuses the kind. */
+#ifdef SPHSOLID_NO_FLUID
+#define SPS__PRESSURE_FLUID_VARIANTS(X)
+#else
+#define SPS__PRESSURE_FLUID_VARIANTS(X)         \
+    X(fluid, 0, 0, 0, 1, 0, 0)                  \
+    X(fluid_viscous, 0, 0, 0, 1, SPS__VISCOUS_NEWTON, 0)
+#endif
+#ifdef SPHSOLID_NO_GRANULAR
+#define SPS__PRESSURE_GRANULAR_VARIANTS(X)
+#else
+#define SPS__PRESSURE_GRANULAR_VARIANTS(X)      \
+    X(granular, 1, 0, 0, 1, 0, 0)               \
+    X(granular_diffusion, 1, 0, 0, 1, 0, 1)
+#endif
 #define SPS__PRESSURE_VARIANTS(X)               \
     X(plain, 0, 0, 0, 0, 0, 0)                  \
     X(pairs, 0, 0, 1, 0, 0, 0)                  \
     X(stress, 1, 0, 0, 0, 0, 0)                 \
     X(stress_pairs, 1, 0, 1, 0, 0, 0)           \
     X(oas, 1, 1, 0, 0, 0, 0)                    \
-    X(fluid, 0, 0, 0, 1, 0, 0)                  \
-    X(fluid_viscous, 0, 0, 0, 1, SPS__VISCOUS_NEWTON, 0) \
-    X(granular, 1, 0, 0, 1, 0, 0)               \
-    X(granular_diffusion, 1, 0, 0, 1, 0, 1)     \
+    SPS__PRESSURE_FLUID_VARIANTS(X)             \
+    SPS__PRESSURE_GRANULAR_VARIANTS(X)          \
     X(plain_kv, 0, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
     X(pairs_kv, 0, 0, 1, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
     X(stress_kv, 1, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
@@ -5444,13 +5627,18 @@ SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_re
 }
 
 /* The continuity pass's variants: (gradient, eno, Riemann density term). */
+#ifdef SPHSOLID_NO_FLUID
+#define SPS__CONTINUITY_FLUID_VARIANTS(X)
+#else
+#define SPS__CONTINUITY_FLUID_VARIANTS(X) X(fluid, 1, SPS__ENO_NONE, 1)
+#endif
 #define SPS__CONTINUITY_VARIANTS(X)                  \
     X(eno, 0, SPS__ENO_PARTICLES, 0)                 \
     X(eno_gradient, 1, SPS__ENO_PARTICLES, 0)        \
     X(eno_pairs, 0, SPS__ENO_PAIRS, 0)               \
     X(eno_pairs_gradient, 1, SPS__ENO_PAIRS, 0)      \
     X(gradient, 1, SPS__ENO_NONE, 0)                 \
-    X(fluid, 1, SPS__ENO_NONE, 1)
+    SPS__CONTINUITY_FLUID_VARIANTS(X)
 #define SPS__CONTINUITY_INSTANCES(variant, gradient, eno, riemann) SPS__INSTANCES(continuity, variant, gradient, eno, riemann)
 SPS__CONTINUITY_VARIANTS(SPS__CONTINUITY_INSTANCES)
 
@@ -5542,10 +5730,18 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     X(gno_a_mean, 1, 0, SPS__TURN_MEAN, 0)                    \
     X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE, 0)            \
     X(gno_a_pairs, 1, 1, SPS__TURN_NONE, 0)                   \
+    SPS__PENALTY_PLASTIC_VARIANTS(X)
+/* the scaled penalty of plastic bodies (J2 and Drucker-Prager with GNO, GNO-A): out only when
+   both kinds are */
+#if defined(SPHSOLID_NO_PLASTICITY) && defined(SPHSOLID_NO_GRANULAR)
+#define SPS__PENALTY_PLASTIC_VARIANTS(X)
+#else
+#define SPS__PENALTY_PLASTIC_VARIANTS(X)                      \
     X(gno_j2, 0, 0, SPS__TURN_NONE, 1)                        \
     X(gno_a_mean_j2, 1, 0, SPS__TURN_MEAN, 1)                 \
     X(gno_a_particle_j2, 1, 0, SPS__TURN_PARTICLE, 1)         \
     X(gno_a_pairs_j2, 1, 1, SPS__TURN_NONE, 1)
+#endif
 #define SPS__PENALTY_INSTANCES(variant, projected, paired, turn, scaled) SPS__INSTANCES(penalty, variant, projected, paired, turn, scaled)
 SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
 
@@ -5562,11 +5758,12 @@ static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS
 static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
 static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
 
+/* The kernel of the row whose key is key, in mode; NULL when no row has that key (the caller
+   names the combination: sps__missing_pass). */
 static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[6], int mode) {
     int r;
     for (r = 0; r < nrows; ++r)
         if (memcmp(rows[r].key, key, sizeof rows[r].key) == 0) return rows[r].modes[mode];
-    SPS_ASSERT(0 && "no pass kernel for this model");
     return NULL;
 }
 
@@ -5589,6 +5786,27 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     p.penalty = st->penalty ? sps__find_kernel(sps__penalty_rows, (int)(sizeof sps__penalty_rows / sizeof sps__penalty_rows[0]), penalty_key, mode) : NULL;
     p.stress = NULL;
     return p;
+}
+
+/* A pass the model needs but sps__choose_passes found no instance for (a combination the
+   variant lists do not hold): its name and the model's choices into msg, 1; else 0. Checked by
+   sps_world_add_body in every build, so a missing instance is an error there and not a pass
+   the step would skip (sps__run_groups runs nothing for a NULL kernel). */
+static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* msg, size_t size) {
+    const sps__stabilisation* st = m->stabilisation;
+    const char* pass = NULL;
+    if (m->material->kinematic) return 0; /* a wall body runs no pass */
+    if (!p->pressure) pass = m->total_lagrangian ? "total-Lagrangian force" : "pressure";
+    else if (m->total_lagrangian && !p->stress) pass = "total-Lagrangian stress";
+    else if (!m->total_lagrangian && !p->continuity) pass = "continuity";
+    else if (!m->total_lagrangian && st->penalty && !p->penalty) pass = "penalty";
+    if (!pass) return 0;
+    snprintf(msg, size, "no %s pass instance for material.kind = %s with %s (stress force %d, artificial stress %d, pair forces %d, "
+             "limiter %d, viscous %d, stress diffusion %d, gradient %d, Riemann density %d, turn %d, scaled penalty %d): add its row "
+             "to the pass's variant list (SPS__PRESSURE_VARIANTS, SPS__CONTINUITY_VARIANTS, SPS__PENALTY_VARIANTS)", pass,
+             m->material->name, st->name, st->stress_force, st->artificial_stress, m->paired, m->limited, (int)m->viscous, m->diffusion,
+             m->gradient, m->riemann_density, (int)m->turn, m->scaled_penalty);
+    return 1;
 }
 
 /* >>solver: total Lagrangian (TL sections 2-3; TOTAL-LAGRANGIAN in the manual)
@@ -5731,7 +5949,7 @@ SPS__INLINE sps_real sps__tl_spring(const sps_real F[9], const sps_real X[3], co
 }
 
 /* The laws, a literal in the stress pass. */
-enum { SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
+enum { SPS__LAW_NONE = -1, SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
 
 /* The first Piola-Kirchhoff stress P (row-major 3 x 3) of the deformation gradient F (row-major
    3 x 3; in 2D, plane strain, F_zz = 1 and the out-of-plane entries 0) and the stored energy per
@@ -6162,6 +6380,7 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
 }
 
 /* The pass instances (named, for a profiler) and the choice of a total-Lagrangian model's. */
+#ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN /* else no instance: sps_world_add_body refuses the bodies */
 static void sps__tl_stress_svk_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
 static void sps__tl_stress_svk_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
 static void sps__tl_stress_neo_hookean_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_NEO_HOOKEAN); }
@@ -6172,21 +6391,42 @@ static void sps__tl_force_2d(sps_world* w, const sps__body* b, int g, sps_real d
 static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 0); }
 static void sps__tl_force_plastic_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 1); }
 static void sps__tl_force_plastic_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 1); }
+#endif
 
+/* The law of a total-Lagrangian body's kind; SPS__LAW_NONE for a kind without one (the
+   combination rules refuse it, and sps__tl_passes then finds no kernel, which
+   sps_world_add_body reports: sps__missing_pass). Every kind is a case and there is no default,
+   so -Wswitch names a new kind here. */
 static int sps__tl_law_of(sps_material_kind kind) {
-    return kind == SPS_MATERIAL_NEO_HOOKEAN ? SPS__LAW_NEO_HOOKEAN : kind == SPS_MATERIAL_J2 ? SPS__LAW_J2 : SPS__LAW_SAINT_VENANT_KIRCHHOFF;
+    switch (kind) {
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return SPS__LAW_SAINT_VENANT_KIRCHHOFF;
+    case SPS_MATERIAL_NEO_HOOKEAN: return SPS__LAW_NEO_HOOKEAN;
+    case SPS_MATERIAL_J2: return SPS__LAW_J2;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__LAW_NONE;
+    }
+    return SPS__LAW_NONE; /* a value outside the enum (refused by the def check) */
 }
 
 static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
-    static const sps__group_kernel stress[3][2] = {{sps__tl_stress_svk_2d, sps__tl_stress_svk_3d},
-                                                   {sps__tl_stress_neo_hookean_2d, sps__tl_stress_neo_hookean_3d},
-                                                   {sps__tl_stress_j2_2d, sps__tl_stress_j2_3d}};
-    const int law = sps__tl_law_of(m->material->kind), d = w->dim - 2;
     sps__passes p;
     memset(&p, 0, sizeof p);
-    p.stress = stress[law][d];
-    if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
-    else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;
+#ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN
+    {
+        static const sps__group_kernel stress[3][2] = {{sps__tl_stress_svk_2d, sps__tl_stress_svk_3d},
+                                                       {sps__tl_stress_neo_hookean_2d, sps__tl_stress_neo_hookean_3d},
+                                                       {sps__tl_stress_j2_2d, sps__tl_stress_j2_3d}};
+        const int law = sps__tl_law_of(m->material->kind), d = w->dim - 2;
+        if (law == SPS__LAW_NONE) return p; /* no kernel: sps__missing_pass names it */
+        p.stress = stress[law][d];
+        if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
+        else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;
+    }
+#else
+    (void)w; (void)m;
+#endif
     return p;
 }
 
@@ -8469,12 +8709,13 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) { return s
      fingerprint  the world items of sps__world_print, a hash of the scene (reference
                   positions, masses, bodies and constraints by particle id), the body items of
                   sps__body_print for each body: all must equal the world's
-     payload      the state (sps__put_state), then its FNV-1a hash */
+     payload      the state (sps__transfer_state, one list of items for both ways), then its
+                  FNV-1a hash */
 #ifndef SPHSOLID_NO_STDIO
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 1u
+#define SPS__RESTART_VERSION 2u /* 2: the fingerprint holds every def item (sps__world_def_items) */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */
@@ -8485,22 +8726,26 @@ static uint64_t sps__fnv(uint64_t hash, const void* data, size_t size) {
     return hash;
 }
 
-/* The world items a restart must agree on: the layout of the state and what shapes it. */
-static const char* const sps__world_print_names[] = {
-    "dim", "particle count", "body count", "wall count", "constraint count", "contact pairs turned off",
-    "kernel", "frozen_geometry", "keep_last_good_state", "dp", "h_over_dp", "neighbor_capacity"};
-#define SPS__WORLD_PRINT ((int)(sizeof sps__world_print_names / sizeof sps__world_print_names[0]))
-static void sps__world_print(const sps_world* w, double v[SPS__WORLD_PRINT]) {
-    const sps_world_def* d = &w->def;
-    v[0] = w->dim; v[1] = w->n; v[2] = w->nbodies; v[3] = w->nwalls; v[4] = w->ncons; v[5] = w->nseparate;
-    v[6] = d->kernel; v[7] = d->frozen_geometry; v[8] = d->keep_last_good_state;
-    v[9] = (double)d->dp; v[10] = (double)d->h_over_dp; v[11] = (double)d->neighbor_capacity;
+/* The world items of the fingerprint: the def items (the causes, named first), then the counts
+   that lay out the state. */
+static const char* const sps__world_count_names[] = {"particle count", "body count", "wall count", "constraint count", "contact pairs turned off"};
+#define SPS__WORLD_PRINT (SPS__WORLD_DEF_ITEMS + (int)(sizeof sps__world_count_names / sizeof sps__world_count_names[0]))
+static const char* sps__world_print_name(int k) {
+    return k < SPS__WORLD_DEF_ITEMS ? sps__world_def_items[k].name : sps__world_count_names[k - SPS__WORLD_DEF_ITEMS];
 }
-/* ... and those of each body: its count and the model that decides its arrays. */
-static const char* const sps__body_print_names[] = {"particle count", "material.kind", "shear", "rotation", "track_stress"};
-#define SPS__BODY_PRINT ((int)(sizeof sps__body_print_names / sizeof sps__body_print_names[0]))
+static void sps__world_print(const sps_world* w, double v[SPS__WORLD_PRINT]) {
+    double* counts = v + SPS__WORLD_DEF_ITEMS;
+    int k;
+    for (k = 0; k < SPS__WORLD_DEF_ITEMS; ++k) v[k] = sps__def_value(&w->def, &sps__world_def_items[k]);
+    counts[0] = w->n; counts[1] = w->nbodies; counts[2] = w->nwalls; counts[3] = w->ncons; counts[4] = w->nseparate;
+}
+/* ... and those of each body: its def items, then its particle count. */
+#define SPS__BODY_PRINT (SPS__BODY_DEF_ITEMS + 1)
+static const char* sps__body_print_name(int k) { return k < SPS__BODY_DEF_ITEMS ? sps__body_def_items[k].name : "particle count"; }
 static void sps__body_print(const sps__body* b, double v[SPS__BODY_PRINT]) {
-    v[0] = b->count; v[1] = b->def.material.kind; v[2] = b->def.shear; v[3] = b->def.rotation; v[4] = b->def.track_stress;
+    int k;
+    for (k = 0; k < SPS__BODY_DEF_ITEMS; ++k) v[k] = sps__def_value(&b->def, &sps__body_def_items[k]);
+    v[SPS__BODY_DEF_ITEMS] = b->count;
 }
 /* The scene as built: body, reference position, mass and constraint of each particle by id. */
 static uint64_t sps__scene_hash(const sps_world* w) {
@@ -8548,123 +8793,9 @@ static void sps__put(sps__writer* s, const void* data, size_t size) {
 }
 static void sps__put_int(sps__writer* s, int v) { sps__put(s, &v, sizeof v); }
 
-/* The arrays of field f for body b (per-body fields) or the world (b NULL): count values per
-   array, the axes up to dim; a leading byte tells whether they exist. */
-static void sps__put_field(const sps_world* w, const sps__body* b, const sps__field_info* f, int count, sps__writer* s) {
-    const int arrays = f->axes ? w->dim : 1;
-    void* first;
-    unsigned char present;
-    int a;
-    memcpy(&first, sps__field_slot(w, b, f, 0), sizeof first);
-    present = first != NULL;
-    sps__put(s, &present, 1);
-    for (a = 0; a < arrays && present; ++a) {
-        void* x;
-        memcpy(&x, sps__field_slot(w, b, f, a), sizeof x);
-        sps__put(s, x, sps__field_bytes(f) * (size_t)count);
-    }
-}
-
-/* The payload, in the order sps__get_state reads it. */
-static void sps__put_state(const sps_world* w, sps__writer* s) {
-    const int64_t steps[2] = {w->acoustic_steps, w->advection_steps};
-    const int good_n = w->good ? w->good_n : 0, kept = w->pair_force ? w->kept_ids : 0;
-    int k, bi, i, id, m;
-    sps__put(s, &w->time, sizeof w->time);
-    sps__put(s, &w->dt, sizeof w->dt);
-    sps__put(s, &w->vmax, sizeof w->vmax);
-    sps__put(s, steps, sizeof steps);
-    sps__put_int(s, w->stopped);
-    sps__put(s, w->failure, sizeof w->failure);
-    sps__put_int(s, w->watch.armed); /* the guards' memory: the watchdog's start, what was said */
-    sps__put_int(s, w->watch.fired);
-    sps__put(s, &w->watch.checked_at, sizeof w->watch.checked_at);
-    sps__put(s, &w->watch.start, sizeof w->watch.start);
-    sps__put(s, &w->watch.scale, sizeof w->watch.scale);
-    sps__put(s, &w->watch.start_time, sizeof w->watch.start_time);
-    sps__put_int(s, w->impact_warned);
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__put(s, w->bodies[bi].mean_rotation, sizeof w->bodies[bi].mean_rotation);
-        sps__put(s, w->bodies[bi].mean_spin, sizeof w->bodies[bi].mean_spin);
-        sps__put(s, &w->bodies[bi].energy_start, sizeof w->bodies[bi].energy_start);
-        sps__put_int(s, w->bodies[bi].fragment_reported);
-    }
-    for (k = 0; k < SPS__NFIELDS; ++k) {
-        const sps__field_info* f = &sps__fields[k];
-        if (!(f->care & SPS__CARRIED)) continue;
-        if (!f->per_body) sps__put_field(w, NULL, f, w->n, s);
-        else
-            for (bi = 0; bi < w->nbodies; ++bi) sps__put_field(w, &w->bodies[bi], f, w->bodies[bi].count, s);
-    }
-    sps__put_int(s, w->lists_valid);
-    if (w->lists_valid) {
-        sps__put(s, w->nb_count, sizeof(int) * (size_t)w->n);
-        for (i = 0; i < w->n; ++i)
-            for (m = 0; m < w->nb_count[i]; ++m) sps__put_int(s, sps__neighbor(w, i, m));
-    }
-    sps__put_int(s, kept);
-    if (kept) {
-        sps__put(s, w->kept_count, sizeof(int) * (size_t)kept);
-        for (id = 0; id < kept; ++id) {
-            sps__put(s, w->kept_neighbor_id + w->kept_first[id], sizeof(int) * (size_t)w->kept_count[id]);
-            sps__put(s, w->kept_force + w->kept_first[id], sizeof(sps_real) * (size_t)w->kept_count[id]);
-        }
-    }
-    sps__put_int(s, good_n);
-    if (good_n) {
-        sps_real* block;
-        size_t length;
-        sps__put(s, &w->good_time, sizeof w->good_time);
-        sps__put(s, w->good_id, sizeof(int) * (size_t)good_n);
-        for (m = 0; (block = sps__good_block(w, good_n, m, &length)) != NULL; ++m) sps__put(s, block, sizeof(sps_real) * length);
-    }
-}
-
-static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__writer* s) {
-    const uint32_t words[3] = {SPS__RESTART_BYTE_ORDER, SPS__RESTART_VERSION, (uint32_t)sizeof(sps_real)};
-    double print[SPS__WORLD_PRINT], body[SPS__BODY_PRINT];
-    const uint64_t scene = sps__scene_hash(w);
-    int bi;
-    sps__put(s, sps__restart_magic, sizeof sps__restart_magic);
-    sps__put(s, words, sizeof words);
-    sps__put(s, &payload_bytes, sizeof payload_bytes);
-    sps__world_print(w, print);
-    sps__put(s, print, sizeof print);
-    sps__put(s, &scene, sizeof scene);
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__body_print(&w->bodies[bi], body);
-        sps__put(s, body, sizeof body);
-    }
-}
-
-SPSDEF sps_result sps_world_save(const sps_world* w, const char* path) {
-    sps__writer count = {NULL, 0, 0, 0}, out = {NULL, 0, SPS__FNV_OFFSET, 0};
-    if (!w) return SPS_ERR_INVALID_ARG;
-    if (!path) { sps__set_error_const(w, "sps_world_save: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
-    if (w->n == 0 || w->needs_sort_by_body) {
-        sps__set_error_const(w, "sps_world_save: %s: step first (a restart holds the state between steps)",
-                             w->n == 0 ? "the world has no particles" : "particles were added since the last step");
-        return SPS_ERR_STATE;
-    }
-    /* a world that cannot step (an empty body added since) has no state to go on from; the
-       check writes only the error message (see sps__set_error_const) */
-    if (sps__check_bodies_filled((sps_world*)w) != SPS_OK) return SPS_ERR_STATE;
-    sps__put_state(w, &count);
-    out.f = fopen(path, "wb");
-    if (!out.f) { sps__set_error_const(w, "sps_world_save: cannot open '%s' for writing", path); return SPS_ERR_IO; }
-    sps__put_header(w, count.bytes, &out);
-    out.hash = SPS__FNV_OFFSET; /* the checksum covers the payload */
-    sps__put_state(w, &out);
-    {
-        const uint64_t hash = out.hash;
-        sps__put(&out, &hash, sizeof hash);
-    }
-    if (fclose(out.f) != 0 || out.failed) { sps__set_error_const(w, "sps_world_save: error writing '%s'", path); return SPS_ERR_IO; }
-    return SPS_OK;
-}
-
-/* Reads from the payload in memory. apply = 0: a dry run that checks every length and index
-   against the world and writes nothing; apply = 1: the same reads, into the world. */
+/* Where the state comes from: the payload in memory. apply = 0: a dry run that checks every
+   length and index against the world and writes nothing; apply = 1: the same reads, into the
+   world. */
 typedef struct sps__reader {
     const unsigned char* at;
     size_t left;
@@ -8692,108 +8823,202 @@ static int sps__get_count(sps__reader* r, int limit, const char* what) {
     return r->bad ? 0 : v;
 }
 
-static void sps__get_field(sps_world* w, sps__body* b, const sps__field_info* f, int count, sps__reader* r) {
+/* The payload goes one way: out (sps_world_save) or in (sps_world_restore). Its items are
+   listed once, in sps__transfer_state, for both ways, so the layout written is the layout read. */
+typedef struct sps__stream {
+    sps__writer* out; /* saving: the writer; NULL when reading */
+    sps__reader* in;  /* restoring: the reader; NULL when writing */
+} sps__stream;
+static int sps__stream_bad(const sps__stream* s) { return s->in && s->in->bad; }
+/* size bytes at data: written, or read into data (when the reader applies). */
+static void sps__item(sps__stream* s, void* data, size_t size, const char* what) {
+    if (s->out) sps__put(s->out, data, size);
+    else sps__get(s->in, data, size, what);
+}
+/* An int in [0, limit]: written, or read (always, a dry run needs it too), checked and, when
+   the reader applies, stored. Returns the value. */
+static int sps__count_item(sps__stream* s, int* v, int limit, const char* what) {
+    int read;
+    if (s->out) { sps__put_int(s->out, *v); return *v; }
+    read = sps__get_count(s->in, limit, what);
+    if (s->in->apply && !s->in->bad) *v = read;
+    return read;
+}
+
+/* The arrays of field f for body b (per-body fields) or the world (b NULL): count values per
+   array, the axes up to dim; a leading byte tells whether they exist (the models decide it: a
+   file that disagrees is damaged). */
+static void sps__transfer_field(sps_world* w, sps__body* b, const sps__field_info* f, int count, sps__stream* s) {
     const int arrays = f->axes ? w->dim : 1;
-    const unsigned char* present = sps__take(r, 1, f->what);
     void* first;
+    unsigned char present;
     int a;
     memcpy(&first, sps__field_slot(w, b, f, 0), sizeof first);
-    if (present && (*present != 0) != (first != NULL)) r->bad = f->what; /* the models decide it: a mismatch is a damaged file */
-    for (a = 0; a < arrays && first && !r->bad; ++a) {
+    present = first != NULL;
+    if (s->out) sps__put(s->out, &present, 1);
+    else {
+        const unsigned char* in_file = sps__take(s->in, 1, f->what);
+        if (in_file && (*in_file != 0) != present) s->in->bad = f->what;
+    }
+    for (a = 0; a < arrays && present && !sps__stream_bad(s); ++a) {
         void* x;
         memcpy(&x, sps__field_slot(w, b, f, a), sizeof x);
-        sps__get(r, x, sps__field_bytes(f) * (size_t)count, f->what);
+        sps__item(s, x, sps__field_bytes(f) * (size_t)count, f->what);
     }
 }
 
-/* Reads the neighbour lists into the per-particle lists (nb_ell) the lane slots are built from. */
-static void sps__get_lists(sps_world* w, sps__reader* r) {
-    const unsigned char* counts = sps__take(r, sizeof(int) * (size_t)w->n, "neighbour counts");
+/* The neighbour lists: counts, then each particle's neighbours; read into the per-particle
+   lists (nb_ell) the lane slots are built from, each count and index checked. */
+static void sps__transfer_lists(sps_world* w, sps__stream* s) {
+    const unsigned char* counts;
     int i, m;
-    for (i = 0; i < w->n && counts && !r->bad; ++i) {
+    if (s->out) {
+        sps__put(s->out, w->nb_count, sizeof(int) * (size_t)w->n);
+        for (i = 0; i < w->n; ++i)
+            for (m = 0; m < w->nb_count[i]; ++m) sps__put_int(s->out, sps__neighbor(w, i, m));
+        return;
+    }
+    counts = sps__take(s->in, sizeof(int) * (size_t)w->n, "neighbour counts");
+    for (i = 0; i < w->n && counts && !s->in->bad; ++i) {
         int count;
         memcpy(&count, counts + sizeof(int) * (size_t)i, sizeof count);
-        if (count < 0 || count > w->ell_width) { r->bad = "neighbour counts"; break; }
-        if (r->apply) w->nb_count[i] = count;
-        for (m = 0; m < count && !r->bad; ++m) {
-            const int j = sps__get_count(r, w->n - 1, "neighbours");
-            if (r->apply) w->nb_ell[(size_t)i * w->ell_width + m] = j;
+        if (count < 0 || count > w->ell_width) { s->in->bad = "neighbour counts"; break; }
+        if (s->in->apply) w->nb_count[i] = count;
+        for (m = 0; m < count && !s->in->bad; ++m) {
+            const int j = sps__get_count(s->in, w->n - 1, "neighbours");
+            if (s->in->apply) w->nb_ell[(size_t)i * w->ell_width + m] = j;
         }
     }
 }
 
-/* SPS_ROTATION_PAIR: the kept pair forces, laid out by id. */
-static void sps__get_kept_forces(sps_world* w, int kept, sps__reader* r) {
-    const unsigned char* counts = sps__take(r, sizeof(int) * (size_t)kept, "kept pair counts");
+/* SPS_ROTATION_PAIR: the kept pair forces of `kept` ids, laid out by id: the counts, then each
+   id's neighbour ids and forces. */
+static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
+    const unsigned char* counts;
     long first = 0;
     int id;
-    for (id = 0; id < kept && counts && !r->bad; ++id) {
+    if (s->out) {
+        sps__put(s->out, w->kept_count, sizeof(int) * (size_t)kept);
+        for (id = 0; id < kept; ++id) {
+            sps__put(s->out, w->kept_neighbor_id + w->kept_first[id], sizeof(int) * (size_t)w->kept_count[id]);
+            sps__put(s->out, w->kept_force + w->kept_first[id], sizeof(sps_real) * (size_t)w->kept_count[id]);
+        }
+        return;
+    }
+    counts = sps__take(s->in, sizeof(int) * (size_t)kept, "kept pair counts");
+    for (id = 0; id < kept && counts && !s->in->bad; ++id) {
         int count;
         memcpy(&count, counts + sizeof(int) * (size_t)id, sizeof count);
-        if (count < 0 || first + count > w->pair_force_cap) { r->bad = "kept pair counts"; break; }
-        if (r->apply) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
-        sps__get(r, w->kept_neighbor_id + first, sizeof(int) * (size_t)count, "kept pairs");
-        sps__get(r, w->kept_force + first, sizeof(sps_real) * (size_t)count, "kept pair forces");
+        if (count < 0 || first + count > w->pair_force_cap) { s->in->bad = "kept pair counts"; break; }
+        if (s->in->apply) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
+        sps__get(s->in, w->kept_neighbor_id + first, sizeof(int) * (size_t)count, "kept pairs");
+        sps__get(s->in, w->kept_force + first, sizeof(sps_real) * (size_t)count, "kept pair forces");
         first += count;
     }
-    if (r->apply && !r->bad) w->kept_ids = kept;
 }
 
-/* The payload written by sps__put_state, into a world whose storage is committed
-   (sps__ready_to_step). Returns whether it held the neighbour lists. */
-static int sps__get_state(sps_world* w, sps__reader* r) {
-    int64_t steps[2] = {0, 0};
-    int k, bi, m, kept, good_n, stopped, lists, armed, fired, impact, fragment;
-    sps__get(r, &w->time, sizeof w->time, "time");
-    sps__get(r, &w->dt, sizeof w->dt, "time step");
-    sps__get(r, &w->vmax, sizeof w->vmax, "maximum speed");
-    sps__get(r, steps, sizeof steps, "step counters");
-    stopped = sps__get_count(r, 1, "stopped flag");
-    sps__get(r, w->failure, sizeof w->failure, "failure message");
-    armed = sps__get_count(r, 1, "energy watchdog flag");
-    fired = sps__get_count(r, 1, "energy watchdog flag");
-    sps__get(r, &w->watch.checked_at, sizeof w->watch.checked_at, "energy watchdog");
-    sps__get(r, &w->watch.start, sizeof w->watch.start, "energy watchdog");
-    sps__get(r, &w->watch.scale, sizeof w->watch.scale, "energy watchdog");
-    sps__get(r, &w->watch.start_time, sizeof w->watch.start_time, "energy watchdog");
-    impact = sps__get_count(r, 1, "impact warning flag");
+/* The payload, both ways: every item of the state once, in file order. Saving passes the
+   world cast from const (nothing is written into it); restoring runs it twice, a dry run that
+   checks and then the one that applies (sps__restore), into a world whose storage is committed
+   (sps__ready_to_step). Returns whether the payload holds the neighbour lists. */
+static int sps__transfer_state(sps_world* w, sps__stream* s) {
+    int64_t steps[2];
+    int k, bi, m, kept, good_n, lists;
+    steps[0] = w->acoustic_steps; steps[1] = w->advection_steps;
+    sps__item(s, &w->time, sizeof w->time, "time");
+    sps__item(s, &w->dt, sizeof w->dt, "time step");
+    sps__item(s, &w->vmax, sizeof w->vmax, "maximum speed");
+    sps__item(s, steps, sizeof steps, "step counters");
+    sps__count_item(s, &w->stopped, 1, "stopped flag");
+    sps__item(s, w->failure, sizeof w->failure, "failure message");
+    sps__count_item(s, &w->watch.armed, 1, "energy watchdog flag"); /* the guards' memory: the watchdog's start, what was said */
+    sps__count_item(s, &w->watch.fired, 1, "energy watchdog flag");
+    sps__item(s, &w->watch.checked_at, sizeof w->watch.checked_at, "energy watchdog");
+    sps__item(s, &w->watch.start, sizeof w->watch.start, "energy watchdog");
+    sps__item(s, &w->watch.scale, sizeof w->watch.scale, "energy watchdog");
+    sps__item(s, &w->watch.start_time, sizeof w->watch.start_time, "energy watchdog");
+    sps__count_item(s, &w->impact_warned, 1, "impact warning flag");
     for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__get(r, w->bodies[bi].mean_rotation, sizeof w->bodies[bi].mean_rotation, "mean rotation");
-        sps__get(r, w->bodies[bi].mean_spin, sizeof w->bodies[bi].mean_spin, "mean spin");
-        sps__get(r, &w->bodies[bi].energy_start, sizeof w->bodies[bi].energy_start, "energy watchdog");
-        fragment = sps__get_count(r, 1, "fragment warning flag");
-        if (r->apply) w->bodies[bi].fragment_reported = fragment;
+        sps__body* b = &w->bodies[bi];
+        sps__item(s, b->mean_rotation, sizeof b->mean_rotation, "mean rotation");
+        sps__item(s, b->mean_spin, sizeof b->mean_spin, "mean spin");
+        sps__item(s, &b->energy_start, sizeof b->energy_start, "energy watchdog");
+        sps__count_item(s, &b->fragment_reported, 1, "fragment warning flag");
     }
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];
         if (!(f->care & SPS__CARRIED)) continue;
-        if (!f->per_body) sps__get_field(w, NULL, f, w->n, r);
+        if (!f->per_body) sps__transfer_field(w, NULL, f, w->n, s);
         else
-            for (bi = 0; bi < w->nbodies; ++bi) sps__get_field(w, &w->bodies[bi], f, w->bodies[bi].count, r);
+            for (bi = 0; bi < w->nbodies; ++bi) sps__transfer_field(w, &w->bodies[bi], f, w->bodies[bi].count, s);
     }
-    if ((lists = sps__get_count(r, 1, "list flag")) != 0) sps__get_lists(w, r);
-    kept = sps__get_count(r, w->pair_force ? w->n : 0, "kept pair count");
-    if (kept) sps__get_kept_forces(w, kept, r);
-    good_n = sps__get_count(r, w->good ? w->n : 0, "last good state");
-    if (good_n) {
+    lists = w->lists_valid; /* saving: whether the lists are written; restoring: whether the file has them */
+    if ((lists = sps__count_item(s, &lists, 1, "list flag")) != 0) sps__transfer_lists(w, s);
+    kept = w->pair_force ? w->kept_ids : 0;
+    if ((kept = sps__count_item(s, &kept, w->pair_force ? w->n : 0, "kept pair count")) != 0) sps__transfer_kept_forces(w, kept, s);
+    good_n = w->good ? w->good_n : 0;
+    if ((good_n = sps__count_item(s, &good_n, w->good ? w->n : 0, "last good state")) != 0) {
         sps_real* block;
         size_t length;
-        sps__get(r, &w->good_time, sizeof w->good_time, "last good time");
-        sps__get(r, w->good_id, sizeof(int) * (size_t)good_n, "last good ids");
+        sps__item(s, &w->good_time, sizeof w->good_time, "last good time");
+        sps__item(s, w->good_id, sizeof(int) * (size_t)good_n, "last good ids");
         for (m = 0; (block = sps__good_block(w, good_n, m, &length)) != NULL; ++m)
-            sps__get(r, block, sizeof(sps_real) * length, "last good state");
+            sps__item(s, block, sizeof(sps_real) * length, "last good state");
     }
-    if (r->apply && !r->bad) {
-        w->stopped = stopped;
-        w->watch.armed = armed;
-        w->watch.fired = fired;
-        w->impact_warned = impact;
+    if (s->in && s->in->apply && !s->in->bad) {
+        if (kept) w->kept_ids = kept;
         w->good_n = good_n;
         w->acoustic_steps = (long)steps[0];
         w->advection_steps = (long)steps[1];
     }
-    if (!r->bad && r->left != 0) r->bad = "payload length";
+    if (s->in && !s->in->bad && s->in->left != 0) s->in->bad = "payload length";
     return lists;
+}
+
+static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__writer* s) {
+    const uint32_t words[3] = {SPS__RESTART_BYTE_ORDER, SPS__RESTART_VERSION, (uint32_t)sizeof(sps_real)};
+    double print[SPS__WORLD_PRINT], body[SPS__BODY_PRINT];
+    const uint64_t scene = sps__scene_hash(w);
+    int bi;
+    sps__put(s, sps__restart_magic, sizeof sps__restart_magic);
+    sps__put(s, words, sizeof words);
+    sps__put(s, &payload_bytes, sizeof payload_bytes);
+    sps__world_print(w, print);
+    sps__put(s, print, sizeof print);
+    sps__put(s, &scene, sizeof scene);
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps__body_print(&w->bodies[bi], body);
+        sps__put(s, body, sizeof body);
+    }
+}
+
+SPSDEF sps_result sps_world_save(const sps_world* w, const char* path) {
+    sps__writer count = {NULL, 0, 0, 0}, out = {NULL, 0, SPS__FNV_OFFSET, 0};
+    sps__stream counting = {NULL, NULL}, writing = {NULL, NULL};
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!path) { sps__set_error_const(w, "sps_world_save: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    if (w->n == 0 || w->needs_sort_by_body) {
+        sps__set_error_const(w, "sps_world_save: %s: step first (a restart holds the state between steps)",
+                             w->n == 0 ? "the world has no particles" : "particles were added since the last step");
+        return SPS_ERR_STATE;
+    }
+    /* a world that cannot step (an empty body added since) has no state to go on from; the
+       check writes only the error message (see sps__set_error_const) */
+    if (sps__check_bodies_filled((sps_world*)w) != SPS_OK) return SPS_ERR_STATE;
+    counting.out = &count;
+    sps__transfer_state((sps_world*)w, &counting); /* writes nothing into the world (see sps__transfer_state) */
+    out.f = fopen(path, "wb");
+    if (!out.f) { sps__set_error_const(w, "sps_world_save: cannot open '%s' for writing", path); return SPS_ERR_IO; }
+    sps__put_header(w, count.bytes, &out);
+    out.hash = SPS__FNV_OFFSET; /* the checksum covers the payload */
+    writing.out = &out;
+    sps__transfer_state((sps_world*)w, &writing);
+    {
+        const uint64_t hash = out.hash;
+        sps__put(&out, &hash, sizeof hash);
+    }
+    if (fclose(out.f) != 0 || out.failed) { sps__set_error_const(w, "sps_world_save: error writing '%s'", path); return SPS_ERR_IO; }
+    return SPS_OK;
 }
 
 /* The header: magic, byte order, version and sps_real of this build; the payload's length. */
@@ -8837,10 +9062,10 @@ static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path)
         return SPS_ERR_IO;
     }
     sps__world_print(w, mine);
-    for (k = 0; k < SPS__WORLD_PRINT; ++k)
-        if (!(file[k] == mine[k])) {
+    for (k = 0; k < SPS__WORLD_PRINT; ++k) /* bit for bit: a NaN the checks let through (a field the kind does not read) equals itself */
+        if (memcmp(&file[k], &mine[k], sizeof file[k]) != 0) {
             sps__set_error(w, 0, "sps_world_restore: '%s' was saved from another scene: %s = %g in the file, %g in this world "
-                           "(build the scene as it was built before the save, then restore)", path, sps__world_print_names[k], file[k], mine[k]);
+                           "(build the scene as it was built before the save, then restore)", path, sps__world_print_name(k), file[k], mine[k]);
             return SPS_ERR_STATE;
         }
     for (bi = 0; bi < w->nbodies; ++bi) {
@@ -8850,10 +9075,10 @@ static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path)
         }
         sps__body_print(&w->bodies[bi], body_mine);
         for (k = 0; k < SPS__BODY_PRINT; ++k)
-            if (!(body_file[k] == body_mine[k])) {
+            if (memcmp(&body_file[k], &body_mine[k], sizeof body_file[k]) != 0) {
                 sps__set_error(w, 0, "sps_world_restore: '%s' was saved from another scene: body %d ('%s') %s = %g in the file, %g in this "
                                "world (build the scene as it was built before the save, then restore)", path, bi, w->bodies[bi].name,
-                               sps__body_print_names[k], body_file[k], body_mine[k]);
+                               sps__body_print_name(k), body_file[k], body_mine[k]);
                 return SPS_ERR_STATE;
             }
     }
@@ -8899,20 +9124,22 @@ static sps_result sps__restore(sps_world* w, FILE* f, const char* path) {
     uint64_t payload_bytes = 0;
     unsigned char* payload = NULL;
     sps__reader r;
+    sps__stream reading;
     sps_result res;
     int i, lists;
     if ((res = sps__read_header(w, f, path, &payload_bytes)) != SPS_OK || (res = sps__read_fingerprint(w, f, path)) != SPS_OK) return res;
     if ((res = sps__ready_to_step(w)) != SPS_OK) return res; /* the storage the state goes into */
     if ((res = sps__read_payload(w, f, path, payload_bytes, &payload)) != SPS_OK) { sps__free(w, payload); return res; }
+    reading.out = NULL; reading.in = &r;
     r.at = payload; r.left = (size_t)payload_bytes; r.apply = 0; r.bad = NULL;
-    sps__get_state(w, &r);
+    sps__transfer_state(w, &reading);
     if (r.bad) {
         sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: its %s do not fit this world", path, r.bad);
         sps__free(w, payload);
         return SPS_ERR_IO;
     }
     r.at = payload; r.left = (size_t)payload_bytes; r.apply = 1;
-    lists = sps__get_state(w, &r);
+    lists = sps__transfer_state(w, &reading);
     sps__free(w, payload);
     for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i;
     for (i = 0; lists && i < w->nbodies; ++i) /* total Lagrangian: the restored lists are the reference ones */

@@ -3677,8 +3677,8 @@ static int test_restart_refused(void) {
     other.shear = SPS_SHEAR_GNO_A;
     ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "shear = 1 in the file, 5 in this world") == 0);
     other = sc;
-    other.contact = 1;
-    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "particle count") == 0);
+    other.contact = 1; /* gravity on, a second body and a wall: the def item is named first */
+    ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "gravity[1] = 0 in the file") == 0);
     other = sc;
     other.shift = 0.0005; /* the same counts and models, the particles a tenth of dp away */
     ENSURE(restore_refused(&other, path, SPS_ERR_STATE, "reference positions") == 0);
@@ -5740,6 +5740,285 @@ static int test_granular_free_grain_stops(void) {
     return 0;
 }
 
+/* ============================================================================================ */
+/* >>restart (issue 36): the fingerprint derived from the def items                             */
+
+/* One def field changed between the save and the restore: its name as the message writes it. */
+typedef struct def_change {
+    const char* name;
+    int world; /* 1: a field of the world def, 0: of the body def */
+    int tl;    /* 1: saved and restored with a total-Lagrangian Neo-Hookean body (the field is for those only) */
+} def_change;
+
+/* Changes field k of the list in restore_def_changes: a value the checks accept, not the default. */
+static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
+    sps_material_def* m = &bd->material;
+    switch (k) {
+    case 0: wd->dim = 3; break;
+    case 1: wd->dp = 0.02; break;
+    case 2: wd->h_over_dp = 1.5; break;
+    case 3: wd->kernel = SPS_KERNEL_CUBIC_SPLINE; break;
+    case 4: wd->stepping = SPS_STEPPING_SINGLE; break;
+    case 5: wd->cfl_acoustic = 0.3; break;
+    case 6: wd->cfl_advection = 0.1; break;
+    case 7: wd->max_substeps = 50; break;
+    case 8: wd->gravity[0] = 1; break;
+    case 9: wd->gravity[1] = 1; break;
+    case 10: wd->gravity[2] = 1; break;
+    case 11: wd->frozen_geometry = 1; break;
+    case 12: wd->neighbor_capacity = 3; break;
+    case 13: wd->escape_distance = 1; break;
+    case 14: wd->energy_growth_limit = 0.1; break;
+    case 15: wd->energy_growth_stops = 1; break;
+    case 16: wd->keep_last_good_state = 1; break;
+    case 17: m->kind = SPS_MATERIAL_RIGID; break;
+    case 18: m->density = 2000; break;
+    case 19: m->youngs_modulus = 2e6; break;
+    case 20: m->poisson_ratio = 0.25; break;
+    case 21: m->yield_stress = 1e3; break;
+    case 22: m->hardening_modulus = 1e3; break;
+    case 23: m->sound_speed = 10; break;
+    case 24: m->viscosity = 0.1; break;
+    case 25: m->cohesion = 1; break;
+    case 26: m->friction_angle = 10; break;
+    case 27: m->friction_angle = 10; m->dilatancy_angle = 5; break; /* the file has friction_angle 0: named first */
+    case 28: bd->shear = SPS_SHEAR_GNO_A; break;
+    case 29: bd->rotation = SPS_ROTATION_MEAN; break;
+    case 30: bd->zeta = 3; break;
+    case 31: bd->xi = 3; break;
+    case 32: bd->oas_epsilon = 0.2; break;
+    case 33: bd->oas_exponent = 3; break;
+    case 34: bd->track_stress = 1; break;
+    case 35: bd->solver = SPS_SOLVER_TOTAL_LAGRANGIAN; m->kind = SPS_MATERIAL_NEO_HOOKEAN; break; /* solver named first */
+    case 36: bd->transport = SPS_TRANSPORT_TVF; break;
+    case 37: bd->contact = 0; break;
+    case 38: bd->transport_coefficient = 0.3; break;
+    case 39: bd->damping = 1; break;
+    case 40: bd->hourglass_alpha = 10; break;
+    case 41: bd->hourglass = SPS_HOURGLASS_PAPER; break;
+    case 42: bd->artificial_viscosity = 0.5; break;
+    case 43: bd->stress_diffusion = 0.2; break;
+    case 44: bd->friction = 0.3; break;
+    case 45: bd->contact_damping = 0.5; break;
+    case 46: bd->damage_strain = 0.01; break;
+    }
+}
+
+/* A block of one body, built from the defaults (tl: a total-Lagrangian Neo-Hookean body) with
+   change k applied (k < 0: none). */
+static sps_world* fingerprint_scene(int k, int tl, sps_result* added) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.05, 0.05};
+    sps_world* w = NULL;
+    sps_body b;
+    wd.dp = 0.01; wd.threads = 1; wd.log = quiet_log;
+    if (tl) { bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN; }
+    change_def(k, &wd, &bd);
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
+    *added = sps_world_add_body(w, &bd, &b);
+    if (*added == SPS_OK) *added = sps_body_add_box(w, b, lo, hi, NULL);
+    return w;
+}
+
+/* Every def field that changes results, changed between the save and the restore: the
+   restore is refused with SPS_ERR_STATE, and the message names the field (the list is the
+   test's own, not the library's table: a field missing from the table fails here). */
+static int test_restart_every_def_field(void) {
+#define WORLD_FIELD(name) {name, 1, 0}
+#define BODY_FIELD(name) {name, 0, 0}
+#define TL_FIELD(name) {name, 0, 1}
+    static const def_change changes[] = {
+        WORLD_FIELD("dim"), WORLD_FIELD("dp"), WORLD_FIELD("h_over_dp"), WORLD_FIELD("kernel"), WORLD_FIELD("stepping"),
+        WORLD_FIELD("cfl_acoustic"), WORLD_FIELD("cfl_advection"), WORLD_FIELD("max_substeps"), WORLD_FIELD("gravity[0]"),
+        WORLD_FIELD("gravity[1]"), WORLD_FIELD("gravity[2]"), WORLD_FIELD("frozen_geometry"), WORLD_FIELD("neighbor_capacity"),
+        WORLD_FIELD("escape_distance"), WORLD_FIELD("energy_growth_limit"), WORLD_FIELD("energy_growth_stops"),
+        WORLD_FIELD("keep_last_good_state"), BODY_FIELD("material.kind"), BODY_FIELD("material.density"),
+        BODY_FIELD("material.youngs_modulus"), BODY_FIELD("material.poisson_ratio"), BODY_FIELD("material.yield_stress"),
+        BODY_FIELD("material.hardening_modulus"), BODY_FIELD("material.sound_speed"), BODY_FIELD("material.viscosity"),
+        BODY_FIELD("material.cohesion"), BODY_FIELD("material.friction_angle"), BODY_FIELD("material.friction_angle"),
+        BODY_FIELD("shear"), BODY_FIELD("rotation"), BODY_FIELD("zeta"), BODY_FIELD("xi"), BODY_FIELD("oas_epsilon"),
+        BODY_FIELD("oas_exponent"), BODY_FIELD("track_stress"), BODY_FIELD("solver"), BODY_FIELD("transport"),
+        BODY_FIELD("contact"), BODY_FIELD("transport_coefficient"), BODY_FIELD("damping"), BODY_FIELD("hourglass_alpha"),
+        BODY_FIELD("hourglass"), TL_FIELD("artificial_viscosity"), BODY_FIELD("stress_diffusion"), BODY_FIELD("friction"),
+        BODY_FIELD("contact_damping"), TL_FIELD("damage_strain")};
+#undef WORLD_FIELD
+#undef BODY_FIELD
+#undef TL_FIELD
+    const int count = (int)(sizeof changes / sizeof changes[0]);
+    char paths[2][40] = {"/tmp/test_sphsolid_fingerprint_XXXXXX", "/tmp/test_sphsolid_fingerprint_XXXXXX"}, needle[96];
+    sps_result added = SPS_OK;
+    sps_world* w;
+    int fd, k, tl;
+    for (tl = 0; tl < 2; ++tl) { /* the saved scenes: updated and total Lagrangian */
+        w = fingerprint_scene(-1, tl, &added);
+        ENSURE(w && added == SPS_OK && sps_world_step(w) == SPS_OK);
+        ENSURE((fd = mkstemp(paths[tl])) >= 0);
+        close(fd);
+        ENSURE(sps_world_save(w, paths[tl]) == SPS_OK);
+        sps_world_destroy(w);
+    }
+    /* one change per row of the library's tables (the dilatancy and solver changes need another
+       field changed too, which the message names first) */
+    ENSURE(count == SPS__WORLD_DEF_ITEMS + SPS__BODY_DEF_ITEMS);
+    for (k = 0; k < count; ++k) {
+        sps_result r;
+        w = fingerprint_scene(k, changes[k].tl, &added);
+        ENSURE(w != NULL);
+        if (added != SPS_OK) printf("    change %d (%s): the scene was refused: %s\n", k, changes[k].name, sps_world_last_error(w));
+        ENSURE(added == SPS_OK);
+        r = sps_world_restore(w, paths[changes[k].tl]);
+        snprintf(needle, sizeof needle, "%s%s = ", changes[k].world ? "another scene: " : "') ", changes[k].name);
+        if (r != SPS_ERR_STATE || !strstr(sps_world_last_error(w), needle))
+            printf("    change %d: restore gave %d '%s', expected SPS_ERR_STATE naming '%s'\n", k, (int)r, sps_world_last_error(w), needle);
+        ENSURE(r == SPS_ERR_STATE && strstr(sps_world_last_error(w), needle));
+        sps_world_destroy(w);
+    }
+    remove(paths[0]);
+    remove(paths[1]);
+    return 0;
+}
+
+/* The issue's case: an updated-Lagrangian J2 body saved, restored into a total-Lagrangian J2
+   world: SPS_ERR_STATE naming the solver (it was SPS_ERR_IO, "its velocity gradient do not fit"). */
+static int test_restart_ul_j2_into_tl_j2(void) {
+    char path[] = "/tmp/test_sphsolid_fingerprint_XXXXXX";
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.05, 0};
+    sps_world* w = NULL;
+    sps_body b;
+    int fd, solver;
+    ENSURE((fd = mkstemp(path)) >= 0);
+    close(fd);
+    wd.dp = 0.01; wd.threads = 1; wd.log = quiet_log;
+    bd.material.kind = SPS_MATERIAL_J2; bd.material.yield_stress = 1e4; bd.shear = SPS_SHEAR_GNO_A;
+    for (solver = 0; solver < 2; ++solver) {
+        bd.solver = solver ? SPS_SOLVER_TOTAL_LAGRANGIAN : SPS_SOLVER_UPDATED_LAGRANGIAN;
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK && sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK);
+        if (solver == 0) ENSURE(sps_world_step(w) == SPS_OK && sps_world_save(w, path) == SPS_OK);
+        else {
+            ENSURE(sps_world_restore(w, path) == SPS_ERR_STATE);
+            ENSURE(strstr(sps_world_last_error(w), "solver = 0 in the file, 1 in this world") != NULL);
+        }
+        sps_world_destroy(w);
+    }
+    remove(path);
+    return 0;
+}
+
+/* ============================================================================================ */
+/* >>defaults (issue 36): a parameter a body does not read gets a warning naming it            */
+
+/* Adds a body of def bd to a fresh world; returns the warnings it logged (the last in g_log_last). */
+static int unread_warnings(const sps_body_def* bd) {
+    sps_world_def wd = sps_default_world_def();
+    sps_world* w = NULL;
+    sps_body b;
+    int before;
+    wd.log = quiet_log;
+    if (sps_world_create(&wd, &w) != SPS_OK) return -1;
+    g_log_last[0] = 0;
+    before = g_log_count;
+    if (sps_world_add_body(w, bd, &b) != SPS_OK) { sps_world_destroy(w); return -1; }
+    sps_world_destroy(w);
+    return g_log_count - before;
+}
+
+/* cohesion on an elastic body, hourglass_alpha on an updated-Lagrangian body, zeta on a GNO-A
+   body, sound_speed on a J2 body: one warning naming each field and its value; the same fields
+   on bodies that read them, and the defaults, give none. */
+static int test_unread_parameter_warned(void) {
+    sps_body_def bd = sps_default_body_def();
+    ENSURE(unread_warnings(&bd) == 0);
+    bd.material.cohesion = 5;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.cohesion = 5") && strstr(g_log_last, "(elastic, updated Lagrangian, ENO-A)"));
+    bd = sps_default_body_def();
+    bd.hourglass_alpha = 0;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "hourglass_alpha = 0") && strstr(g_log_last, "updated Lagrangian"));
+    bd = sps_default_body_def();
+    bd.shear = SPS_SHEAR_GNO_A; bd.zeta = 3; bd.material.kind = SPS_MATERIAL_J2; bd.material.yield_stress = 1e4;
+    bd.material.sound_speed = 20;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.sound_speed = 20, zeta = 3") && strstr(g_log_last, "(J2, updated Lagrangian, GNO-A)"));
+    /* the same fields where they are read: no warning */
+    bd = sps_default_body_def();
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER; bd.material.cohesion = 5; bd.material.friction_angle = 30; bd.shear = SPS_SHEAR_GNO_A;
+    bd.xi = 3; bd.rotation = SPS_ROTATION_MEAN;
+    ENSURE(unread_warnings(&bd) == 0);
+    bd = sps_default_body_def();
+    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN; bd.hourglass_alpha = 10;
+    ENSURE(unread_warnings(&bd) == 0);
+    bd.zeta = 3; /* a total-Lagrangian body has no ENO term */
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "zeta = 3") && strstr(g_log_last, "total Lagrangian"));
+    bd = sps_default_body_def();
+    bd.material.kind = SPS_MATERIAL_FLUID; bd.material.sound_speed = 20; bd.material.youngs_modulus = 5e6;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.youngs_modulus = 5e+06") && strstr(g_log_last, "(fluid, updated Lagrangian)"));
+    return 0;
+}
+
+/* ============================================================================================ */
+/* >>forces (issue 36): a missing pass instance is an error at sps_world_add_body               */
+
+/* A model whose pressure-pass key no variant row holds (stress diffusion on an ENO-A body), or
+   a total-Lagrangian model of an elastic kind, has no kernel, and sps__missing_pass names the
+   pass and the choices; and every body def the checks
+   accept finds all its kernels, in each of the eight world modes, in this (release) build. */
+static int test_missing_pass_instance(void) {
+    static const int shears[] = {SPS_SHEAR_ENO, SPS_SHEAR_ENO_A, SPS_SHEAR_OG, SPS_SHEAR_OAS, SPS_SHEAR_GNO, SPS_SHEAR_GNO_A};
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps__model m;
+    sps__passes p;
+    char msg[768];
+    int mode, kind, shear, variant, accepted = 0;
+    wd.log = quiet_log;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    m = sps__resolve_model(&bd);
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure && !sps__missing_pass(&m, &p, msg, sizeof msg));
+    m.diffusion = 1;
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure == NULL);
+    ENSURE(sps__missing_pass(&m, &p, msg, sizeof msg) && strstr(msg, "no pressure pass instance for material.kind = elastic with ENO-A"));
+    ENSURE(strstr(msg, "stress diffusion 1") != NULL);
+    /* a total-Lagrangian model of a kind without a law of F (sps__tl_law_of maps no kind silently) */
+    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
+    m = sps__resolve_model(&bd);
+    m.material = sps__material_of(SPS_MATERIAL_ELASTIC);
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure == NULL && p.stress == NULL);
+    ENSURE(sps__missing_pass(&m, &p, msg, sizeof msg) && strstr(msg, "no total-Lagrangian force pass instance for material.kind = elastic"));
+    sps_world_destroy(w);
+    for (mode = 0; mode < 8; ++mode) { /* dim x kernel x frozen_geometry: the six modes (frozen ones twice) */
+        wd.dim = 2 + (mode & 1); wd.kernel = (sps_kernel_type)((mode >> 1) & 1); wd.frozen_geometry = mode >> 2;
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        for (kind = 0; kind <= SPS_MATERIAL_DRUCKER_PRAGER; ++kind)
+            for (shear = 0; shear < 6; ++shear)
+                for (variant = 0; variant < 64; ++variant) { /* rotation, solver, viscosity, track_stress, stress diffusion */
+                    sps_body b;
+                    sps_result r;
+                    bd = sps_default_body_def();
+                    bd.material.kind = (sps_material_kind)kind; bd.shear = (sps_shear)shears[shear];
+                    bd.material.yield_stress = 1e4; bd.material.sound_speed = 20; bd.material.friction_angle = 30;
+                    bd.rotation = (sps_rotation)(variant & 3);
+                    bd.solver = (sps_solver)((variant >> 2) & 1);
+                    bd.material.viscosity = (variant >> 3) & 1 ? 0.1 : 0;
+                    bd.track_stress = (variant >> 4) & 1;
+                    bd.stress_diffusion = (variant >> 5) & 1 ? 0.1 : 0;
+                    r = sps_world_add_body(w, &bd, &b);
+                    if (r != SPS_OK && strstr(sps_world_last_error(w), "pass instance")) printf("    %s\n", sps_world_last_error(w));
+                    ENSURE(r == SPS_OK || !strstr(sps_world_last_error(w), "pass instance"));
+                    accepted += r == SPS_OK;
+                }
+        sps_world_destroy(w);
+    }
+    printf("    %d body defs accepted, each with all its pass kernels\n", accepted);
+    ENSURE(accepted > 1000); /* the loop reached the combinations (about a third of 2688 per mode are refused by the rules) */
+    return 0;
+}
+
 int main(int argc, char** argv) {
     int i;
     /* OpenMP's default wait policy spins in barriers. On a machine whose cores are busy with
@@ -5881,6 +6160,10 @@ int main(int argc, char** argv) {
     RUN(test_granular_block_holds_shape);
     RUN(test_granular_lattice_moment);
     RUN(test_granular_free_grain_stops);
+    RUN(test_restart_every_def_field);
+    RUN(test_restart_ul_j2_into_tl_j2);
+    RUN(test_unread_parameter_warned);
+    RUN(test_missing_pass_instance);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
