@@ -179,7 +179,10 @@
       rotation and track_stress are not used), and the Riemann solver of UTVF eqs. 16-20: the
       momentum equation's dissipation Z beta (v_ij . e_ij), Z = rho0 c0, with the limiter beta =
       min(3 max(-v_ij . e_ij / c0, 0), 1) (none while particles separate), and the continuity
-      equation's pressure term (p_i - p_j)/(rho0 c0) dW V_j, which diffuses the density. The
+      equation's pressure term (p_i - p_j)/(rho0 c0) dW V_j, which diffuses the density; with
+      gravity it takes p_i - p_j - rho0 g . x_ij, so that the hydrostatic pressure of water at
+      rest, cut by its free surface, does not make its density creep up (bench/VALIDATION.md,
+      "Fluid at rest over long times"). The
       velocity divergence is tr L of the corrected velocity gradient L = -sum v_ij (x) B_i grad
       W_ij V_j instead of UTVF eq. 16's sum (v_ij . e_ij) dW V_j: exact for a linear flow also
       where a free surface cuts the kernel (the elliptical drop's semi-axis a at dp = 0.02 was
