@@ -124,7 +124,9 @@ $(BUILD)/damping_cost: bench/damping_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUI
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/granular_cost: bench/granular_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
+$(BUILD)/fluid_rest: bench/fluid_rest.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh

@@ -186,7 +186,10 @@
       rotation and track_stress are not used), and the Riemann solver of UTVF eqs. 16-20: the
       momentum equation's dissipation Z beta (v_ij . e_ij), Z = rho0 c0, with the limiter beta =
       min(3 max(-v_ij . e_ij / c0, 0), 1) (none while particles separate), and the continuity
-      equation's pressure term (p_i - p_j)/(rho0 c0) dW V_j, which diffuses the density. The
+      equation's pressure term (p_i - p_j)/(rho0 c0) dW V_j, which diffuses the density; with
+      gravity it takes p_i - p_j - rho0 g . x_ij, so that the hydrostatic pressure of water at
+      rest, cut by its free surface, does not make its density creep up (bench/VALIDATION.md,
+      "Fluid at rest over long times"). The
       velocity divergence is tr L of the corrected velocity gradient L = -sum v_ij (x) B_i grad
       W_ij V_j instead of UTVF eq. 16's sum (v_ij . e_ij) dW V_j: exact for a linear flow also
       where a free surface cuts the kernel (the elliptical drop's semi-axis a at dp = 0.02 was
@@ -1619,6 +1622,9 @@ typedef struct sps__body {
     sps__material_constants mat; /* its material's c0, G and K */
     sps_real rho0, zeta;
     sps_real z_riemann;   /* rho0 c0: dissipation impedance of the Riemann solver */
+    sps_real rest_pressure_gradient[3]; /* a fluid: rho0 g, the pressure gradient of water at rest,
+                                           which the density diffusion leaves alone (>>material:
+                                           weakly compressible fluid); 0 for other bodies */
     sps_real xi, oas_eps, oas_w_dp;
     sps_real oas_factor[SPS__OAS_MAX_EXPONENT]; /* OAS: 1 for the first oas_exponent factors of f^n, then 0 */
     sps_real mean_rotation[9];
@@ -2389,6 +2395,18 @@ static sps_real sps__fluid_energy_density(const sps__material_constants* c, sps_
     (void)tau_tau;
     return p * p / (2 * c->K);
 }
+/* The density diffusion of the Riemann solver, drho_i += rho_i sum_j (p_i - p_j) / (rho0 c0)
+   dW_ij V_j (sps__continuity_pairs), acts on the pressure difference of a pair less its
+   hydrostatic part rho0 g . x_ij: in water at rest p_i - p_j is that part, and where the
+   kernel is cut by the free surface its sum is not zero (below a surface particle, no
+   neighbour above), so the surface's density would grow for as long as the water rests (by
+   about g / c0 a second: the level and the pressure creep up, bench/VALIDATION.md "Fluid at
+   rest over long times"). Without gravity the term is that of UTVF eq. 18 unchanged (the
+   granular stress diffusion leaves its geostatic part alone the same way). */
+static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
+    int a;
+    for (a = 0; a < 3; ++a) b->rest_pressure_gradient[a] = a < w->dim ? b->rho0 * w->def.gravity[a] : 0;
+}
 /* >>material: Drucker-Prager (granular media; UTVF sections 2.3, 3.1.3)
 
    Elastic-perfectly plastic: the linear elastic law (c0 = sqrt(K/rho0), as the reference code),
@@ -3097,6 +3115,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->mat = b->model.material->constants(&def->material);
     b->zeta = def->zeta > 0 ? def->zeta : SPS_R(0.7) * w->dim + SPS_R(2.1); /* ENO section 4 */
     b->z_riemann = b->rho0 * b->mat.c0;
+    if (def->material.kind == SPS_MATERIAL_FLUID) sps__fluid_rest_gradient(w, b);
     b->xi = def->xi > 0 ? def->xi : 2; /* ANG section 5: xi_G = 2 */
     b->oas_eps = def->oas_epsilon;
     for (k = 0; k < SPS__OAS_MAX_EXPONENT; ++k) b->oas_factor[k] = (sps_real)(k < (int)def->oas_exponent);
@@ -5396,12 +5415,14 @@ typedef struct {
 static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
     const sps__image_sums* s = (const sps__image_sums*)user;
     const sps_real* v = b->model.stress ? m->vv : m->v;
-    sps_real e[3], r, dv[3];
+    const sps_real* rest = b->rest_pressure_gradient;
+    sps_real e[3], r, dv[3], rest_dp;
     const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), dwv = dw * w->vol[m->j];
     int a, c;
     if (dw == 0) return;
     for (a = 0; a < 3; ++a) dv[a] = a < w->dim ? w->vel[a][i] - v[a] : 0;
-    s->sum[SPS__DRHO][s->lane] += (w->p[i] - m->p) / b->z_riemann * dwv;
+    rest_dp = r * (rest[0] * e[0] + rest[1] * e[1] + rest[2] * e[2]); /* the image pair's hydrostatic difference */
+    s->sum[SPS__DRHO][s->lane] += (w->p[i] - m->p - rest_dp) / b->z_riemann * dwv;
     for (a = 0; a < w->dim; ++a)
         for (c = 0; c < w->dim; ++c) s->sum[SPS__M00 + 3 * a + c][s->lane] -= dv[a] * dwv * e[c];
     sps__add_moment(&s->sum[SPS__A00][s->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
@@ -5541,13 +5562,15 @@ static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__grou
    pair's force g_ij += 2 zeta G dt (v_ij . e_ij) dW/r V_i V_j instead of the particle's
    Laplacian: every factor is symmetric in i, j bit for bit, so g_ij = g_ji and the shear
    forces stay exactly antisymmetric; laplacian sums ENO's per-particle Laplacian. riemann (a
-   fluid) adds the Riemann solver's pressure term to the density rate, drho += (p_i - p_j) /
-   (rho0 c0) dW V_j (UTVF eqs. 16, 18: 2 (v_i - v*) . e_ij with the acoustic U*), which diffuses
-   the density. All are literals at every call (branch-free loops). */
+   fluid) adds the Riemann solver's pressure term to the density rate, drho += (p_i - p_j -
+   rho0 g . x_ij) / (rho0 c0) dW V_j (UTVF eqs. 16, 18: 2 (v_i - v*) . e_ij with the acoustic
+   U*), which diffuses the density (less its hydrostatic part: sps__fluid_rest_gradient). All
+   are literals at every call (branch-free loops). */
 SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, sps__group q, const int dim, const int geo,
                                        const int gradient, const int paired, const int laplacian, const int riemann,
                                        sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES]) {
     const sps_real inv_z = riemann ? 1 / b->z_riemann : 0;
+    const sps_real rest_x = b->rest_pressure_gradient[0], rest_y = b->rest_pressure_gradient[1], rest_z = b->rest_pressure_gradient[2];
     const sps_real *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT p = w->p;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     sps_real* SPS__RESTRICT pair_force = w->pair_force;
@@ -5556,7 +5579,8 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, sps__gr
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;
             const sps_real dvx = vx[i] - vx[j], dvy = vy[i] - vy[j], dvz = dim == 3 ? vz[i] - vz[j] : 0;
             const sps_real u = dvx * ex + dvy * ey + dvz * ez, dwv = dw * vol[j];
-            sum[SPS__DRHO][l] += riemann ? (p[i] - p[j]) * inv_z * dwv : u * dwv; /* a fluid's u: in tr L */
+            const sps_real rest_dp = riemann ? e.r * (rest_x * ex + rest_y * ey + (dim == 3 ? rest_z * ez : 0)) : 0;
+            sum[SPS__DRHO][l] += riemann ? (p[i] - p[j] - rest_dp) * inv_z * dwv : u * dwv; /* a fluid's u: in tr L */
             if (paired) {
                 pair_force[s] += shear_rate * (u * dw_r) * (vol[i] * vol[j]);
             } else if (laplacian) {
