@@ -106,6 +106,7 @@ int main(int argc, char** argv) {
     s.t_ramp = ramp * 2 * PI / omega;
     if (c.t_end <= 0) c.t_end = periods * 2 * PI / omega;
     ex_check(NULL, sps_world_create(&wd, &w));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &s.beam));
     ex_check(w, sps_body_add_box(w, s.beam, lo, hi, NULL));
     ex_check(w, sps_body_constrain_box(w, s.beam, clo, chi, SPS_AXIS_ALL, NULL, NULL));

@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
     ex_granular_body(&bd, &g);
     w = ex_granular_world(&wd, 2, dp);
     ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
     ex_check(w, sps_world_diagnostics(w, all, &d0));

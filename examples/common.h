@@ -304,6 +304,20 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
+/* The shared options set the updated-Lagrangian shear formulation on every body; a body that
+   does not read it (total Lagrangian; Drucker-Prager without GNO's penalty) would be warned
+   about it by sps_world_add_body, so it gets the library's defaults back (no effect on results). */
+EX_UNUSED static void ex_unset_unread(sps_body_def* bd) {
+    const sps_body_def d0 = sps_default_body_def();
+    const int granular_without_penalty = bd->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && bd->shear != SPS_SHEAR_GNO && bd->shear != SPS_SHEAR_GNO_A;
+    if (bd->solver == SPS_SOLVER_TOTAL_LAGRANGIAN || granular_without_penalty) {
+        bd->shear = d0.shear;
+        bd->rotation = d0.rotation;
+        bd->zeta = d0.zeta;
+        bd->xi = d0.xi;
+    }
+}
+
 /* ---- contact friction and material damping (CONTACT and DAMPING in the header's manual) ---- */
 typedef struct {
     double friction;  /* Coulomb mu of the bodies (a pair's: sqrt(mu_a mu_b)) */

@@ -118,6 +118,7 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_add_wall(w, side_lo, plus_z, SPS_WALL_FREE_SLIP));
     ex_check(w, sps_world_add_wall(w, side_hi, minus_z, SPS_WALL_FREE_SLIP));
     ex_granular_body(&bd, &g);
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     lo[0] = (sps_real)shape.x0; hi[0] = (sps_real)shape.x1;
     lo[1] = (sps_real)(-tan(a) * shape.x1); hi[1] = (sps_real)shape.y_top;

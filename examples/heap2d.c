@@ -98,6 +98,7 @@ int main(int argc, char** argv) {
     bd.damping = (sps_real)damping;
     w = ex_granular_world(&wd, 2, dp);
     ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
 

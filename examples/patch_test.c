@@ -103,6 +103,7 @@ static void add_patch(sps_world* w, sps_body patch, int n, double jitter, int se
     }
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &probe)); /* the jittered points, from scene_add_box */
+    ex_unset_unread(&bd);
     ex_check(probe, sps_world_add_body(probe, &bd, &b));
     ex_check(probe, scene_add_box(probe, b, lo, hi, jitter, seed));
     m = sps_world_particle_count(probe);
@@ -166,6 +167,7 @@ int main(int argc, char** argv) {
     bd.hourglass = (sps_hourglass)hourglass_form;
     bd.artificial_viscosity = (sps_real)artificial_viscosity;
     ex_check(NULL, sps_world_create(&wd, &w));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &patch));
     add_patch(w, patch, n, c.jitter, c.seed);
     stretch(w, 1.1);

@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
     if (c.csv_every <= 0) c.csv_every = c.t_end / 200;
     if (c.vtk_every == 0) c.vtk_every = c.t_end / 5;
     ex_check(NULL, sps_world_create(&wd, &w));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &block));
     ex_check(w, sps_body_add_box(w, block, lo, hi, NULL));
     td.name = "top tool";

@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
     ex_granular_body(&bd, &g);
     w = ex_granular_world(&wd, 3, dp);
     ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
     ex_check(w, sps_body_set_geostatic_stress(w, soil, (sps_real)EDGE, 0));

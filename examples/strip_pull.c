@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
     if (c.csv_every <= 0) c.csv_every = c.t_end / 200;
     if (c.vtk_every == 0) c.vtk_every = c.t_end / 5;
     ex_check(NULL, sps_world_create(&wd, &w));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &strip));
     ex_check(w, sps_body_add_box(w, strip, lo, hi, NULL));
     /* the clamped rows: the top one (y > H - dp) up at v, the bottom one (y < dp) down at v */

@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
     bd.hourglass = (sps_hourglass)hourglass_form;
     bd.artificial_viscosity = (sps_real)artificial_viscosity;
     ex_check(NULL, sps_world_create(&wd, &w));
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &bar));
     lo[1] = (sps_real)(0.5 * dp); /* the foot half a spacing above the wall */
     hi[1] = (sps_real)(L + 0.5 * dp);

@@ -148,6 +148,7 @@ int main(int argc, char** argv) {
     bd.damage_strain = (sps_real)eps_max;
     ex_check(NULL, sps_world_create(&wd, &w));
     memset(&s, 0, sizeof s);
+    ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &s.body));
     ex_check(w, sps_body_add_sdf(w, s.body, lo, hi, specimen, NULL, &n));
     v_left[0] = (sps_real)-v;

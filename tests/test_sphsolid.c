@@ -6230,8 +6230,8 @@ int main(int argc, char** argv) {
     RUN(test_restart_ul_j2_into_tl_j2);
     RUN(test_unread_parameter_warned);
     RUN(test_missing_pass_instance);
-
     RUN(test_fluid_rest_long);
+
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;
