@@ -5741,7 +5741,7 @@ static int test_granular_free_grain_stops(void) {
 }
 
 /* ============================================================================================ */
-/* >>restart (issue 36): the fingerprint derived from the def items                             */
+/* >>restart: the fingerprint derived from the def items                                        */
 
 /* One def field changed between the save and the restore: its name as the message writes it. */
 typedef struct def_change {
@@ -5909,7 +5909,7 @@ static int test_restart_ul_j2_into_tl_j2(void) {
 }
 
 /* ============================================================================================ */
-/* >>defaults (issue 36): a parameter a body does not read gets a warning naming it            */
+/* >>defaults: a parameter a body does not read gets a warning naming it                       */
 
 /* Adds a body of def bd to a fresh world; returns the warnings it logged (the last in g_log_last). */
 static int unread_warnings(const sps_body_def* bd) {
@@ -5958,7 +5958,7 @@ static int test_unread_parameter_warned(void) {
 }
 
 /* ============================================================================================ */
-/* >>forces (issue 36): a missing pass instance is an error at sps_world_add_body               */
+/* >>forces: a missing pass instance is an error at sps_world_add_body                          */
 
 /* A model whose pressure-pass key no variant row holds (stress diffusion on an ENO-A body), or
    a total-Lagrangian model of an elastic kind, has no kernel, and sps__missing_pass names the
