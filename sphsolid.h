@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.9.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.10.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -685,6 +685,17 @@
       the contact surface's velocity (a thrown disc leaves with omega R / v_t 1.09-1.21).
 
    REVISION HISTORY
+      0.10.0 (2026-12-03) restart fingerprint from one table of def items (every field that
+                         changes results is checked and named; format version 2), the payload
+                         from one item list; a def field a body does not read is warned about;
+                         a missing pass instance is refused at sps_world_add_body in every
+                         build; SPHSOLID_NO_FLUID/_GRANULAR/_PLASTICITY/_TOTAL_LAGRANGIAN;
+                         examples/hello.c; water at rest stays at rest (the Riemann density
+                         diffusion leaves the hydrostatic difference alone; fluid results move);
+                         granular stress divergence scaled by the lattice's kernel-gradient
+                         moment, GNO-A's penalty only between elastic grains, Coulomb friction of
+                         grains at free-slip walls (granular results move); examples
+                         elastic_gate, heap2d, the demo's water tank.
       0.9.0 (2026-12-03) default rotation SPS_ROTATION_AUTO (pair for ENO-A, mean for GNO-A):
                          the default body survives tumbling and impacts; the watchdog names the
                          likely cause and counts in sps_diagnostics (energy_growth,
@@ -759,9 +770,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 9
+#define SPHSOLID_VERSION_MINOR 10
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.9.0"
+#define SPHSOLID_VERSION_STRING "0.10.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
