@@ -1,0 +1,748 @@
+/* test_fluids.c - fluids, granular media and the fluid-structure coupling.
+   Included by tests/test_sphsolid.c (the runner, its helpers and the RUN list). */
+
+/* ============================================================================================ */
+
+
+/* ---- fluids and transport corrections (FLUIDS, TRANSPORT) ---- */
+
+static sps_real hydrostatic_04(const sps_real x[3], void* user) {
+    (void)user;
+    return (sps_real)(1000 * 9.81 * (0.4 - (double)x[1]));
+}
+
+/* A water column 0.4 m deep at rest in a tank of analytic walls, started hydrostatic, stays at
+   rest: the pressure at mid-depth stays that of the column and no current builds up. */
+static int test_fluid_hydrostatic_rest(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body water, all = {0};
+    sps_diagnostics d;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {0.4, 0.4, 0}, tank_hi[3] = {0.4, 1, 0};
+    const sps_real *y, *p;
+    const double g = 9.81, depth = 0.4, v_ref = sqrt(2 * g * depth), dp = 0.02;
+    double p_mid = 0;
+    int i, n, mid = 0;
+    wd.dim = 2;
+    wd.dp = dp;
+    wd.threads = 1;
+    wd.gravity[1] = -g;
+    wd.log = quiet_log;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    bd.material.kind = SPS_MATERIAL_FLUID;
+    bd.material.sound_speed = 10 * v_ref;
+    ENSURE(sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &bd, &water) == SPS_OK);
+    ENSURE(sps_body_add_box(w, water, lo, hi, NULL) == SPS_OK);
+    ENSURE(sps_body_set_pressure(w, water, hydrostatic_04, NULL) == SPS_OK);
+    ENSURE(sps_world_advance(w, 1, NULL, NULL) == SPS_OK); /* about 70 acoustic crossings of the column */
+    ENSURE(sps_world_diagnostics(w, all, &d) == SPS_OK);
+    y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    n = sps_world_particle_count(w);
+    for (i = 0; i < n; ++i)
+        if (fabs(y[i] - depth / 2) < dp) { p_mid += p[i]; ++mid; }
+    ENSURE(mid > 0);
+    p_mid /= mid;
+    printf("    mid-depth pressure %.1f Pa (column %.1f), max speed %.3g m/s (%.2g sqrt(2 g H))\n", p_mid, 1000 * g * depth / 2,
+           (double)d.max_speed, (double)d.max_speed / v_ref);
+    /* 4 %: the column rings after its start (measured: mid-depth pressure within +5.5 % / -2 %
+       over the first second at dp = 0.02, 20 particles deep) */
+    ENSURE_NEAR(p_mid, 1000 * g * depth / 2, 0.04 * 1000 * g * depth / 2);
+    /* 3 % of the speed a fall from the surface gives: the ripple (measured <= 2 %), no current
+       (a particle leaking through a corner reached 30 % before the walls' backstop) */
+    ENSURE(d.max_speed < 0.03 * v_ref);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* ---- granular media (GRANULAR) ---- */
+
+/* The C5 soil (rho0 1850, E 1.8 MPa, nu 0.3, c 5 kPa, phi 25 deg). */
+static sps_material_def c5_soil(void) {
+    sps_material_def m = sps_default_material_def();
+    m.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    m.density = 1850;
+    m.youngs_modulus = 1.8e6;
+    m.poisson_ratio = 0.3;
+    m.cohesion = 5e3;
+    m.friction_angle = 25;
+    return m;
+}
+
+/* f = alpha_phi I1 + sqrt(J2) - k_c of a stress (xx xy xz yy yz zz) on the cone of m. */
+static double yield_function(const sps_real s[6], const sps_material_def* m) {
+    const sps__yield_cone c = sps__yield_cone_of(m);
+    const double i1 = (double)(s[0] + s[3] + s[5]);
+    sps_real dev[6];
+    int a;
+    for (a = 0; a < 6; ++a) dev[a] = (sps_real)(s[a] - (a == 0 || a == 3 || a == 5 ? i1 / 3 : 0));
+    return (double)c.alpha_phi * i1 + sqrt(0.5 * (double)sps__sym_contract(dev, dev)) - (double)c.k_c;
+}
+
+/* The Drucker-Prager return mapping puts a trial outside the cone onto it (f = 0), keeps the
+   direction of its deviator, leaves a trial inside alone, and moves a tensile trial beyond the
+   apex to the apex (I1 = k_c / alpha_phi, zero deviator). Random trials, with and without
+   cohesion. */
+static int test_drucker_prager_return_on_cone(void) {
+    unsigned long long seed = 5;
+    int k, a, outside = 0, inside = 0, apex = 0;
+    for (k = 0; k < 400; ++k) {
+        sps_material_def m = c5_soil();
+        sps__yield_cone c;
+        sps_real t[6], before[6];
+        double scale = (k % 4 + 0.2) * 2e4, f0, i1, dev_before[6], dev_after[6], ratio = 0;
+        if (k % 3 == 0) m.cohesion = 0;
+        c = sps__yield_cone_of(&m);
+        for (a = 0; a < 6; ++a) before[a] = t[a] = (sps_real)(scale * rnd(&seed));
+        f0 = yield_function(t, &m);
+        i1 = (double)(t[0] + t[3] + t[5]);
+        sps__drucker_prager_return(t, &c);
+        if (f0 <= 0) { /* inside: untouched, up to the roundings of taking the mean out and back in */
+            for (a = 0; a < 6; ++a) ENSURE_NEAR(t[a], before[a], 1e-15 * 4 * scale);
+            ++inside;
+            continue;
+        }
+        /* on the cone: f = 0 up to roundings of stresses of scale 1e5 Pa */
+        ENSURE(fabs(yield_function(t, &m)) < 1e-9 * scale);
+        if (c.alpha_phi > 0 && i1 > (double)(c.k_c / c.alpha_phi)) { /* beyond the apex: at the apex */
+            ENSURE_NEAR(t[0] + t[3] + t[5], c.k_c / c.alpha_phi, 1e-12 * scale);
+            ENSURE(fabs((double)(t[1])) < 1e-9 * scale && fabs((double)(t[0] - t[3])) < 1e-9 * scale);
+            ++apex;
+            continue;
+        }
+        for (a = 0; a < 6; ++a) { /* the deviator scaled, not turned */
+            const int d = a == 0 || a == 3 || a == 5;
+            dev_before[a] = (double)before[a] - (d ? i1 / 3 : 0);
+            dev_after[a] = (double)t[a] - (d ? i1 / 3 : 0);
+            if (fabs(dev_before[a]) > fabs(ratio * dev_before[a]) && fabs(dev_before[a]) > 1e-3 * scale) ratio = dev_after[a] / dev_before[a];
+        }
+        ENSURE(ratio > 0 && ratio < 1);
+        for (a = 0; a < 6; ++a) ENSURE_NEAR(dev_after[a], ratio * dev_before[a], 1e-12 * scale);
+        ENSURE_NEAR(t[0] + t[3] + t[5], i1, 1e-12 * scale); /* the mean stress kept */
+        ++outside;
+    }
+    ENSURE(outside > 20 && inside > 20 && apex > 20); /* the random trials reached all three cases */
+    return 0;
+}
+
+/* The granular limiter (eta = 20 d) dissipates between approaching particles only: beta = 0
+   for every separating pair (u = v_ij . e_ij >= 0), 1 from an approach of c0 / eta on, linear
+   between. */
+static int test_granular_limiter_off_in_expansion(void) {
+    const double c0 = 28.5, eta = 20 * 2;
+    int k;
+    for (k = -100; k <= 100; ++k) {
+        const double u = k * 0.01 * c0 / 10, beta = (double)sps__riemann_limiter((sps_real)u, (sps_real)(eta / c0));
+        if (u >= 0) ENSURE(beta == 0);
+        else ENSURE_NEAR(beta, fmin(-eta * u / c0, 1), 1e-15);
+    }
+    return 0;
+}
+
+/* A block of cohesive soil, 2 m wide and 1 m deep, in a box of no-slip walls under gravity,
+   started from its geostatic stress, stays at rest: the vertical stress at mid-depth stays
+   -rho0 g H/2 and no particle moves. */
+static int test_granular_block_at_rest(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body soil, all = {0};
+    sps_diagnostics d;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {2, 1, 0}, box_hi[3] = {2, 2, 0};
+    const double g = 9.8, depth = 1, dp = 0.05, rho0 = 1850, v_ref = sqrt(2 * g * depth);
+    const sps_real *y, *p, *tau;
+    double sigma_mid = 0;
+    int i, n, first, mid = 0;
+    wd.dim = 2;
+    wd.dp = dp;
+    wd.threads = 1;
+    wd.gravity[1] = -g;
+    wd.log = quiet_log;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    bd.material = c5_soil();
+    ENSURE(sps_world_add_box_walls(w, lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &bd, &soil) == SPS_OK);
+    ENSURE(sps_body_add_box(w, soil, lo, hi, NULL) == SPS_OK);
+    ENSURE(sps_body_set_geostatic_stress(w, soil, (sps_real)depth, 0) == SPS_OK);
+    ENSURE(sps_world_advance(w, 0.5, NULL, NULL) == SPS_OK); /* about 14 crossings of the block by sound */
+    ENSURE(sps_world_diagnostics(w, all, &d) == SPS_OK);
+    y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    tau = sps_body_field(w, soil, "shear_stress", NULL, &first, &n);
+    ENSURE(tau && first == 0 && n == sps_world_particle_count(w)); /* the only body */
+    for (i = 0; i < n; ++i)
+        if (fabs(y[i] - depth / 2) < 0.6 * dp) { sigma_mid += tau[6 * i + 3] - p[i]; ++mid; }
+    ENSURE(mid > 0);
+    sigma_mid /= mid;
+    printf("    mid-depth vertical stress %.1f Pa (geostatic %.1f), max speed %.3g m/s (%.2g sqrt(2 g H)), max plastic strain %.3g\n",
+           sigma_mid, -rho0 * g * depth / 2, (double)d.max_speed, (double)d.max_speed / v_ref, (double)d.max_plastic_strain);
+    /* 5 % ("a few percent"; measured +0.7 %, 3.7 % before the divergence's lattice scale;
+       test_granular_block_holds_shape holds 2 % over 2 s) */
+    ENSURE_NEAR(sigma_mid, -rho0 * g * depth / 2, 0.05 * rho0 * g * depth / 2);
+    /* 1 % of the speed a fall from the surface gives: at rest (measured 0.55 %, the zigzag mode) */
+    ENSURE(d.max_speed < 0.01 * v_ref);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* Bad granular input is refused with a message naming the field, its value and the range. */
+static int test_granular_bad_input(void) {
+    sps_world* w = new_world(2, 0.01);
+    sps_body_def d = sps_default_body_def(), bad;
+    ENSURE(w);
+    d.material = c5_soil();
+    bad = d; bad.material.cohesion = -1;         ENSURE(rejects_body_def(w, &bad, "material.cohesion = -1") == 0);
+    bad = d; bad.material.friction_angle = 90;   ENSURE(rejects_body_def(w, &bad, "material.friction_angle = 90") == 0);
+    bad = d; bad.material.dilatancy_angle = 30;  ENSURE(rejects_body_def(w, &bad, "material.dilatancy_angle = 30") == 0);
+    bad = d; bad.stress_diffusion = 2;           ENSURE(rejects_body_def(w, &bad, "stress_diffusion = 2") == 0);
+    bad = d; bad.shear = SPS_SHEAR_GNO_A; bad.rotation = SPS_ROTATION_PAIR;
+    ENSURE(rejects_body_def(w, &bad, "rotation = pair") == 0);
+    ENSURE(sps_body_set_geostatic_stress(w, (sps_body){0}, 1, 0) == SPS_ERR_INVALID_ARG);
+    { /* a soil body in a world without gravity, and an elastic one: both refused, with the reason */
+        sps_body soil, plate;
+        sps_body_def elastic = sps_default_body_def();
+        const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0};
+        ENSURE(sps_world_add_body(w, &d, &soil) == SPS_OK && sps_body_add_box(w, soil, lo, hi, NULL) == SPS_OK);
+        ENSURE(sps_world_add_body(w, &elastic, &plate) == SPS_OK && sps_body_add_box(w, plate, lo, hi, NULL) == SPS_OK);
+        ENSURE(sps_body_set_geostatic_stress(w, soil, 1, 0) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "gravity"));
+        ENSURE(sps_body_set_geostatic_stress(w, plate, 1, 0) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "material.kind"));
+    }
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* Two particles at one point (a cluster collapsed by tensile instability within an advection
+   step: the neighbour search leaves such pairs out, the pair geometry of the sub-steps meets
+   them) have no direction between them: the pair is taken as a padding slot is, e = 0 and
+   dW = 0 (it was 0/0, a NaN, and stopped the C7 flume), and the diagnostics stay finite. */
+static int test_coincident_particles_stay_finite(void) {
+    sps_world* w = new_world(2, 0.01);
+    sps_body_def bd = sps_default_body_def();
+    sps_body b, all = {0};
+    sps_diagnostics d;
+    const sps_real twins[6] = {0.02, 0.03, 0, 0.02, 0.03, 0};
+    sps__pair_geometry e;
+    ENSURE(w);
+    ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK);
+    ENSURE(sps_body_add_particles(w, b, 2, twins, NULL) == SPS_OK);
+    e = sps__pair(w, 0, 0, 1, 2, SPS__GEO_WENDLAND);
+    ENSURE(e.ex == 0 && e.ey == 0 && e.ez == 0 && e.dw == 0 && e.dw_r == 0 && sps__finite(e.r));
+    ENSURE(sps_world_diagnostics(w, all, &d) == SPS_OK);
+    ENSURE(sps__finite(d.hourglass));
+    sps_world_destroy(w);
+    return 0;
+}
+
+static void swirl(const sps_real x[3], sps_real v[3], void* user) {
+    (void)user;
+    v[0] = (sps_real)(3 * sin(7 * x[1]) + 1);
+    v[1] = (sps_real)(2 * cos(5 * x[0]) - x[0]);
+}
+
+/* A fluid block in a swirling flow with TVF and with UTVF (and an elastic one with UTVF): the
+   corrections move particles but not their velocities, so linear momentum is kept to round-off. */
+static int test_transport_keeps_linear_momentum(void) {
+    static const int kinds[3][2] = {{SPS_MATERIAL_FLUID, SPS_TRANSPORT_TVF}, {SPS_MATERIAL_FLUID, SPS_TRANSPORT_UTVF},
+                                    {SPS_MATERIAL_ELASTIC, SPS_TRANSPORT_UTVF}};
+    int k;
+    for (k = 0; k < 3; ++k) {
+        double moved = 0, scale = 0, dP = 0;
+        int pass, i, a, n = 0;
+        sps_real* before = NULL;
+        for (pass = 0; pass < 2; ++pass) { /* without, then with the correction */
+            sps_world* w = new_world(2, 0.05);
+            sps_body_def bd = sps_default_body_def();
+            sps_body b, all = {0};
+            sps_diagnostics d0, d1;
+            sps_real lo[3] = {0, 0, 0}, hi[3] = {1, 0.6, 0};
+            const sps_real* x;
+            ENSURE(w);
+            bd.material.kind = (sps_material_kind)kinds[k][0];
+            bd.material.sound_speed = 100;
+            bd.transport = pass ? (sps_transport)kinds[k][1] : SPS_TRANSPORT_NONE;
+            ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK);
+            ENSURE(sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK);
+            ENSURE(sps_body_set_velocity(w, b, swirl, NULL) == SPS_OK);
+            ENSURE(sps_world_diagnostics(w, all, &d0) == SPS_OK);
+            ENSURE(sps_world_advance(w, 0.02, NULL, NULL) == SPS_OK);
+            ENSURE(sps_world_diagnostics(w, all, &d1) == SPS_OK);
+            n = sps_world_particle_count(w);
+            x = sps_world_field(w, SPS_FIELD_POSITION_X);
+            if (!pass) {
+                before = (sps_real*)malloc(sizeof(sps_real) * (size_t)n);
+                ENSURE(before);
+                memcpy(before, x, sizeof(sps_real) * (size_t)n);
+            } else {
+                const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
+                for (i = 0; i < n; ++i) {
+                    moved = fmax(moved, fabs(x[i] - before[i]));
+                    scale += m[i] * 4;
+                }
+                for (a = 0; a < 2; ++a) dP = fmax(dP, fabs(d1.linear_momentum[a] - d0.linear_momentum[a]));
+            }
+            sps_world_destroy(w);
+        }
+        free(before);
+        printf("    %s + %s: largest shift %.3g dp, momentum change %.2g of sum m |v|\n", kinds[k][0] ? "fluid" : "elastic",
+               kinds[k][1] == SPS_TRANSPORT_TVF ? "TVF" : "UTVF", moved / 0.05, dP / scale);
+        ENSURE(moved > 1e-6 * 0.05); /* the correction did move particles */
+        ENSURE(dP < 1e-12 * scale);  /* round-off of a sum of ~240 momenta */
+    }
+    return 0;
+}
+
+static sps_real crushing(const sps_real x[3], void* user) {
+    (void)x, (void)user;
+    return -2e9;
+}
+
+static int test_fluid_bad_input(void) {
+    sps_world* w = new_world(2, 0.01);
+    sps_body_def d = sps_default_body_def(), bad;
+    sps_body b;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0};
+    ENSURE(w);
+    d.material.kind = SPS_MATERIAL_FLUID;
+    d.material.sound_speed = 10;
+    bad = d; bad.material.sound_speed = 0;    ENSURE(rejects_body_def(w, &bad, "material.sound_speed = 0") == 0);
+    bad = d; bad.material.sound_speed = NAN;  ENSURE(rejects_body_def(w, &bad, "material.sound_speed = nan") == 0);
+    bad = d; bad.material.viscosity = -1;     ENSURE(rejects_body_def(w, &bad, "material.viscosity = -1") == 0);
+    bad = d; bad.material.density = 0;        ENSURE(rejects_body_def(w, &bad, "material.density = 0") == 0);
+    bad = d; bad.transport = (sps_transport)7; ENSURE(rejects_body_def(w, &bad, "transport = 7") == 0);
+    bad = d; bad.transport_coefficient = 2;   ENSURE(rejects_body_def(w, &bad, "transport_coefficient = 2") == 0);
+    bad = sps_default_body_def(); bad.material.kind = SPS_MATERIAL_RIGID; bad.transport = SPS_TRANSPORT_UTVF;
+    ENSURE(rejects_body_def(w, &bad, "transport = TVF or UTVF with material.kind = rigid") == 0);
+    ENSURE(sps_world_add_body(w, &d, &b) == SPS_OK);
+    ENSURE(sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK);
+    ENSURE(sps_body_set_pressure(w, b, crushing, NULL) == SPS_ERR_INVALID_ARG); /* K = 1e5 Pa: rho would be negative */
+    ENSURE(strstr(sps_world_last_error(w), "pressure = -2e+09 Pa") != NULL);
+    ENSURE(sps_body_set_pressure(w, b, NULL, NULL) == SPS_ERR_INVALID_ARG);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* ---- fluid-structure coupling (chapter >>coupling: fluid-structure) ---- */
+
+/* Adds the lattice of [x0, x1] x [y0, y1] to body b (2D). */
+static int fsi_box(sps_world* w, sps_body b, double x0, double y0, double x1, double y1) {
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    lo[0] = (sps_real)x0; lo[1] = (sps_real)y0; hi[0] = (sps_real)x1; hi[1] = (sps_real)y1;
+    return sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK;
+}
+
+/* A 2D world with gravity g (downwards) and the tests' quiet log. */
+static sps_world* fsi_world(double dp, double g, int threads) {
+    sps_world_def wd = sps_default_world_def();
+    sps_world* w = NULL;
+    wd.dim = 2; wd.dp = (sps_real)dp; wd.threads = threads; wd.gravity[1] = (sps_real)-g; wd.log = quiet_log;
+    return sps_world_create(&wd, &w) == SPS_OK ? w : NULL;
+}
+
+static sps_body_def fsi_water(double c0) {
+    sps_body_def bd = sps_default_body_def();
+    bd.name = "water";
+    bd.material.kind = SPS_MATERIAL_FLUID;
+    bd.material.sound_speed = (sps_real)c0;
+    return bd;
+}
+
+/* A water block at 0.1 c0 hits an elastic block at rest (no gravity, no walls): linear momentum
+   is exact (each pair's force is computed once per side from the same values), the solid is
+   pushed, no water gets nearer a solid particle than dp/2, and 1 and 2 threads agree bit for bit. */
+static sps_world* fsi_collision(int threads, sps_body* water, sps_body* block) {
+    sps_world* w = fsi_world(0.01, 0, threads);
+    sps_body_def wd = fsi_water(20), sd = sps_default_body_def();
+    sps_real v = 2;
+    if (!w) return NULL;
+    sd.name = "block";
+    sd.material.density = 1000;
+    sd.material.youngs_modulus = 1e6;
+    if (sps_world_add_body(w, &wd, water) != SPS_OK || !fsi_box(w, *water, 0, 0, 0.2, 0.2) ||
+        sps_body_set_velocity(w, *water, velocity_x, &v) != SPS_OK || sps_world_add_body(w, &sd, block) != SPS_OK ||
+        !fsi_box(w, *block, 0.23, 0.05, 0.33, 0.15)) {
+        sps_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+static int test_coupling_momentum(void) {
+    sps_body water, block, water2, block2;
+    sps_world *w = fsi_collision(1, &water, &block), *w2 = fsi_collision(2, &water2, &block2);
+    sps_diagnostics d0, d1, db;
+    double scale, gap = 1e30, *s1, *s2;
+    int same;
+    ENSURE(w && w2);
+    ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d0) == SPS_OK);
+    scale = fabs((double)d0.linear_momentum[0]);
+    ENSURE(sps_world_advance(w, 0.04, track_gap, &gap) == SPS_OK); /* the water arrives at 0.015 s */
+    ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d1) == SPS_OK && sps_world_diagnostics(w, block, &db) == SPS_OK);
+    printf("    momentum x %.6g -> %.6g (block %.4g), y %.3g; smallest gap %.3f dp\n", (double)d0.linear_momentum[0],
+           (double)d1.linear_momentum[0], (double)db.linear_momentum[0], (double)d1.linear_momentum[1], gap);
+    ENSURE_NEAR(d1.linear_momentum[0], d0.linear_momentum[0], 1e-12 * scale); /* round-off of sums of ~1e5 pair forces */
+    ENSURE_NEAR(d1.linear_momentum[1], d0.linear_momentum[1], 1e-12 * scale);
+    ENSURE(db.linear_momentum[0] > 0.05 * scale); /* the water pushed the block (measured 0.105) */
+    ENSURE(gap > 0.5);                            /* the wall images keep the water off the solid (measured 1.14) */
+    ENSURE(sps_world_advance(w2, 0.04, NULL, NULL) == SPS_OK);
+    s1 = snapshot(w); s2 = snapshot(w2);
+    ENSURE(s1 && s2);
+    same = memcmp(s1, s2, sizeof(double) * 6 * (size_t)sps_world_particle_count(w)) == 0;
+    free(s1); free(s2);
+    sps_world_destroy(w); sps_world_destroy(w2);
+    ENSURE(same);
+    return 0;
+}
+
+static sps_real hydrostatic_fsi_04(const sps_real x[3], void* user) {
+    (void)user;
+    return (sps_real)(1000 * 9.81 * (0.4 - (double)x[1]));
+}
+
+/* Water 0.4 m deep at rest in a U-shaped tank that is a rigid body (no analytic walls), filled
+   up to the tank on the lattice and started hydrostatic: no first-step kick, the first layer
+   stays dp/2 from the solid's surface (dp from its surface particles) at the floor and at the
+   wall, the mid-depth pressure stays that of the column and no current builds up. */
+static int test_coupling_hydrostatic_rest(void) {
+    const double dp = 0.02, depth = 0.4, width = 0.4, t = 3 * dp, g = 9.81, v_ref = sqrt(2 * g * depth);
+    sps_world* w = fsi_world(dp, g, 1);
+    sps_body_def wd = fsi_water(10 * v_ref), td = sps_default_body_def();
+    sps_body water, tank;
+    sps_diagnostics d;
+    const sps_real *x, *y, *p;
+    double floor_gap = 0, wall_gap = 0, p_mid = 0, first_speed;
+    int i, first, count, components, nf = 0, nw = 0, nm = 0;
+    ENSURE(w);
+    td.name = "tank";
+    td.material.kind = SPS_MATERIAL_RIGID;
+    ENSURE(sps_world_add_body(w, &wd, &water) == SPS_OK && fsi_box(w, water, 0, 0, width, depth));
+    ENSURE(sps_body_set_pressure(w, water, hydrostatic_fsi_04, NULL) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &td, &tank) == SPS_OK && fsi_box(w, tank, -t, -t, width + t, 0));
+    ENSURE(fsi_box(w, tank, -t, 0, 0, 0.6) && fsi_box(w, tank, width, 0, width + t, 0.6));
+    ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE(sps_world_diagnostics(w, water, &d) == SPS_OK);
+    first_speed = (double)d.max_speed;
+    ENSURE(sps_world_advance(w, 0.5, NULL, NULL) == SPS_OK); /* about 35 acoustic crossings of the column */
+    ENSURE(sps_world_diagnostics(w, water, &d) == SPS_OK);
+    ENSURE(sps_body_field(w, water, "density", &components, &first, &count) != NULL);
+    x = sps_world_field(w, SPS_FIELD_POSITION_X); y = sps_world_field(w, SPS_FIELD_POSITION_Y); p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    for (i = first; i < first + count; ++i) {
+        if (x[i] > 0.25 * width && x[i] < 0.75 * width && y[i] < dp) { floor_gap += y[i]; ++nf; } /* surface y = 0 */
+        if (y[i] > 0.25 * depth && y[i] < 0.75 * depth && x[i] < dp) { wall_gap += x[i]; ++nw; } /* surface x = 0 */
+        if (fabs(y[i] - depth / 2) < dp) { p_mid += p[i]; ++nm; }
+    }
+    ENSURE(nf > 0 && nw > 0 && nm > 0);
+    floor_gap /= nf * dp; wall_gap /= nw * dp; p_mid /= nm;
+    printf("    first step max speed %.3g m/s; first layer %.3f dp (floor), %.3f dp (wall) from the surface; mid-depth p %.1f Pa "
+           "(column %.1f), max speed %.3g m/s (%.2g sqrt(2 g H))\n", first_speed, floor_gap, wall_gap, p_mid, 1000 * g * depth / 2,
+           (double)d.max_speed, (double)d.max_speed / v_ref);
+    ENSURE(first_speed < 0.005 * v_ref);      /* no kick (measured 0.25 %; the penalty threw a particle at 130 %) */
+    ENSURE(fabs(floor_gap - 0.5) < 0.1);      /* the dp/2 +- 0.1 dp (measured 0.53) */
+    ENSURE(fabs(wall_gap - 0.5) < 0.1);       /* (measured 0.51) */
+    /* 4 %: as the analytic-wall tank (test_fluid_hydrostatic_rest), the column rings after its start (measured +3.3 %) */
+    ENSURE_NEAR(p_mid, 1000 * g * depth / 2, 0.04 * 1000 * g * depth / 2);
+    ENSURE(d.max_speed < 0.03 * v_ref);       /* no current: the ripple (measured 2.0 %) */
+    sps_world_destroy(w);
+    return 0;
+}
+
+static sps_real hydrostatic_fsi_05(const sps_real x[3], void* user) {
+    (void)user;
+    return (sps_real)(1000 * 9.81 * (0.5 - (double)x[1]));
+}
+
+/* The draft of block b (its mean height minus half its height `size`) below the water's level
+   (the water's area at rho0 plus the block's part below the level fill the tank's width). */
+static double fsi_draft(const sps_world* w, sps_body water, sps_body block, double size, double width) {
+    const sps_real *y = sps_world_field(w, SPS_FIELD_POSITION_Y), *m = sps_world_field(w, SPS_FIELD_MASS);
+    double bottom = 0, area = 0;
+    int i, first, count, components;
+    sps_body_field(w, block, "density", &components, &first, &count);
+    for (i = first; i < first + count; ++i) bottom += y[i];
+    bottom = bottom / count - 0.5 * size;
+    sps_body_field(w, water, "density", &components, &first, &count);
+    for (i = first; i < first + count; ++i) area += m[i] / 1000;
+    return (area - size * bottom) / (width - size) - bottom; /* level (width - size) + size bottom = area */
+}
+
+/* An elastic block of density 600 starts where a block of density 500 floats (water filled
+   round it on the lattice) and, damped (the block only), sinks to the draft Archimedes gives,
+   0.6 of its height. */
+static int test_coupling_floating_block(void) {
+    const double dp = 0.02, width = 1, depth = 0.5, size = 0.2, draft0 = 0.5 * size, draft = 0.6 * size;
+    sps_world* w = fsi_world(dp, 9.81, 1);
+    sps_body_def wd = fsi_water(10 * sqrt(2 * 9.81 * depth)), bd = sps_default_body_def();
+    sps_body water, block;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {1, 2, 0};
+    double mean = 0;
+    int k;
+    ENSURE(w);
+    bd.name = "block";
+    bd.material.density = 600;
+    bd.material.youngs_modulus = 2e6;
+    bd.damping = 10; /* about critical for its heave (DAMPING: the equilibrium does not depend on it) */
+    ENSURE(sps_world_add_box_walls(w, lo, hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &wd, &water) == SPS_OK && fsi_box(w, water, 0, 0, width, depth - draft0));
+    ENSURE(fsi_box(w, water, 0, depth - draft0, 0.4, depth) && fsi_box(w, water, 0.6, depth - draft0, width, depth));
+    ENSURE(sps_body_set_pressure(w, water, hydrostatic_fsi_05, NULL) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &bd, &block) == SPS_OK && fsi_box(w, block, 0.4, depth - draft0, 0.6, depth - draft0 + size));
+    for (k = 1; k <= 10; ++k) { /* the mean over 0.8 .. 1 s */
+        ENSURE(sps_world_advance(w, (sps_real)(0.8 + 0.02 * k), NULL, NULL) == SPS_OK);
+        mean += fsi_draft(w, water, block, size, width) / 10;
+    }
+    printf("    draft %.4f m, Archimedes %.4f m (%+.2f %%)\n", mean, draft, 100 * (mean / draft - 1));
+    ENSURE_NEAR(mean, draft, 0.03 * draft); /* the 3 % (measured -1.1 %) */
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* Added mass: a block 50 times lighter than water and soft (E = 4 kPa: its own sound speed 14
+   m/s, the water's 20) dropped onto water stays finite: the coupling's signal speed c0_f
+   sqrt(rho_f / rho_s) = 141 m/s shortens the time step (without it: a negative density within
+   2 ms). */
+static int test_coupling_light_soft_block(void) {
+    sps_world* w = fsi_world(0.02, 9.81, 1);
+    sps_body_def wd = fsi_water(20), bd = sps_default_body_def();
+    sps_body water, block;
+    sps_diagnostics d;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {0.4, 1, 0};
+    ENSURE(w);
+    ENSURE(sps_world_add_box_walls(w, lo, hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
+    bd.name = "block";
+    bd.material.density = 20;
+    bd.material.youngs_modulus = 4e3;
+    ENSURE(sps_world_add_body(w, &wd, &water) == SPS_OK && fsi_box(w, water, 0, 0, 0.4, 0.2));
+    ENSURE(sps_world_add_body(w, &bd, &block) == SPS_OK && fsi_box(w, block, 0.1, 0.2, 0.3, 0.3));
+    ENSURE(sps_world_advance(w, 0.03, NULL, NULL) == SPS_OK);
+    ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
+    printf("    max speed %.3g m/s, density %.4g .. %.4g\n", (double)d.max_speed, (double)d.min_density, (double)d.max_density);
+    ENSURE(d.max_speed < 1); /* finite and calm: a fall of 0.03 s reaches 0.3 m/s (measured 0.125 m/s) */
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* A fluid and a solid that do not touch get a warning naming both: the water would flow through. */
+static int test_coupling_bad_input(void) {
+    sps_world* w = fsi_world(0.02, 9.81, 1);
+    sps_body_def wd = fsi_water(20), sd = sps_default_body_def();
+    sps_body water, plate;
+    ENSURE(w);
+    sd.name = "plate";
+    ENSURE(sps_world_add_body(w, &wd, &water) == SPS_OK && fsi_box(w, water, 0, 0.1, 0.2, 0.3));
+    ENSURE(sps_world_add_body(w, &sd, &plate) == SPS_OK && fsi_box(w, plate, 0, 0, 0.2, 0.1));
+    ENSURE(sps_world_set_contact(w, water, plate, 0) == SPS_OK);
+    g_log_count = 0;
+    ENSURE(sps_world_step(w) == SPS_OK);
+    printf("    %s\n", g_log_last);
+    ENSURE(g_log_count > 0 && strstr(g_log_last, "'water' and 'plate'") && strstr(g_log_last, "flows through"));
+    ENSURE(sps_world_set_contact(w, water, plate, 1) == SPS_OK); /* touching again: no warning */
+    g_log_count = 0;
+    ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE(g_log_count == 0);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* ---- granular media that hold their shape (GRANULAR; chapter >>material: Drucker-Prager,
+   >>walls for fluids) ---- */
+
+/* The C5 soil block of test_granular_block_at_rest in its box, started from its geostatic
+   stress, with the given shear formulation, run to t_end: its hourglass indicator and its
+   mid-depth vertical stress over the geostatic one, less 1. */
+static int granular_block_run(sps_shear shear, double t_end, double* hourglass, double* stress_error) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body soil, all = {0};
+    sps_diagnostics d;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {2, 1, 0}, box_hi[3] = {2, 2, 0};
+    const double g = 9.8, depth = 1, dp = 0.05, rho0 = 1850;
+    const sps_real *y, *p, *tau;
+    double sigma_mid = 0;
+    int i, n, first, mid = 0;
+    wd.dim = 2;
+    wd.dp = dp;
+    wd.threads = 1;
+    wd.gravity[1] = -g;
+    wd.log = quiet_log;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    bd.material = c5_soil();
+    bd.shear = shear;
+    ENSURE(sps_world_add_box_walls(w, lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &bd, &soil) == SPS_OK);
+    ENSURE(sps_body_add_box(w, soil, lo, hi, NULL) == SPS_OK);
+    ENSURE(sps_body_set_geostatic_stress(w, soil, (sps_real)depth, 0) == SPS_OK);
+    ENSURE(sps_world_advance(w, (sps_real)t_end, NULL, NULL) == SPS_OK);
+    ENSURE(sps_world_diagnostics(w, all, &d) == SPS_OK);
+    y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    tau = sps_body_field(w, soil, "shear_stress", NULL, &first, &n);
+    ENSURE(tau != NULL);
+    for (i = 0; i < n; ++i)
+        if (fabs(y[i] - depth / 2) < 0.6 * dp) { sigma_mid += tau[6 * i + 3] - p[i]; ++mid; }
+    ENSURE(mid > 0);
+    *hourglass = (double)d.hourglass;
+    *stress_error = sigma_mid / mid / (-rho0 * g * depth / 2) - 1;
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* The issue's acceptance: a geostatic block at rest for 2 s keeps its shape with the GNO-A
+   penalty (switched off on the cone): hourglass indicator below 0.005 and the mid-depth
+   vertical stress within 2 % of rho0 g H/2. The paper's formulation (the default, no
+   penalty) fails the first (measured 0.11 at 2 s: the zigzag mode grows under the load), so
+   the test can fail. */
+static int test_granular_block_holds_shape(void) {
+    double hourglass, error;
+    if (granular_block_run(SPS_SHEAR_GNO_A, 2, &hourglass, &error)) return 1;
+    printf("    GNO-A: hourglass %.4f, mid-depth stress %+.2f %%\n", hourglass, 100 * error);
+    ENSURE(hourglass < 0.005); /* the bound (measured 0.0000) */
+    ENSURE(fabs(error) < 0.02); /* the bound (measured +0.5 %: the lattice scale leaves 0.7 % of weight to the surface layer) */
+    if (granular_block_run(SPS_SHEAR_OG, 2, &hourglass, &error)) return 1;
+    printf("    OG (no penalty): hourglass %.4f, mid-depth stress %+.2f %%\n", hourglass, 100 * error);
+    ENSURE(hourglass > 0.05); /* the zigzag mode the penalty removes grows without it (measured 0.11) */
+    return 0;
+}
+
+/* The lattice's kernel-gradient moment that scales a granular body's stress divergence: the
+   direct sum over a lattice patch (Wendland C2, h = 1.3 dp, 2D) is 0.974, not 1 (the
+   continuum's value); and 1 within 1e-3 at h = 1.5 dp, where the lattice sum is near the
+   integral (both from an independent sum of the kernel's closed form). */
+static int test_granular_lattice_moment(void) {
+    const double ratios[2] = {1.3, 1.5};
+    int k;
+    for (k = 0; k < 2; ++k) {
+        sps_world_def wd = sps_default_world_def();
+        sps_world* w = NULL;
+        const double h = ratios[k], norm = 7 / (4 * 3.14159265358979323846 * h * h);
+        double sum = 0;
+        int a, b;
+        wd.dim = 2;
+        wd.dp = 1;
+        wd.h_over_dp = (sps_real)h;
+        wd.log = quiet_log;
+        ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+        for (a = -4; a <= 4; ++a)
+            for (b = -4; b <= 4; ++b) {
+                const double r = sqrt((double)(a * a + b * b)), q = r / h, f = 1 - q / 2;
+                if (r > 0 && q < 2) sum += r * (-5 * q * f * f * f) * norm / h; /* r dW/dr, V = dp^2 = 1 */
+            }
+        ENSURE_NEAR(sps__lattice_gradient_moment(w), -sum / 2, 1e-12);
+        if (k == 0) ENSURE_NEAR(-sum / 2, 0.974, 0.001);
+        else ENSURE_NEAR(-sum / 2, 1, 0.003);
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
+/* A grain (a cohesionless particle alone) sent at v0 = 0.5 m/s along a free-slip floor with
+   wall friction mu = tan(20 degrees) stops by Coulomb's law against its weight, after
+   v0^2 / (2 g mu) = 0.035 m (measured 0.0350 m); without the friction it slides on. */
+static int test_granular_free_grain_stops(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body grain;
+    const double dp = 0.002, g = 9.8, v0 = 0.5, phi = 20, expected = v0 * v0 / (2 * g * tan(phi * 3.14159265358979323846 / 180));
+    const sps_real lo[3] = {0, 0, 0}, hi[3] = {(sps_real)dp, (sps_real)dp, 0}, box_lo[3] = {-1, 0, 0}, box_hi[3] = {1, 1, 0};
+    sps_particle_state st;
+    wd.dim = 2;
+    wd.dp = (sps_real)dp;
+    wd.threads = 1;
+    wd.gravity[1] = (sps_real)-g;
+    wd.log = quiet_log;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    bd.material.density = 2040;
+    bd.material.youngs_modulus = (sps_real)5.84e6;
+    bd.material.cohesion = 0;
+    bd.material.friction_angle = (sps_real)phi;
+    ENSURE(sps_world_add_box_walls(w, box_lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
+    ENSURE(sps_world_set_wall_friction(w, -1, (sps_real)tan(phi * 3.14159265358979323846 / 180)) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &bd, &grain) == SPS_OK);
+    ENSURE(sps_body_add_box(w, grain, lo, hi, NULL) == SPS_OK);
+    ENSURE(sps_world_particle_count(w) == 1);
+    ENSURE(sps_world_advance(w, (sps_real)0.05, NULL, NULL) == SPS_OK); /* settles on the floor */
+    ENSURE(sps_world_particle(w, 0, &st) == SPS_OK);
+    st.velocity[0] = (sps_real)v0;
+    st.velocity[1] = 0;
+    ENSURE(sps_world_set_particle(w, 0, st.position, st.velocity) == SPS_OK);
+    {
+        const double x0 = (double)st.position[0];
+        ENSURE(sps_world_advance(w, (sps_real)0.5, NULL, NULL) == SPS_OK);
+        ENSURE(sps_world_particle(w, 0, &st) == SPS_OK);
+        printf("    slid %.4f m (Coulomb: %.4f m), speed at 0.45 s after the kick %.2g m/s\n", (double)st.position[0] - x0, expected,
+               (double)st.velocity[0]);
+        ENSURE(fabs((double)st.velocity[0]) < 1e-3); /* at rest: the stick drag holds it */
+        /* 15 %: the floor's normal force is the image's push, within a few % of the weight once the grain sits */
+        ENSURE_NEAR((double)st.position[0] - x0, expected, 0.15 * expected);
+    }
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* ---- fluid at rest over long times (chapter >>material: weakly compressible fluid) ---- */
+
+static sps_real hydrostatic_048(const sps_real x[3], void* user) {
+    (void)user;
+    return (sps_real)(1000 * 9.81 * (0.48 - (double)x[1]));
+}
+
+/* The mean pressure c0^2 (mean rho - rho0) and the mid-depth pressure of the tank's water. */
+static void tank_pressures(const sps_world* w, double c2, double depth, double dp, double* p_mean, double* p_mid, double* p_mid_ref) {
+    const sps_real *y = sps_world_field(w, SPS_FIELD_POSITION_Y), *p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    const sps_real* rho = sps_world_field(w, SPS_FIELD_DENSITY);
+    const int n = sps_world_particle_count(w);
+    double rho_sum = 0, y_mid = 0;
+    int i, mid = 0;
+    *p_mid = 0;
+    for (i = 0; i < n; ++i) {
+        rho_sum += rho[i];
+        if (fabs(y[i] - depth / 2) < dp) { *p_mid += p[i]; y_mid += y[i]; ++mid; }
+    }
+    *p_mean = c2 * (rho_sum / n - 1000);
+    *p_mid /= mid > 0 ? mid : 1;
+    y_mid /= mid > 0 ? mid : 1;
+    *p_mid_ref = 1000 * 9.81 * (depth - y_mid);
+}
+
+/* Water 0.48 m deep (12 particles) in a tank 1 m wide, started hydrostatic, stays at rest for
+   seconds: its mean pressure does not grow and the mid-depth pressure stays that of the column.
+   Where the free surface cuts the kernel, the density diffusion of the Riemann solver acting
+   on the hydrostatic pressure difference made the density grow (measured: mean pressure +36
+   Pa/s, the level up 9 mm/s, the mid-depth pressure +10 % of rho g h at 6 s). */
+static int test_fluid_rest_long(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body water;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {1, 0.48, 0}, tank_hi[3] = {1, 2, 0};
+    const double g = 9.81, depth = 0.48, dp = 0.04, c0 = 10 * sqrt(2 * g * 0.5), p_scale = 1000 * g * depth / 2;
+    double p_mean[2], p_mid[2], p_mid_ref[2];
+    int k;
+    wd.dim = 2;
+    wd.dp = dp;
+    wd.threads = 1;
+    wd.gravity[1] = -g;
+    wd.log = quiet_log;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    bd.material.kind = SPS_MATERIAL_FLUID;
+    bd.material.sound_speed = c0;
+    ENSURE(sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &bd, &water) == SPS_OK);
+    ENSURE(sps_body_add_box(w, water, lo, hi, NULL) == SPS_OK);
+    ENSURE(sps_body_set_pressure(w, water, hydrostatic_048, NULL) == SPS_OK);
+    for (k = 0; k < 2; ++k) { /* at 2 s (the start's ringing has died down) and at 6 s */
+        ENSURE(sps_world_advance(w, 2 + 4 * k, NULL, NULL) == SPS_OK);
+        tank_pressures(w, c0 * c0, depth, dp, &p_mean[k], &p_mid[k], &p_mid_ref[k]);
+        printf("    t = %d s: mean pressure %.1f Pa (column %.1f), mid-depth %.1f Pa (rho g h %.1f)\n", 2 + 4 * k, p_mean[k], p_scale,
+               p_mid[k], p_mid_ref[k]);
+    }
+    /* 1 % of the mean hydrostatic pressure over 4 s: the mean density only moves with the
+       surface's ripple at rest (measured +0.1 Pa; diffusing the full pressure difference: +148 Pa) */
+    ENSURE(fabs(p_mean[1] - p_mean[0]) < 0.01 * p_scale);
+    /* 4 %: the column's pressure at mid-depth, as test_fluid_hydrostatic_rest (measured +2 %) */
+    ENSURE_NEAR(p_mid[1], p_mid_ref[1], 0.04 * p_mid_ref[1]);
+    sps_world_destroy(w);
+    return 0;
+}
