@@ -282,6 +282,8 @@
       body (TRANSPORT). Measured (bench/VALIDATION.md, "Granular media that hold their
       shape"): a geostatic block at rest for 2 s keeps its mid-depth stress within 0.6 % and,
       with GNO-A, its hourglass indicator at 0.0000 (by default 0.11: the zigzag mode grows);
+      in flow the hourglass indicator reads the deformation, and the diagnostics' zigzag
+      (DIAGNOSTICS) tells the zigzag mode (above 1) from flow (C4: 0.2-0.7);
       a grain sent along a floor with wall friction stops where Coulomb's law stops it;
       particles pressed onto a wall still gather in its first row.
 
@@ -543,11 +545,12 @@
                          neighbours that the velocity gradient does not explain, per unit of
                          the one it does, at this instant, whatever the deformation so far. 0
                          for an affine velocity field (shear, rotation, stretch, translation;
-                         0 also when nothing moves), 0.2-0.5 in the flowing granular collapse
+                         0 also when nothing moves), 0.2-0.7 in the flowing granular collapse
                          C4, above 1 when the particle-scale zigzag mode outweighs the flow
                          (1.9-9.8 in a granular layer at rest without hourglass control). At
-                         rest any motion is mostly zigzag: read it with max_speed
-                         (bench/VALIDATION.md, "Granular media that hold their shape").
+                         rest, or in free fall, there is no gradient to compare with and any
+                         motion reads high: read it with max_speed (bench/VALIDATION.md,
+                         "Granular media that hold their shape").
       min spacing        smallest neighbour distance / dp: clustering when it falls below ~0.5.
 
    ERRORS
