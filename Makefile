@@ -205,7 +205,7 @@ SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 -
              "taylor_square --res 4 --tend 2e-6" "taylor_round --res 3 --tend 2e-6" "impact2d --dp 0.0008 --tend 5e-7" \
              "patch_test --n 8 --tend 0.05" "beam_tl --n 3 --periods 2" "strip_pull --dp 0.2 --length 2.2e-3" \
              "punch_tl --dp 0.3 --compression 0.02" "taylor2d_tl --dp 1 --tend 2e-6" "tensile3d --res 4 --tend 2e-6" \
-             "column_collapse2d --dp 0.01 --tend 0.01" "heap2d --dp 0.01 --tend 0.01" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
+             "column_collapse2d --dp 0.01 --tend 0.01" "heap2d --dp 0.01 --tend 0.01" "heap2d --dp 0.005 --tend 0.2 --pour" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
              "flume3d --dp 0.2 --tend 0.01" "debris_barrier3d --dp 0.3 --distance 2 --tend 0.01" \
              "incline --dp 0.01 --settle 0.01 --tend 0.02" "bounce --dp 0.01 --tend 0.01" "bounce --dp 0.01 --height 0.05 --tend 0.2 --contact-damping 1" \
              "floating_block --dp 0.05 --tend 0.01" "hydrostatic_fsi --res 2 --tend 0.005" "elastic_gate --res 2 --tend 0.002"

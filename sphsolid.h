@@ -282,6 +282,8 @@
       body (TRANSPORT). Measured (bench/VALIDATION.md, "Granular media that hold their
       shape"): a geostatic block at rest for 2 s keeps its mid-depth stress within 0.6 % and,
       with GNO-A, its hourglass indicator at 0.0000 (by default 0.11: the zigzag mode grows);
+      in flow the hourglass indicator reads the deformation, and the diagnostics' zigzag
+      (DIAGNOSTICS) tells the zigzag mode (above 1) from flow (C4: 0.2-0.7);
       a grain sent along a floor with wall friction stops where Coulomb's law stops it;
       particles pressed onto a wall still gather in its first row.
 
@@ -535,7 +537,20 @@
                          displacement from the reference position and Gu_i its B-corrected
                          gradient: the non-affine (zigzag) part of the displacement per unit pair
                          distance. Zero for any affine motion (including rigid rotation), about
-                         1e-4..1e-3 for smooth bending, >1e-2 when particles zigzag.
+                         1e-4..1e-3 for smooth bending, >1e-2 when particles zigzag. It
+                         measures deformation, not zigzag, in a flow (granular, fluid), where
+                         the displacement from the start is no longer smooth.
+      zigzag             sum_pairs |v_ij - L_ij r_ij| / sum_pairs |L_ij r_ij|, L_ij = 1/2 (Gv_i + Gv_j)
+                         with Gv_i the B-corrected velocity gradient: the relative velocity of
+                         neighbours that the velocity gradient does not explain, per unit of
+                         the one it does, at this instant, whatever the deformation so far. 0
+                         for an affine velocity field (shear, rotation, stretch, translation;
+                         0 also when nothing moves), 0.2-0.7 in the flowing granular collapse
+                         C4, above 1 when the particle-scale zigzag mode outweighs the flow
+                         (1.9-9.8 in a granular layer at rest without hourglass control). At
+                         rest, or in free fall, there is no gradient to compare with and any
+                         motion reads high: read it with max_speed (bench/VALIDATION.md,
+                         "Granular media that hold their shape").
       min spacing        smallest neighbour distance / dp: clustering when it falls below ~0.5.
 
    ERRORS
@@ -1073,7 +1088,10 @@ typedef struct sps_diagnostics {
     sps_real angular_momentum[3]; /* [kg m^2/s], about the origin */
     sps_real max_speed;           /* [m/s] */
     sps_real min_density, max_density; /* [kg/m^3] */
-    sps_real hourglass;           /* dimensionless zigzag indicator */
+    sps_real hourglass;           /* dimensionless zigzag indicator of the displacement */
+    sps_real zigzag;              /* the velocity's zigzag: the pairs' relative velocity the
+                                     velocity gradient does not explain, per unit of the one it
+                                     does (0 for smooth flow, above 1 for zigzag) */
     sps_real min_spacing;         /* smallest neighbour distance / dp (clustering below ~0.5) */
     long acoustic_steps, advection_steps;
     sps_real dt_acoustic;         /* last acoustic time step [s] */
@@ -1772,7 +1790,8 @@ struct sps_world {
     int cell_cap;
     void* scratch; /* permutation buffer: cap reals */
     sps_real* group_sum; /* per lane group: its sum of Rodrigues matrices (mean rotation, fixed order) */
-    sps_real* diag_scratch; /* 19 * cap reals: B, displacement gradient, position divergence */
+    sps_real* diag_scratch; /* 28 * cap reals: B, displacement gradient, position divergence,
+                               velocity gradient */
     int diag_cap;
     int grid_wrap[3], grid_n[3];
     sps_real grid_lo[3];
@@ -8181,18 +8200,20 @@ static sps_real sps__damage(const sps_world* w, int i) {
     return b->damage && i - b->begin < b->field_count ? b->damage[i - b->begin] : 0;
 }
 
-/* Hourglass indicator (see DIAGNOSTICS): displacement gradients with B from current positions;
-   also the smallest spacing and the count of surface particles of [begin, end). */
-static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing, int* surface) {
+/* Hourglass indicator and zigzag indicator (see DIAGNOSTICS): displacement and velocity gradients
+   with B from current positions; also the smallest spacing and the count of surface particles of
+   [begin, end). */
+static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing, int* surface, sps_real* zigzag) {
     sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, *divr = w->diag_scratch + (size_t)18 * w->cap;
-    sps_real num = 0, den = 0, rmin2 = -1;
+    sps_real* Gv = w->diag_scratch + (size_t)19 * w->cap;
+    sps_real num = 0, den = 0, rmin2 = -1, zig_num = 0, zig_den = 0;
     int i;
     sps__correction_matrices(w, B, divr);
     *surface = 0;
     for (i = begin; i < end; ++i) *surface += divr[i] < SPS_R(0.75) * w->dim;
     SPS__PARALLEL_FOR(w, w->n)
     for (i = 0; i < w->n; ++i) {
-        sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Mv[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
         int k, a, c, m;
         for (k = 0; k < w->nb_count[i]; ++k) {
             int j = sps__neighbor(w, i, k);
@@ -8202,33 +8223,45 @@ static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_s
             f = r > 0 ? sps__dwdr(w, r) / r * w->vol[j] : 0; /* particles at one point: no direction (sps__pair) */
             for (a = 0; a < w->dim; ++a) {
                 sps_real uij = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
+                const sps_real vij = w->vel[a][i] - w->vel[a][j];
                 for (c = 0; c < w->dim; ++c) M[3 * a + c] -= uij * d[c] * f;
+                for (c = 0; c < w->dim; ++c) Mv[3 * a + c] -= vij * d[c] * f;
             }
         }
         for (a = 0; a < 3; ++a)
             for (c = 0; c < 3; ++c) {
-                sps_real s = 0;
+                sps_real s = 0, sv = 0;
                 for (m = 0; m < w->dim; ++m) s += M[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
+                for (m = 0; m < w->dim; ++m) sv += Mv[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
                 Gu[(size_t)9 * i + 3 * a + c] = a < w->dim && c < w->dim ? s : 0;
+                Gv[(size_t)9 * i + 3 * a + c] = a < w->dim && c < w->dim ? sv : 0;
             }
     }
     for (i = begin; i < end; ++i) { /* serial sum: fixed order, deterministic */
         int k, a, c;
         for (k = 0; k < w->nb_count[i]; ++k) {
             int j = sps__neighbor(w, i, k);
-            sps_real d[3] = {0, 0, 0}, r2 = 0, e2 = 0;
+            sps_real d[3] = {0, 0, 0}, r2 = 0, e2 = 0, ev2 = 0, smooth2 = 0;
             for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
             for (a = 0; a < w->dim; ++a) {
                 sps_real err = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
+                sps_real smooth = 0; /* the relative velocity the velocity gradient gives the pair */
                 for (c = 0; c < w->dim; ++c) err -= SPS_R(0.5) * (Gu[(size_t)9 * i + 3 * a + c] + Gu[(size_t)9 * j + 3 * a + c]) * d[c];
+                for (c = 0; c < w->dim; ++c) smooth += SPS_R(0.5) * (Gv[(size_t)9 * i + 3 * a + c] + Gv[(size_t)9 * j + 3 * a + c]) * d[c];
                 e2 += err * err;
+                ev2 += (w->vel[a][i] - w->vel[a][j] - smooth) * (w->vel[a][i] - w->vel[a][j] - smooth);
+                smooth2 += smooth * smooth;
             }
             num += SPS__SQRT(e2);
+            zig_num += SPS__SQRT(ev2);
+            zig_den += SPS__SQRT(smooth2);
             den += SPS__SQRT(r2);
             if (rmin2 < 0 || r2 < rmin2) rmin2 = r2;
         }
     }
     *min_spacing = rmin2 < 0 ? 0 : SPS__SQRT(rmin2) / w->def.dp;
+    /* no velocity gradient anywhere: no zigzag if nothing moves relative to anything, else all is */
+    *zigzag = zig_den > 0 ? zig_num / zig_den : zig_num > 0 ? (sps_real)INFINITY : 0;
     return den > 0 ? num / den : 0;
 }
 
@@ -8248,7 +8281,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
     if (k >= 0) { begin = w->bodies[k].begin; end = w->bodies[k].end; }
     if (w->diag_cap < w->cap) {
         sps__free(w, w->diag_scratch);
-        w->diag_scratch = (sps_real*)sps__alloc(w, sizeof(sps_real) * 19 * (size_t)w->cap);
+        w->diag_scratch = (sps_real*)sps__alloc(w, sizeof(sps_real) * 28 * (size_t)w->cap);
         if (!w->diag_scratch) { w->diag_cap = 0; return sps__oom(w, "sps_world_diagnostics: the scratch"); }
         w->diag_cap = w->cap;
     }
@@ -8291,7 +8324,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
         const sps__body* b = &w->bodies[bi];
         for (i = 0; b->driven_work && (k < 0 || bi == k) && i < b->end - b->begin; ++i) out->prescribed_work += b->driven_work[i];
     }
-    out->hourglass = sps__hourglass(w, begin, end, &out->min_spacing, &out->surface_particles);
+    out->hourglass = sps__hourglass(w, begin, end, &out->min_spacing, &out->surface_particles, &out->zigzag);
     out->energy_growth = w->watch.worst;
     out->energy_growth_events = w->watch.events;
     return SPS_OK;
@@ -8301,13 +8334,13 @@ SPSDEF const char* sps_diagnostics_csv_header(void) {
     return "time,kinetic_energy,strain_energy,total_energy,momentum_x,momentum_y,momentum_z,"
            "angular_momentum_x,angular_momentum_y,angular_momentum_z,max_speed,min_density,max_density,"
            "hourglass,min_spacing,acoustic_steps,advection_steps,dt_acoustic,contact_energy,potential_energy,prescribed_work,"
-           "plastic_work,max_plastic_strain,surface_particles,viscous_work";
+           "plastic_work,max_plastic_strain,surface_particles,viscous_work,zigzag";
 }
 
 SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t size) {
     if (!d || (!buf && size)) return -1;
     /* total_energy: kinetic + strain + plastic work + viscous work */
-    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%.9g",
+    return snprintf(buf, size, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%.6g,%ld,%ld,%.6g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%.9g,%.6g",
                     (double)d->time, (double)d->kinetic_energy, (double)d->strain_energy,
                     (double)(d->kinetic_energy + d->strain_energy + d->plastic_work + d->viscous_work), (double)d->linear_momentum[0],
                     (double)d->linear_momentum[1], (double)d->linear_momentum[2], (double)d->angular_momentum[0],
@@ -8315,7 +8348,7 @@ SPSDEF int sps_diagnostics_csv_row(const sps_diagnostics* d, char* buf, size_t s
                     (double)d->min_density, (double)d->max_density, (double)d->hourglass, (double)d->min_spacing, d->acoustic_steps,
                     d->advection_steps, (double)d->dt_acoustic, (double)d->contact_energy, (double)d->potential_energy,
                     (double)d->prescribed_work, (double)d->plastic_work, (double)d->max_plastic_strain, d->surface_particles,
-                    (double)d->viscous_work);
+                    (double)d->viscous_work, (double)d->zigzag);
 }
 
 /* >>access */

@@ -23,7 +23,7 @@
 
 typedef struct {
     output_plan output;
-    double wall0, t_end, dp, energy_half, energy_end;
+    double wall0, t_end, dp, energy_half, energy_end, zigzag_max;
 } run_state;
 
 static double mechanical_energy(const sps_diagnostics* d) { return (double)(d->kinetic_energy + d->potential_energy); }
@@ -52,7 +52,9 @@ static void profile(const sps_world* w, double dp, double* toe, double* farthest
     free(count);
 }
 
-/* At every CSV row: the energies at 0.5 s (the last row at or before it) and at the end. */
+/* At every CSV row: the energies at 0.5 s (the last row at or before it) and at the end, and the
+   largest zigzag indicator (DIAGNOSTICS: near 0 while the soil flows smoothly, above 1 when
+   the particle-scale zigzag mode carries the motion). */
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
@@ -60,6 +62,7 @@ static int on_step(sps_world* w, void* user) {
     if (output_tick(w, &s->output, "", &d)) {
         if (t <= 0.5 + 1e-9) s->energy_half = mechanical_energy(&d);
         s->energy_end = mechanical_energy(&d);
+        if (d.zigzag > s->zigzag_max) s->zigzag_max = d.zigzag;
     }
     progress(t, s->t_end, s->wall0, 0);
     return 0;
@@ -124,11 +127,13 @@ int main(int argc, char** argv) {
     printf("  plastic work %.4f J/m, largest accumulated deviatoric plastic strain %.3f, surface particles %d, %d particles closer than\n"
            "  0.5 dp to another (smallest spacing %.3f dp)\n",
            (double)d.plastic_work, (double)d.max_plastic_strain, d.surface_particles, ex_clustered_particles(w, dp, 0.5), (double)d.min_spacing);
+    printf("  zigzag indicator (0: smooth flow, above 1: zigzag): %.3f at the end, largest %.3f (CSV rows); largest speed %.3g m/s\n",
+           (double)d.zigzag, s.zigzag_max, (double)d.max_speed);
     printf("RESULT case=column_collapse2d length=%g dp=%g phi=%g cohesion=%g zeta=%g t=%.4g energy_start=%.5g energy_0.5=%.5g "
-           "energy_end=%.5g toe=%.4f farthest=%.4f wall_height=%.4f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f "
-           "ns_per_particle_step=%.1f out=%s\n",
+           "energy_end=%.5g toe=%.4f farthest=%.4f wall_height=%.4f zigzag=%.3f zigzag_max=%.3f zigzag_limit=1 %s particles=%d steps=%ld "
+           "advection_steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
            length, dp, g.phi, g.cohesion, g.diffusion, (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, farthest, wall_height,
-           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
+           (double)d.zigzag, s.zigzag_max, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
            ns_per_particle_step(w, wall, d.acoustic_steps), c.out);
     sps_world_destroy(w);
     return 0;
