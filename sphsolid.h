@@ -709,8 +709,9 @@
                          diffusion leaves the hydrostatic difference alone; fluid results move);
                          granular stress divergence scaled by the lattice's kernel-gradient
                          moment, GNO-A's penalty only between elastic grains, Coulomb friction of
-                         grains at free-slip walls (granular results move); examples
-                         elastic_gate, heap2d, the demo's water tank.
+                         grains at free-slip walls (granular results move);
+                         sps_diagnostics.zigzag tells the zigzag mode from flow; examples
+                         elastic_gate, heap2d (--pour), the demo's water tank.
       0.9.0 (2026-12-03) default rotation SPS_ROTATION_AUTO (pair for ENO-A, mean for GNO-A):
                          the default body survives tumbling and impacts; the watchdog names the
                          likely cause and counts in sps_diagnostics (energy_growth,

@@ -2387,3 +2387,57 @@ static int test_missing_pass_instance(void) {
     ENSURE(accepted > 1000); /* the loop reached the combinations (about a third of 2688 per mode are refused by the rules) */
     return 0;
 }
+
+/* ---- the zigzag indicator (DIAGNOSTICS; chapter >>diagnostics) ---- */
+
+#define ZIGZAG_DP 0.01
+/* Velocity fields on the reference positions: an affine one (translation, rotation, shear and
+   stretch at once), a smooth non-affine one (a shear flow with a sine profile over the block's
+   0.2 m), and the affine one plus the particle-scale zigzag mode: +-u0 alternating from column
+   to column and row to row, u0 twice the affine field's largest shear rate times dp (0.6 dp/s). */
+static void affine_flow(const sps_real x[3], sps_real v[3], void* user) {
+    (void)user;
+    v[0] = SPS_R(0.1) + SPS_R(0.3) * x[1] + SPS_R(0.2) * x[0];
+    v[1] = SPS_R(-0.2) + SPS_R(0.05) * x[0] - SPS_R(0.1) * x[1];
+}
+static void smooth_flow(const sps_real x[3], sps_real v[3], void* user) {
+    (void)user;
+    v[0] = (sps_real)(0.1 * sin(3.14159265358979323846 * x[1] / 0.2));
+    v[1] = 0;
+}
+static void zigzag_flow(const sps_real x[3], sps_real v[3], void* user) {
+    const int column = (int)floor(x[0] / ZIGZAG_DP), row = (int)floor(x[1] / ZIGZAG_DP);
+    const sps_real u0 = 2 * SPS_R(0.3) * SPS_R(ZIGZAG_DP);
+    affine_flow(x, v, user);
+    v[0] += (column + row) % 2 ? u0 : -u0;
+}
+
+/* The zigzag indicator of a 0.2 m x 0.2 m block (dp 0.01) given each field above: ~0 for the
+   affine field (the B-corrected gradient is exact for it), low for the smooth shear flow, and
+   high for the zigzag mode on top of the same affine flow. It can fail: a measure that read the
+   deformation rate (as the hourglass indicator reads the deformation) would not tell the affine
+   field from the zigzag one. */
+static int test_zigzag_tells_zigzag_from_flow(void) {
+    static const sps_velocity_fn fields[3] = {affine_flow, smooth_flow, zigzag_flow};
+    static const char* names[3] = {"affine", "smooth shear", "affine + zigzag"};
+    const double lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.2, 0};
+    double zigzag[3];
+    int k;
+    for (k = 0; k < 3; ++k) {
+        sps_world* w = new_world(2, ZIGZAG_DP);
+        sps_diagnostics d;
+        sps_body b;
+        ENSURE(w);
+        b = add_block(w, SPS_SHEAR_OG, lo, hi, NULL);
+        ENSURE(b.id);
+        ENSURE(sps_body_set_velocity(w, b, fields[k], NULL) == SPS_OK);
+        ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
+        zigzag[k] = (double)d.zigzag;
+        printf("    %-16s zigzag %.3g\n", names[k], zigzag[k]);
+        sps_world_destroy(w);
+    }
+    ENSURE(zigzag[0] < 1e-6);  /* affine: round-off and the regularised inverse of B at the corners */
+    ENSURE(zigzag[1] < 0.05);  /* smooth: the B-corrected gradient's error, O(h^2) of the curvature */
+    ENSURE(zigzag[2] > 1);     /* the zigzag mode outweighs the flow: the documented threshold */
+    return 0;
+}
