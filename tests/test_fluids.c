@@ -6,9 +6,11 @@
 
 /* ---- fluids and transport corrections (FLUIDS, TRANSPORT) ---- */
 
-static sps_real hydrostatic_04(const sps_real x[3], void* user) {
-    (void)user;
-    return (sps_real)(1000 * 9.81 * (0.4 - (double)x[1]));
+static const double level_04 = 0.4, level_05 = 0.5, level_048 = 0.48; /* the tanks' water levels [m] */
+/* The pressure of water at rest (rho0 1000, g 9.81) below the level *user [m]. */
+static sps_real water_at_rest(const sps_real x[3], void* user) {
+    const double level = *(const double*)user;
+    return (sps_real)(1000 * 9.81 * (level - (double)x[1]));
 }
 
 /* A water column 0.4 m deep at rest in a tank of analytic walls, started hydrostatic, stays at
@@ -35,7 +37,7 @@ static int test_fluid_hydrostatic_rest(void) {
     ENSURE(sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
     ENSURE(sps_world_add_body(w, &bd, &water) == SPS_OK);
     ENSURE(sps_body_add_box(w, water, lo, hi, NULL) == SPS_OK);
-    ENSURE(sps_body_set_pressure(w, water, hydrostatic_04, NULL) == SPS_OK);
+    ENSURE(sps_body_set_pressure(w, water, water_at_rest, (void*)&level_04) == SPS_OK);
     ENSURE(sps_world_advance(w, 1, NULL, NULL) == SPS_OK); /* about 70 acoustic crossings of the column */
     ENSURE(sps_world_diagnostics(w, all, &d) == SPS_OK);
     y = sps_world_field(w, SPS_FIELD_POSITION_Y);
@@ -394,11 +396,6 @@ static int test_coupling_momentum(void) {
     return 0;
 }
 
-static sps_real hydrostatic_fsi_04(const sps_real x[3], void* user) {
-    (void)user;
-    return (sps_real)(1000 * 9.81 * (0.4 - (double)x[1]));
-}
-
 /* Water 0.4 m deep at rest in a U-shaped tank that is a rigid body (no analytic walls), filled
    up to the tank on the lattice and started hydrostatic: no first-step kick, the first layer
    stays dp/2 from the solid's surface (dp from its surface particles) at the floor and at the
@@ -416,7 +413,7 @@ static int test_coupling_hydrostatic_rest(void) {
     td.name = "tank";
     td.material.kind = SPS_MATERIAL_RIGID;
     ENSURE(sps_world_add_body(w, &wd, &water) == SPS_OK && fsi_box(w, water, 0, 0, width, depth));
-    ENSURE(sps_body_set_pressure(w, water, hydrostatic_fsi_04, NULL) == SPS_OK);
+    ENSURE(sps_body_set_pressure(w, water, water_at_rest, (void*)&level_04) == SPS_OK);
     ENSURE(sps_world_add_body(w, &td, &tank) == SPS_OK && fsi_box(w, tank, -t, -t, width + t, 0));
     ENSURE(fsi_box(w, tank, -t, 0, 0, 0.6) && fsi_box(w, tank, width, 0, width + t, 0.6));
     ENSURE(sps_world_step(w) == SPS_OK);
@@ -444,11 +441,6 @@ static int test_coupling_hydrostatic_rest(void) {
     ENSURE(d.max_speed < 0.03 * v_ref);       /* no current: the ripple (measured 2.0 %) */
     sps_world_destroy(w);
     return 0;
-}
-
-static sps_real hydrostatic_fsi_05(const sps_real x[3], void* user) {
-    (void)user;
-    return (sps_real)(1000 * 9.81 * (0.5 - (double)x[1]));
 }
 
 /* The draft of block b (its mean height minus half its height `size`) below the water's level
@@ -484,7 +476,7 @@ static int test_coupling_floating_block(void) {
     ENSURE(sps_world_add_box_walls(w, lo, hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
     ENSURE(sps_world_add_body(w, &wd, &water) == SPS_OK && fsi_box(w, water, 0, 0, width, depth - draft0));
     ENSURE(fsi_box(w, water, 0, depth - draft0, 0.4, depth) && fsi_box(w, water, 0.6, depth - draft0, width, depth));
-    ENSURE(sps_body_set_pressure(w, water, hydrostatic_fsi_05, NULL) == SPS_OK);
+    ENSURE(sps_body_set_pressure(w, water, water_at_rest, (void*)&level_05) == SPS_OK);
     ENSURE(sps_world_add_body(w, &bd, &block) == SPS_OK && fsi_box(w, block, 0.4, depth - draft0, 0.6, depth - draft0 + size));
     for (k = 1; k <= 10; ++k) { /* the mean over 0.8 .. 1 s */
         ENSURE(sps_world_advance(w, (sps_real)(0.8 + 0.02 * k), NULL, NULL) == SPS_OK);
@@ -683,11 +675,6 @@ static int test_granular_free_grain_stops(void) {
 
 /* ---- fluid at rest over long times (chapter >>material: weakly compressible fluid) ---- */
 
-static sps_real hydrostatic_048(const sps_real x[3], void* user) {
-    (void)user;
-    return (sps_real)(1000 * 9.81 * (0.48 - (double)x[1]));
-}
-
 /* The mean pressure c0^2 (mean rho - rho0) and the mid-depth pressure of the tank's water. */
 static void tank_pressures(const sps_world* w, double c2, double depth, double dp, double* p_mean, double* p_mid, double* p_mid_ref) {
     const sps_real *y = sps_world_field(w, SPS_FIELD_POSITION_Y), *p = sps_world_field(w, SPS_FIELD_PRESSURE);
@@ -731,7 +718,7 @@ static int test_fluid_rest_long(void) {
     ENSURE(sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
     ENSURE(sps_world_add_body(w, &bd, &water) == SPS_OK);
     ENSURE(sps_body_add_box(w, water, lo, hi, NULL) == SPS_OK);
-    ENSURE(sps_body_set_pressure(w, water, hydrostatic_048, NULL) == SPS_OK);
+    ENSURE(sps_body_set_pressure(w, water, water_at_rest, (void*)&level_048) == SPS_OK);
     for (k = 0; k < 2; ++k) { /* at 2 s (the start's ringing has died down) and at 6 s */
         ENSURE(sps_world_advance(w, 2 + 4 * k, NULL, NULL) == SPS_OK);
         tank_pressures(w, c0 * c0, depth, dp, &p_mean[k], &p_mid[k], &p_mid_ref[k]);
