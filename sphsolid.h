@@ -1554,14 +1554,11 @@ typedef struct sps__yield_cone {
     sps_real k0; /* 1 - sin(phi): the geostatic stress's horizontal to vertical ratio */
 } sps__yield_cone;
 
+/* A material's row: its name and the properties the step reads, one row in each material's
+   chapter (its check, constants and energy: the switches of chapter >>generic). */
 typedef struct sps__material_model {
     sps_material_kind kind;
     const char* name;
-    /* appends every broken rule of the material's fields */
-    void (*check)(const sps_material_def* m, char* msg, size_t msg_size, int* broken);
-    sps__material_constants (*constants)(const sps_material_def* m);
-    /* stored-energy density [J/m^3] from tau:tau of the shear stress (0 when not tracked) and p */
-    sps_real (*energy_density)(const sps__material_constants* c, sps_real tau_tau, sps_real p);
     int kinematic; /* its particles move as prescribed: no passes, no forces (a wall body) */
     sps__yield plastic; /* the yield surface its stress is returned onto, if any */
     int shear;     /* it has a shear stress: 0 for a fluid */
@@ -2328,6 +2325,9 @@ static void sps__elastic_check(const sps_material_def* m, char* msg, size_t msg_
 static sps_real sps__elastic_energy_density(const sps__material_constants* c, sps_real tau_tau, sps_real p) {
     return tau_tau / (4 * c->G) + p * p / (2 * c->K);
 }
+/* Its row (sps__material_model): kind, name, kinematic, plastic, shear, fixed stabilisation,
+   limiter eta + per dim, Riemann density, mirrored walls, pressure of density. */
+static const sps__material_model sps__elastic_material = {SPS_MATERIAL_ELASTIC, "elastic", 0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
 
 /* >>material: rigid (wall bodies) */
 
@@ -2337,6 +2337,8 @@ static sps_real sps__rigid_energy_density(const sps__material_constants* c, sps_
     (void)c; (void)tau_tau; (void)p;
     return 0;
 }
+/* Its row (sps__material_model; the columns: >>material: linear elastic). */
+static const sps__material_model sps__rigid_material = {SPS_MATERIAL_RIGID, "rigid", 1, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
 
 /* >>material: J2 plasticity (von Mises, linear isotropic hardening; ANG section 2.2) */
 
@@ -2351,6 +2353,9 @@ static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size,
                "material.hardening_modulus = %g, allowed finite >= 0 Pa for J2 (0: perfect plasticity)", (double)m->hardening_modulus);
     *broken_out += broken;
 }
+/* Its row (sps__material_model; the columns: >>material: linear elastic). The stored energy of a
+   J2 body is its elastic part; the return map's share is plastic work. */
+static const sps__material_model sps__j2_material = {SPS_MATERIAL_J2, "J2", 0, SPS__YIELD_VON_MISES, 1, NULL, 0, 0, 0, 0, 1};
 
 /* >>material: Kelvin-Voigt (material damping of solids; DAMPING in the manual)
 
@@ -2426,6 +2431,13 @@ static sps_real sps__fluid_energy_density(const sps__material_constants* c, sps_
     (void)tau_tau;
     return p * p / (2 * c->K);
 }
+/* The stabilisation of a body without shear stress (a fluid): no shear term at all. Stable CFL
+   measured in 2D (elliptical drop, dam break): 0.6 runs, 0.8 trips the energy watchdog, 1.0
+   blows up; 3D is taken the same, unmeasured. */
+static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid)", 0, 0, 0, 0, 0, 0, {0.6, 0.6}};
+/* Its row (sps__material_model; the columns: >>material: linear elastic): eta = 3 for fluids
+   (UTVF section 3.1.1, after Zhang et al. 2017). */
+static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, &sps__no_shear, 3, 0, 1, 1, 1};
 /* The density diffusion of the Riemann solver, drho_i += rho_i sum_j (p_i - p_j) / (rho0 c0)
    dW_ij V_j (sps__continuity_pairs), acts on the pressure difference of a pair less its
    hydrostatic part rho0 g . x_ij: in water at rest p_i - p_j is that part, and where the
@@ -2474,6 +2486,14 @@ static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size
                (double)m->friction_angle);
     *broken_out += broken;
 }
+/* A Drucker-Prager body's stabilisation: the divergence of its stress (UTVF eq. 25) and the
+   stress diffusion (its def's stress_diffusion), no hourglass penalty (the reference code's). */
+static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular stress", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
+/* Its row (sps__material_model; the columns: >>material: linear elastic): eta = 20 d for granular
+   bodies (UTVF section 3.1.3, after Zhang et al. 2024); mirror walls as the reference code's
+   dummy wall particles; no Riemann density term: the density follows the pressure (sps__finish). */
+static const sps__material_model sps__drucker_prager_material = {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", 0, SPS__YIELD_DRUCKER_PRAGER, 1,
+                                                              &sps__granular_stress, 0, 20, 0, 1, 0};
 
 /* The kernel-gradient moment c = -(1/d) sum_j r_ij dW/dr(r_ij) V_j of a particle inside the
    square (cubic) lattice of spacing dp, V_j = dp^d. The continuum's integral is 1; the lattice
@@ -2578,7 +2598,6 @@ SPS__INLINE void sps__drucker_prager_update(sps_real sig[6], const sps_real* L, 
 }
 
 /* >>material: Saint Venant-Kirchhoff (total Lagrangian; TL eqs. 18-20) */
-/* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
 
 /* The hyperelastic laws of total-Lagrangian bodies take the linear elastic checks; their
    signal speed is the P-wave speed c_p = sqrt((K + 4G/3)/rho0) of the linearised law, since
@@ -2589,6 +2608,164 @@ static sps__material_constants sps__hyperelastic_constants(const sps_material_de
     c.c0 = SPS__SQRT((c.K + c.G * 4 / 3) / m->density);
     return c;
 }
+/* Its row (sps__material_model; the columns: >>material: linear elastic): total-Lagrangian
+   bodies only, their stored energy comes from F (sps__tl_energy). */
+static const sps__material_model sps__saint_venant_kirchhoff_material = {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", 0,
+                                                                      SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
+
+/* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
+
+/* Its checks and constants are Saint Venant-Kirchhoff's (sps__hyperelastic_constants). */
+/* Its row (sps__material_model; the columns: >>material: linear elastic), as Saint Venant-Kirchhoff's. */
+static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
+
+/* >>generic: the material hooks, dispatched in one place
+
+   Every choice that depends on the material kind is made here, by a switch over
+   sps_material_kind (and over sps_solver where that is the choice) that calls the hook in the
+   kind's own chapter (>>material: ...), as sokol_gfx's generic backend and Box2D's joint.c do.
+   No switch has a default label, so -Wswitch (in -Wall) names every switch a new kind misses; a
+   value outside the enum (a def not checked yet) falls out of the switch to the line after it.
+   Kinds a build leaves out (CONFIG MACROS) keep their cases: sps__left_out_by refuses their
+   bodies at sps_world_add_body, so their other cases are not reached.
+   The rest of the library reads the row's properties (sps__material_model: kinematic, shear,
+   mirrored walls, the density update, the Riemann terms), resolved once per body into its model
+   (sps__resolve_model), and never asks which kind a body is.
+
+   Adding a material touches three places and nothing else:
+   1. its value in sps_material_kind (>>public);
+   2. its chapter (>>material: ...) with its row (sps__material_model), its check, its
+      constants (c0, G, K), its stored energy and, where they differ from an existing kind's,
+      its stress update, return map, setup and combination rules;
+   3. its case in each switch of this chapter: the compiler lists every switch that lacks it. */
+
+/* The row of a kind, or NULL for a value outside the enum (sps__body_def_check names it). */
+static const sps__material_model* sps__material_of(sps_material_kind kind) {
+    switch (kind) {
+    case SPS_MATERIAL_ELASTIC: return &sps__elastic_material;
+    case SPS_MATERIAL_RIGID: return &sps__rigid_material;
+    case SPS_MATERIAL_J2: return &sps__j2_material;
+    case SPS_MATERIAL_FLUID: return &sps__fluid_material;
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return &sps__saint_venant_kirchhoff_material;
+    case SPS_MATERIAL_NEO_HOOKEAN: return &sps__neo_hookean_material;
+    case SPS_MATERIAL_DRUCKER_PRAGER: return &sps__drucker_prager_material;
+    }
+    return NULL;
+}
+
+/* Appends every broken rule of the material's fields (a kind outside the enum: none here). */
+static void sps__material_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken) {
+    switch (m->kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: sps__elastic_check(m, msg, msg_size, broken); return;
+    case SPS_MATERIAL_J2: sps__j2_check(m, msg, msg_size, broken); return;
+    case SPS_MATERIAL_FLUID: sps__fluid_check(m, msg, msg_size, broken); return;
+    case SPS_MATERIAL_DRUCKER_PRAGER: sps__drucker_prager_check(m, msg, msg_size, broken); return;
+    }
+}
+
+/* c0, G and K of a checked material def (signal speed, shear and bulk moduli). */
+static sps__material_constants sps__material_constants_of(const sps_material_def* m) {
+    switch (m->kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_DRUCKER_PRAGER: break;
+    case SPS_MATERIAL_FLUID: return sps__fluid_constants(m);
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: return sps__hyperelastic_constants(m);
+    }
+    return sps__elastic_constants(m);
+}
+
+/* The stored-energy density [J/m^3] of a body of this kind from tau:tau of its shear stress (0
+   when not tracked) and its pressure p. A total-Lagrangian body's whole energy comes from F
+   (sps__tl_energy); for the pressure it is given at the start (sps_body_set_pressure) its
+   hyperelastic law's small-strain limit is the linear elastic one. */
+static sps_real sps__material_energy_density(sps_material_kind kind, const sps__material_constants* c, sps_real tau_tau, sps_real p) {
+    switch (kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_DRUCKER_PRAGER:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: break;
+    case SPS_MATERIAL_RIGID: return sps__rigid_energy_density(c, tau_tau, p);
+    case SPS_MATERIAL_FLUID: return sps__fluid_energy_density(c, tau_tau, p);
+    }
+    return sps__elastic_energy_density(c, tau_tau, p);
+}
+
+/* The constants a body of this kind derives from the world when it is added (gravity, the
+   kernel): a fluid's rest pressure gradient, a granular body's cone and stress diffusion. */
+static void sps__material_setup(const sps_world* w, sps__body* b) {
+    switch (b->def.material.kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: return;
+    case SPS_MATERIAL_FLUID: sps__fluid_rest_gradient(w, b); return;
+    case SPS_MATERIAL_DRUCKER_PRAGER: sps__granular_setup(w, b); return;
+    }
+}
+
+/* The macro that left this body's kind or solver out of the build (CONFIG MACROS), or NULL. */
+static const char* sps__left_out_by(const sps_body_def* def) {
+    switch (def->material.kind) {
+    case SPS_MATERIAL_FLUID:
+#ifdef SPHSOLID_NO_FLUID
+        return "SPHSOLID_NO_FLUID";
+#endif
+        break;
+    case SPS_MATERIAL_DRUCKER_PRAGER:
+#ifdef SPHSOLID_NO_GRANULAR
+        return "SPHSOLID_NO_GRANULAR";
+#endif
+        break;
+    case SPS_MATERIAL_J2:
+#ifdef SPHSOLID_NO_PLASTICITY
+        return "SPHSOLID_NO_PLASTICITY";
+#endif
+        break;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: break;
+    }
+    switch (def->solver) {
+    case SPS_SOLVER_TOTAL_LAGRANGIAN:
+#ifdef SPHSOLID_NO_TOTAL_LAGRANGIAN
+        return "SPHSOLID_NO_TOTAL_LAGRANGIAN";
+#endif
+        break;
+    case SPS_SOLVER_UPDATED_LAGRANGIAN: break;
+    }
+    return NULL;
+}
+
+/* The laws of total-Lagrangian bodies (chapter >>solver: total Lagrangian), a literal in the
+   stress pass. */
+enum { SPS__LAW_NONE = -1, SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
+
+/* The law of a total-Lagrangian body's kind; SPS__LAW_NONE for a kind without one (the
+   combination rules refuse it, and sps__tl_passes then finds no kernel, which
+   sps_world_add_body reports: sps__missing_pass). Every kind is a case and there is no default,
+   so -Wswitch names a new kind here. */
+static int sps__tl_law_of(sps_material_kind kind) {
+    switch (kind) {
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return SPS__LAW_SAINT_VENANT_KIRCHHOFF;
+    case SPS_MATERIAL_NEO_HOOKEAN: return SPS__LAW_NEO_HOOKEAN;
+    case SPS_MATERIAL_J2: return SPS__LAW_J2;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__LAW_NONE;
+    }
+    return SPS__LAW_NONE; /* a value outside the enum (refused by the def check) */
+}
+
 
 /* >>model (continued): the rows */
 
@@ -2603,51 +2780,12 @@ static const sps__stabilisation sps__stabilisations[] = {
     {SPS_SHEAR_GNO_A, "GNO-A", 1,    0,   1,   1,   0,   1,       {0.8, 0.8}},
 };
 #define SPS__NSTABILISATIONS ((int)(sizeof sps__stabilisations / sizeof sps__stabilisations[0]))
-/* The stabilisation of a body without shear stress (a fluid): no shear term at all. Stable CFL
-   measured in 2D (elliptical drop, dam break): 0.6 runs, 0.8 trips the energy watchdog, 1.0
-   blows up; 3D is taken the same, unmeasured. */
-static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid)", 0, 0, 0, 0, 0, 0, {0.6, 0.6}};
 /* A total-Lagrangian body's stabilisation is the hourglass force of TL eq. 32 (its def's shear
    is not used). Stable CFL: the default 0.4, with the hourglass springs in the signal speed
    (sps__tl_reference); the plate ran at 0.8 too, and the instabilities of D1-D4 come at the
    same strain at 0.05 as at 0.4 (bench/VALIDATION.md), so they are not the time step's. */
 static const sps__stabilisation sps__tl_hourglass = {SPS_SHEAR_OG, "TL hourglass", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
-/* A Drucker-Prager body's stabilisation: the divergence of its stress (UTVF eq. 25) and the
-   stress diffusion (its def's stress_diffusion), no hourglass penalty (the reference code's). */
-static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular stress", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
 
-static const sps__material_model sps__materials[] = {
-    /* kind, name, check, constants, energy density,
-       kinematic, plastic, shear, fixed stabilisation, limiter eta + per dim, Riemann density, mirrored walls, pressure of density */
-    {SPS_MATERIAL_ELASTIC, "elastic", sps__elastic_check, sps__elastic_constants, sps__elastic_energy_density,
-     0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
-    {SPS_MATERIAL_RIGID, "rigid", sps__elastic_check, sps__elastic_constants, sps__rigid_energy_density,
-     1, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
-    /* the stored energy of a J2 body is its elastic part; the return map's share is plastic work */
-    {SPS_MATERIAL_J2, "J2", sps__j2_check, sps__elastic_constants, sps__elastic_energy_density,
-     0, SPS__YIELD_VON_MISES, 1, NULL, 0, 0, 0, 0, 1},
-    /* eta = 3 for fluids (UTVF section 3.1.1, after Zhang et al. 2017) */
-    {SPS_MATERIAL_FLUID, "fluid", sps__fluid_check, sps__fluid_constants, sps__fluid_energy_density,
-     0, SPS__YIELD_NONE, 0, &sps__no_shear, 3, 0, 1, 1, 1},
-    /* total-Lagrangian bodies only: their stored energy comes from F (sps__tl_energy) */
-    {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", sps__elastic_check, sps__hyperelastic_constants, NULL,
-     0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
-    {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", sps__elastic_check, sps__hyperelastic_constants, NULL,
-     0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1},
-    /* eta = 20 d for granular bodies (UTVF section 3.1.3, after Zhang et al. 2024); mirror walls
-       as the reference code's dummy wall particles; no Riemann density term: the density
-       follows the pressure (sps__finish) */
-    {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", sps__drucker_prager_check, sps__elastic_constants, sps__elastic_energy_density,
-     0, SPS__YIELD_DRUCKER_PRAGER, 1, &sps__granular_stress, 0, 20, 0, 1, 0},
-};
-#define SPS__NMATERIALS ((int)(sizeof sps__materials / sizeof sps__materials[0]))
-
-static const sps__material_model* sps__material_of(sps_material_kind kind) {
-    int k;
-    for (k = 0; k < SPS__NMATERIALS; ++k)
-        if (sps__materials[k].kind == kind) return &sps__materials[k];
-    return NULL;
-}
 static const sps__stabilisation* sps__stabilisation_of(sps_shear shear) {
     int k;
     for (k = 0; k < SPS__NSTABILISATIONS; ++k)
@@ -2743,31 +2881,13 @@ static const sps__combination_rule sps__combination_rules[] = {
                                         "limit it (ANG 5.2: ENO-A is for elastic materials); use GNO-A (or OG, OAS, GNO)"},
 };
 
-/* The macro that left this body's kind or solver out of the build (CONFIG MACROS), or NULL. */
-static const char* sps__left_out_by(const sps_body_def* def) {
-#ifdef SPHSOLID_NO_FLUID
-    if (def->material.kind == SPS_MATERIAL_FLUID) return "SPHSOLID_NO_FLUID";
-#endif
-#ifdef SPHSOLID_NO_GRANULAR
-    if (def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER) return "SPHSOLID_NO_GRANULAR";
-#endif
-#ifdef SPHSOLID_NO_PLASTICITY
-    if (def->material.kind == SPS_MATERIAL_J2) return "SPHSOLID_NO_PLASTICITY";
-#endif
-#ifdef SPHSOLID_NO_TOTAL_LAGRANGIAN
-    if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) return "SPHSOLID_NO_TOTAL_LAGRANGIAN";
-#endif
-    (void)def;
-    return NULL;
-}
-
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
     SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid), 2 (J2), 3 (fluid), 4 (Saint Venant-Kirchhoff), 5 "
                "(Neo-Hookean) or 6 (Drucker-Prager)", (int)def->material.kind);
-    if (material) material->check(&def->material, msg, msg_size, &broken);
+    sps__material_check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN || def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN,
                "solver = %d, allowed 0 (updated Lagrangian) or 1 (total Lagrangian)", (int)def->solver);
@@ -3143,17 +3263,16 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
         return SPS_ERR_INVALID_ARG;
     }
     b->rho0 = def->material.density;
-    b->mat = b->model.material->constants(&def->material);
+    b->mat = sps__material_constants_of(&def->material);
     b->zeta = def->zeta > 0 ? def->zeta : SPS_R(0.7) * w->dim + SPS_R(2.1); /* ENO section 4 */
     b->z_riemann = b->rho0 * b->mat.c0;
-    if (def->material.kind == SPS_MATERIAL_FLUID) sps__fluid_rest_gradient(w, b);
     b->xi = def->xi > 0 ? def->xi : 2; /* ANG section 5: xi_G = 2 */
     b->oas_eps = def->oas_epsilon;
     for (k = 0; k < SPS__OAS_MAX_EXPONENT; ++k) b->oas_factor[k] = (sps_real)(k < (int)def->oas_exponent);
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->transport_alpha = def->transport_coefficient > 0 ? def->transport_coefficient : SPS_R(0.2); /* UTVF section 3.2 */
     b->limiter_eta_c0 = (b->model.material->limiter + b->model.material->limiter_per_dim * w->dim) / b->mat.c0;
-    if (b->model.plastic == SPS__YIELD_DRUCKER_PRAGER) sps__granular_setup(w, b);
+    sps__material_setup(w, b);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
     b->driven = b->model.material->kinematic && sps__watchdog_on(w);
 
@@ -3175,7 +3294,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
         ref.poisson_ratio = SPS_R(0.3);
         sps__warn(w, "body '%s': material.poisson_ratio = %g is within 1e-3 of 0.5: the sound speed, %g m/s, is %.3g times that at "
                   "nu = 0.3, and the time step as many times shorter", b->name, (double)def->material.poisson_ratio, (double)b->mat.c0,
-                  (double)(b->mat.c0 / b->model.material->constants(&ref).c0));
+                  (double)(b->mat.c0 / sps__material_constants_of(&ref).c0));
     }
     sps__warn_unread_fields(w, b);
     w->contact_dirty = 1;
@@ -3410,11 +3529,11 @@ SPSDEF sps_result sps_body_set_pressure(sps_world* w, sps_body b, sps_pressure_f
                            (double)p, w->id[i], (double)-body->mat.K);
             return SPS_ERR_INVALID_ARG;
         }
-        before = w->vol[i] * body->model.material->energy_density(&body->mat, 0, w->p[i]);
+        before = w->vol[i] * sps__material_energy_density(body->def.material.kind, &body->mat, 0, w->p[i]);
         w->p[i] = p;
         w->rho[i] = body->rho0 + p / (body->mat.c0 * body->mat.c0);
         w->vol[i] = w->mass[i] / w->rho[i];
-        sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, 0, p) - before, 0);
+        sps__watch_adjust(w, k, w->vol[i] * sps__material_energy_density(body->def.material.kind, &body->mat, 0, p) - before, 0);
     }
     return SPS_OK;
 }
@@ -3455,11 +3574,11 @@ SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_re
         for (a = 0; a < 6; ++a) /* sigma_h I + (sigma_v - sigma_h) g^ g^, sigma_h = k0 sigma_v */
             sigma[a] = k0 * vertical_stress * sps__sym_diagonal(a) +
                        (1 - k0) * vertical_stress * g[sps__sym_row[a]] * g[sps__sym_col[a]] / (g_norm * g_norm);
-        before = w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), w->p[i]);
+        before = w->vol[i] * sps__material_energy_density(body->def.material.kind, &body->mat, sps__sym_contract(tau, tau), w->p[i]);
         w->p[i] = -sps__sym_deviator(sigma, tau) / 3; /* tau: the deviator */
         w->rho[i] = body->rho0 + w->p[i] / (body->mat.c0 * body->mat.c0); /* its density follows its pressure (GRANULAR) */
         w->vol[i] = w->mass[i] / w->rho[i];
-        sps__watch_adjust(w, k, w->vol[i] * body->model.material->energy_density(&body->mat, sps__sym_contract(tau, tau), w->p[i]) - before, 0);
+        sps__watch_adjust(w, k, w->vol[i] * sps__material_energy_density(body->def.material.kind, &body->mat, sps__sym_contract(tau, tau), w->p[i]) - before, 0);
     }
     return SPS_OK;
 }
@@ -6003,9 +6122,6 @@ SPS__INLINE sps_real sps__tl_spring(const sps_real F[9], const sps_real X[3], co
     return px * inv_x2;
 }
 
-/* The laws, a literal in the stress pass. */
-enum { SPS__LAW_NONE = -1, SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
-
 /* The first Piola-Kirchhoff stress P (row-major 3 x 3) of the deformation gradient F (row-major
    3 x 3; in 2D, plane strain, F_zz = 1 and the out-of-plane entries 0) and the stored energy per
    reference volume, returned; J = det F. Saint Venant-Kirchhoff (TL eqs. 18-20):
@@ -6447,23 +6563,6 @@ static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real d
 static void sps__tl_force_plastic_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 1); }
 static void sps__tl_force_plastic_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 1); }
 #endif
-
-/* The law of a total-Lagrangian body's kind; SPS__LAW_NONE for a kind without one (the
-   combination rules refuse it, and sps__tl_passes then finds no kernel, which
-   sps_world_add_body reports: sps__missing_pass). Every kind is a case and there is no default,
-   so -Wswitch names a new kind here. */
-static int sps__tl_law_of(sps_material_kind kind) {
-    switch (kind) {
-    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return SPS__LAW_SAINT_VENANT_KIRCHHOFF;
-    case SPS_MATERIAL_NEO_HOOKEAN: return SPS__LAW_NEO_HOOKEAN;
-    case SPS_MATERIAL_J2: return SPS__LAW_J2;
-    case SPS_MATERIAL_ELASTIC:
-    case SPS_MATERIAL_RIGID:
-    case SPS_MATERIAL_FLUID:
-    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__LAW_NONE;
-    }
-    return SPS__LAW_NONE; /* a value outside the enum (refused by the def check) */
-}
 
 static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
     sps__passes p;
@@ -7501,7 +7600,7 @@ static void sps__particle_energies(const sps_world* w, const sps__body* b, int i
     }
     *kinetic = sps__kinetic(w, i);
     *strain = b->model.total_lagrangian ? sps__tl_energy(w, b, i) /* the whole hyperelastic energy, exact under rotation */
-                                        : w->mass[i] / w->rho[i] * b->model.material->energy_density(&b->mat, tt, w->p[i]);
+                                        : w->mass[i] / w->rho[i] * sps__material_energy_density(b->def.material.kind, &b->mat, tt, w->p[i]);
 }
 
 /* The energies of body b [J]: kinetic + volumetric strain, contact, gravity potential
