@@ -389,9 +389,9 @@
       and the table of allowed combinations (OAS only in 2D) and resolves the model once into
       the pass kernels the step runs for the body: one named function per pass variant,
       dimension and pair geometry (e.g. sps__continuity_eno_gradient_2d_wendland, what a
-      profiler shows), its choices literals. Adding a material is a row in sps__materials and
-      its section; a new stabilisation a row in sps__stabilisations and, where its terms
-      differ, a variant of the passes.
+      profiler shows), its choices literals. Adding a material is its chapter (its row, check,
+      constants, energy) and its case in each switch of chapter >>generic; a new stabilisation
+      a row in sps__stabilisations and, where its terms differ, a variant of the passes.
       Per-particle arrays are rows of sps__fields (name, components, when needed, housekeeping).
       Every particle has position, velocity, reference position, density, pressure, mass and
       volume; the shear stress, the velocity gradient, the mean-rotation increments and Gray's
@@ -1554,6 +1554,16 @@ typedef struct sps__yield_cone {
     sps_real k0; /* 1 - sin(phi): the geostatic stress's horizontal to vertical ratio */
 } sps__yield_cone;
 
+/* The material fields a kind reads beyond its density (sps__material_model.reads): the def items
+   of the other kinds get a warning when set (sps__warn_unread_fields). */
+enum {
+    SPS__READS_MODULI = 1,      /* youngs_modulus, poisson_ratio */
+    SPS__READS_HARDENING = 2,   /* yield_stress, hardening_modulus (J2) */
+    SPS__READS_SOUND_SPEED = 4, /* sound_speed (fluid) */
+    SPS__READS_CONE = 8,        /* cohesion, friction_angle, dilatancy_angle and stress_diffusion (Drucker-Prager) */
+    SPS__READS_STRESS = 16      /* track_stress and, updated Lagrangian, the shear formulation: a stress of its own */
+};
+
 /* A material's row: its name and the properties the step reads, one row in each material's
    chapter (its check, constants and energy: the switches of chapter >>generic). */
 typedef struct sps__material_model {
@@ -1562,9 +1572,6 @@ typedef struct sps__material_model {
     int kinematic; /* its particles move as prescribed: no passes, no forces (a wall body) */
     sps__yield plastic; /* the yield surface its stress is returned onto, if any */
     int shear;     /* it has a shear stress: 0 for a fluid */
-    /* the stabilisation it always runs (a fluid: sps__no_shear; granular: sps__granular_stress),
-       or NULL: the def's shear formulation */
-    const struct sps__stabilisation* stabilisation;
     /* The Riemann solver's terms (UTVF eqs. 16-20). limiter: the coefficient eta of the
        dissipation limiter beta = min(eta max(-v_ij . e_ij / c0, 0), 1) of the momentum
        equation, or 0 for beta = 1 (the reference code's choice for solids); riemann_density:
@@ -1577,6 +1584,8 @@ typedef struct sps__material_model {
                      not the solids' penalty */
     int pressure_of_density; /* p = c0^2 (rho - rho0) at every half drift; 0: p is -tr(sigma)/3 of
                                 its integrated stress and rho = rho0 + p / c0^2 (Drucker-Prager) */
+    int viscous; /* the force of its material.viscosity (an SPS__VISCOUS_ value): NONE refuses it */
+    int reads;   /* the material fields it reads (SPS__READS_ bits) */
 } sps__material_model;
 
 /* ---- stabilisations (the shear formulations; SHEAR FORMULATIONS in the manual) ---- */
@@ -2212,22 +2221,30 @@ typedef char sps__enums_are_ints[sizeof(sps_kernel_type) == sizeof(int) && sizeo
 #define SPS__BODY_ITEM(field, type) {#field, offsetof(sps_body_def, field), type, NULL}
 #define SPS__BODY_ITEM_READ_BY(field, type, reads) {#field, offsetof(sps_body_def, field), type, reads}
 
-/* Which bodies read a field (the rows below): by the kind, the solver and the shear formulation
-   the model resolves from them (sps__resolve_model). */
-static int sps__updated_solid(const sps_body_def* d) {
-    return d->solver == SPS_SOLVER_UPDATED_LAGRANGIAN && d->material.kind != SPS_MATERIAL_FLUID && d->material.kind != SPS_MATERIAL_RIGID;
+/* Which bodies read a field (the rows below): by the fields their kind's row reads, the solver
+   and the shear formulation the model resolves from them (sps__resolve_model). */
+static const sps__material_model* sps__material_of(sps_material_kind kind);              /* >>generic */
+static const sps__stabilisation* sps__kind_stabilisation(const sps_body_def* def);      /* >>generic */
+static const sps__stabilisation* sps__stabilisation_of(sps_shear shear);                /* >>model */
+static int sps__reads(const sps_body_def* d, int fields) {
+    const sps__material_model* m = sps__material_of(d->material.kind);
+    return m && (m->reads & fields);
 }
-static int sps__reads_j2(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_J2; }
-static int sps__reads_fluid(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_FLUID; }
-static int sps__reads_elastic_moduli(const sps_body_def* d) { return d->material.kind != SPS_MATERIAL_FLUID; }
-static int sps__reads_drucker_prager(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_DRUCKER_PRAGER; }
+static int sps__updated_solid(const sps_body_def* d) {
+    return d->solver == SPS_SOLVER_UPDATED_LAGRANGIAN && sps__reads(d, SPS__READS_STRESS);
+}
+static int sps__reads_j2(const sps_body_def* d) { return sps__reads(d, SPS__READS_HARDENING); }
+static int sps__reads_fluid(const sps_body_def* d) { return sps__reads(d, SPS__READS_SOUND_SPEED); }
+static int sps__reads_elastic_moduli(const sps_body_def* d) { return sps__reads(d, SPS__READS_MODULI); }
+static int sps__reads_drucker_prager(const sps_body_def* d) { return sps__reads(d, SPS__READS_CONE); }
 static int sps__reads_total_lagrangian(const sps_body_def* d) { return d->solver == SPS_SOLVER_TOTAL_LAGRANGIAN; }
-static int sps__reads_stress(const sps_body_def* d) { return d->material.kind != SPS_MATERIAL_FLUID && d->material.kind != SPS_MATERIAL_RIGID; }
+static int sps__reads_stress(const sps_body_def* d) { return sps__reads(d, SPS__READS_STRESS); }
 static int sps__reads_transport_coefficient(const sps_body_def* d) { return d->transport != SPS_TRANSPORT_NONE; }
-/* a granular body's own stress divergence replaces the shear formulation, unless GNO or GNO-A adds ANG's penalty */
+/* a kind's own stabilisation (a granular body's stress divergence) replaces the shear
+   formulation, unless it is that formulation (GNO or GNO-A adding ANG's penalty to a granular body) */
 static int sps__reads_shear(const sps_body_def* d) {
-    return sps__updated_solid(d) &&
-           (d->material.kind != SPS_MATERIAL_DRUCKER_PRAGER || d->shear == SPS_SHEAR_GNO || d->shear == SPS_SHEAR_GNO_A);
+    const sps__stabilisation* own = sps__kind_stabilisation(d);
+    return sps__updated_solid(d) && (!own || own == sps__stabilisation_of(d->shear));
 }
 static int sps__reads_rotation(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_ENO_A || d->shear == SPS_SHEAR_GNO_A); }
 static int sps__reads_zeta(const sps_body_def* d) { return sps__reads_shear(d) && (d->shear == SPS_SHEAR_ENO || d->shear == SPS_SHEAR_ENO_A); }
@@ -2290,12 +2307,12 @@ static double sps__def_value(const void* def, const sps__def_item* item) {
 
 /* >>model */
 
-/* A body's model is data: a material row (sps__materials), a stabilisation row
-   (sps__stabilisations) and the def's rotation, resolved once by sps__resolve_model when the body
-   is added into what the step runs (sps__model) and which pass kernels it calls (sps__passes,
-   chosen by sps__choose_passes in the solver chapter). Adding a material means adding its row
-   here and, where its stress update or equation of state differs, its section; the step is not
-   edited. */
+/* A body's model is data: a material row (in the material's chapter, found by sps__material_of),
+   a stabilisation row (sps__stabilisations) and the def's rotation, resolved once by
+   sps__resolve_model when the body is added into what the step runs (sps__model) and which pass
+   kernels it calls (sps__passes, chosen by sps__choose_passes in the solver chapter). Adding a
+   material means adding its chapter and its cases in the switches of chapter >>generic (which
+   lists the places); the step is not edited. */
 
 /* >>material: linear elastic */
 
@@ -2325,9 +2342,10 @@ static void sps__elastic_check(const sps_material_def* m, char* msg, size_t msg_
 static sps_real sps__elastic_energy_density(const sps__material_constants* c, sps_real tau_tau, sps_real p) {
     return tau_tau / (4 * c->G) + p * p / (2 * c->K);
 }
-/* Its row (sps__material_model): kind, name, kinematic, plastic, shear, fixed stabilisation,
-   limiter eta + per dim, Riemann density, mirrored walls, pressure of density. */
-static const sps__material_model sps__elastic_material = {SPS_MATERIAL_ELASTIC, "elastic", 0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
+/* Its row (sps__material_model): kind, name, kinematic, plastic, shear, limiter eta + per dim,
+   Riemann density, mirrored walls, pressure of density, viscous force, fields read. */
+static const sps__material_model sps__elastic_material = {SPS_MATERIAL_ELASTIC, "elastic", 0, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
+                                                          SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_STRESS};
 
 /* >>material: rigid (wall bodies) */
 
@@ -2337,8 +2355,20 @@ static sps_real sps__rigid_energy_density(const sps__material_constants* c, sps_
     (void)c; (void)tau_tau; (void)p;
     return 0;
 }
+/* Its model (sps__kind_model): a wall body runs no pass and needs no field of its own. */
+static void sps__rigid_model(sps__model* m) {
+    m->paired = m->stress = m->gradient = m->artificial_stress = 0;
+    m->turn = SPS__TURN_NONE;
+}
+/* Its combination rules (sps__combination_rules): nothing moves its particles but the user. */
+static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
+static int sps__moving_wall_particles(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->transport != SPS_TRANSPORT_NONE && def->material.kind == SPS_MATERIAL_RIGID;
+}
 /* Its row (sps__material_model; the columns: >>material: linear elastic). */
-static const sps__material_model sps__rigid_material = {SPS_MATERIAL_RIGID, "rigid", 1, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
+static const sps__material_model sps__rigid_material = {SPS_MATERIAL_RIGID, "rigid", 1, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
+                                                        SPS__VISCOUS_NONE, SPS__READS_MODULI};
 
 /* >>material: J2 plasticity (von Mises, linear isotropic hardening; ANG section 2.2) */
 
@@ -2353,9 +2383,16 @@ static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size,
                "material.hardening_modulus = %g, allowed finite >= 0 Pa for J2 (0: perfect plasticity)", (double)m->hardening_modulus);
     *broken_out += broken;
 }
+/* Its combination rule (sps__combination_rules): the return map needs the stress force. */
+static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.kind == SPS_MATERIAL_J2 && def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN &&
+           (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
+}
 /* Its row (sps__material_model; the columns: >>material: linear elastic). The stored energy of a
    J2 body is its elastic part; the return map's share is plastic work. */
-static const sps__material_model sps__j2_material = {SPS_MATERIAL_J2, "J2", 0, SPS__YIELD_VON_MISES, 1, NULL, 0, 0, 0, 0, 1};
+static const sps__material_model sps__j2_material = {SPS_MATERIAL_J2, "J2", 0, SPS__YIELD_VON_MISES, 1, 0, 0, 0, 0, 1,
+                                                     SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_HARDENING | SPS__READS_STRESS};
 
 /* >>material: Kelvin-Voigt (material damping of solids; DAMPING in the manual)
 
@@ -2437,7 +2474,8 @@ static sps_real sps__fluid_energy_density(const sps__material_constants* c, sps_
 static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid)", 0, 0, 0, 0, 0, 0, {0.6, 0.6}};
 /* Its row (sps__material_model; the columns: >>material: linear elastic): eta = 3 for fluids
    (UTVF section 3.1.1, after Zhang et al. 2017). */
-static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, &sps__no_shear, 3, 0, 1, 1, 1};
+static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, 3, 0, 1, 1, 1,
+                                                        SPS__VISCOUS_NEWTON, SPS__READS_SOUND_SPEED};
 /* The density diffusion of the Riemann solver, drho_i += rho_i sum_j (p_i - p_j) / (rho0 c0)
    dW_ij V_j (sps__continuity_pairs), acts on the pressure difference of a pair less its
    hydrostatic part rho0 g . x_ij: in water at rest p_i - p_j is that part, and where the
@@ -2446,6 +2484,12 @@ static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "flu
    about g / c0 a second: the level and the pressure creep up, bench/VALIDATION.md "Fluid at
    rest over long times"). Without gravity the term is that of UTVF eq. 18 unchanged (the
    granular stress diffusion leaves its geostatic part alone the same way). */
+/* Its model (sps__kind_model): no shear stress to track (track_stress is moot), and the velocity
+   gradient for the density rate -rho tr L (FLUIDS). */
+static void sps__fluid_model(sps__model* m) {
+    m->stress = 0;
+    m->gradient = 1;
+}
 static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
     int a;
     for (a = 0; a < 3; ++a) b->rest_pressure_gradient[a] = a < w->dim ? b->rho0 * w->def.gravity[a] : 0;
@@ -2493,7 +2537,28 @@ static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular 
    bodies (UTVF section 3.1.3, after Zhang et al. 2024); mirror walls as the reference code's
    dummy wall particles; no Riemann density term: the density follows the pressure (sps__finish). */
 static const sps__material_model sps__drucker_prager_material = {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", 0, SPS__YIELD_DRUCKER_PRAGER, 1,
-                                                              &sps__granular_stress, 0, 20, 0, 1, 0};
+                                                                  0, 20, 0, 1, 0, SPS__VISCOUS_NONE,
+                                                                  SPS__READS_MODULI | SPS__READS_CONE | SPS__READS_STRESS};
+/* Its stabilisation (sps__kind_stabilisation): the divergence of its stress, or ANG's penalty
+   with it where the def asks GNO or GNO-A (GRANULAR). */
+static const sps__stabilisation* sps__granular_stabilisation(const sps_body_def* def) {
+    return def->shear == SPS_SHEAR_GNO || def->shear == SPS_SHEAR_GNO_A ? sps__stabilisation_of(def->shear) : &sps__granular_stress;
+}
+/* Its warnings (sps__material_warnings): angles that look like radians. */
+static void sps__granular_warnings(const sps_world* w, const sps__body* b) {
+    const sps_material_def* m = &b->def.material;
+    if (m->friction_angle > 0 && m->friction_angle <= SPS__PI / 2) /* soils and granular media: 20 to 45 degrees */
+        sps__warn(w, "body '%s': material.friction_angle = %g and dilatancy_angle = %g look like radians (%g and %g degrees); both are "
+                  "in degrees, plausible range [5, 60]", b->name, (double)m->friction_angle, (double)m->dilatancy_angle,
+                  (double)(m->friction_angle * 180 / SPS__PI), (double)(m->dilatancy_angle * 180 / SPS__PI));
+}
+/* Its model (sps__kind_model): the stress diffusion where the def sets it. */
+static void sps__granular_model(const sps_body_def* def, sps__model* m) { m->diffusion = def->stress_diffusion > 0; }
+/* Its combination rule (sps__combination_rules): the penalty is kept per particle. */
+static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
+}
 
 /* The kernel-gradient moment c = -(1/d) sum_j r_ij dW/dr(r_ij) V_j of a particle inside the
    square (cubic) lattice of spacing dp, V_j = dp^d. The continuum's integral is 1; the lattice
@@ -2611,13 +2676,15 @@ static sps__material_constants sps__hyperelastic_constants(const sps_material_de
 /* Its row (sps__material_model; the columns: >>material: linear elastic): total-Lagrangian
    bodies only, their stored energy comes from F (sps__tl_energy). */
 static const sps__material_model sps__saint_venant_kirchhoff_material = {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", 0,
-                                                                      SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
+                                                                          SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1, SPS__VISCOUS_KELVIN_VOIGT,
+                                                                          SPS__READS_MODULI | SPS__READS_STRESS};
 
 /* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
 
 /* Its checks and constants are Saint Venant-Kirchhoff's (sps__hyperelastic_constants). */
 /* Its row (sps__material_model; the columns: >>material: linear elastic), as Saint Venant-Kirchhoff's. */
-static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, SPS__YIELD_NONE, 1, NULL, 0, 0, 0, 0, 1};
+static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
+                                                               SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_STRESS};
 
 /* >>generic: the material hooks, dispatched in one place
 
@@ -2711,6 +2778,63 @@ static void sps__material_setup(const sps_world* w, sps__body* b) {
     }
 }
 
+/* The stabilisation a kind always runs, or NULL: the def's shear formulation. */
+static const sps__stabilisation* sps__kind_stabilisation(const sps_body_def* def) {
+    switch (def->material.kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: break;
+    case SPS_MATERIAL_FLUID: return &sps__no_shear;
+    case SPS_MATERIAL_DRUCKER_PRAGER: return sps__granular_stabilisation(def);
+    }
+    return NULL;
+}
+
+/* What a kind sets in the model sps__resolve_model builds from a checked def, after the parts
+   every kind shares (the total-Lagrangian solver's parts come after it). */
+static void sps__kind_model(const sps_body_def* def, sps__model* m) {
+    switch (def->material.kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: return;
+    case SPS_MATERIAL_RIGID: sps__rigid_model(m); return;
+    case SPS_MATERIAL_FLUID: sps__fluid_model(m); return;
+    case SPS_MATERIAL_DRUCKER_PRAGER: sps__granular_model(def, m); return;
+    }
+}
+
+/* Whether a kind has a law for the updated-Lagrangian solver: the hyperelastic laws take the
+   deformation gradient of the reference configuration (a value outside the enum: 1, the kind
+   check names it). */
+static int sps__updated_lagrangian_law(sps_material_kind kind) {
+    switch (kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_DRUCKER_PRAGER: return 1;
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: return 0;
+    }
+    return 1;
+}
+
+/* The warnings a kind gives when its body is added (values that look like a mistake). */
+static void sps__material_warnings(const sps_world* w, const sps__body* b) {
+    switch (b->def.material.kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: return;
+    case SPS_MATERIAL_DRUCKER_PRAGER: sps__granular_warnings(w, b); return;
+    }
+}
+
 /* The macro that left this body's kind or solver out of the build (CONFIG MACROS), or NULL. */
 static const char* sps__left_out_by(const sps_body_def* def) {
     switch (def->material.kind) {
@@ -2800,25 +2924,13 @@ typedef struct sps__combination_rule {
     const char* message;
 } sps__combination_rule;
 static int sps__oas_outside_2d(int dim, const sps_body_def* def) { return def->shear == SPS_SHEAR_OAS && dim != 2; }
-static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
-static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
-    (void)dim;
-    return def->material.kind == SPS_MATERIAL_J2 && def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN &&
-           (def->shear == SPS_SHEAR_ENO || def->shear == SPS_SHEAR_ENO_A);
-}
-static int sps__total_lagrangian_law(int dim, const sps_body_def* def) {
-    (void)dim;
-    return def->material.kind == SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF || def->material.kind == SPS_MATERIAL_NEO_HOOKEAN;
-}
 static int sps__hyperelastic_updated(int dim, const sps_body_def* def) {
-    return sps__total_lagrangian_law(dim, def) && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
+    (void)dim;
+    return def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN && !sps__updated_lagrangian_law(def->material.kind);
 }
 static int sps__total_lagrangian_other_law(int dim, const sps_body_def* def) {
-    return def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN && !sps__total_lagrangian_law(dim, def) && def->material.kind != SPS_MATERIAL_J2;
-}
-static int sps__moving_wall_particles(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->transport != SPS_TRANSPORT_NONE && def->material.kind == SPS_MATERIAL_RIGID;
+    return def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN && sps__tl_law_of(def->material.kind) == SPS__LAW_NONE;
 }
 static int sps__shifted_reference(int dim, const sps_body_def* def) {
     (void)dim;
@@ -2832,22 +2944,21 @@ static int sps__viscosity_updated(int dim, const sps_body_def* def) {
     (void)dim;
     return def->artificial_viscosity > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
-static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
-    (void)dim;
-    return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
-}
 static int sps__viscous_wall_or_granular(int dim, const sps_body_def* def) {
+    const sps__material_model* material = sps__material_of(def->material.kind);
     (void)dim;
-    return def->material.viscosity > 0 && (def->material.kind == SPS_MATERIAL_RIGID || def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER);
+    return def->material.viscosity > 0 && material && material->viscous == SPS__VISCOUS_NONE;
 }
 static int sps__friction_without_contact(int dim, const sps_body_def* def) { (void)dim; return def->friction > 0 && !def->contact; }
 static int sps__friction_of_mirrored(int dim, const sps_body_def* def) {
+    const sps__material_model* material = sps__material_of(def->material.kind);
     (void)dim;
-    return def->friction > 0 && (def->material.kind == SPS_MATERIAL_FLUID || def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER);
+    return def->friction > 0 && material && material->mirrored;
 }
 static int sps__contact_damping_without_contact(int dim, const sps_body_def* def) {
+    const sps__material_model* material = sps__material_of(def->material.kind);
     (void)dim;
-    return def->contact_damping > 0 && (!def->contact || def->material.kind == SPS_MATERIAL_FLUID || def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER);
+    return def->contact_damping > 0 && (!def->contact || (material && material->mirrored));
 }
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__viscous_wall_or_granular, "material.viscosity > 0 with material.kind = rigid or Drucker-Prager: the Kelvin-Voigt damping is "
@@ -2950,9 +3061,8 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     sps__model m;
     memset(&m, 0, sizeof m);
     m.material = sps__material_of(def->material.kind);
-    m.stabilisation = m.material->stabilisation ? m.material->stabilisation : sps__stabilisation_of(def->shear);
-    if (m.material->plastic == SPS__YIELD_DRUCKER_PRAGER && (def->shear == SPS_SHEAR_GNO || def->shear == SPS_SHEAR_GNO_A))
-        m.stabilisation = sps__stabilisation_of(def->shear); /* a granular body with ANG's penalty (GRANULAR) */
+    m.stabilisation = sps__kind_stabilisation(def);
+    if (!m.stabilisation) m.stabilisation = sps__stabilisation_of(def->shear);
     m.paired = m.stabilisation->rotated && rotation == SPS_ROTATION_PAIR;
     m.turn = !m.stabilisation->rotated || m.paired ? SPS__TURN_NONE
              : rotation == SPS_ROTATION_MEAN ? SPS__TURN_MEAN : SPS__TURN_PARTICLE;
@@ -2961,19 +3071,13 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.artificial_stress = m.stabilisation->artificial_stress;
     m.plastic = m.material->plastic; /* a plastic body is of the OG family (combination rules): m.stress is set */
     m.scaled_penalty = m.plastic && m.stabilisation->penalty;
-    m.diffusion = m.plastic == SPS__YIELD_DRUCKER_PRAGER && def->stress_diffusion > 0;
     m.mirrored = m.material->mirrored;
     m.pressure_of_density = m.material->pressure_of_density;
-    if (!m.material->shear) m.stress = 0; /* nothing to track (track_stress is moot) */
-    if (!m.material->shear) m.gradient = 1; /* a fluid's density rate is -rho tr L (FLUIDS) */
     m.limited = m.material->limiter > 0 || m.material->limiter_per_dim > 0;
-    m.viscous = !(def->material.viscosity > 0) ? SPS__VISCOUS_NONE : m.material->shear ? SPS__VISCOUS_KELVIN_VOIGT : SPS__VISCOUS_NEWTON;
+    m.viscous = def->material.viscosity > 0 ? m.material->viscous : SPS__VISCOUS_NONE;
     m.riemann_density = m.material->riemann_density;
     m.transport = def->transport;
-    if (m.material->kinematic) { /* a wall body runs no pass and needs no field of its own */
-        m.paired = m.stress = m.gradient = m.artificial_stress = 0;
-        m.turn = SPS__TURN_NONE;
-    }
+    sps__kind_model(def, &m);
     if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) { /* its stress comes from F: tau holds its Cauchy stress + p I */
         m.stabilisation = &sps__tl_hourglass;
         m.total_lagrangian = m.stress = 1; /* m.plastic stays: a J2 body's return map is sps__tl_j2 */
@@ -3284,11 +3388,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
         sps__warn(w, "body '%s': cfl_acoustic = %g is above %g, the largest value measured stable for %s in %dD (bench/VALIDATION.md, "
                   "stability map): the run may blow up, which the energy watchdog reports", b->name, (double)w->def.cfl_acoustic,
                   (double)b->model.stabilisation->stable_cfl[w->dim - 2], b->model.stabilisation->name, w->dim);
-    if (b->model.plastic == SPS__YIELD_DRUCKER_PRAGER && def->material.friction_angle > 0 &&
-        def->material.friction_angle <= SPS__PI / 2) /* soils and granular media: 20 to 45 degrees */
-        sps__warn(w, "body '%s': material.friction_angle = %g and dilatancy_angle = %g look like radians (%g and %g degrees); both are "
-                  "in degrees, plausible range [5, 60]", b->name, (double)def->material.friction_angle, (double)def->material.dilatancy_angle,
-                  (double)(def->material.friction_angle * 180 / SPS__PI), (double)(def->material.dilatancy_angle * 180 / SPS__PI));
+    sps__material_warnings(w, b);
     if (def->material.poisson_ratio > SPS_R(0.499)) { /* nearly incompressible: say what it costs */
         sps_material_def ref = def->material;
         ref.poisson_ratio = SPS_R(0.3);
@@ -3548,7 +3648,7 @@ SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_re
     if (!w) return SPS_ERR_INVALID_ARG;
     if ((k = sps__check_body(w, b, "sps_body_set_geostatic_stress")) < 0) return SPS_ERR_INVALID_ARG;
     body = &w->bodies[k];
-    if (body->model.plastic != SPS__YIELD_DRUCKER_PRAGER) {
+    if (body->model.pressure_of_density) { /* its whole stress is integrated: the granular kinds */
         sps__set_error(w, 0, "sps_body_set_geostatic_stress: body '%s' has material.kind = %d, allowed 6 (Drucker-Prager)", body->name,
                        (int)body->def.material.kind);
         return SPS_ERR_INVALID_ARG;
@@ -4530,7 +4630,7 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
            (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
            (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven) ||
            (need == SPS__NEED_TRANSPORT && m->transport != SPS_TRANSPORT_NONE) || (need == SPS__NEED_DIFFUSION && m->diffusion) ||
-           (need == SPS__NEED_GRANULAR && m->plastic == SPS__YIELD_DRUCKER_PRAGER) ||
+           (need == SPS__NEED_GRANULAR && !m->pressure_of_density) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic) ||
            (need == SPS__NEED_DAMAGE && m->damage) || (need == SPS__NEED_KELVIN_VOIGT && (m->viscous == SPS__VISCOUS_KELVIN_VOIGT || b->def.contact_damping > 0));
@@ -7669,7 +7769,7 @@ static int sps__particles_behind_wall(const sps_world* w, int bi, int k) {
 static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out, size_t size) {
     const sps__stabilisation* st = b->model.stabilisation;
     const sps_real stable = st->stable_cfl[w->dim - 2];
-    const int uses_shear = b->model.material->shear && !b->model.material->stabilisation; /* the def's shear is used */
+    const int uses_shear = !sps__kind_stabilisation(&b->def); /* the def's shear is used */
     int causes = 0, k, behind = 0;
     out[0] = 0;
     if (st->eno && b->model.turn != SPS__TURN_NONE) /* ENO-A: the pair rotation (SPS_ROTATION_AUTO) holds */
