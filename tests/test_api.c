@@ -2441,3 +2441,75 @@ static int test_zigzag_tells_zigzag_from_flow(void) {
     ENSURE(zigzag[2] > 1);     /* the zigzag mode outweighs the flow: the documented threshold */
     return 0;
 }
+
+/* ============================================================================================ */
+/* >>generic: the material hooks, dispatched in one place                                      */
+
+/* A def of each kind that passes the checks, on the solver the kind has a law for (J2 with
+   GNO-A: ENO's shear force is not the divergence of a stress a return map could limit). */
+static sps_body_def generic_kind_def(sps_material_kind kind) {
+    sps_body_def bd = sps_default_body_def();
+    bd.material.kind = kind;
+    bd.shear = SPS_SHEAR_GNO_A;
+    bd.material.sound_speed = 20;
+    bd.material.yield_stress = 1e4;
+    bd.material.friction_angle = 30;
+    bd.solver = kind == SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF || kind == SPS_MATERIAL_NEO_HOOKEAN ? SPS_SOLVER_TOTAL_LAGRANGIAN
+                                                                                                : SPS_SOLVER_UPDATED_LAGRANGIAN;
+    return bd;
+}
+/* Whether the def check refuses bd with a message containing rule. */
+static int generic_refused(const sps_body_def* bd, const char* rule) {
+    char msg[2048];
+    return sps__body_def_check(2, bd, msg, sizeof msg) != SPS_OK && strstr(msg, rule) != NULL;
+}
+
+/* Each kind's row and each rule that now reads the row or a generic switch instead of naming
+   kinds: the kinds the manual names for each rule (walls through mirror particles: fluid and
+   Drucker-Prager; no Kelvin-Voigt viscosity: rigid and Drucker-Prager; the hyperelastic laws
+   total Lagrangian only; a total-Lagrangian law: J2 and the hyperelastic ones). It can fail: a
+   switch that maps a kind to another kind's row or case changes one of these answers. */
+static int test_generic_dispatch_per_kind(void) {
+    static const struct {
+        sps_material_kind kind;
+        const char* name;
+        int mirrored, viscous, updated, total;
+    } kinds[] = {
+        {SPS_MATERIAL_ELASTIC, "elastic", 0, 1, 1, 0},
+        {SPS_MATERIAL_RIGID, "rigid", 0, 0, 1, 0},
+        {SPS_MATERIAL_J2, "J2", 0, 1, 1, 1},
+        {SPS_MATERIAL_FLUID, "fluid", 1, 1, 1, 0},
+        {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", 0, 1, 0, 1},
+        {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, 1, 0, 1},
+        {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", 1, 0, 1, 0},
+    };
+    char msg[2048];
+    int k;
+    for (k = 0; k < (int)(sizeof kinds / sizeof kinds[0]); ++k) {
+        const sps__material_model* row = sps__material_of(kinds[k].kind);
+        sps_body_def bd = generic_kind_def(kinds[k].kind), changed;
+        ENSURE(row && row->kind == kinds[k].kind && strcmp(row->name, kinds[k].name) == 0);
+        ENSURE(sps__body_def_check(2, &bd, msg, sizeof msg) == SPS_OK);
+        ENSURE(sps__left_out_by(&bd) == NULL); /* this build keeps every kind */
+        changed = bd;
+        changed.friction = SPS_R(0.3);
+        ENSURE(generic_refused(&changed, "friction > 0 with material.kind = fluid or Drucker-Prager") == kinds[k].mirrored);
+        changed = bd;
+        changed.material.viscosity = 1;
+        ENSURE(generic_refused(&changed, "material.viscosity > 0 with material.kind = rigid or Drucker-Prager") == !kinds[k].viscous);
+        changed = bd;
+        changed.solver = SPS_SOLVER_UPDATED_LAGRANGIAN;
+        ENSURE(generic_refused(&changed, "Neo-Hookean with solver = updated Lagrangian") == !kinds[k].updated);
+        changed = bd;
+        changed.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
+        ENSURE(generic_refused(&changed, "solver = total Lagrangian with material.kind other than") == !kinds[k].total);
+        ENSURE((sps__tl_law_of(kinds[k].kind) != SPS__LAW_NONE) == kinds[k].total);
+    }
+    ENSURE(sps__material_of((sps_material_kind)7) == NULL); /* a value outside the enum: no row */
+    {
+        sps_body_def bd = generic_kind_def(SPS_MATERIAL_ELASTIC);
+        bd.material.kind = (sps_material_kind)7;
+        ENSURE(generic_refused(&bd, "material.kind = 7, allowed"));
+    }
+    return 0;
+}
