@@ -2476,6 +2476,12 @@ static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid
    (UTVF section 3.1.1, after Zhang et al. 2017). */
 static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, 3, 0, 1, 1, 1,
                                                         SPS__VISCOUS_NEWTON, SPS__READS_SOUND_SPEED};
+/* Its model (sps__kind_model): no shear stress to track (track_stress is moot), and the velocity
+   gradient for the density rate -rho tr L (FLUIDS). */
+static void sps__fluid_model(sps__model* m) {
+    m->stress = 0;
+    m->gradient = 1;
+}
 /* The density diffusion of the Riemann solver, drho_i += rho_i sum_j (p_i - p_j) / (rho0 c0)
    dW_ij V_j (sps__continuity_pairs), acts on the pressure difference of a pair less its
    hydrostatic part rho0 g . x_ij: in water at rest p_i - p_j is that part, and where the
@@ -2484,12 +2490,6 @@ static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "flu
    about g / c0 a second: the level and the pressure creep up, bench/VALIDATION.md "Fluid at
    rest over long times"). Without gravity the term is that of UTVF eq. 18 unchanged (the
    granular stress diffusion leaves its geostatic part alone the same way). */
-/* Its model (sps__kind_model): no shear stress to track (track_stress is moot), and the velocity
-   gradient for the density rate -rho tr L (FLUIDS). */
-static void sps__fluid_model(sps__model* m) {
-    m->stress = 0;
-    m->gradient = 1;
-}
 static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
     int a;
     for (a = 0; a < 3; ++a) b->rest_pressure_gradient[a] = a < w->dim ? b->rho0 * w->def.gravity[a] : 0;
@@ -2681,8 +2681,8 @@ static const sps__material_model sps__saint_venant_kirchhoff_material = {SPS_MAT
 
 /* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
 
-/* Its checks and constants are Saint Venant-Kirchhoff's (sps__hyperelastic_constants). */
-/* Its row (sps__material_model; the columns: >>material: linear elastic), as Saint Venant-Kirchhoff's. */
+/* Its checks and constants are Saint Venant-Kirchhoff's (sps__hyperelastic_constants); its row
+   (sps__material_model; the columns: >>material: linear elastic) as Saint Venant-Kirchhoff's. */
 static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
                                                                SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_STRESS};
 
@@ -2700,11 +2700,15 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
    (sps__resolve_model), and never asks which kind a body is.
 
    Adding a material touches three places and nothing else:
-   1. its value in sps_material_kind (>>public);
+   1. its value in sps_material_kind (>>public), the next one (the def check lists the kinds
+      from the rows: sps__material_kinds);
    2. its chapter (>>material: ...) with its row (sps__material_model), its check, its
       constants (c0, G, K), its stored energy and, where they differ from an existing kind's,
       its stress update, return map, setup and combination rules;
-   3. its case in each switch of this chapter: the compiler lists every switch that lacks it. */
+   3. its case in each switch of this chapter: the compiler lists every switch that lacks it
+      (an enum value added without its cases warns in the 11 switches here, and nowhere else).
+   A parameter of its own is a field of sps_material_def with its row in sps__body_def_items
+   (>>defaults: restart and warnings follow) and, if no bit fits, a new SPS__READS_ bit. */
 
 /* The row of a kind, or NULL for a value outside the enum (sps__body_def_check names it). */
 static const sps__material_model* sps__material_of(sps_material_kind kind) {
@@ -2718,6 +2722,19 @@ static const sps__material_model* sps__material_of(sps_material_kind kind) {
     case SPS_MATERIAL_DRUCKER_PRAGER: return &sps__drucker_prager_material;
     }
     return NULL;
+}
+
+/* The kinds, as the def check lists them: "0 (elastic), 1 (rigid), ... or 6 (Drucker-Prager)"
+   (the values of sps_material_kind run from 0 without a gap). */
+static const char* sps__material_kinds(char* out, size_t size) {
+    size_t len = 0;
+    int k;
+    out[0] = 0;
+    for (k = 0; sps__material_of((sps_material_kind)k) && len < size; ++k) {
+        const char* separator = k == 0 ? "" : sps__material_of((sps_material_kind)(k + 1)) ? ", " : " or ";
+        len += (size_t)snprintf(out + len, size - len, "%s%d (%s)", separator, k, sps__material_of((sps_material_kind)k)->name);
+    }
+    return out;
 }
 
 /* Appends every broken rule of the material's fields (a kind outside the enum: none here). */
@@ -2996,8 +3013,10 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     int broken = 0, k;
     const sps__material_model* material = sps__material_of(def->material.kind);
     SPS__CHECK(def->internal_cookie == SPS__COOKIE, "body def not initialised: start from sps_default_body_def()");
-    SPS__CHECK(material != NULL, "material.kind = %d, allowed 0 (elastic), 1 (rigid), 2 (J2), 3 (fluid), 4 (Saint Venant-Kirchhoff), 5 "
-               "(Neo-Hookean) or 6 (Drucker-Prager)", (int)def->material.kind);
+    if (!material) {
+        char kinds[256];
+        sps__rule(msg, msg_size, &broken, "material.kind = %d, allowed %s", (int)def->material.kind, sps__material_kinds(kinds, sizeof kinds));
+    }
     sps__material_check(&def->material, msg, msg_size, &broken);
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN || def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN,
