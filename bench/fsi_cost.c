@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.4));
     tank_def.material.kind = SPS_MATERIAL_RIGID;
-    w = ex_create(&wd);
+    ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_body(w, &water_def, &water));
     ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
     ex_check(w, sps_body_set_pressure(w, water, hydrostatic, NULL));
