@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
     sps_body left, right, all = {0};
     sps_diagnostics dl, dr, da, dl0, dr0, da0;
     output_plan output;
-    double wall0, wall, e0, e_end = 0, e_max, ke_min = 1e300, t_ke_min = 0, lr_max = 0, ke_lr_max = 0, gap_min = 1e30, t_gap = 0;
+    double wall, e0, e_end = 0, e_max, ke_min = 1e300, t_ke_min = 0, lr_max = 0, ke_lr_max = 0, gap_min = 1e30, t_gap = 0;
     double p_scale, p_max = 0, c0;
     int k = 0;
     sps_real c0r;
@@ -165,7 +165,6 @@ int main(int argc, char** argv) {
     e0 = da0.kinetic_energy + da0.strain_energy;
     e_max = e0;
     p_scale = 2 * dl0.linear_momentum[0]; /* sum m |v| */
-    wall0 = wall_seconds();
     for (;;) {
         double t = sps_world_time(w), el, er, gap = sps_world_time(w) > 0 ? balls3d_min_gap(w, left, right) : -1;
         char extra[256];
@@ -186,10 +185,9 @@ int main(int argc, char** argv) {
         output_tick(w, &output, extra, &da);
         if (t >= c.t_end) break;
         ex_check_step(w, sps_world_advance(w, (sps_real)fmin(++k * c.csv_every, c.t_end), NULL, NULL), &output); /* to the next CSV row */
-        progress(sps_world_time(w), c.t_end, wall0, c.quiet);
+        progress(sps_world_time(w), c.t_end, output.wall0, c.quiet);
     }
-    wall = wall_seconds() - wall0;
-    output_close(w, &output);
+    wall = output_close(w, &output);
     printf("RESULT case=%s shear=%s dp=%g paper_dp=0.001 fill=%s v0=%g*c0 c0=%.4g per_ball=%d fill_s=%.2f fill_surface_rms=%.3f "
            "fill_density_spread=%.4f kinetic_start=%.6g kinetic_left_min=%.6g t_kinetic_min=%.5f kinetic_left_end=%.6g "
            "kinetic_right_end=%.6g total_start=%.6g total_end=%.6g total_change=%.3f%% total_max_rise=%.3f%% lr_energy_diff_max=%.2e "

@@ -41,7 +41,7 @@
 typedef struct {
     output_plan output;
     sps_body body;
-    double t_end, wall0, e_fall, account0, account_error, t_rest, t_below, v_t, omega_r, v_y_before, v_in, v_out;
+    double t_end, e_fall, account0, account_error, t_rest, t_below, v_t, omega_r, v_y_before, v_in, v_out;
     int quiet, dim, bounces, touching, thrown;
 } run_state;
 
@@ -116,7 +116,7 @@ static int on_step(sps_world* w, void* user) {
         snprintf(extra, sizeof extra, ",%.9g", account);
         output_tick(w, &s->output, extra, &d);
     }
-    progress(t, s->t_end, s->wall0, s->quiet);
+    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -188,11 +188,9 @@ int main(int argc, char** argv) {
     s.e_fall = speed > 0 ? 0.5 * mass * speed * speed : mass * G * height;
     s.t_end = c.t_end; s.quiet = c.quiet; s.dim = dim; s.thrown = speed > 0; s.t_below = -1;
     output_open(&s.output, &c, "bounce", "velocity", ",account");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, s.body, &d));
     if (s.thrown) {
         const double ideal = dim == 2 ? 2.0 / 3 : 5.0 / 7;

@@ -416,6 +416,7 @@ typedef struct {
     FILE* csv;
     const char *dir, *name;
     double csv_every, vtk_every, png_every, next_csv, next_vtk, next_png, hourglass_max, min_spacing;
+    double wall0; /* wall_seconds() when it was opened: the run's start (progress's ETA, output_close) */
     int frames, pictures, svg;
     sps_vtk_options vtk;
     render_options picture;
@@ -443,6 +444,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     snprintf(file, sizeof file, "%s.csv", name);
     o->csv = open_out(o->dir, file);
     fprintf(o->csv, "%s%s\n", sps_diagnostics_csv_header(), extra_header);
+    o->wall0 = wall_seconds();
 }
 
 /* Writes a picture of w to dir/name_suffix.png (or .svg); exits with a message if it cannot. */
@@ -485,11 +487,14 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
 }
 
 /* The end of the run: closes the CSV, writes the final picture dir/name_final.png when
-   --png-every < 0, and dir/name_final.svg with --svg. */
-EX_UNUSED static void output_close(const sps_world* w, output_plan* o) {
+   --png-every < 0, and dir/name_final.svg with --svg. Returns the run's wall time [s] since
+   output_open, the closing left out. */
+EX_UNUSED static double output_close(const sps_world* w, output_plan* o) {
+    const double wall = wall_seconds() - o->wall0;
     fclose(o->csv);
     if (o->png_every < 0) output_picture(w, o, "final", RENDER_PNG);
     if (o->svg) output_picture(w, o, "final", RENDER_SVG);
+    return wall;
 }
 
 /* Returns if r is SPS_OK; otherwise the step failed: writes the world to dir/name_failed.vtk

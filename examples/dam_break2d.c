@@ -31,7 +31,7 @@ static sps_real hydrostatic(const sps_real x[3], void* user) {
 
 typedef struct {
     output_plan output;
-    double wall0, t_end, dp, T[4096], Z[4096];
+    double t_end, dp, T[4096], Z[4096];
     int n, quiet;
 } run_state;
 
@@ -54,7 +54,7 @@ static int on_step(sps_world* w, void* user) {
         s->T[s->n] = T;
         s->Z[s->n++] = Z;
     }
-    progress(sps_world_time(w), s->t_end, s->wall0, s->quiet);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return Z >= 4 * A_COLUMN - 0.5 * s->dp; /* the front at the far wall: the comparison ends */
 }
 
@@ -122,11 +122,9 @@ int main(int argc, char** argv) {
     s->t_end = c.t_end;
     s->quiet = c.quiet;
     output_open(&s->output, &c, "dam_break2d", "velocity", ",T,front_Z");
-    s->wall0 = wall_seconds();
     on_step(w, s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, s), &s->output);
-    wall = wall_seconds() - s->wall0;
-    output_close(w, &s->output);
+    wall = output_close(w, &s->output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
     printf("dam break: dp = %g (a/dp = %g), %d particles, c0 = %g m/s, %s walls, transport %s\n", dp, A_COLUMN / dp,
            sps_world_particle_count(w), c0, no_slip ? "no-slip" : "free-slip", c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");

@@ -35,7 +35,7 @@ static sps_real sphere_sdf(const sps_real x[3], void* user) {
 
 typedef struct {
     output_plan output;
-    double wall0, t_end, dp, barrier_x, impact_t, impact_speed, max_deflection, max_t;
+    double t_end, dp, barrier_x, impact_t, impact_speed, max_deflection, max_t;
     sps_body barrier, boulders[NBOULDERS];
     int done;
 } run_state;
@@ -98,7 +98,7 @@ static int on_step(sps_world* w, void* user) {
         if (deflection > s->max_deflection) { s->max_deflection = deflection; s->max_t = t; }
         if (s->max_deflection > 0.05 * s->dp && deflection < 0.75 * s->max_deflection) s->done = 1; /* swung back: the maximum is behind us */
     }
-    progress(t, s->t_end, s->wall0, 0);
+    progress(t, s->t_end, s->output.wall0, 0);
     return s->done;
 }
 
@@ -185,11 +185,9 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end;
     s.dp = dp;
     output_open(&s.output, &c, "debris_barrier3d", "velocity", "");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     if (s.impact_t < 0) printf("  no impact by t = %.3g s\n", (double)d.time);
     else

@@ -33,7 +33,7 @@ static sps_real hydrostatic(const sps_real x[3], void* user) {
 typedef struct {
     output_plan output;
     sps_body water, block;
-    double t_end, window, wall0, draft_sum, drop;
+    double t_end, window, draft_sum, drop;
     int quiet, draft_rows;
 } run_state;
 
@@ -63,7 +63,7 @@ static int on_step(sps_world* w, void* user) {
         s->draft_sum += draft;
         s->draft_rows++;
     }
-    progress(t, s->t_end, s->wall0, s->quiet);
+    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -118,11 +118,9 @@ int main(int argc, char** argv) {
     s.window = window;
     s.drop = drop;
     output_open(&s.output, &c, "floating_block", "pressure", ",draft");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
 
     draft = s.draft_rows ? s.draft_sum / s.draft_rows : draft_of(w, s.water, s.block);
     archimedes = c.rho0 / RHO_WATER * SIZE;

@@ -43,7 +43,7 @@ static sps_real block_sdf(const sps_real x[3], void* user) {
 
 typedef struct {
     output_plan output;
-    double wall0, t_end, next_report, dp;
+    double t_end, next_report, dp;
     sps_body soil;
 } run_state;
 
@@ -67,11 +67,11 @@ static int on_step(sps_world* w, void* user) {
         printf("  t = %.2f s: front x = %.3f m, max speed %.3f m/s, %d particles closer than 0.5 dp to another (smallest spacing %.3f dp), "
                "surface particles %d, wall %.0f s\n",
                t, front(w, s->soil, s->dp), (double)d.max_speed, ex_clustered_particles(w, s->dp, 0.5), (double)d.min_spacing,
-               d.surface_particles, wall_seconds() - s->wall0);
+               d.surface_particles, wall_seconds() - s->output.wall0);
         fflush(stdout);
         s->next_report += 0.5;
     }
-    progress(t, s->t_end, s->wall0, 0);
+    progress(t, s->t_end, s->output.wall0, 0);
     return 0;
 }
 
@@ -152,11 +152,9 @@ int main(int argc, char** argv) {
     s.dp = dp;
     s.soil = soil;
     output_open(&s.output, &c, "flume3d", "velocity", "");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, soil, &d));
     {
         const sps_real* x = sps_body_field(w, soil, "position_x", NULL, &first, &count);

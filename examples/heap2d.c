@@ -31,7 +31,7 @@
 
 typedef struct {
     output_plan output;
-    double wall0, t_end, zigzag_max;
+    double t_end, zigzag_max;
 } run_state;
 
 /* At every CSV row: the largest zigzag indicator (DIAGNOSTICS: near 0 while the soil flows
@@ -40,7 +40,7 @@ static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
     if (output_tick(w, &s->output, "", &d) && d.zigzag > s->zigzag_max) s->zigzag_max = d.zigzag;
-    progress(sps_world_time(w), s->t_end, s->wall0, 0);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, 0);
     return 0;
 }
 
@@ -84,16 +84,12 @@ static void pour(sps_world* w, sps_body soil, double dp, double t_end, run_state
     const double interval = sqrt(2 * dp / 9.8);
     const int rows = (int)(COLUMN_HEIGHT / dp + 0.5);
     sps_real lo[3] = {0.5 * (FLOOR_LENGTH - COLUMN_WIDTH), POUR_HEIGHT, 0}, hi[3] = {0.5 * (FLOOR_LENGTH + COLUMN_WIDTH), POUR_HEIGHT + dp, 0};
-    sps_result r = SPS_OK;
     int k;
-    s->wall0 = wall_seconds();
-    for (k = 0; k < rows && k * interval < t_end && r == SPS_OK; ++k) {
-        if (k > 0) r = sps_world_advance(w, (sps_real)(k * interval), on_step, s);
-        if (r == SPS_OK) ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
+    for (k = 0; k < rows && k * interval < t_end; ++k) {
+        if (k > 0) ex_check_step(w, sps_world_advance(w, (sps_real)(k * interval), on_step, s), &s->output);
+        ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
     }
-    if (r == SPS_OK) r = sps_world_advance(w, (sps_real)t_end, on_step, s);
-    ex_check_step(w, r, &s->output);
-    output_close(w, &s->output);
+    ex_check_step(w, sps_world_advance(w, (sps_real)t_end, on_step, s), &s->output);
 }
 
 /* Why a pour is refused (NULL: it is not), measured (bench/VALIDATION.md, "Granular media that
@@ -160,16 +156,12 @@ int main(int argc, char** argv) {
 
     s.t_end = c.t_end;
     output_open(&s.output, &c, "heap2d", "velocity", "");
-    if (pouring) {
-        pour(w, soil, dp, c.t_end, &s);
-        wall = wall_seconds() - s.wall0;
-    } else {
-        s.wall0 = wall_seconds();
+    if (pouring) pour(w, soil, dp, c.t_end, &s);
+    else {
         on_step(w, &s); /* t = 0: the first CSV row and snapshot */
         ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-        wall = wall_seconds() - s.wall0;
-        output_close(w, &s.output);
     }
+    wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
 
     columns = (int)(FLOOR_LENGTH / dp) + 1;

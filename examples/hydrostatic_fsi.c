@@ -49,7 +49,7 @@ static void plate_load(const sps_real x[3], const sps_real x0[3], const sps_real
 typedef struct {
     output_plan output;
     sps_body plate;
-    double dp, t_end, window, wall0, sum;
+    double dp, t_end, window, sum;
     int quiet, rows;
 } run_state;
 
@@ -80,7 +80,7 @@ static int on_step(sps_world* w, void* user) {
         s->sum += deflection;
         s->rows++;
     }
-    progress(t, s->t_end, s->wall0, s->quiet);
+    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -156,11 +156,9 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end;
     s.window = window;
     output_open(&s.output, &c, "hydrostatic_fsi", "pressure", ",deflection");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
 
     deflection = s.rows ? s.sum / s.rows : mid_deflection(w, s.plate, dp);
     q = RHO_WATER * G_ACC * DEPTH;

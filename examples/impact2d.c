@@ -86,7 +86,7 @@ static impact_figures measure(const sps_world* w, int projectile_body, int plate
 
 typedef struct {
     output_plan output;
-    double t_contact, t_end, wall0, e0, account_dev_max;
+    double t_contact, t_end, e0, account_dev_max;
     int quiet;
 } run_state;
 
@@ -101,7 +101,7 @@ static int on_step(sps_world* w, void* user) {
         if (s->e0 == 0) s->e0 = d.kinetic_energy;
         if (fabs(account - s->e0) > s->account_dev_max) s->account_dev_max = fabs(account - s->e0);
     }
-    progress(t + s->t_contact, s->t_end + s->t_contact, s->wall0, s->quiet);
+    progress(t + s->t_contact, s->t_end + s->t_contact, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -160,11 +160,9 @@ int main(int argc, char** argv) {
     memset(&s, 0, sizeof s);
     s.quiet = c.quiet; s.t_end = c.t_end; s.t_contact = gap / IM_SPEED;
     output_open(&s.output, &c, "impact2d", "plastic-strain", ",t_impact");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)(s.t_contact + c.t_end), on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     f = measure(w, sps_body_index(w, projectile), sps_body_index(w, plate), dp);
     {
         sps_body all = {0};

@@ -34,7 +34,7 @@
 
 typedef struct {
     output_plan output;
-    double t_end, settle, wall0, g_t;
+    double t_end, settle, g_t;
     sps_body body;
     int quiet, dim;
     double sum[5], sum_x[3], sum_s[3]; /* least-squares sums: t^0..t^4, x t^0..2, omega R t^0..2 */
@@ -74,7 +74,7 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d;
     double t = sps_world_time(w), x, spin, tt = 1;
     int k;
-    if (t < s->output.next_csv - 1e-12) { progress(t, s->t_end, s->wall0, s->quiet); return 0; }
+    if (t < s->output.next_csv - 1e-12) { progress(t, s->t_end, s->output.wall0, s->quiet); return 0; }
     centre_and_spin(w, s->dim, &x, &spin);
     if (t < s->settle - 1e-12) ex_check(w, sps_body_set_velocity(w, s->body, at_rest, NULL)); /* kinetic relaxation */
     if (t >= s->settle - 1e-12) {
@@ -90,7 +90,7 @@ static int on_step(sps_world* w, void* user) {
         snprintf(extra, sizeof extra, ",%.9g,%.9g", x, spin);
         output_tick(w, &s->output, extra, &d);
     }
-    progress(t, s->t_end, s->wall0, s->quiet);
+    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -183,11 +183,9 @@ int main(int argc, char** argv) {
     }
     s.t_end = c.t_end; s.settle = settle; s.quiet = c.quiet; s.dim = dim; s.g_t = g_t;
     output_open(&s.output, &c, "incline", "velocity", ",centre_x,spin_omega_R");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     accel = fitted_acceleration(s.sum, s.sum_x);
     spin = (s.sum[0] * s.sum_s[1] - s.sum[1] * s.sum_s[0]) / (s.sum[0] * s.sum[2] - s.sum[1] * s.sum[1]); /* the slope of a line fit */
     rel = fabs(accel - theory) / (theory > 0 ? theory : g_t);

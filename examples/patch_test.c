@@ -23,7 +23,7 @@
 
 typedef struct {
     output_plan output;
-    double t_end, wall0, fail, hourglass_max, last_s, last_t, t_fail, crossing_first, crossing_last;
+    double t_end, fail, hourglass_max, last_s, last_t, t_fail, crossing_first, crossing_last;
     int quiet, crossings, failed;
     const int* ids;
 } run_state;
@@ -68,7 +68,7 @@ static int on_step(sps_world* w, void* user) {
             return 1; /* no longer coherent: stop */
         }
     }
-    progress(t, st->t_end, st->wall0, st->quiet);
+    progress(t, st->t_end, st->output.wall0, st->quiet);
     return 0;
 }
 
@@ -181,11 +181,9 @@ int main(int argc, char** argv) {
     memset(&st, 0, sizeof st);
     st.quiet = c.quiet; st.t_end = c.t_end; st.fail = fail; st.last_s = 0.1;
     output_open(&st.output, &c, "patch_test", "velocity", ",radial_strain");
-    st.wall0 = wall_seconds();
     on_step(w, &st); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &st), &st.output);
-    wall = wall_seconds() - st.wall0;
-    output_close(w, &st.output);
+    wall = output_close(w, &st.output);
     if (st.crossings >= 3) period = 2 * (st.crossing_last - st.crossing_first) / (st.crossings - 1);
     printf("RESULT case=patch_test alpha=%g hourglass=%s artificial_viscosity=%g n=%d jitter=%g particles=%d period=%.6f periods_run=%.1f failed=%d t_fail=%.4g "
            "periods_at_fail=%.1f hourglass_max=%.3g paper_stiffening=3%% %s steps=%ld wall_s=%.2f out=%s\n",

@@ -38,7 +38,7 @@ typedef struct {
     sps_observer tip;
     period_detector period;
     output_plan output;
-    double amp_first, amp_last, amp_cur, t_end, wall0; /* amplitudes: max |deflection| per cycle */
+    double amp_first, amp_last, amp_cur, t_end; /* amplitudes: max |deflection| per cycle */
     double amp[64];       /* every cycle's (--viscosity: the decay fit) */
     int quiet, cycles;
 } run_state;
@@ -59,7 +59,7 @@ static int on_step(sps_world* w, void* user) {
     }
     snprintf(extra, sizeof extra, ",%.9g", (double)u[1]);
     output_tick(w, &s->output, extra, &d);
-    progress(t, s->t_end, s->wall0, s->quiet);
+    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -130,11 +130,9 @@ int main(int argc, char** argv) {
 
     s.quiet = c.quiet; s.t_end = c.t_end;
     output_open(&s.output, &c, "plate2d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",deflection");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
 
     analytical = plate2d_analytical_period(c.E, c.nu, c.rho0);
     paper = solver == 1 ? -1 : paper_period(c.shear, c.transport, p.vf);

@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
     output_plan output;
     shape_row shapes[MAX_SHAPES], last;
     int nshapes = 0, corner_id, *punch_ids, npunch = 0, i, k = 0, kshape = 1;
-    double wall0, wall, rough_max = 0;
+    double wall, rough_max = 0;
     char fields[4096];
     size_t len = 0;
 
@@ -157,7 +157,6 @@ int main(int argc, char** argv) {
 
     output_open(&output, &c, CASE, "pressure",
                 ",punch_depth,corner_uy,max_y,pressure_max,pressure_min,pressure_roughness");
-    wall0 = wall_seconds();
     for (;;) {
         double t = sps_world_time(w);
         char extra[256];
@@ -168,10 +167,9 @@ int main(int argc, char** argv) {
         if (t >= kshape * shape_every - 1e-12 && nshapes < MAX_SHAPES) { shapes[nshapes++] = last; ++kshape; }
         if (t >= c.t_end) break;
         ex_check_step(w, sps_world_advance(w, (sps_real)fmin(++k * c.csv_every, c.t_end), NULL, NULL), &output); /* to the next CSV row */
-        progress(sps_world_time(w), c.t_end, wall0, c.quiet);
+        progress(sps_world_time(w), c.t_end, output.wall0, c.quiet);
     }
-    wall = wall_seconds() - wall0;
-    output_close(w, &output);
+    wall = output_close(w, &output);
     for (i = 0; i < nshapes && len < sizeof fields - 200; ++i)
         len += (size_t)snprintf(fields + len, sizeof fields - len,
                                 " t%d=%.4g depth%d=%.4f corner_uy%d=%.4f max_y%d=%.4f extent%d=%.4f:%.4fx%.4f:%.4f pmax%d=%.4g pmin%d=%.4g rough%d=%.4f",

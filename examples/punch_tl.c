@@ -24,7 +24,7 @@
 
 typedef struct {
     output_plan output;
-    double t_end, wall0, v, H, W0, last_work, last_s, hourglass_max, next_report, mu, lambda;
+    double t_end, v, H, W0, last_work, last_s, hourglass_max, next_report, mu, lambda;
     double report_work, report_s; /* at the last report: the mean force over each 10 % is the secant */
     int quiet;
 } run_state;
@@ -64,7 +64,7 @@ static int on_step(sps_world* w, void* user) {
     }
     st->last_work = d.prescribed_work;
     st->last_s = s;
-    progress(t, st->t_end, st->wall0, st->quiet);
+    progress(t, st->t_end, st->output.wall0, st->quiet);
     return 0;
 }
 
@@ -140,11 +140,9 @@ int main(int argc, char** argv) {
     ex_check(w, sps_body_set_velocity(w, bottom, tool_velocity, &vup));
     st.quiet = c.quiet; st.t_end = c.t_end;
     output_open(&st.output, &c, "punch_tl", "displacement", ",compression,force,homogeneous_force");
-    st.wall0 = wall_seconds();
     on_step(w, &st); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &st), &st.output);
-    wall = wall_seconds() - st.wall0;
-    output_close(w, &st.output);
+    wall = output_close(w, &st.output);
     n = sps_world_particle_count(w);
     for (id = 0; id < n; ++id) {
         sps_particle_state p;

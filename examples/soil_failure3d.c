@@ -20,7 +20,7 @@
 
 typedef struct {
     output_plan output;
-    double wall0, t_end, next_report;
+    double t_end, next_report;
 } run_state;
 
 /* The top of the soil and the largest horizontal distance of a particle from the cube's axis. */
@@ -49,11 +49,11 @@ static int on_step(sps_world* w, void* user) {
         printf("  t = %.3f s: top %.3f m, half width %.3f m (1 at the start), %d particles closer than 0.5 dp to another (smallest "
                "spacing %.3f dp), surface particles %d, max speed %.3f m/s, wall %.0f s\n",
                t, top, half_width, ex_clustered_particles(w, (double)sps_world_get_def(w)->dp, 0.5), (double)d.min_spacing,
-               d.surface_particles, (double)d.max_speed, wall_seconds() - s->wall0);
+               d.surface_particles, (double)d.max_speed, wall_seconds() - s->output.wall0);
         fflush(stdout);
         s->next_report += 0.25;
     }
-    progress(t, s->t_end, s->wall0, 0);
+    progress(t, s->t_end, s->output.wall0, 0);
     return 0;
 }
 
@@ -104,11 +104,9 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end;
     s.next_report = 0.25;
     output_open(&s.output, &c, "soil_failure3d", "plastic-strain", "");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
     printf("RESULT case=soil_failure3d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g clustered=%d min_spacing=%.3f surface_particles=%d "
            "max_plastic_strain=%.3f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",

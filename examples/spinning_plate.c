@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     sps_diagnostics d0, d;
     sps_body all = {0};
     sps_real corner[3] = {0.5, 0.5, 0.5};
-    double wall0, wall, max_err = 0, max_p_drift = 0, p_scale;
+    double wall, max_err = 0, max_p_drift = 0, p_scale;
     int corner_id;
     output_plan output;
 
@@ -69,7 +69,6 @@ int main(int argc, char** argv) {
     output_open(&output, &c, CASE, "velocity", ",corner_ux,corner_uy,corner_vx,corner_vy");
     p_scale = spinning_momentum_scale(w);
     ex_check(w, sps_world_diagnostics(w, all, &d0));
-    wall0 = wall_seconds();
     for (;;) {
         double t = sps_world_time(w);
         sps_particle_state pc;
@@ -89,10 +88,9 @@ int main(int argc, char** argv) {
             sps_result r = sps_world_advance(w, t + c.csv_every < c.t_end ? t + c.csv_every : c.t_end, NULL, NULL);
             ex_check_step(w, r, &output);
         }
-        progress(sps_world_time(w), c.t_end, wall0, c.quiet);
+        progress(sps_world_time(w), c.t_end, output.wall0, c.quiet);
     }
-    wall = wall_seconds() - wall0;
-    output_close(w, &output);
+    wall = output_close(w, &output);
     printf("RESULT case=%s shear=%s dp=%g omega=%g drift=%g stepping=%s nu=%g jitter=%g max_angmom_err=%.4g%% paper=%.2f%% "
            "max_linmom_drift=%.2e min_spacing=%.3f hourglass_max=%.3g kinetic_start=%.6g kinetic_end=%.6g %s particles=%d "
            "steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",

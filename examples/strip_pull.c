@@ -20,7 +20,7 @@
 
 typedef struct {
     output_plan output;
-    double t_end, wall0, hourglass_max, spacing_min;
+    double t_end, hourglass_max, spacing_min;
     int quiet;
 } run_state;
 
@@ -31,7 +31,7 @@ static int on_step(sps_world* w, void* user) {
         if (d.hourglass > s->hourglass_max) s->hourglass_max = d.hourglass;
         if (d.min_spacing < s->spacing_min) s->spacing_min = d.min_spacing;
     }
-    progress(sps_world_time(w), s->t_end, s->wall0, s->quiet);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -93,11 +93,9 @@ int main(int argc, char** argv) {
     memset(&s, 0, sizeof s);
     s.quiet = c.quiet; s.t_end = c.t_end; s.spacing_min = 1e30;
     output_open(&s.output, &c, "strip_pull", "displacement", "");
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     { /* the neck: the width of the particles whose reference height is mid-strip */
         double xmin = 1e30, xmax = -1e30, ymin = 1e30, ymax = -1e30;
         n = sps_world_particle_count(w);

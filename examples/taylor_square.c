@@ -104,7 +104,7 @@ static bar_extent measure_bar(const sps_world* w, double dp, double gap) {
 typedef struct {
     sps_observer point; /* B2's observation point s */
     output_plan output;
-    double t_contact, t_end, wall0, e0, account_dev_max, ke_min, t_ke_min, ke_59us;
+    double t_contact, t_end, e0, account_dev_max, ke_min, t_ke_min, ke_59us;
     int quiet;
 } run_state;
 
@@ -123,7 +123,7 @@ static int on_step(sps_world* w, void* user) {
         if (t >= 0 && d.kinetic_energy < s->ke_min) { s->ke_min = d.kinetic_energy; s->t_ke_min = t; }
         if (s->ke_59us < 0 && t >= 59e-6 - 1e-12) s->ke_59us = d.kinetic_energy;
     }
-    progress(t + s->t_contact, s->t_end + s->t_contact, s->wall0, s->quiet);
+    progress(t + s->t_contact, s->t_end + s->t_contact, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -200,11 +200,9 @@ int main(int argc, char** argv) {
     s.t_contact = gap / TB_SPEED;
     output_open(&s.output, &c, TB_NAME, "plastic-strain", ",t_impact,x_observation");
     start = measure_bar(w, dp, gap);
-    s.wall0 = wall_seconds();
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)(s.t_contact + c.t_end), on_step, &s), &s.output);
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     end = measure_bar(w, dp, gap);
     {
         sps_body all = {0};

@@ -56,7 +56,7 @@ static void tensile2d_extent(const sps_world* w, double* width_mid, double* heig
 
 typedef struct {
     output_plan output;
-    double t_end, wall0;
+    double t_end;
     int quiet;
 } run_state;
 
@@ -68,7 +68,7 @@ static int on_step(sps_world* w, void* user) {
     tensile2d_extent(w, &width, &height, &neck);
     snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g", width, height, neck);
     output_tick(w, &s->output, extra, &d);
-    progress(sps_world_time(w), s->t_end, s->wall0, s->quiet);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -119,7 +119,6 @@ int main(int argc, char** argv) {
 
     s.quiet = c.quiet; s.t_end = c.t_end;
     output_open(&s.output, &c, "tensile2d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",width_mid,height,neck");
-    s.wall0 = wall_seconds();
     on_step(w, &s);
     for (k = 1; k <= TENSILE2D_MAX_REPORTS && (t_next = k * report_every) <= c.t_end * (1 + 1e-9); ++k) {
         double width, height, neck;
@@ -133,8 +132,7 @@ int main(int argc, char** argv) {
         sps_result r = sps_world_advance(w, c.t_end, on_step, &s);
         ex_check_step(w, r, &s.output);
     }
-    wall = wall_seconds() - s.wall0;
-    output_close(w, &s.output);
+    wall = output_close(w, &s.output);
     {
         sps_diagnostics d;
         ex_check(w, sps_world_diagnostics(w, plate, &d));
