@@ -32,7 +32,8 @@ BUILD    = build
 FLOAT    = $(BUILD)/float
 # The examples: every .c file in examples/ but the ones in NOT_BENCHMARKS, and the VARIANTS (an
 # example's file built again with a -D flag: their rules are under "examples"). A new example is
-# its file alone: its head comment's "Smoke: NAME OPTIONS" lines are its runs in make examples-smoke.
+# its file alone: its head comment's "Smoke: NAME OPTIONS" lines are its runs in make examples-smoke
+# (a picture in the README's gallery, if it gets one, is a line of GALLERY_RUNS).
 NOT_BENCHMARKS  = hello impl demo
 EXAMPLE_SOURCES = $(filter-out $(NOT_BENCHMARKS:%=examples/%.c),$(wildcard examples/*.c))
 VARIANTS = spinning_cube ball_plate3d taylor_round
