@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
         snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.6g", last.depth, last.corner_y, last.max_y, last.pmax, last.pmin, last.rough);
         output_tick(w, &output, extra, &d);
         if (t >= kshape * shape_every - 1e-12 && nshapes < MAX_SHAPES) { shapes[nshapes++] = last; ++kshape; }
-        if (t >= c.t_end) break;
+        if (t >= (sps_real)c.t_end) break; /* the world's clock is an sps_real: a float 2e-4 is below the double */
         ex_check_step(w, sps_world_advance(w, (sps_real)fmin(++k * c.csv_every, c.t_end), NULL, NULL), &output); /* to the next CSV row */
         progress(sps_world_time(w), c.t_end, output.wall0, c.quiet);
     }

@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
             for (a = 0; a < 3; ++a) dP[a] = d.linear_momentum[a] - d0.linear_momentum[a];
             max_p_drift = fmax(max_p_drift, norm3(dP) / p_scale);
         }
-        if (t >= c.t_end) break;
+        if (t >= (sps_real)c.t_end) break; /* the world's clock is an sps_real: a float 2e-4 is below the double */
         {
             sps_result r = sps_world_advance(w, t + c.csv_every < c.t_end ? t + c.csv_every : c.t_end, NULL, NULL);
             ex_check_step(w, r, &output);
