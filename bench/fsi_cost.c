@@ -29,9 +29,9 @@ static void fluid_passes(sps_world* w, sps__body* water, sps_real dt) {
 }
 
 /* The coupling's forces: the contact force loop over every particle (all pairs are coupled). */
-static void coupling_forces(sps_world* w) {
+static void coupling_forces(sps_world* w, sps_real dt) {
     int i;
-    for (i = 0; i < w->n; ++i) sps__contact_force(w, i);
+    for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
 }
 
 int main(int argc, char** argv) {
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
         b->coupled = 1;
         for (k = 0; k < repeat; ++k) {
             fluid_passes(w, b, w->dt);
-            coupling_forces(w);
+            coupling_forces(w, w->dt);
         }
         t = wall_seconds() - start;
         if (t < best_coupled) best_coupled = t;

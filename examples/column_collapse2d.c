@@ -65,7 +65,7 @@ static int on_step(sps_world* w, void* user) {
         s->energy_end = mechanical_energy(&d);
         if (d.zigzag > s->zigzag_max) s->zigzag_max = d.zigzag;
     }
-    progress(t, s->t_end, s->output.wall0, 0);
+    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 

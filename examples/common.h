@@ -302,18 +302,23 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
-/* The shared options set the updated-Lagrangian shear formulation on every body; a body that
-   does not read it (total Lagrangian; Drucker-Prager without GNO's penalty) would be warned
-   about it by sps_world_add_body, so it gets the library's defaults back (no effect on results). */
+/* The shared options set an updated-Lagrangian solid's formulation (shear, rotation, zeta, xi,
+   track_stress) on every body; a body that does not read one of them (a fluid; a total-Lagrangian
+   body; Drucker-Prager without GNO's penalty; rotation outside the -A variants) would be warned
+   about it by sps_world_add_body, so it gets the library's default back (no effect on results).
+   Call it on a def just before sps_world_add_body. */
 EX_UNUSED static void ex_unset_unread(sps_body_def* bd) {
     const sps_body_def d0 = sps_default_body_def();
+    const int fluid = bd->material.kind == SPS_MATERIAL_FLUID;
     const int granular_without_penalty = bd->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && bd->shear != SPS_SHEAR_GNO && bd->shear != SPS_SHEAR_GNO_A;
-    if (bd->solver == SPS_SOLVER_TOTAL_LAGRANGIAN || granular_without_penalty) {
+    const int reads_shear = bd->solver == SPS_SOLVER_UPDATED_LAGRANGIAN && !fluid && !granular_without_penalty;
+    if (!reads_shear) {
         bd->shear = d0.shear;
-        bd->rotation = d0.rotation;
         bd->zeta = d0.zeta;
         bd->xi = d0.xi;
     }
+    if (!reads_shear || (bd->shear != SPS_SHEAR_ENO_A && bd->shear != SPS_SHEAR_GNO_A)) bd->rotation = d0.rotation;
+    if (fluid) bd->track_stress = d0.track_stress;
 }
 
 /* ---- contact friction and material damping (CONTACT and DAMPING in the header's manual) ---- */
@@ -418,6 +423,7 @@ typedef struct {
     double csv_every, vtk_every, png_every, next_csv, next_vtk, next_png, hourglass_max, min_spacing;
     double wall0; /* wall_seconds() when it was opened: the run's start (progress's ETA, output_close) */
     int frames, pictures, svg;
+    int quiet; /* --quiet: no progress line */
     sps_vtk_options vtk;
     render_options picture;
 } output_plan;
@@ -431,6 +437,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     memset(o, 0, sizeof *o);
     o->dir = c->out; o->name = name; o->csv_every = c->csv_every; o->vtk_every = c->vtk_every; o->png_every = c->png_every;
     o->svg = c->svg;
+    o->quiet = c->quiet;
     o->vtk = sps_default_vtk_options();
     o->vtk.binary = c->vtk_binary;
     o->vtk.single_precision = c->vtk_single;

@@ -114,6 +114,7 @@ int main(int argc, char** argv) {
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, no_slip ? SPS_WALL_NO_SLIP : SPS_WALL_FREE_SLIP));
+    ex_unset_unread(&bd); /* a fluid reads no shear formulation */
     ex_check(w, sps_world_add_body(w, &bd, &water));
     ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
     ex_check(w, sps_body_set_pressure(w, water, hydrostatic, NULL));

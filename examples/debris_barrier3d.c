@@ -98,7 +98,7 @@ static int on_step(sps_world* w, void* user) {
         if (deflection > s->max_deflection) { s->max_deflection = deflection; s->max_t = t; }
         if (s->max_deflection > 0.05 * s->dp && deflection < 0.75 * s->max_deflection) s->done = 1; /* swung back: the maximum is behind us */
     }
-    progress(t, s->t_end, s->output.wall0, 0);
+    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return s->done;
 }
 

@@ -150,6 +150,7 @@ int main(int argc, char** argv) {
         ex_check(w, sps_world_add_body(w, &water_def, &water));
         ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
         ex_check(w, sps_body_set_pressure(w, water, hydrostatic, NULL));
+        ex_unset_unread(&gate_def); /* --solver tl: no shear formulation */
         ex_check(w, sps_world_add_body(w, &gate_def, &gate));
         lo[0] = (sps_real)(gate_x - GATE_THICK); hi[0] = (sps_real)gate_x; hi[1] = GATE_TOP;
         ex_check(w, sps_body_add_box(w, gate, lo, hi, NULL));

@@ -150,6 +150,7 @@ int main(int argc, char** argv) {
     bd.material.sound_speed = (sps_real)c0;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
+    ex_unset_unread(&bd); /* a fluid reads no shear formulation */
     ex_check(w, sps_world_add_body(w, &bd, &drop));
     ex_check(w, sps_body_add_sdf(w, drop, lo, hi, disc_sdf, NULL, NULL));
     ex_check(w, sps_body_set_velocity(w, drop, initial_velocity, NULL));

@@ -40,7 +40,7 @@ static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
     if (output_tick(w, &s->output, "", &d) && d.zigzag > s->zigzag_max) s->zigzag_max = d.zigzag;
-    progress(sps_world_time(w), s->t_end, s->output.wall0, 0);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 

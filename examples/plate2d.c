@@ -122,6 +122,7 @@ int main(int argc, char** argv) {
         bd.artificial_viscosity = (sps_real)artificial_viscosity;
     }
     bd.material.viscosity = viscosity;
+    ex_unset_unread(&bd); /* --solver tl: no shear formulation */
     p.jitter = c.jitter;
     p.seed = c.seed;
     wd.log = ex_log;

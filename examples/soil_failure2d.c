@@ -31,7 +31,7 @@ static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
     output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, 0);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 

@@ -53,7 +53,7 @@ static int on_step(sps_world* w, void* user) {
         fflush(stdout);
         s->next_report += 0.25;
     }
-    progress(t, s->t_end, s->output.wall0, 0);
+    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 
