@@ -30,8 +30,14 @@ SANITIZE = -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recove
 BUILD    = build
 # the examples built with sps_real = float (defined before the rules that name it)
 FLOAT    = $(BUILD)/float
-EXAMPLES = plate2d patch_test beam_tl strip_pull punch_tl taylor2d_tl tensile3d cantilever_sag elliptical_drop rotating_patch dam_break2d column_collapse2d heap2d soil_failure2d soil_failure3d flume3d debris_barrier3d plate3d spinning_plate spinning_cube rings2d punch2d balls3d tensile2d ball_plate2d ball_plate3d \
-           taylor_square taylor_round impact2d incline bounce floating_block hydrostatic_fsi elastic_gate
+# The examples: every .c file in examples/ but the ones in NOT_BENCHMARKS, and the VARIANTS (an
+# example's file built again with a -D flag: their rules are under "examples"). A new example is
+# its file alone: its head comment's "Smoke: NAME OPTIONS" lines are its runs in make examples-smoke
+# (a picture in the README's gallery, if it gets one, is a line of GALLERY_RUNS).
+NOT_BENCHMARKS  = hello impl demo
+EXAMPLE_SOURCES = $(filter-out $(NOT_BENCHMARKS:%=examples/%.c),$(wildcard examples/*.c))
+VARIANTS = spinning_cube ball_plate3d taylor_round
+EXAMPLES = $(EXAMPLE_SOURCES:examples/%.c=%) $(VARIANTS)
 HEADER   = sphsolid.h
 # the test runner tests/test_sphsolid.c includes its parts, one file per part of the library
 TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c
@@ -198,22 +204,15 @@ quickstart-run: check
 # every example, run briefly: it must print its RESULT line and write its CSV, a VTK snapshot and
 # its final picture (PNG and SVG, read back by tests/check_picture: valid, and the body visible),
 # and a value out of range must end it with exit status 2 (the example contract in the README)
-SMOKE_RUNS = "plate2d --res 3 --tend 0.01" "cantilever_sag --res 3 --tend 0.01 --load callback" "plate3d --res 2 --tend 0.0002 --full" \
-             "spinning_plate --dp 0.1 --tend 0.01" "spinning_cube --dp 0.2 --tend 0.01" \
-             "rings2d --dp 0.004 --tend 0.002 --iterations 20" \
-             "punch2d --dp 0.1 --tend 0.0005" "balls3d --dp 0.008 --tend 0.0002 --iterations 50" \
-             "tensile2d --dp 0.1 --tend 0.0002 --report-every 0.0001" "ball_plate2d --dp 0.01 --v0 0.12 --tend 0.0015" \
-             "ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015" \
-             "taylor_square --res 4 --tend 2e-6" "taylor_round --res 3 --tend 2e-6" "impact2d --dp 0.0008 --tend 5e-7" \
-             "patch_test --n 8 --tend 0.05" "beam_tl --n 3 --periods 2" "strip_pull --dp 0.2 --length 2.2e-3" \
-             "punch_tl --dp 0.3 --compression 0.02" "taylor2d_tl --dp 1 --tend 2e-6" "tensile3d --res 4 --tend 2e-6" \
-             "column_collapse2d --dp 0.01 --tend 0.01" "heap2d --dp 0.01 --tend 0.01" "heap2d --dp 0.005 --tend 0.2 --pour" "soil_failure2d --res 10 --tend 0.01" "soil_failure3d --res 5 --tend 0.01" \
-             "flume3d --dp 0.2 --tend 0.01" "debris_barrier3d --dp 0.3 --distance 2 --tend 0.01" \
-             "incline --dp 0.01 --settle 0.01 --tend 0.02" "bounce --dp 0.01 --tend 0.01" "bounce --dp 0.01 --height 0.05 --tend 0.2 --contact-damping 1" \
-             "floating_block --dp 0.05 --tend 0.01" "hydrostatic_fsi --res 2 --tend 0.005" "elastic_gate --res 2 --tend 0.002"
+# (the runs: each example's "Smoke:" lines, quoted one run per string; an example without one fails)
+SMOKE_RUNS = $(shell sed -n '/^ *Smoke: /{s///;s/ *\*\/.*//;s/.*/"&"/;p;}' $(EXAMPLE_SOURCES))
 $(BUILD)/check_picture: tests/check_picture.c | $(BUILD)
 	$(CC) -std=c99 -O2 $(WARN) $< -o $@
 examples-smoke: examples $(BUILD)/check_picture
+	@tested=; for run in $(SMOKE_RUNS); do set -- $$run; tested="$$tested $$1 "; done; \
+	for name in $(EXAMPLES); do case "$$tested" in *" $$name "*) ;; \
+	  *) echo "examples-smoke: $$name has no \"Smoke: $$name ...\" line in its head comment"; exit 1;; esac; \
+	done
 	@for run in $(SMOKE_RUNS); do \
 	  set -- $$run; out=$(BUILD)/smoke/$$1; rm -rf $$out; \
 	  ./$(BUILD)/$$run --quiet --vtk-every 0.005 --svg --out $$out | grep -q '^RESULT case=' && \

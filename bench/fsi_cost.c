@@ -29,9 +29,9 @@ static void fluid_passes(sps_world* w, sps__body* water, sps_real dt) {
 }
 
 /* The coupling's forces: the contact force loop over every particle (all pairs are coupled). */
-static void coupling_forces(sps_world* w) {
+static void coupling_forces(sps_world* w, sps_real dt) {
     int i;
-    for (i = 0; i < w->n; ++i) sps__contact_force(w, i);
+    for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
 }
 
 int main(int argc, char** argv) {
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.4));
     tank_def.material.kind = SPS_MATERIAL_RIGID;
-    w = ex_create(&wd);
+    ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_body(w, &water_def, &water));
     ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
     ex_check(w, sps_body_set_pressure(w, water, hydrostatic, NULL));
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
         b->coupled = 1;
         for (k = 0; k < repeat; ++k) {
             fluid_passes(w, b, w->dt);
-            coupling_forces(w);
+            coupling_forces(w, w->dt);
         }
         t = wall_seconds() - start;
         if (t < best_coupled) best_coupled = t;

@@ -23,9 +23,16 @@ static sps_world* build(int controlled, int threads) {
     bd.material.density = 2040;
     bd.material.youngs_modulus = (sps_real)5.84e6;
     bd.material.poisson_ratio = (sps_real)0.3;
-    ex_granular_body(&bd, &g);
+    bd.name = "soil";
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    bd.material.cohesion = (sps_real)g.cohesion;
+    bd.material.friction_angle = (sps_real)g.phi;
+    bd.stress_diffusion = (sps_real)g.diffusion;
     bd.shear = controlled ? SPS_SHEAR_GNO_A : SPS_SHEAR_OG;
-    w = ex_granular_world(&wd, 2, 0.004);
+    wd.dim = 2;
+    wd.dp = (sps_real)0.004;
+    wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
+    ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));

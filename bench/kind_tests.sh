@@ -1,7 +1,7 @@
 #!/bin/sh
 # kind_tests.sh - which functions of sphsolid.h ask which material kind a body is, outside that
-# kind's own chapters (>>material: ...) and the generic chapter (>>generic), the acceptance
-# figure of issue 36 ("dispatch in one place"). A kind test is its enum value (SPS_MATERIAL_x,
+# kind's own chapters (>>material: ...) and the generic chapter (>>generic): the library
+# dispatches on the kind in one place, and this counts the exceptions. A kind test is its enum value (SPS_MATERIAL_x,
 # an assignment "kind = SPS_MATERIAL_x;" excepted) or its yield surface (SPS__YIELD_x). Listed
 # after them, not counted: the functions that read a property of the material's row
 # (kinematic, mirrored, pressure_of_density, riemann_density, shear), which a new kind sets in

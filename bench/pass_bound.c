@@ -177,6 +177,7 @@ int main(int argc, char** argv) {
     opt_parse(argc, argv, "each neighbour pass's time against its gathers and its arithmetic", opts, (int)(sizeof opts / sizeof *opts));
     c.threads = 1; /* one core: what a pass costs, not how it shares */
     apply_common(&c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* as the examples set it (apply_common sets options only) */
     wd.log = ex_log;
     ex_check(NULL, plate2d_create(wd, &bd, &p, &w, &plate, &tip));
     ex_check(w, sps__update_configuration(w));

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     c.png_every = 0; /* no picture unless asked for: the loop's wall time is the measurement */
     opt_parse(argc, argv, "real-time loop of the spinning plate (sps_world_advance_frame)", opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* as the examples set it (apply_common sets options only) */
     p.jitter = c.jitter;
     p.seed = c.seed;
     wd.log = ex_log;

@@ -4,7 +4,7 @@
 
    Ball radius 0.05 centred 0.1 above the plate's centre, moving down at v0 = --v0 c0 (c0 =
    372.68 m/s); plate 0.5 x 0.02 (3D: 0.5 x 0.02 x 0.5) clamped beyond its ends (3D: its four
-   edges); rho0 1200, E 1e7, nu 0.49 for both (set-up: scenes/ball_plate.h). The bodies touch
+   edges); rho0 1200, E 1e7, nu 0.49 for both. The bodies touch
    through the library's contact. The ball is body-fitted (sps_body_add_sdf_relaxed, --fill
    relaxed) or a lattice cut by the sphere (--fill lattice).
    We report the hourglass indicator and minimum spacing (max / min over the run and at the
@@ -19,9 +19,11 @@
 
    Build: make examples        Run: ./build/ball_plate2d --v0 0.02 --shear eno-a
    Expect: the ball bounces off; for ENO-A the hourglass indicator stays ~1e-3, the gap above
-   0.5 dp and the total energy below its start. */
+   0.5 dp and the total energy below its start.
+   Smoke: ball_plate2d --dp 0.01 --v0 0.12 --tend 0.0015
+   Smoke: ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015 */
 #include "common.h"
-#include "scenes/ball_plate.h"
+#include <stdlib.h>
 
 #ifndef BALL_PLATE_DIM
 #define BALL_PLATE_DIM 2
@@ -34,10 +36,78 @@
 #define BP_ABOUT "2D rubber ball hitting a plate held at both ends (benchmark A9, ENO 6.7)"
 #endif
 
+#define BALL_PLATE_RADIUS 0.05
+#define BALL_PLATE_CENTRE_Y 0.1
+#define BALL_PLATE_LENGTH 0.5
+#define BALL_PLATE_THICKNESS 0.02
+#define BALL_PLATE_RHO0 1200
+#define BALL_PLATE_E 1e7
+#define BALL_PLATE_NU 0.49
+#define BALL_PLATE_HOLDER_LAYERS 4 /* more than the kernel support (2.6 dp) */
+
+/* The ball: its signed distance and its velocity (0, -v0, 0), v0 [m/s] the user pointer. */
+static sps_real ball_plate_sdf(const sps_real x[3], void* user) {
+    double dy = x[1] - BALL_PLATE_CENTRE_Y, r2 = x[0] * x[0] + dy * dy + (BALL_PLATE_DIM == 3 ? x[2] * x[2] : 0);
+    (void)user;
+    return (sps_real)(sqrt(r2) - BALL_PLATE_RADIUS);
+}
+static void ball_plate_velocity(const sps_real x[3], sps_real v[3], void* user) {
+    (void)x;
+    v[0] = 0; v[1] = -*(const double*)user; v[2] = 0;
+}
+
+/* The smallest distance between a particle of body a and one of body b, in dp (brute force over
+   the particles of each within the other's bounding box widened by 3 dp); 1e30 if none is that
+   close, -1 before the first step (the bodies' ranges are not known yet). */
+static double ball_plate_min_gap(const sps_world* w, sps_body a, sps_body b) {
+    const int dim = sps_world_get_def(w)->dim;
+    const double dp = sps_world_get_def(w)->dp, m = 3 * dp;
+    const sps_real* x = sps_world_field(w, SPS_FIELD_POSITION_X);
+    const sps_real* y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    const sps_real* z = dim == 3 ? sps_world_field(w, SPS_FIELD_POSITION_Z) : NULL;
+    int fa, na, fb, nb, i, j, k, ns[2] = {0, 0}, *sel[2];
+    double box[2][6], best = 1e30;
+    if (!sps_body_field(w, a, "mass", NULL, &fa, &na) || !sps_body_field(w, b, "mass", NULL, &fb, &nb)) return -1;
+    for (k = 0; k < 2; ++k) {
+        int f = k ? fb : fa, n = k ? nb : na;
+        box[k][0] = box[k][2] = box[k][4] = 1e30;
+        box[k][1] = box[k][3] = box[k][5] = -1e30;
+        for (i = f; i < f + n; ++i) {
+            double p[3] = {x[i], y[i], z ? z[i] : 0};
+            for (j = 0; j < 3; ++j) {
+                if (p[j] < box[k][2 * j]) box[k][2 * j] = p[j];
+                if (p[j] > box[k][2 * j + 1]) box[k][2 * j + 1] = p[j];
+            }
+        }
+    }
+    sel[0] = (int*)malloc(sizeof(int) * (size_t)(na + nb + 2));
+    sel[1] = sel[0] + na + 1;
+    for (k = 0; k < 2; ++k) { /* the particles of body k within the other's box */
+        int f = k ? fb : fa, n = k ? nb : na;
+        const double* o = box[1 - k];
+        for (i = f; i < f + n; ++i) {
+            double p[3] = {x[i], y[i], z ? z[i] : 0};
+            int in = 1;
+            for (j = 0; j < 3; ++j) in &= p[j] >= o[2 * j] - m && p[j] <= o[2 * j + 1] + m;
+            if (in) sel[k][ns[k]++] = i;
+        }
+    }
+    for (i = 0; i < ns[0]; ++i) {
+        int p = sel[0][i];
+        for (j = 0; j < ns[1]; ++j) {
+            int q = sel[1][j];
+            double dx = x[p] - x[q], dy = y[p] - y[q], dz = z ? z[p] - z[q] : 0, d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 < best) best = d2;
+        }
+    }
+    free(sel[0]);
+    return best < 1e30 ? sqrt(best) / dp : 1e30;
+}
+
 typedef struct {
     sps_body ball, plate;
     output_plan output;
-    double t_end, wall0, e_start, e_max, ke_max, gap_min, t_gap_min, plate_hourglass_max, t_contact;
+    double t_end, e_start, e_max, ke_max, gap_min, t_gap_min, plate_hourglass_max, t_contact;
     int quiet, started;
 } run_state;
 
@@ -46,7 +116,7 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d, db, dpl;
     char extra[256] = "";
     double t = sps_world_time(w), gap;
-    if (t < s->output.next_csv - 1e-12) { progress(t, s->t_end, s->wall0, s->quiet); return 0; }
+    if (t < s->output.next_csv - 1e-12) { progress(t, s->t_end, s->output.wall0, s->quiet); return 0; }
     ex_check(w, sps_world_diagnostics(w, s->ball, &db));
     ex_check(w, sps_world_diagnostics(w, s->plate, &dpl));
     gap = ball_plate_min_gap(w, s->ball, s->plate);
@@ -62,7 +132,7 @@ static int on_step(sps_world* w, void* user) {
         if (e > s->e_max) s->e_max = e;
         if (d.kinetic_energy > s->ke_max) s->ke_max = d.kinetic_energy;
     }
-    progress(t, s->t_end, s->wall0, s->quiet);
+    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -76,18 +146,18 @@ static const char* paper_expectation(int shear, double v0) {
 }
 
 int main(int argc, char** argv) {
-    ball_plate_params p = {.dim = BALL_PLATE_DIM, .dp = BALL_PLATE_DIM == 3 ? 0.01 : 0.0025, .v0 = BALL_PLATE_DIM == 3 ? 0.12 : 0.02,
-                           .relaxed = 1, .relax_iterations = 0};
+    double dp = BALL_PLATE_DIM == 3 ? 0.01 : 0.0025, v0 = BALL_PLATE_DIM == 3 ? 0.12 : 0.02; /* v0 in units of c0 */
+    int relax_iterations = 0;
     int fill = 0; /* relaxed|lattice */
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.015, .vtk_every = 0.001, .csv_every = 5e-5,
                         .E = BALL_PLATE_E, .nu = BALL_PLATE_NU, .rho0 = BALL_PLATE_RHO0, .out = "out/" BP_NAME, .jitter = 0, .seed = 1,
                         PNG_DEFAULTS};
     damping_options k = {0, 0};
     opt_spec opts[] = {
-        {"dp", OPT_REAL, &p.dp, "particle spacing [m] (paper: 0.0025)", 5e-4, 0.02, NULL},
-        {"v0", OPT_REAL, &p.v0, "ball speed in units of c0 (paper: 0.02, 0.06, 0.12)", 0, 1, NULL},
+        {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 0.0025)", 5e-4, 0.02, NULL},
+        {"v0", OPT_REAL, &v0, "ball speed in units of c0 (paper: 0.02, 0.06, 0.12)", 0, 1, NULL},
         {"fill", OPT_CHOICE, &fill, "ball particles: body-fitted (sps_body_add_sdf_relaxed) or the lattice", 0, 0, "relaxed|lattice"},
-        {"relax-iterations", OPT_INT, &p.relax_iterations, "shifting steps of the relaxed fill, 0 = the library's 300", 0, 100000, NULL},
+        {"relax-iterations", OPT_INT, &relax_iterations, "shifting steps of the relaxed fill, 0 = the library's 300", 0, 100000, NULL},
         DAMPING_OPTION_SPECS(k),
         COMMON_OPTION_SPECS(c),
     };
@@ -102,27 +172,51 @@ int main(int argc, char** argv) {
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, BP_ABOUT, opts, (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     apply_damping(&k, &bd);
-    p.relaxed = fill == 0;
-    wd.log = ex_log;
     memset(&s, 0, sizeof s);
     /* c0 of the material, for v0 in units of c0: K = E / (3 (1 - 2 nu)) */
     c0 = sqrt(c.E / (3 * (1 - 2 * c.nu)) / c.rho0);
-    v0_ms = p.v0 * c0;
-    {
-        double t0 = wall_seconds();
-        ball_plate_params q = p;
-        q.v0 = v0_ms;
-        ex_check(NULL, ball_plate_create(wd, &bd, &q, &w, &s.ball, &s.plate));
-        setup = wall_seconds() - t0;
+    v0_ms = v0 * c0;
+    setup = wall_seconds();
+    wd.dim = BALL_PLATE_DIM;
+    wd.dp = (sps_real)dp;
+    wd.log = ex_log;
+    ex_check(NULL, sps_world_create(&wd, &w));
+    bd.name = "plate";
+    ex_check(w, sps_world_add_body(w, &bd, &s.plate));
+    bd.name = "ball";
+    ex_check(w, sps_world_add_body(w, &bd, &s.ball));
+    { /* the plate 0.5 x 0.02 (x 0.5), its holders beyond x = +-a (3D: and z = +-a) clamped */
+        const double hl = BALL_PLATE_HOLDER_LAYERS * dp, a = 0.5 * BALL_PLATE_LENGTH, t = 0.5 * BALL_PLATE_THICKNESS;
+        sps_real lo[3] = {-a - hl, -t, BALL_PLATE_DIM == 3 ? -a - hl : 0}, hi[3] = {a + hl, t, BALL_PLATE_DIM == 3 ? a + hl : 0};
+        int axis;
+        ex_check(w, sps_body_add_box(w, s.plate, lo, hi, NULL));
+        for (axis = 0; axis < (BALL_PLATE_DIM == 3 ? 3 : 1); axis += 2) {
+            sps_real clamp_lo[3] = {-1, -1, -1}, clamp_hi[3] = {1, 1, 1};
+            clamp_hi[axis] = -a; /* x < -a */
+            ex_check(w, sps_body_constrain_box(w, s.plate, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL));
+            clamp_hi[axis] = 1; clamp_lo[axis] = a; /* x > a */
+            ex_check(w, sps_body_constrain_box(w, s.plate, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL));
+        }
     }
+    { /* the ball of radius R centred at (0, cy, 0), body-fitted or the lattice cut by the sphere, moving down at v0 */
+        const double R = BALL_PLATE_RADIUS, cy = BALL_PLATE_CENTRE_Y;
+        sps_real lo[3] = {-R - dp, cy - R - dp, BALL_PLATE_DIM == 3 ? -R - dp : 0}, hi[3] = {R + dp, cy + R + dp, BALL_PLATE_DIM == 3 ? R + dp : 0};
+        if (fill == 0) ex_check(w, sps_body_add_sdf_relaxed(w, s.ball, lo, hi, ball_plate_sdf, NULL, relax_iterations, NULL));
+        else ex_check(w, sps_body_add_sdf(w, s.ball, lo, hi, ball_plate_sdf, NULL, NULL));
+        ex_check(w, sps_body_set_velocity(w, s.ball, ball_plate_velocity, &v0_ms));
+    }
+    setup = wall_seconds() - setup;
     ex_check(w, sps_body_material_constants(w, s.ball, &c0r, NULL, NULL));
     s.quiet = c.quiet; s.t_end = c.t_end; s.gap_min = 1e30; s.t_contact = -1;
     output_open(&s.output, &c, BP_NAME, ex_tracks_stress(&c) ? "von-mises" : "velocity",
                 ",ball_kinetic,ball_strain,ball_total,plate_kinetic,plate_strain,plate_total,min_gap_dp,ball_momentum_y");
     ex_check(w, sps_world_diagnostics(w, s.ball, &db0));
     py0 = db0.linear_momentum[1];
-    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
+    on_step(w, &s); /* t = 0: the first CSV row and snapshot */
+    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    wall = output_close(w, &s.output);
     {
         sps_body all = {0};
         double e_end;
@@ -136,13 +230,13 @@ int main(int argc, char** argv) {
                "plate_kinetic_end=%.6g plate_strain_end=%.6g min_gap_dp=%.3f t_min_gap=%.5f gap_ok=%s t_contact=%.5f "
                "ball_py_start=%.6g ball_py_end=%.6g rebound=%.3f paper=%s %s particles=%d steps=%ld advection_steps=%ld "
                "us_per_step=%.1f setup_s=%.2f wall_s=%.2f%s out=%s\n",
-               BP_NAME, shear_name(c.shear), p.v0, v0_ms, (double)c0r, p.dp, fill ? "lattice" : "relaxed", c.t_end,
+               BP_NAME, shear_name(c.shear), v0, v0_ms, (double)c0r, dp, fill ? "lattice" : "relaxed", c.t_end,
                s.output.hourglass_max, (double)d.hourglass, s.plate_hourglass_max, (double)dpl.hourglass, s.output.min_spacing,
                (double)d.min_spacing, s.e_start, e_end, 100 * (e_end - s.e_start) / s.e_start,
                100 * (s.e_max - s.e_start) / s.e_start, s.e_max <= 1.01 * s.e_start ? "yes" : "NO", s.ke_max / s.e_start, (double)db.kinetic_energy,
                (double)db.strain_energy, (double)dpl.kinetic_energy, (double)dpl.strain_energy, s.gap_min < 1e29 ? s.gap_min : -1,
                s.t_gap_min, s.gap_min > 0.5 ? "yes" : "NO", s.t_contact, py0, (double)db.linear_momentum[1],
-               py0 != 0 ? -db.linear_momentum[1] / py0 : 0, paper_expectation(c.shear, p.v0), common_result_fields(&c),
+               py0 != 0 ? -db.linear_momentum[1] / py0 : 0, paper_expectation(c.shear, v0), common_result_fields(&c),
                sps_world_particle_count(w), d.acoustic_steps, d.advection_steps,
                d.acoustic_steps > 0 ? 1e6 * wall / (double)d.acoustic_steps : 0, setup, wall, damping_result_fields(&k), c.out);
     }

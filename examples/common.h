@@ -2,7 +2,13 @@
    line on stderr with exit status 2, a progress line on stderr, output folders (CSV, VTK, PNG
    and SVG pictures), wall time, short OpenMP spin waits and the zero-crossing period detector.
    Not part of the library; each example includes it once. POSIX (mkdir, isatty, clock_gettime,
-   setenv, execvp). */
+   setenv, execvp). The harness only reads options and writes output: the scene (world def,
+   bodies, walls, the time loop) is in each example's own file, or in examples/scenes/ where the
+   tests, the bench or the demo share it.
+
+   Adding an example: write examples/NAME.c (the contract in the README's "Examples") with a line
+   "Smoke: NAME OPTIONS" in its head comment (its brief run in make examples-smoke). The Makefile
+   builds every .c file in examples/ but those it lists as not benchmarks; the README's table gets a row. */
 #ifndef SPS_EXAMPLE_COMMON_H
 #define SPS_EXAMPLE_COMMON_H
 #if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
@@ -108,14 +114,6 @@ EX_UNUSED static void ex_check(const sps_world* w, sps_result r) {
     if (r == SPS_OK) return;
     fprintf(stderr, "%s: %s: %s\n", g_prog, sps_result_string(r), w ? sps_world_last_error(w) : g_create_error);
     exit(2);
-}
-
-/* sps_world_create or exit (a bad def's message names every broken field, value and range). */
-EX_UNUSED static sps_world* ex_create(sps_world_def* wd) {
-    sps_world* w = NULL;
-    wd->log = ex_log;
-    ex_check(NULL, sps_world_create(wd, &w));
-    return w;
 }
 
 EX_UNUSED static int opt_choice_index(const char* choices, const char* s) {
@@ -285,14 +283,14 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"png-size", OPT_PAIR, (c).png_size, "picture width,height [px]", 160, 4096, NULL},                 \
     {"quiet", OPT_FLAG, &(c).quiet, "no progress line", 0, 0, NULL}
 
-/* Copies the shared options into the world and body defs. */
+/* Copies the shared options' values into the world and body defs, and nothing else: what a
+   scene sets for itself is written in its own file. */
 EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, sps_body_def* bd) {
     wd->stepping = c->stepping ? SPS_STEPPING_SINGLE : SPS_STEPPING_DUAL;
     wd->frozen_geometry = c->geometry == 1;
     wd->kernel = c->kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
     wd->cfl_acoustic = c->cfl;
     wd->threads = c->threads;
-    wd->keep_last_good_state = 1; /* the VTK written after an instability shows the last good state */
     bd->material.density = c->rho0;
     bd->material.youngs_modulus = c->E;
     bd->material.poisson_ratio = c->nu;
@@ -304,18 +302,23 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
-/* The shared options set the updated-Lagrangian shear formulation on every body; a body that
-   does not read it (total Lagrangian; Drucker-Prager without GNO's penalty) would be warned
-   about it by sps_world_add_body, so it gets the library's defaults back (no effect on results). */
+/* The shared options set an updated-Lagrangian solid's formulation (shear, rotation, zeta, xi,
+   track_stress) on every body; a body that does not read one of them (a fluid; a total-Lagrangian
+   body; Drucker-Prager without GNO's penalty; rotation outside the -A variants) would be warned
+   about it by sps_world_add_body, so it gets the library's default back (no effect on results).
+   Call it on a def just before sps_world_add_body. */
 EX_UNUSED static void ex_unset_unread(sps_body_def* bd) {
     const sps_body_def d0 = sps_default_body_def();
+    const int fluid = bd->material.kind == SPS_MATERIAL_FLUID;
     const int granular_without_penalty = bd->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && bd->shear != SPS_SHEAR_GNO && bd->shear != SPS_SHEAR_GNO_A;
-    if (bd->solver == SPS_SOLVER_TOTAL_LAGRANGIAN || granular_without_penalty) {
+    const int reads_shear = bd->solver == SPS_SOLVER_UPDATED_LAGRANGIAN && !fluid && !granular_without_penalty;
+    if (!reads_shear) {
         bd->shear = d0.shear;
-        bd->rotation = d0.rotation;
         bd->zeta = d0.zeta;
         bd->xi = d0.xi;
     }
+    if (!reads_shear || (bd->shear != SPS_SHEAR_ENO_A && bd->shear != SPS_SHEAR_GNO_A)) bd->rotation = d0.rotation;
+    if (fluid) bd->track_stress = d0.track_stress;
 }
 
 /* ---- contact friction and material damping (CONTACT and DAMPING in the header's manual) ---- */
@@ -418,7 +421,9 @@ typedef struct {
     FILE* csv;
     const char *dir, *name;
     double csv_every, vtk_every, png_every, next_csv, next_vtk, next_png, hourglass_max, min_spacing;
+    double wall0; /* wall_seconds() when it was opened: the run's start (progress's ETA, output_close) */
     int frames, pictures, svg;
+    int quiet; /* --quiet: no progress line */
     sps_vtk_options vtk;
     render_options picture;
 } output_plan;
@@ -432,6 +437,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     memset(o, 0, sizeof *o);
     o->dir = c->out; o->name = name; o->csv_every = c->csv_every; o->vtk_every = c->vtk_every; o->png_every = c->png_every;
     o->svg = c->svg;
+    o->quiet = c->quiet;
     o->vtk = sps_default_vtk_options();
     o->vtk.binary = c->vtk_binary;
     o->vtk.single_precision = c->vtk_single;
@@ -445,6 +451,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     snprintf(file, sizeof file, "%s.csv", name);
     o->csv = open_out(o->dir, file);
     fprintf(o->csv, "%s%s\n", sps_diagnostics_csv_header(), extra_header);
+    o->wall0 = wall_seconds();
 }
 
 /* Writes a picture of w to dir/name_suffix.png (or .svg); exits with a message if it cannot. */
@@ -487,45 +494,27 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
 }
 
 /* The end of the run: closes the CSV, writes the final picture dir/name_final.png when
-   --png-every < 0, and dir/name_final.svg with --svg. */
-EX_UNUSED static void output_close(const sps_world* w, output_plan* o) {
+   --png-every < 0, and dir/name_final.svg with --svg. Returns the run's wall time [s] since
+   output_open, the closing left out. */
+EX_UNUSED static double output_close(const sps_world* w, output_plan* o) {
+    const double wall = wall_seconds() - o->wall0;
     fclose(o->csv);
     if (o->png_every < 0) output_picture(w, o, "final", RENDER_PNG);
     if (o->svg) output_picture(w, o, "final", RENDER_SVG);
+    return wall;
 }
 
-/* A step failed (r): writes the world, rolled back to its last good state (keep_last_good_state
-   in apply_common), to dir/name_failed.vtk, then exits with one line naming both. */
-EX_UNUSED static void ex_step_failed(sps_world* w, sps_result r, const output_plan* o) {
+/* Returns if r is SPS_OK; otherwise the step failed: writes the world to dir/name_failed.vtk
+   (rolled back to its last good state if the example set keep_last_good_state), then exits with
+   one line naming both. */
+EX_UNUSED static void ex_check_step(sps_world* w, sps_result r, const output_plan* o) {
     char path[1200], failure[1024];
+    if (r == SPS_OK) return;
     snprintf(failure, sizeof failure, "%s", sps_world_last_error(w));
     snprintf(path, sizeof path, "%s/%s_failed.vtk", o->dir, o->name);
     if (sps_world_write_vtk_ex(w, path, &o->vtk) != SPS_OK) snprintf(path, sizeof path, "(not written)");
     fprintf(stderr, "%s: %s: %s (state at t = %g written to %s)\n", g_prog, sps_result_string(r), failure, (double)sps_world_time(w), path);
     exit(2);
-}
-
-/* Runs w to t_end: on_step once at the start (the t = 0 row and snapshot) and after every step,
-   a library error ending the program (ex_step_failed), then closes the output. *wall0 is set to
-   the start (the progress line reads it); returns the wall time of the run, the output's
-   closing left out. */
-EX_UNUSED static double ex_run(sps_world* w, double t_end, sps_step_fn on_step, void* state, double* wall0, output_plan* o) {
-    sps_result r;
-    double wall;
-    *wall0 = wall_seconds();
-    on_step(w, state);
-    if ((r = sps_world_advance(w, (sps_real)t_end, on_step, state)) != SPS_OK) ex_step_failed(w, r, o);
-    wall = wall_seconds() - *wall0;
-    output_close(w, o);
-    return wall;
-}
-
-/* Advances w to the time of CSV row *row + 1 (csv_every apart, at most t_end) and counts the
-   row; a library error ends the program (ex_step_failed). */
-EX_UNUSED static void ex_advance_row(sps_world* w, int* row, const common_options* c, const output_plan* o) {
-    const double next = ++*row * c->csv_every;
-    const sps_result r = sps_world_advance(w, (sps_real)(next < c->t_end ? next : c->t_end), NULL, NULL);
-    if (r != SPS_OK) ex_step_failed(w, r, o);
 }
 
 /* The mean pressure of the particles within 2.5 dp of the origin (2D; one particle's is noisy):
@@ -548,22 +537,8 @@ typedef struct {
     {"cohesion", OPT_REAL, &(g).cohesion, "cohesion c [Pa]", 0, 1e9, NULL},                          \
     {"phi", OPT_REAL, &(g).phi, "friction angle [degrees]", 0, 89, NULL},                            \
     {"diffusion", OPT_REAL, &(g).diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL}
-/* Makes bd a Drucker-Prager soil body of these options (density, E, nu: the common options). */
-EX_UNUSED static void ex_granular_body(sps_body_def* bd, const granular_options* g) {
-    bd->name = "soil";
-    bd->material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd->material.cohesion = (sps_real)g->cohesion;
-    bd->material.friction_angle = (sps_real)g->phi;
-    bd->stress_diffusion = (sps_real)g->diffusion;
-}
-/* The world of a granular example: dim, dp and the UTVF paper's gravity, 9.8 m/s^2 down y. */
+/* The UTVF paper's gravity [m/s^2] (down y) in the granular examples' worlds. */
 #define GRANULAR_GRAVITY 9.8
-EX_UNUSED static sps_world* ex_granular_world(sps_world_def* wd, int dim, double dp) {
-    wd->dim = dim;
-    wd->dp = (sps_real)dp;
-    wd->gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    return ex_create(wd);
-}
 EX_UNUSED static const char* transport_name(int t) { return t == 0 ? "none" : t == 1 ? "TVF" : "UTVF"; }
 /* Wall time per particle and acoustic sub-step [ns]. */
 EX_UNUSED static double ns_per_particle_step(const sps_world* w, double wall, long steps) {

@@ -12,14 +12,15 @@
 
    Build: make examples     Run: ./build/soil_failure3d --transport utvf (--res 25: a quick look)
    Expect: with UTVF no clustering (smallest spacing above 0.5 dp), without a correction
-   clustering and cracks. */
+   clustering and cracks.
+   Smoke: soil_failure3d --res 5 --tend 0.01 */
 #include "common.h"
 
 #define EDGE 2.0
 
 typedef struct {
     output_plan output;
-    double wall0, t_end, next_report;
+    double t_end, next_report;
 } run_state;
 
 /* The top of the soil and the largest horizontal distance of a particle from the cube's axis. */
@@ -48,11 +49,11 @@ static int on_step(sps_world* w, void* user) {
         printf("  t = %.3f s: top %.3f m, half width %.3f m (1 at the start), %d particles closer than 0.5 dp to another (smallest "
                "spacing %.3f dp), surface particles %d, max speed %.3f m/s, wall %.0f s\n",
                t, top, half_width, ex_clustered_particles(w, (double)sps_world_get_def(w)->dp, 0.5), (double)d.min_spacing,
-               d.surface_particles, (double)d.max_speed, wall_seconds() - s->wall0);
+               d.surface_particles, (double)d.max_speed, wall_seconds() - s->output.wall0);
         fflush(stdout);
         s->next_report += 0.25;
     }
-    progress(t, s->t_end, s->wall0, 0);
+    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 
@@ -79,10 +80,19 @@ int main(int argc, char** argv) {
     opt_parse(argc, argv, "3D failure of a cube of cohesive soil (C6, UTVF 5.3): Drucker-Prager with none, TVF or UTVF", opts,
               (int)(sizeof opts / sizeof *opts));
     apply_common(&c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     memset(&s, 0, sizeof s);
     dp = EDGE / res;
-    ex_granular_body(&bd, &g);
-    w = ex_granular_world(&wd, 3, dp);
+    bd.name = "soil"; /* a Drucker-Prager soil of the granular options (density, E, nu: the common ones) */
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    bd.material.cohesion = (sps_real)g.cohesion;
+    bd.material.friction_angle = (sps_real)g.phi;
+    bd.stress_diffusion = (sps_real)g.diffusion;
+    wd.dim = 3;
+    wd.dp = (sps_real)dp;
+    wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
+    wd.log = ex_log;
+    ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
     ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
@@ -94,7 +104,9 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end;
     s.next_report = 0.25;
     output_open(&s.output, &c, "soil_failure3d", "plastic-strain", "");
-    wall = ex_run(w, c.t_end, on_step, &s, &s.wall0, &s.output);
+    on_step(w, &s); /* t = 0: the first CSV row and snapshot */
+    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
     printf("RESULT case=soil_failure3d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g clustered=%d min_spacing=%.3f surface_particles=%d "
            "max_plastic_strain=%.3f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",

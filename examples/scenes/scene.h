@@ -1,4 +1,5 @@
-/* scene.h - what the benchmark scenes (examples/scenes/) share: pi and the jittered lattice.
+/* scene.h - what the shared scenes (examples/scenes/: the ones the tests, the bench or the demo
+   build too; an example's own scene is in its file) use: pi and the jittered lattice.
    Needs only sphsolid.h, so that the tests build their worlds with the examples' set-up code;
    every function returns an sps_result instead of ending the program. */
 #ifndef SPS_SCENE_H
