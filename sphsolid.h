@@ -1619,7 +1619,9 @@ typedef void (*sps__pair_loop)(sps_world* w, const struct sps__body* b, int g, s
 typedef struct sps__passes {
     sps__group_kernel pressure, continuity, penalty, stress;
     sps__pair_loop pressure_pairs, continuity_pairs, penalty_pairs;
-    sps__pair_loop rare_pairs; /* the pressure pass's rare terms (OAS's artificial stress, Kelvin-Voigt damping), or NULL */
+    /* the pressure pass's rare terms, each a loop of its own, or NULL: OAS's artificial stress, a
+       solid's Kelvin-Voigt damping */
+    sps__pair_loop art_pairs, damping_pairs;
 } sps__passes;
 
 /* A body's viscous force (sps__model.viscous): none, a fluid's Newtonian viscosity (FLUIDS), a
@@ -4742,7 +4744,7 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
    bench/VALIDATION.md, "Instancing", has the sizes and speeds. */
 #define SPS__INSTANCE(loop, variant, mode, dim, geo, terms)                                                     \
     static void sps__##loop##_##variant##_##mode(sps_world* w, const sps__body* b, int g, sps_real dt,         \
-                                                 sps__lane_sums* sums) {                                        \
+                                                 sps__lane_sums* SPS__RESTRICT sums) {                          \
         sps__##loop(w, b, g, dt, sums, dim, geo, terms);                                                        \
     }
 #define SPS__INSTANCES_2D(loop, variant, terms)                                                                 \
@@ -4793,7 +4795,7 @@ SPS__INLINE sps_real sps__approach(const sps_world* w, int i, int j, sps_real ex
    with its viscous force, for its work), so its pressure force here has Z = 0, which leaves
    (p_i + p_j) dW V_j bit for bit. Each lane sums its own particle's neighbours in list order,
    so the result does not depend on the vector width. */
-SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* sums, const int dim,
+SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                      const int geo, const int terms) {
     const int stress = (terms & SPS__TERM_STRESS) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
     const int limited = (terms & SPS__TERM_LIMITED) != 0, newton = (terms & SPS__TERM_NEWTON) != 0;
@@ -4807,9 +4809,9 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
-    sps_real(*SPS__RESTRICT acc)[SPS__LANES] = sums->row + SPS__ACC;
-    sps_real(*SPS__RESTRICT shear)[SPS__LANES] = sums->row + SPS__SHEAR;
-    sps_real(*SPS__RESTRICT spread)[SPS__LANES] = sums->row + SPS__SPREAD;
+    sps_real(*acc)[SPS__LANES] = sums->row + SPS__ACC;
+    sps_real(*shear)[SPS__LANES] = sums->row + SPS__SHEAR;
+    sps_real(*spread)[SPS__LANES] = sums->row + SPS__SPREAD;
     sps_real tau_i[6][SPS__LANES];
     int k, l;
     (void)dt;
@@ -4866,12 +4868,13 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
 }
 
 /* The pressure pass's rare terms for lane group g, each into a sum of its own (so that a loop
-   of their own leaves every sum bit for bit): with art (OAS, 2D) Gray et al.'s artificial
+   of their own leaves every sum bit for bit; one loop each, for the rare body that has both):
+   with art (OAS, 2D) Gray et al.'s artificial
    stress sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp); with damping a solid's
    material damping (>>material: Kelvin-Voigt) 2 (d + 2) eta (v_ij . e_ij) dW / r_ij V_j e_ij, with
    the Riemann dissipation Z (v_ij . e_ij) dW V_j e_ij (a Kelvin-Voigt body is never limited:
    beta = 1), kept apart from the pressure force for the work they dissipate. */
-SPS__INLINE void sps__rare_pressure_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* sums, const int dim,
+SPS__INLINE void sps__rare_pressure_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                           const int geo, const int terms) {
     const int art = (terms & SPS__TERM_ART) != 0, damping = (terms & SPS__TERM_DAMPING) != 0;
     const sps__group q = sps__group_of(w, b, g);
@@ -4883,8 +4886,8 @@ SPS__INLINE void sps__rare_pressure_pairs(sps_world* w, const sps__body* b, int 
     const sps_real* oas_factor = b->oas_factor; /* f^n as a product of 12 factors, each 1 f + 0 or 0 f + 1 exactly: a
                                                    lane-uniform select the vectoriser takes (a loop to n it does not) */
     const int kernel = sps__geo_kernel(w, geo), begin = b->begin;
-    sps_real(*SPS__RESTRICT gray)[SPS__LANES] = sums->row + SPS__GRAY;
-    sps_real(*SPS__RESTRICT damp)[SPS__LANES] = sums->row + SPS__DAMP;
+    sps_real(*gray)[SPS__LANES] = sums->row + SPS__GRAY;
+    sps_real(*damp)[SPS__LANES] = sums->row + SPS__DAMP;
     sps_real art_i[3][SPS__LANES];
     int k, l;
     (void)dt;
@@ -4942,14 +4945,15 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
     }
 }
 
-/* The pressure pass's kernel for lane group g: the body's pair loop, its rare terms' loop if
-   any, the finish. */
+/* The pressure pass's kernel for lane group g: the body's pair loop, its rare terms' loops, the
+   finish. */
 static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, SPS__PRESSURE_SUMS);
     b->model.pass.pressure_pairs(w, b, g, dt, &sums);
-    if (b->model.pass.rare_pairs) b->model.pass.rare_pairs(w, b, g, dt, &sums);
+    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, &sums);
+    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, &sums);
     if (w->dim == 2) sps__pressure_finish(w, b, q, dt, &sums, 2);
     else sps__pressure_finish(w, b, q, dt, &sums, 3);
 }
@@ -4981,8 +4985,6 @@ SPS__PRESSURE_LOOPS(SPS__PRESSURE_INSTANCES)
 /* The rare terms' loops; OAS's in 2D only. */
 SPS__INSTANCES(rare_pressure_pairs, damping, SPS__TERM_DAMPING)
 SPS__INSTANCES_2D_ONLY(rare_pressure_pairs, art, SPS__TERM_ART)
-SPS__INSTANCES_2D_ONLY(rare_pressure_pairs, art_damping, SPS__TERM_ART | SPS__TERM_DAMPING)
-static const sps__pair_loop sps__rare_pressure_pairs_none[6] = {NULL, NULL, NULL, NULL, NULL, NULL}; /* no rare term */
 
 /* Gray et al.'s artificial stress R_i (2D): in the principal frame of sigma = -p I + tau each
    tensile principal stress s > 0 gives R' = -eps s / rho^2; rotated back (xx, xy, yy). */
@@ -5701,7 +5703,7 @@ static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__grou
    fluid) adds the Riemann solver's pressure term to the density rate, drho += (p_i - p_j -
    rho0 g . x_ij) / (rho0 c0) dW V_j (UTVF eqs. 16, 18: 2 (v_i - v*) . e_ij with the acoustic
    U*), which diffuses the density (less its hydrostatic part: sps__fluid_rest_gradient). */
-SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* sums, const int dim,
+SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                        const int geo, const int terms) {
     const int gradient = (terms & SPS__TERM_GRADIENT) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
     const int laplacian = (terms & SPS__TERM_LAPLACIAN) != 0, riemann = (terms & SPS__TERM_RIEMANN) != 0;
@@ -5712,7 +5714,7 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, 
     const sps_real *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT p = w->p;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     sps_real* SPS__RESTRICT pair_force = w->pair_force;
-    sps_real(*SPS__RESTRICT sum)[SPS__LANES] = sums->row;
+    sps_real(*sum)[SPS__LANES] = sums->row;
     int k, l;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;
@@ -5850,7 +5852,7 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
    work: measured, the square Taylor bar gained 27 % (L/dp 16) and 54 % (L/dp 20) of its
    impact energy and the round bar (R/9) five times it (bench/VALIDATION.md, B). The pair loop,
    its sums into rows 0-2. */
-SPS__INLINE void sps__penalty_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* sums, const int dim,
+SPS__INLINE void sps__penalty_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                     const int geo, const int terms) {
     const int projected = (terms & SPS__TERM_PROJECTED) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
     const int scaled = (terms & SPS__TERM_SCALED) != 0;
@@ -5861,7 +5863,7 @@ SPS__INLINE void sps__penalty_pairs(sps_world* w, const sps__body* b, int g, sps
     const int begin = b->begin;
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
     const sps_real* const vel[3] = {w->vel[0], w->vel[1], w->vel[2]};
-    sps_real(*SPS__RESTRICT sum)[SPS__LANES] = sums->row;
+    sps_real(*sum)[SPS__LANES] = sums->row;
     sps_real L_i[9][SPS__LANES];
     int k, l, a, c;
     sps__own_lanes(L, 9, q.i0 - begin, L_i);
@@ -5963,10 +5965,6 @@ typedef struct sps__loop_row {
 #define SPS__PRESSURE_DIFFUSION_ROW {SPS__TERM_STRESS | SPS__TERM_LIMITED | SPS__TERM_DIFFUSION, sps__pressure_pairs_granular},
 #endif
 static const sps__loop_row sps__pressure_rows[] = {SPS__PRESSURE_LOOPS(SPS__PRESSURE_ROW) SPS__PRESSURE_DIFFUSION_ROW};
-static const sps__loop_row sps__rare_pressure_rows[] = {{0, sps__rare_pressure_pairs_none},
-                                                        {SPS__TERM_DAMPING, sps__rare_pressure_pairs_damping},
-                                                        {SPS__TERM_ART, sps__rare_pressure_pairs_art},
-                                                        {SPS__TERM_ART | SPS__TERM_DAMPING, sps__rare_pressure_pairs_art_damping}};
 static const sps__loop_row sps__continuity_rows[] = {SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_ROW)};
 static const sps__loop_row sps__penalty_rows[] = {SPS__PENALTY_LOOPS(SPS__PENALTY_ROW)};
 #define SPS__NROWS(rows) ((int)(sizeof rows / sizeof rows[0]))
@@ -5986,9 +5984,6 @@ static int sps__pressure_terms(const sps__model* m) {
            (m->limited ? SPS__TERM_LIMITED : 0) | (m->viscous == SPS__VISCOUS_NEWTON ? SPS__TERM_NEWTON : 0) |
            (m->diffusion ? SPS__TERM_DIFFUSION : 0);
 }
-static int sps__rare_pressure_terms(const sps__model* m) {
-    return (m->stabilisation->artificial_stress ? SPS__TERM_ART : 0) | (m->viscous == SPS__VISCOUS_KELVIN_VOIGT ? SPS__TERM_DAMPING : 0);
-}
 static int sps__continuity_terms(const sps__model* m) {
     const int eno = m->stabilisation->eno;
     return (m->gradient ? SPS__TERM_GRADIENT : 0) | (eno && !m->paired ? SPS__TERM_LAPLACIAN : 0) | (eno && m->paired ? SPS__TERM_PAIRED : 0) |
@@ -6007,11 +6002,12 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     if (m->material->kinematic) return p;
     if (m->total_lagrangian) return sps__tl_passes(w, m);
     p.pressure_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), sps__pressure_terms(m), mode);
-    p.rare_pairs = sps__find_loop(sps__rare_pressure_rows, SPS__NROWS(sps__rare_pressure_rows), sps__rare_pressure_terms(m), mode);
+    if (m->stabilisation->artificial_stress) p.art_pairs = sps__rare_pressure_pairs_art[mode];
+    if (m->viscous == SPS__VISCOUS_KELVIN_VOIGT) p.damping_pairs = sps__rare_pressure_pairs_damping[mode];
     p.continuity_pairs = sps__find_loop(sps__continuity_rows, SPS__NROWS(sps__continuity_rows), sps__continuity_terms(m), mode);
     if (m->stabilisation->penalty)
         p.penalty_pairs = sps__find_loop(sps__penalty_rows, SPS__NROWS(sps__penalty_rows), sps__penalty_terms(m), mode);
-    p.pressure = p.pressure_pairs && (p.rare_pairs || !sps__rare_pressure_terms(m)) ? sps__pressure : NULL;
+    p.pressure = p.pressure_pairs && (p.art_pairs || !m->stabilisation->artificial_stress) ? sps__pressure : NULL;
     p.continuity = p.continuity_pairs ? sps__continuity : NULL;
     p.penalty = p.penalty_pairs ? sps__penalty : NULL;
     return p;
@@ -7835,11 +7831,11 @@ static sps_result sps__watch_energy(sps_world* w) {
    C3 at H/dp 20 broke within 0.1 s; per sub-step it swings with min spacing 0.83 dp). */
 
 /* Transport pass 1, the pair loop for lane group g: g_i into rows 0-2, B_i^-1 into rows 3-8. */
-SPS__INLINE void sps__transport_sum_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* sums, const int dim,
+SPS__INLINE void sps__transport_sum_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                           const int geo, const int terms) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
-    sps_real(*SPS__RESTRICT sum)[SPS__LANES] = sums->row, (*SPS__RESTRICT A)[SPS__LANES] = sums->row + 3;
+    sps_real(*sum)[SPS__LANES] = sums->row, (*A)[SPS__LANES] = sums->row + 3;
     int k, l;
     (void)dt;
     (void)terms;
@@ -7876,13 +7872,13 @@ SPS__INLINE void sps__transport_sums_finish(const sps__body* b, sps__group q, sp
 
 /* Transport pass 2, the pair loop for lane group g: the neighbours within h on the surface (div
    r below 0.75 d), per lane into row 0. */
-SPS__INLINE void sps__transport_surface_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* sums, const int dim,
+SPS__INLINE void sps__transport_surface_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                               const int geo, const int terms) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT t = b->transport;
     const int begin = b->begin;
     const sps_real surface_divr = SPS_R(0.75) * dim, h = w->h;
-    sps_real* SPS__RESTRICT near = sums->row[0];
+    sps_real* near = sums->row[0];
     int k, l;
     (void)dt;
     (void)terms;
