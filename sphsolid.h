@@ -387,11 +387,14 @@
       stabilisation (shear and rotation) and its transport
       correction (transport: SPS_TRANSPORT_NONE). sps_world_add_body checks each field's range
       and the table of allowed combinations (OAS only in 2D) and resolves the model once into
-      the pass kernels the step runs for the body: one named function per pass variant,
-      dimension and pair geometry (e.g. sps__continuity_eno_gradient_2d_wendland, what a
-      profiler shows), its choices literals. Adding a material is a row in sps__materials and
-      its section; a new stabilisation a row in sps__stabilisations and, where its terms
-      differ, a variant of the passes.
+      the pass kernels the step runs for the body. Only a pass's pair loop is compiled per
+      dimension, pair geometry and pair terms, one named function each (e.g.
+      sps__continuity_pairs_eno_gradient_2d_wendland, what a profiler shows), its choices
+      literals; what the pass does once per lane group after it (the velocity gradient, the
+      stress update and return map, the rotation, the stores) is one function per pass compiled
+      per dimension, which reads the body's model at run time. Adding a material is a row in
+      sps__materials and its section; a new stabilisation a row in sps__stabilisations and,
+      where its pair terms differ, a pair loop of the passes.
       Per-particle arrays are rows of sps__fields (name, components, when needed, housekeeping).
       Every particle has position, velocity, reference position, density, pressure, mass and
       volume; the shear stress, the velocity gradient, the mean-rotation increments and Gray's
@@ -4610,8 +4613,9 @@ static void sps__correction_matrices(sps_world* w, sps_real* out, sps_real* divr
     }
 }
 
-/* >>solver: the updated-Lagrangian passes (ENO section 5, ANG sections 3-4), one kernel per
-   variant, dimension and pair geometry */
+/* >>solver: the updated-Lagrangian passes (ENO section 5, ANG sections 3-4): each pass a kernel
+   per lane group that runs the body's pair loop, one instance per dimension, pair geometry and
+   pair terms (SPS__INSTANCES), and then the pass's finish, compiled per dimension only */
 
 /* The first of body b's lane groups (of the group starts `start`, ngroups + 1 of them) whose
    first slot is at or after slot `target`. */
