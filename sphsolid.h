@@ -387,11 +387,15 @@
       stabilisation (shear and rotation) and its transport
       correction (transport: SPS_TRANSPORT_NONE). sps_world_add_body checks each field's range
       and the table of allowed combinations (OAS only in 2D) and resolves the model once into
-      the pass kernels the step runs for the body: one named function per pass variant,
-      dimension and pair geometry (e.g. sps__continuity_eno_gradient_2d_wendland, what a
-      profiler shows), its choices literals. Adding a material is its chapter (its row, check,
-      constants, energy) and its case in each switch of chapter >>generic; a new stabilisation
-      a row in sps__stabilisations and, where its terms differ, a variant of the passes.
+      the pass kernels the step runs for the body. Only a pass's pair loop is compiled per
+      dimension, pair geometry and pair terms, one named function each (e.g.
+      sps__continuity_pairs_eno_gradient_2d_wendland, what a profiler shows), its choices
+      literals; what the pass does once per lane group after it (the velocity gradient, the
+      stress update and return map, the rotation, the stores) is one function per pass compiled
+      per dimension, which reads the body's model at run time. Adding a material is its chapter
+      (its row, check, constants, energy) and its case in each switch of chapter >>generic; a
+      new stabilisation a row in sps__stabilisations and, where its pair terms differ, a pair
+      loop of the passes.
       Per-particle arrays are rows of sps__fields (name, components, when needed, housekeeping).
       Every particle has position, velocity, reference position, density, pressure, mass and
       volume; the shear stress, the velocity gradient, the mean-rotation increments and Gray's
@@ -1612,11 +1616,22 @@ typedef enum {
 struct sps__body;
 typedef void (*sps__group_kernel)(sps_world* w, const struct sps__body* b, int g, sps_real dt);
 
-/* The pass kernels of a body, fully specialised (dimension, pair geometry, terms); penalty is
-   NULL when the body has no penalty pass, stress (run before the pressure pass) for all but
-   total-Lagrangian bodies, continuity for those. */
+/* A pair loop: the neighbour sums of lane group g of body b into its lane arrays (struct
+   sps__lane_sums, chapter >>solver: the updated-Lagrangian passes), compiled once per world
+   mode (dimension x pair geometry) and pair terms (SPS__INSTANCES). A pass's kernel runs its
+   pair loop and then its finish, which is compiled once per dimension only. */
+struct sps__lane_sums;
+typedef void (*sps__pair_loop)(sps_world* w, const struct sps__body* b, int g, sps_real dt, struct sps__lane_sums* sums);
+
+/* The pass kernels of a body: the kernels the step runs, NULL when the body has no such pass
+   (penalty: no penalty; stress, run before the pressure pass: all but total-Lagrangian bodies;
+   continuity: those), and the pair loops of the world's mode they call. */
 typedef struct sps__passes {
     sps__group_kernel pressure, continuity, penalty, stress;
+    sps__pair_loop pressure_pairs, continuity_pairs, penalty_pairs;
+    /* the pressure pass's rare terms, each a loop of its own, or NULL: OAS's artificial stress, a
+       solid's Kelvin-Voigt damping */
+    sps__pair_loop art_pairs, damping_pairs;
 } sps__passes;
 
 /* A body's viscous force (sps__model.viscous): none, a fluid's Newtonian viscosity (FLUIDS), a
@@ -4837,8 +4852,9 @@ static void sps__correction_matrices(sps_world* w, sps_real* out, sps_real* divr
     }
 }
 
-/* >>solver: the updated-Lagrangian passes (ENO section 5, ANG sections 3-4), one kernel per
-   variant, dimension and pair geometry */
+/* >>solver: the updated-Lagrangian passes (ENO section 5, ANG sections 3-4): each pass a kernel
+   per lane group that runs the body's pair loop, one instance per dimension, pair geometry and
+   pair terms (SPS__INSTANCES), and then the pass's finish, compiled per dimension only */
 
 /* The first of body b's lane groups (of the group starts `start`, ngroups + 1 of them) whose
    first slot is at or after slot `target`. */
@@ -4917,25 +4933,83 @@ static void sps__run_groups(sps_world* w, const sps__body* b, sps__group_kernel 
     SPS__PRAGMA(omp barrier)
 }
 
-/* The six instances of a pass variant, one per world mode (sps__mode: dimension x pair
-   geometry), as named functions (they show up in a profiler), each calling the pass's generic
-   body with every choice a literal so that its loops carry no branch; and the mode table
-   sps__<pass>_<variant>[mode]. */
-#define SPS__INSTANCE(pass, variant, mode, dim, geo, ...)                                             \
-    static void sps__##pass##_##variant##_##mode(sps_world* w, const sps__body* b, int g, sps_real dt) { \
-        sps__##pass(w, b, g, dt, dim, geo, __VA_ARGS__);                                                \
+/* The pair terms of a pair loop's instance: a bit set, a literal in each instance (SPS__INSTANCES)
+   so that the loop carries no branch on them. */
+enum {
+    SPS__TERM_STRESS = 1 << 0,    /* pressure: the divergence of the shear stress (OG family) */
+    SPS__TERM_PAIRED = 1 << 1,    /* pressure: the accumulated pair forces; continuity, penalty: the
+                                     increments go to the pair forces (SPS_ROTATION_PAIR) */
+    SPS__TERM_LIMITED = 1 << 2,   /* pressure: the Riemann dissipation limiter (fluids; with stress:
+                                     a granular body, its divergence scaled, its stress diffusion) */
+    SPS__TERM_NEWTON = 1 << 3,    /* pressure: a fluid's Newtonian viscous force */
+    SPS__TERM_ART = 1 << 4,       /* rare pressure terms: Gray et al.'s artificial stress (OAS) */
+    SPS__TERM_DAMPING = 1 << 5,   /* rare pressure terms: a solid's Kelvin-Voigt damping */
+    SPS__TERM_GRADIENT = 1 << 6,  /* continuity: the velocity gradient's sums M and A */
+    SPS__TERM_LAPLACIAN = 1 << 7, /* continuity: ENO's Laplacian per particle */
+    SPS__TERM_RIEMANN = 1 << 8,   /* continuity: the Riemann solver's density term (fluids) */
+    SPS__TERM_PROJECTED = 1 << 9, /* penalty: projected on e_ij (GNO-A) */
+    SPS__TERM_SCALED = 1 << 10,   /* penalty: scaled by the return factors (plastic bodies) */
+    SPS__TERM_DIFFUSION = 1 << 11 /* pressure: a granular body's stress diffusion is stored (its loop
+                                     sums it in any case: a row, not a loop of its own) */
+};
+
+/* The sums of a pass's pair loop, per lane, that it hands to the pass's finish: lane arrays
+   (contiguous per entry, so the lanes vectorise), their rows named by the pass's enum. */
+/* continuity: density rate, Laplacian, uncorrected velocity gradient M (row-major) and the
+   symmetric A = B^-1 */
+enum {
+    SPS__DRHO, SPS__LX, SPS__LY, SPS__LZ,
+    SPS__M00, SPS__M01, SPS__M02, SPS__M10, SPS__M11, SPS__M12, SPS__M20, SPS__M21, SPS__M22,
+    SPS__A00, SPS__A01, SPS__A02, SPS__A11, SPS__A12, SPS__A22, SPS__NSUM
+};
+/* pressure: the acceleration's sum, Gray's artificial stress, the accumulated shear forces, the
+   stress diffusion's rate, the Kelvin-Voigt damping (with the Riemann dissipation) */
+enum { SPS__ACC = 0, SPS__GRAY = 3, SPS__SHEAR = 5, SPS__SPREAD = 8, SPS__DAMP = 14, SPS__PRESSURE_SUMS = 17 };
+typedef struct sps__lane_sums {
+    sps_real row[SPS__NSUM][SPS__LANES];
+} sps__lane_sums;
+
+/* Zeroes the first `rows` rows of sums. */
+static void sps__clear_sums(sps__lane_sums* sums, int rows) {
+    int t, l;
+    for (t = 0; t < rows; ++t)
+        for (l = 0; l < SPS__LANES; ++l) sums->row[t][l] = 0;
+}
+
+/* The six instances of a pair loop, one per world mode (sps__mode: dimension x pair geometry),
+   as named functions (they show up in a profiler), each calling the loop's generic body with the
+   dimension, the pair geometry and the pair terms (an SPS__TERM_ bit set) literals, so that its
+   loop carries no branch; and the mode table sps__<loop>_<variant>[mode]. Only the pair loops
+   are instanced: a pass's finish, what it does once per lane group after the loop (the velocity
+   gradient's correction, the stress update and return maps, the rotations, the increments'
+   store), reads the body's model at run time and is compiled once per dimension. 192 pass
+   instances with their finishes inlined were 711 KB of build/impl.o's 864 KB of functions;
+   bench/VALIDATION.md, "Instancing", has the sizes and speeds. */
+#define SPS__INSTANCE(loop, variant, mode, dim, geo, terms)                                                     \
+    static void sps__##loop##_##variant##_##mode(sps_world* w, const sps__body* b, int g, sps_real dt,         \
+                                                 sps__lane_sums* SPS__RESTRICT sums) {                          \
+        sps__##loop(w, b, g, dt, sums, dim, geo, terms);                                                        \
     }
-#define SPS__INSTANCES(pass, variant, ...)                                                            \
-    SPS__INSTANCE(pass, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, __VA_ARGS__)                      \
-    SPS__INSTANCE(pass, variant, 2d_spline, 2, SPS__GEO_SPLINE, __VA_ARGS__)                          \
-    SPS__INSTANCE(pass, variant, 2d_frozen, 2, SPS__GEO_FROZEN, __VA_ARGS__)                          \
-    SPS__INSTANCE(pass, variant, 3d_wendland, 3, SPS__GEO_WENDLAND, __VA_ARGS__)                      \
-    SPS__INSTANCE(pass, variant, 3d_spline, 3, SPS__GEO_SPLINE, __VA_ARGS__)                          \
-    SPS__INSTANCE(pass, variant, 3d_frozen, 3, SPS__GEO_FROZEN, __VA_ARGS__)                          \
-    static const sps__group_kernel sps__##pass##_##variant[6] = {                                     \
-        sps__##pass##_##variant##_2d_wendland, sps__##pass##_##variant##_2d_spline,                   \
-        sps__##pass##_##variant##_2d_frozen, sps__##pass##_##variant##_3d_wendland,                   \
-        sps__##pass##_##variant##_3d_spline, sps__##pass##_##variant##_3d_frozen};
+#define SPS__INSTANCES_2D(loop, variant, terms)                                                                 \
+    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
+    SPS__INSTANCE(loop, variant, 2d_spline, 2, SPS__GEO_SPLINE, terms)                                          \
+    SPS__INSTANCE(loop, variant, 2d_frozen, 2, SPS__GEO_FROZEN, terms)
+#define SPS__INSTANCES(loop, variant, terms)                                                                    \
+    SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
+    SPS__INSTANCE(loop, variant, 3d_wendland, 3, SPS__GEO_WENDLAND, terms)                                      \
+    SPS__INSTANCE(loop, variant, 3d_spline, 3, SPS__GEO_SPLINE, terms)                                          \
+    SPS__INSTANCE(loop, variant, 3d_frozen, 3, SPS__GEO_FROZEN, terms)                                          \
+    static const sps__pair_loop sps__##loop##_##variant[6] = {                                                  \
+        sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
+        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_3d_wendland,                             \
+        sps__##loop##_##variant##_3d_spline, sps__##loop##_##variant##_3d_frozen};
+/* The instances of a 2D-only term (OAS's: a combination rule refuses it in 3D): none in 3D, where
+   the mode table holds NULL (sps__missing_pass would name the combination). */
+#define SPS__INSTANCES_2D_ONLY(loop, variant, terms)                                                            \
+    SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
+    static const sps__pair_loop sps__##loop##_##variant[6] = {                                                  \
+        sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
+        sps__##loop##_##variant##_2d_frozen, NULL, NULL, NULL};
 
 /* The dissipation limiter of a pair approaching at -u (u = v_ij . e_ij), eta_c0 = eta / c0:
    beta = min(eta max(-u / c0, 0), 1) (UTVF eq. 20). Branch-free for the lane loops. */
@@ -4944,68 +5018,58 @@ SPS__INLINE sps_real sps__riemann_limiter(sps_real u, sps_real eta_c0) {
     return beta > 1 ? 1 : beta > 0 ? beta : 0;
 }
 
+/* u = v_ij . e_ij of pair (i, j) with direction (ex, ey, ez). */
+SPS__INLINE sps_real sps__approach(const sps_world* w, int i, int j, sps_real ex, sps_real ey, sps_real ez, const int dim) {
+    const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
+    return (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
+}
+
 /* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with
    beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of the shear stress
-   (ENO eq. 17); with art (OAS) Gray et al.'s artificial stress
-   sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp); with paired (SPS_ROTATION_PAIR)
-   the accumulated shear forces (1/m_i) sum_j g_ij e_ij along the current e_ij. For fluids,
-   with limited, the dissipation Z beta with the limiter beta = min(eta max(-v_ij . e_ij / c0, 0), 1)
-   (UTVF eq. 20: only approaching pairs, fully from a 1/eta of c0 on), and with viscous =
-   SPS__VISCOUS_NEWTON the Newtonian viscous force (2 mu / rho_i) sum_j v_ij dW / (r_ij + 0.01 h) V_j
-   (Morris et al. 1997; 0.01 h keeps it finite for coinciding particles), with viscous =
-   SPS__VISCOUS_KELVIN_VOIGT a solid's material damping (>>material: Kelvin-Voigt) and its
-   dissipated work. stress, art, paired, limited and viscous are
-   literals at every call so each variant's loop is branch-free. Each lane sums its own
-   particle's neighbours in list order, so the result does not depend on the vector width. */
-SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                               const int stress, const int art, const int paired, const int limited, const int viscous,
-                               const int diffusion) {
-    const sps__group q = sps__group_of(w, b, g);
-    const sps_real z = b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
+   (ENO eq. 17); with paired (SPS_ROTATION_PAIR) the accumulated shear forces (1/m_i) sum_j g_ij
+   e_ij along the current e_ij. For fluids, with limited, the dissipation Z beta with the limiter
+   beta = min(eta max(-v_ij . e_ij / c0, 0), 1) (UTVF eq. 20: only approaching pairs, fully from
+   a 1/eta of c0 on), and with newton the Newtonian viscous force
+   (2 mu / rho_i) sum_j v_ij dW / (r_ij + 0.01 h) V_j (Morris et al. 1997; 0.01 h keeps it finite
+   for coinciding particles). A granular body (stress and limited) has its divergence scaled
+   (sps__lattice_gradient_moment) and its stress diffusion summed (stored when its def has it).
+   The rare terms, which add to sums of their own, have a pair loop of their own
+   (sps__rare_pressure_pairs); a Kelvin-Voigt body's Riemann dissipation is among them (kept
+   with its viscous force, for its work), so its pressure force here has Z = 0, which leaves
+   (p_i + p_j) dW V_j bit for bit. Each lane sums its own particle's neighbours in list order,
+   so the result does not depend on the vector width. */
+SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
+                                     const int geo, const int terms) {
+    const int stress = (terms & SPS__TERM_STRESS) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
+    const int limited = (terms & SPS__TERM_LIMITED) != 0, newton = (terms & SPS__TERM_NEWTON) != 0;
     const int granular = stress && limited; /* a Drucker-Prager body: its divergence scaled (sps__lattice_gradient_moment) */
+    const sps__group q = sps__group_of(w, b, g);
+    const sps_real z = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT ? 0 : b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
     const sps_real scale = granular ? b->divergence_scale : 1;
     const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h, soft2 = SPS_R(0.01) * w->h * w->h;
-    const sps_real kelvin_voigt = viscous == SPS__VISCOUS_KELVIN_VOIGT ? sps__kelvin_voigt_coefficient(dim, b) : 0;
     const sps_real *gravity = w->def.gravity, *geostatic = b->geostatic;
-    const int begin = b->begin; /* the body's own arrays (tau, art) hold particle begin + k at k */
+    const int begin = b->begin; /* the body's own arrays (tau) hold particle begin + k at k */
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
-    const sps_real* SPS__RESTRICT art_r = b->art; /* OAS only */
-    const sps_real oas_w_dp = b->oas_w_dp;
-    const int kernel = sps__geo_kernel(w, geo);
-    sps_real acc[3][SPS__LANES], gray[2][SPS__LANES], shear[3][SPS__LANES], spread[6][SPS__LANES], tau_i[6][SPS__LANES], art_i[3][SPS__LANES];
-    sps_real damp[3][SPS__LANES]; /* Kelvin-Voigt: the viscous and Riemann dissipation forces, kept apart for their work */
-    const sps_real* oas_factor = b->oas_factor; /* f^n as a product of 12 factors, each 1 f + 0 or 0 f + 1 exactly: a
-                                                   lane-uniform select the vectoriser takes (a loop to n it does not) */
-    int k, l, a;
-    for (l = 0; l < SPS__LANES; ++l) {
-        acc[0][l] = acc[1][l] = acc[2][l] = gray[0][l] = gray[1][l] = shear[0][l] = shear[1][l] = shear[2][l] = 0;
-        damp[0][l] = damp[1][l] = damp[2][l] = 0;
-        for (a = 0; a < 6; ++a) spread[a][l] = 0;
-    }
+    sps_real(*acc)[SPS__LANES] = sums->row + SPS__ACC;
+    sps_real(*shear)[SPS__LANES] = sums->row + SPS__SHEAR;
+    sps_real(*spread)[SPS__LANES] = sums->row + SPS__SPREAD;
+    sps_real tau_i[6][SPS__LANES];
+    int k, l;
+    (void)dt;
     if (stress) sps__own_lanes(tau, 6, q.i0 - begin, tau_i);
-    if (art) sps__own_lanes(art_r, 3, q.i0 - begin, art_i);
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
-            sps_real u, f2, beta = 1;
-            u = (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
+            const sps_real u = sps__approach(w, i, j, ex, ey, ez, dim);
+            sps_real f2, beta = 1;
             if (limited) beta = sps__riemann_limiter(u, eta_c0);
-            if (viscous == SPS__VISCOUS_KELVIN_VOIGT) { /* the Riemann dissipation kept with the viscous force, for its work */
-                const sps_real fk = (kelvin_voigt / rij + z * beta) * u * dw * vol[j]; /* 2 (d + 2) eta (v_ij . e_ij) dW / r_ij V_j e_ij */
-                damp[0][l] += fk * ex;
-                damp[1][l] += fk * ey;
-                if (dim == 3) damp[2][l] += fk * ez;
-                f2 = (p[i] + p[j]) * dw * vol[j];
-            } else if (granular) {
-                f2 = ((p[i] + p[j]) * scale - z * beta * u) * dw * vol[j];
-            } else {
-                f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
-            }
+            if (granular) f2 = ((p[i] + p[j]) * scale - z * beta * u) * dw * vol[j];
+            else f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
             acc[0][l] -= f2 * ex;
             acc[1][l] -= f2 * ey;
             if (dim == 3) acc[2][l] -= f2 * ez;
-            if (viscous == SPS__VISCOUS_NEWTON) {
+            if (newton) {
                 const sps_real fv = two_mu * dw * vol[j] / (rij + soft);
                 acc[0][l] += fv * (vx[i] - vx[j]);
                 acc[1][l] += fv * (vy[i] - vy[j]);
@@ -5030,7 +5094,7 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                     acc[0][l] += (sxx * ex + sxy * ey) * dwv;
                     acc[1][l] += (sxy * ex + syy * ey) * dwv;
                 }
-                if (diffusion) { /* (sigma_i - sigma_j - geostatic difference) r dW/(r^2 + 0.01 h^2) V_j */
+                if (granular) { /* (sigma_i - sigma_j - geostatic difference) r dW/(r^2 + 0.01 h^2) V_j */
                     const sps_real weight = rij * dw * vol[j] / (rij * rij + soft2); /* unscaled: a smoothing, not the divergence */
                     const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0)), dp_ij = p[i] - p[j];
                     spread[0][l] += weight * (tau_i[0][l] - tau[tj] - dp_ij - geostatic[0] * g_x);
@@ -5042,6 +5106,43 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                         spread[4][l] += weight * (tau_i[4][l] - tau[tj + 4] - geostatic[4] * g_x);
                     }
                 }
+            }
+    })
+}
+
+/* The pressure pass's rare terms for lane group g, each into a sum of its own (so that a loop
+   of their own leaves every sum bit for bit; one loop each, for the rare body that has both):
+   with art (OAS, 2D) Gray et al.'s artificial
+   stress sum_j m_j f_ij^n (R_i + R_j) . grad W_ij, f_ij = W(r_ij)/W(dp); with damping a solid's
+   material damping (>>material: Kelvin-Voigt) 2 (d + 2) eta (v_ij . e_ij) dW / r_ij V_j e_ij, with
+   the Riemann dissipation Z (v_ij . e_ij) dW V_j e_ij (a Kelvin-Voigt body is never limited:
+   beta = 1), kept apart from the pressure force for the work they dissipate. */
+SPS__INLINE void sps__rare_pressure_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
+                                          const int geo, const int terms) {
+    const int art = (terms & SPS__TERM_ART) != 0, damping = (terms & SPS__TERM_DAMPING) != 0;
+    const sps__group q = sps__group_of(w, b, g);
+    const sps_real z = b->z_riemann, beta = 1;
+    const sps_real kelvin_voigt = damping ? sps__kelvin_voigt_coefficient(dim, b) : 0;
+    const sps_real* SPS__RESTRICT vol = w->vol;
+    const sps_real* SPS__RESTRICT art_r = b->art; /* OAS only: particle begin + k at 3 k */
+    const sps_real oas_w_dp = b->oas_w_dp;
+    const sps_real* oas_factor = b->oas_factor; /* f^n as a product of 12 factors, each 1 f + 0 or 0 f + 1 exactly: a
+                                                   lane-uniform select the vectoriser takes (a loop to n it does not) */
+    const int kernel = sps__geo_kernel(w, geo), begin = b->begin;
+    sps_real(*gray)[SPS__LANES] = sums->row + SPS__GRAY;
+    sps_real(*damp)[SPS__LANES] = sums->row + SPS__DAMP;
+    sps_real art_i[3][SPS__LANES];
+    int k, l;
+    (void)dt;
+    if (art) sps__own_lanes(art_r, 3, q.i0 - begin, art_i);
+    SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
+            const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
+            if (damping) {
+                const sps_real u = sps__approach(w, i, j, ex, ey, ez, dim);
+                const sps_real fk = (kelvin_voigt / rij + z * beta) * u * dw * vol[j]; /* 2 (d + 2) eta (v_ij . e_ij) dW / r_ij V_j e_ij */
+                damp[0][l] += fk * ex;
+                damp[1][l] += fk * ey;
+                if (dim == 3) damp[2][l] += fk * ez;
             }
             if (art) {
                 const int rj = 3 * (j - begin); /* an int offset: a gather */
@@ -5055,6 +5156,18 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
                 gray[1][l] += mf * ((art_i[1][l] + art_r[rj + 1]) * ex + (art_i[2][l] + art_r[rj + 2]) * ey);
             }
     })
+}
+
+/* The pressure pass's finish for lane group q: the acceleration acc/rho_i + Gray's term, then the
+   shear forces / m_i, then the Kelvin-Voigt damping / rho_i and its work, in this order (the
+   sums' order of the fused pass, bit for bit); the stress diffusion's rate. The choices are the
+   body's model's. */
+SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__group q, sps_real dt, sps__lane_sums* sums, const int dim) {
+    sps_real(*acc)[SPS__LANES] = sums->row + SPS__ACC, (*gray)[SPS__LANES] = sums->row + SPS__GRAY;
+    sps_real(*shear)[SPS__LANES] = sums->row + SPS__SHEAR, (*spread)[SPS__LANES] = sums->row + SPS__SPREAD;
+    sps_real(*damp)[SPS__LANES] = sums->row + SPS__DAMP;
+    const int paired = b->model.paired, diffusion = b->model.diffusion, damping = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT;
+    int l, k, a;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l;
         w->acc_p[0][i] = acc[0][l] / w->rho[i] + gray[0][l];
@@ -5063,52 +5176,58 @@ SPS__INLINE void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real
         if (paired)
             for (k = 0; k < dim; ++k) w->acc_p[k][i] += shear[k][l] / w->mass[i];
         if (diffusion)
-            for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i - begin) + a] = b->diffusion_rate * spread[a][l];
-        if (viscous == SPS__VISCOUS_KELVIN_VOIGT) {
+            for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i - b->begin) + a] = b->diffusion_rate * spread[a][l];
+        if (damping) {
             sps_real power = 0; /* of the viscous force, at the velocities it was evaluated with */
             for (a = 0; a < dim; ++a) {
                 w->acc_p[a][i] += damp[a][l] / w->rho[i];
                 power += damp[a][l] / w->rho[i] * w->vel[a][i];
             }
-            b->viscous_work[i - begin] -= w->mass[i] * power * dt;
+            b->viscous_work[i - b->begin] -= w->mass[i] * power * dt;
         }
     }
 }
 
-/* The pressure pass's variants: (stress force, artificial stress, pair forces, limited, viscous,
-   stress diffusion). */
-/* The variants of the kinds a build can leave out (CONFIG MACROS: SPHSOLID_NO_FLUID,
+/* The pressure pass's kernel for lane group g: the body's pair loop, its rare terms' loops, the
+   finish. */
+static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) {
+    sps__lane_sums sums;
+    const sps__group q = sps__group_of(w, b, g);
+    sps__clear_sums(&sums, SPS__PRESSURE_SUMS);
+    b->model.pass.pressure_pairs(w, b, g, dt, &sums);
+    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, &sums);
+    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, &sums);
+    if (w->dim == 2) sps__pressure_finish(w, b, q, dt, &sums, 2);
+    else sps__pressure_finish(w, b, q, dt, &sums, 3);
+}
+
+/* The pressure pass's pair loops: (name, pair terms). */
+/* The loops of the kinds a build can leave out (CONFIG MACROS: SPHSOLID_NO_FLUID,
    SPHSOLID_NO_GRANULAR): an empty list there, and sps_world_add_body refuses the kind. */
 #ifdef SPHSOLID_NO_FLUID
-#define SPS__PRESSURE_FLUID_VARIANTS(X)
+#define SPS__PRESSURE_FLUID_LOOPS(X)
 #else
-#define SPS__PRESSURE_FLUID_VARIANTS(X)         \
-    X(fluid, 0, 0, 0, 1, 0, 0)                  \
-    X(fluid_viscous, 0, 0, 0, 1, SPS__VISCOUS_NEWTON, 0)
+#define SPS__PRESSURE_FLUID_LOOPS(X)                       \
+    X(fluid, SPS__TERM_LIMITED)                            \
+    X(fluid_viscous, SPS__TERM_LIMITED | SPS__TERM_NEWTON)
 #endif
 #ifdef SPHSOLID_NO_GRANULAR
-#define SPS__PRESSURE_GRANULAR_VARIANTS(X)
+#define SPS__PRESSURE_GRANULAR_LOOPS(X)
 #else
-#define SPS__PRESSURE_GRANULAR_VARIANTS(X)      \
-    X(granular, 1, 0, 0, 1, 0, 0)               \
-    X(granular_diffusion, 1, 0, 0, 1, 0, 1)
+#define SPS__PRESSURE_GRANULAR_LOOPS(X) X(granular, SPS__TERM_STRESS | SPS__TERM_LIMITED)
 #endif
-#define SPS__PRESSURE_VARIANTS(X)               \
-    X(plain, 0, 0, 0, 0, 0, 0)                  \
-    X(pairs, 0, 0, 1, 0, 0, 0)                  \
-    X(stress, 1, 0, 0, 0, 0, 0)                 \
-    X(stress_pairs, 1, 0, 1, 0, 0, 0)           \
-    X(oas, 1, 1, 0, 0, 0, 0)                    \
-    SPS__PRESSURE_FLUID_VARIANTS(X)             \
-    SPS__PRESSURE_GRANULAR_VARIANTS(X)          \
-    X(plain_kv, 0, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
-    X(pairs_kv, 0, 0, 1, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
-    X(stress_kv, 1, 0, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
-    X(stress_pairs_kv, 1, 0, 1, 0, SPS__VISCOUS_KELVIN_VOIGT, 0) \
-    X(oas_kv, 1, 1, 0, 0, SPS__VISCOUS_KELVIN_VOIGT, 0)
-#define SPS__PRESSURE_INSTANCES(variant, stress, art, paired, limited, viscous, diffusion) \
-    SPS__INSTANCES(pressure, variant, stress, art, paired, limited, viscous, diffusion)
-SPS__PRESSURE_VARIANTS(SPS__PRESSURE_INSTANCES)
+#define SPS__PRESSURE_LOOPS(X)                             \
+    X(plain, 0)                                            \
+    X(pairs, SPS__TERM_PAIRED)                             \
+    X(stress, SPS__TERM_STRESS)                            \
+    X(stress_pairs, SPS__TERM_STRESS | SPS__TERM_PAIRED)   \
+    SPS__PRESSURE_FLUID_LOOPS(X)                           \
+    SPS__PRESSURE_GRANULAR_LOOPS(X)
+#define SPS__PRESSURE_INSTANCES(variant, terms) SPS__INSTANCES(pressure_pairs, variant, terms)
+SPS__PRESSURE_LOOPS(SPS__PRESSURE_INSTANCES)
+/* The rare terms' loops; OAS's in 2D only. */
+SPS__INSTANCES(rare_pressure_pairs, damping, SPS__TERM_DAMPING)
+SPS__INSTANCES_2D_ONLY(rare_pressure_pairs, art, SPS__TERM_ART)
 
 /* Gray et al.'s artificial stress R_i (2D): in the principal frame of sigma = -p I + tau each
    tensile principal stress s > 0 gives R' = -eps s / rho^2; rotated back (xx, xy, yy). */
@@ -5448,14 +5567,6 @@ SPS__INLINE void sps__add_increments(sps_world* w, const sps__body* b, sps__grou
             }
     }
 }
-
-/* The sums of the continuity pass's pair loop, per lane (see sps__continuity): density
-   rate, Laplacian, uncorrected velocity gradient M (row-major) and the symmetric A = B^-1. */
-enum {
-    SPS__DRHO, SPS__LX, SPS__LY, SPS__LZ,
-    SPS__M00, SPS__M01, SPS__M02, SPS__M10, SPS__M11, SPS__M12, SPS__M20, SPS__M21, SPS__M22,
-    SPS__A00, SPS__A01, SPS__A02, SPS__A11, SPS__A12, SPS__A22, SPS__NSUM
-};
 
 /* The lane-parallel end of the continuity pass for lane group q: density rate, the ENO
    increment without rotation (ENO eq. 24) into da, and, with gradient (a literal), the velocity
@@ -5826,23 +5937,27 @@ static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__grou
     }
 }
 
-/* The pair loop of the continuity pass for lane group q (terms: see sps__continuity).
-   gradient adds the sums of M and A; paired (SPS_ROTATION_PAIR) adds each ENO increment to its
-   pair's force g_ij += 2 zeta G dt (v_ij . e_ij) dW/r V_i V_j instead of the particle's
-   Laplacian: every factor is symmetric in i, j bit for bit, so g_ij = g_ji and the shear
-   forces stay exactly antisymmetric; laplacian sums ENO's per-particle Laplacian. riemann (a
+/* The pair loop of the continuity pass for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW
+   V_j (ANG eq. 15); with laplacian lap += u/r dW V_j e_ij (ENO eq. 23); with gradient M -= v_ij
+   (x) e_ij dW V_j (velocity gradient before correction) and A -= r_ij (x) e_ij dW V_j (B^-1);
+   paired (SPS_ROTATION_PAIR) adds each ENO increment to its pair's force g_ij += 2 zeta G dt
+   (v_ij . e_ij) dW/r V_i V_j instead of the particle's Laplacian: every factor is symmetric in
+   i, j bit for bit, so g_ij = g_ji and the shear forces stay exactly antisymmetric. riemann (a
    fluid) adds the Riemann solver's pressure term to the density rate, drho += (p_i - p_j -
    rho0 g . x_ij) / (rho0 c0) dW V_j (UTVF eqs. 16, 18: 2 (v_i - v*) . e_ij with the acoustic
-   U*), which diffuses the density (less its hydrostatic part: sps__fluid_rest_gradient). All
-   are literals at every call (branch-free loops). */
-SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, sps__group q, const int dim, const int geo,
-                                       const int gradient, const int paired, const int laplacian, const int riemann,
-                                       sps_real shear_rate, sps_real sum[SPS__NSUM][SPS__LANES]) {
+   U*), which diffuses the density (less its hydrostatic part: sps__fluid_rest_gradient). */
+SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
+                                       const int geo, const int terms) {
+    const int gradient = (terms & SPS__TERM_GRADIENT) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
+    const int laplacian = (terms & SPS__TERM_LAPLACIAN) != 0, riemann = (terms & SPS__TERM_RIEMANN) != 0;
+    const sps__group q = sps__group_of(w, b, g);
+    const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
     const sps_real inv_z = riemann ? 1 / b->z_riemann : 0;
     const sps_real rest_x = b->rest_pressure_gradient[0], rest_y = b->rest_pressure_gradient[1], rest_z = b->rest_pressure_gradient[2];
     const sps_real *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT p = w->p;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     sps_real* SPS__RESTRICT pair_force = w->pair_force;
+    sps_real(*sum)[SPS__LANES] = sums->row;
     int k, l;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;
@@ -5871,69 +5986,87 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, sps__gr
     })
 }
 
-/* How a continuity or penalty pass treats ENO's increments (a literal of its kernels). */
-enum { SPS__ENO_NONE, SPS__ENO_PARTICLES, SPS__ENO_PAIRS };
-
-/* Continuity pass (step 4) for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW V_j (ANG
-   eq. 15); lap += u/r dW V_j e_ij (ENO eq. 23); M -= v_ij (x) e_ij dW V_j (velocity gradient
-   before correction); A -= r_ij (x) e_ij dW V_j (B^-1); with the pair rotation (eno =
-   SPS__ENO_PAIRS) the ENO increment goes to the pair's force instead of lap. Then the lanes'
-   ends (sps__continuity_lanes), the Jaumann stress, the Rodrigues matrices and this group's
-   share of the mean rotation (ANG eq. 41, summed in group order by sps__continuity_pass) and
-   the ENO increments (eno = SPS__ENO_PARTICLES). gradient and eno, which shape the pair loop,
-   are literals (SPS__CONTINUITY_VARIANTS); the once-per-group choices after it (stress, turn)
-   are read from the body's model. */
-SPS__INLINE void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                                 const int gradient, const int eno, const int riemann) {
-    const sps__group q = sps__group_of(w, b, g);
-    const int end = b->end;
+/* The continuity pass's finish for lane group q (g), from the pair loop's sums: the walls' and
+   the coupled solids' images, the density rate and the velocity gradient
+   (sps__continuity_lanes), the stress update with the body's return map, the Rodrigues matrices
+   and this group's share of the mean rotation (ANG eq. 41, summed in group order by
+   sps__continuity_pass), and the ENO increments (on ENO bodies without the pair rotation). The
+   choices are the body's model's. */
+SPS__INLINE void sps__continuity_finish(sps_world* w, const sps__body* b, sps__group q, int g, sps_real dt, sps__lane_sums* sums,
+                                        const int dim) {
+    const sps__model* m = &b->model;
+    const int end = b->end, eno_particles = m->stabilisation->eno && !m->paired, relax = !m->paired;
     /* the turn this pass applies: ENO's increments, and the mean rotation's sum for GNO-A too */
-    const sps__turn turn = eno == SPS__ENO_PARTICLES || b->model.turn == SPS__TURN_MEAN ? b->model.turn : SPS__TURN_NONE;
+    const sps__turn turn = eno_particles || m->turn == SPS__TURN_MEAN ? m->turn : SPS__TURN_NONE;
     const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
-    const int plastic_possible = gradient && eno == SPS__ENO_NONE;
-    sps_real sum[SPS__NSUM][SPS__LANES], da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
+    sps_real(*sum)[SPS__LANES] = sums->row;
+    sps_real da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
     sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    int l, t, a;
-    for (t = 0; t < SPS__NSUM; ++t)
-        for (l = 0; l < SPS__LANES; ++l) sum[t][l] = 0;
-    sps__continuity_pairs(w, b, q, dim, geo, gradient, eno == SPS__ENO_PAIRS, eno == SPS__ENO_PARTICLES, riemann, shear_rate, sum);
-    if (b->model.mirrored && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
-    if (riemann && b->coupled) sps__coupling_continuity(w, b, q, sum);
-    sps__continuity_lanes(w, b, q, dim, gradient, riemann, shear_rate, sum, da, L);
-    /* a plastic body is never ENO (combination rules): ENO kernels carry no return map */
-    if (plastic_possible && b->model.plastic == SPS__YIELD_DRUCKER_PRAGER)
-        sps__granular_stress_lanes(w, b, q, dim, dt, L, b->model.diffusion, b->model.scaled_penalty, !b->model.paired);
-    else if (plastic_possible && b->model.scaled_penalty && !b->model.paired) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
-    else if (plastic_possible && b->model.scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
-    else if (plastic_possible && b->model.plastic) sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);
-    else if (b->model.stress) sps__stress_lanes(b, q, dim, dt, L);
+    int l, a;
+    (void)relax; /* read by the return maps only, which a build may leave out */
+    if (m->mirrored && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
+    if (m->riemann_density && b->coupled) sps__coupling_continuity(w, b, q, sum);
+    if (!m->gradient) sps__continuity_lanes(w, b, q, dim, 0, 0, shear_rate, sum, da, L);
+    else if (!m->riemann_density) sps__continuity_lanes(w, b, q, dim, 1, 0, shear_rate, sum, da, L);
+    else sps__continuity_lanes(w, b, q, dim, 1, 1, shear_rate, sum, da, L);
+    /* generic dispatch: the stress update of the body's yield surface; a plastic body is never
+       ENO (combination rules), and its stress is always integrated (it is of the OG family) */
+    switch ((sps__yield)m->plastic) { /* a kind the build left out has no body (CONFIG MACROS) */
+    case SPS__YIELD_DRUCKER_PRAGER:
+#ifndef SPHSOLID_NO_GRANULAR
+        sps__granular_stress_lanes(w, b, q, dim, dt, L, m->diffusion, m->scaled_penalty, relax);
+#endif
+        break;
+    case SPS__YIELD_VON_MISES:
+#ifndef SPHSOLID_NO_PLASTICITY
+        if (m->scaled_penalty && relax) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
+        else if (m->scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
+        else sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);
+#endif
+        break;
+    case SPS__YIELD_NONE:
+        if (m->stress) sps__stress_lanes(b, q, dim, dt, L);
+        break;
+    }
     if (turn != SPS__TURN_NONE) sps__rotation_lanes(b, q, dt, dim, L, R);
     if (turn == SPS__TURN_MEAN) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
             for (a = 0; a < 9; ++a) rsum[a] += R[a][l];
         memcpy(w->group_sum + (size_t)9 * (b->group0 + g), rsum, sizeof rsum);
     }
-    if (eno != SPS__ENO_PARTICLES) return;
-    if (turn == SPS__TURN_NONE) sps__add_increments(w, b, q, dim, da, R, SPS__TURN_NONE);
-    else if (turn == SPS__TURN_MEAN) sps__add_increments(w, b, q, dim, da, R, SPS__TURN_MEAN);
-    else sps__add_increments(w, b, q, dim, da, R, SPS__TURN_PARTICLE);
+    if (!eno_particles) return;
+    switch (turn) {
+    case SPS__TURN_NONE: sps__add_increments(w, b, q, dim, da, R, SPS__TURN_NONE); break;
+    case SPS__TURN_MEAN: sps__add_increments(w, b, q, dim, da, R, SPS__TURN_MEAN); break;
+    case SPS__TURN_PARTICLE: sps__add_increments(w, b, q, dim, da, R, SPS__TURN_PARTICLE); break;
+    }
 }
 
-/* The continuity pass's variants: (gradient, eno, Riemann density term). */
+/* Continuity pass (step 4) for lane group g: the body's pair loop, then the finish. */
+static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt) {
+    sps__lane_sums sums;
+    const sps__group q = sps__group_of(w, b, g);
+    sps__clear_sums(&sums, SPS__NSUM);
+    b->model.pass.continuity_pairs(w, b, g, dt, &sums);
+    if (w->dim == 2) sps__continuity_finish(w, b, q, g, dt, &sums, 2);
+    else sps__continuity_finish(w, b, q, g, dt, &sums, 3);
+}
+
+/* The continuity pass's pair loops: (name, pair terms). */
 #ifdef SPHSOLID_NO_FLUID
-#define SPS__CONTINUITY_FLUID_VARIANTS(X)
+#define SPS__CONTINUITY_FLUID_LOOPS(X)
 #else
-#define SPS__CONTINUITY_FLUID_VARIANTS(X) X(fluid, 1, SPS__ENO_NONE, 1)
+#define SPS__CONTINUITY_FLUID_LOOPS(X) X(fluid, SPS__TERM_GRADIENT | SPS__TERM_RIEMANN)
 #endif
-#define SPS__CONTINUITY_VARIANTS(X)                  \
-    X(eno, 0, SPS__ENO_PARTICLES, 0)                 \
-    X(eno_gradient, 1, SPS__ENO_PARTICLES, 0)        \
-    X(eno_pairs, 0, SPS__ENO_PAIRS, 0)               \
-    X(eno_pairs_gradient, 1, SPS__ENO_PAIRS, 0)      \
-    X(gradient, 1, SPS__ENO_NONE, 0)                 \
-    SPS__CONTINUITY_FLUID_VARIANTS(X)
-#define SPS__CONTINUITY_INSTANCES(variant, gradient, eno, riemann) SPS__INSTANCES(continuity, variant, gradient, eno, riemann)
-SPS__CONTINUITY_VARIANTS(SPS__CONTINUITY_INSTANCES)
+#define SPS__CONTINUITY_LOOPS(X)                                  \
+    X(eno, SPS__TERM_LAPLACIAN)                                   \
+    X(eno_gradient, SPS__TERM_LAPLACIAN | SPS__TERM_GRADIENT)     \
+    X(eno_pairs, SPS__TERM_PAIRED)                                \
+    X(eno_pairs_gradient, SPS__TERM_PAIRED | SPS__TERM_GRADIENT)  \
+    X(gradient, SPS__TERM_GRADIENT)                               \
+    SPS__CONTINUITY_FLUID_LOOPS(X)
+#define SPS__CONTINUITY_INSTANCES(variant, terms) SPS__INSTANCES(continuity_pairs, variant, terms)
+SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_INSTANCES)
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
     int g, a;
@@ -5953,7 +6086,8 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
 /* Hourglass penalty of GNO / GNO-A for lane group g with v^_ij = v_ij - 1/2 (L_i + L_j) r_ij,
    the velocity difference the linear field does not explain (ANG eq. 44):
    GNO   (ANG eq. 43): da = xi G/rho_i dt sum_j v^_ij / r_ij dW_ij V_j
-   GNO-A (ANG eq. 46): da = xi G/rho_i dt sum_j (v^_ij . e_ij) / r_ij dW_ij e_ij V_j, then rotated.
+   GNO-A (ANG eq. 46, projected): da = xi G/rho_i dt sum_j (v^_ij . e_ij) / r_ij dW_ij e_ij V_j,
+   then rotated (sps__penalty_finish).
    With r_ij = r e_ij: v^_ij / r_ij dW = v_ij dW/r - 1/2 (L_i + L_j) e_ij dW.
    paired (SPS_ROTATION_PAIR): GNO-A's increment goes to the pair's force,
    g_ij += xi G dt (v^_ij . e_ij) / r_ij dW V_i V_j (symmetric in i, j bit for bit).
@@ -5966,10 +6100,12 @@ static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
    leaves the stored penalty an elastic spring of stiffness xi G against the non-affine part of
    a plastic flow, which grows without bound and, once the particles have rearranged, does
    work: measured, the square Taylor bar gained 27 % (L/dp 16) and 54 % (L/dp 20) of its
-   impact energy and the round bar (R/9) five times it (bench/VALIDATION.md, B). projected,
-   paired, turn and scaled are literals (SPS__PENALTY_VARIANTS). */
-SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                              const int projected, const int paired, const int turn, const int scaled) {
+   impact energy and the round bar (R/9) five times it (bench/VALIDATION.md, B). The pair loop,
+   its sums into rows 0-2. */
+SPS__INLINE void sps__penalty_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
+                                    const int geo, const int terms) {
+    const int projected = (terms & SPS__TERM_PROJECTED) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
+    const int scaled = (terms & SPS__TERM_SCALED) != 0;
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
     const sps_real* SPS__RESTRICT L = b->grad; /* the body's own: particle begin + k at 9 k */
@@ -5977,10 +6113,9 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
     const int begin = b->begin;
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
     const sps_real* const vel[3] = {w->vel[0], w->vel[1], w->vel[2]};
-    sps_real sum[3][SPS__LANES], da[3][SPS__LANES], R[9][SPS__LANES], L_i[9][SPS__LANES];
+    sps_real(*sum)[SPS__LANES] = sums->row;
+    sps_real L_i[9][SPS__LANES];
     int k, l, a, c;
-    for (a = 0; a < 3; ++a)
-        for (l = 0; l < SPS__LANES; ++l) sum[a][l] = 0;
     sps__own_lanes(L, 9, q.i0 - begin, L_i);
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real dir[3] = {e.ex, e.ey, e.ez}, dw = e.dw, dw_r = e.dw_r;
@@ -6006,83 +6141,130 @@ SPS__INLINE void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real 
                 for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * dir[a] : vhat[a];
             }
     })
-    if (paired) return;
+}
+
+/* The penalty pass's finish for lane group q: the increments da = xi G dt / rho_i sum, turned
+   as the body's model says (sps__add_increments). */
+SPS__INLINE void sps__penalty_finish(sps_world* w, const sps__body* b, sps__group q, sps_real dt, sps__lane_sums* sums, const int dim) {
+    const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
+    sps_real(*sum)[SPS__LANES] = sums->row;
+    sps_real da[3][SPS__LANES], R[9][SPS__LANES];
+    int l, a;
     SPS__PRAGMA(omp simd)
     for (l = 0; l < SPS__LANES; ++l) {
         const sps_real rho = q.i0 + l < b->end ? w->rho[q.i0 + l] : 1;
         SPS__UNROLL
         for (a = 0; a < dim; ++a) da[a][l] = penalty_rate / rho * sum[a][l];
     }
-    if (turn == SPS__TURN_PARTICLE) sps__rotation_lanes(b, q, dt, dim, NULL, R);
-    sps__add_increments(w, b, q, dim, da, R, turn);
+    switch (b->model.turn) {
+    case SPS__TURN_NONE: sps__add_increments(w, b, q, dim, da, R, SPS__TURN_NONE); break;
+    case SPS__TURN_MEAN: sps__add_increments(w, b, q, dim, da, R, SPS__TURN_MEAN); break;
+    case SPS__TURN_PARTICLE:
+        sps__rotation_lanes(b, q, dt, dim, NULL, R);
+        sps__add_increments(w, b, q, dim, da, R, SPS__TURN_PARTICLE);
+        break;
+    }
 }
 
-/* The penalty pass's variants: (projected, pair forces, turn, scaled by the return factors). */
-#define SPS__PENALTY_VARIANTS(X)                              \
-    X(gno, 0, 0, SPS__TURN_NONE, 0)                           \
-    X(gno_a_mean, 1, 0, SPS__TURN_MEAN, 0)                    \
-    X(gno_a_particle, 1, 0, SPS__TURN_PARTICLE, 0)            \
-    X(gno_a_pairs, 1, 1, SPS__TURN_NONE, 0)                   \
-    SPS__PENALTY_PLASTIC_VARIANTS(X)
+/* Penalty pass for lane group g: the body's pair loop, then (its increments kept per particle)
+   the finish. */
+static void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt) {
+    sps__lane_sums sums;
+    const sps__group q = sps__group_of(w, b, g);
+    sps__clear_sums(&sums, 3);
+    b->model.pass.penalty_pairs(w, b, g, dt, &sums);
+    if (b->model.paired) return; /* the pair loop added to the pair forces */
+    if (w->dim == 2) sps__penalty_finish(w, b, q, dt, &sums, 2);
+    else sps__penalty_finish(w, b, q, dt, &sums, 3);
+}
+
+/* The penalty pass's pair loops: (name, pair terms). */
+#define SPS__PENALTY_LOOPS(X)                                                     \
+    X(gno, 0)                                                                     \
+    X(gno_a, SPS__TERM_PROJECTED)                                                 \
+    X(gno_a_pairs, SPS__TERM_PROJECTED | SPS__TERM_PAIRED)                        \
+    SPS__PENALTY_PLASTIC_LOOPS(X)
 /* the scaled penalty of plastic bodies (J2 and Drucker-Prager with GNO, GNO-A): out only when
    both kinds are */
 #if defined(SPHSOLID_NO_PLASTICITY) && defined(SPHSOLID_NO_GRANULAR)
-#define SPS__PENALTY_PLASTIC_VARIANTS(X)
+#define SPS__PENALTY_PLASTIC_LOOPS(X)
 #else
-#define SPS__PENALTY_PLASTIC_VARIANTS(X)                      \
-    X(gno_j2, 0, 0, SPS__TURN_NONE, 1)                        \
-    X(gno_a_mean_j2, 1, 0, SPS__TURN_MEAN, 1)                 \
-    X(gno_a_particle_j2, 1, 0, SPS__TURN_PARTICLE, 1)         \
-    X(gno_a_pairs_j2, 1, 1, SPS__TURN_NONE, 1)
+#define SPS__PENALTY_PLASTIC_LOOPS(X)                                             \
+    X(gno_j2, SPS__TERM_SCALED)                                                   \
+    X(gno_a_j2, SPS__TERM_PROJECTED | SPS__TERM_SCALED)                           \
+    X(gno_a_pairs_j2, SPS__TERM_PROJECTED | SPS__TERM_PAIRED | SPS__TERM_SCALED)
 #endif
-#define SPS__PENALTY_INSTANCES(variant, projected, paired, turn, scaled) SPS__INSTANCES(penalty, variant, projected, paired, turn, scaled)
-SPS__PENALTY_VARIANTS(SPS__PENALTY_INSTANCES)
+#define SPS__PENALTY_INSTANCES(variant, terms) SPS__INSTANCES(penalty_pairs, variant, terms)
+SPS__PENALTY_LOOPS(SPS__PENALTY_INSTANCES)
 
-/* The pass kernels of a model in the world's mode: each pass's variant table searched for the
-   row whose literals are the model's choices (every resolvable model has exactly one). */
-typedef struct sps__variant_row {
-    int key[6];
-    const sps__group_kernel* modes;
-} sps__variant_row;
-#define SPS__ROW_PRESSURE(variant, a, b, c, d, e, f) {{a, b, c, d, e, f}, sps__pressure_##variant},
-#define SPS__ROW_CONTINUITY(variant, a, b, c) {{a, b, c, 0, 0, 0}, sps__continuity_##variant},
-#define SPS__ROW_PENALTY(variant, a, b, c, d) {{a, b, c, d, 0, 0}, sps__penalty_##variant},
-static const sps__variant_row sps__pressure_rows[] = {SPS__PRESSURE_VARIANTS(SPS__ROW_PRESSURE)};
-static const sps__variant_row sps__continuity_rows[] = {SPS__CONTINUITY_VARIANTS(SPS__ROW_CONTINUITY)};
-static const sps__variant_row sps__penalty_rows[] = {SPS__PENALTY_VARIANTS(SPS__ROW_PENALTY)};
+/* The pass kernels of a model in the world's mode: each pass's rows searched for the one whose
+   pair terms are the model's (every resolvable model has one), which names the pair loop that
+   serves it. The choices made after the loop (the turn, the return map, the stress update) are
+   not terms: one loop serves them all. */
+typedef struct sps__loop_row {
+    int terms;                   /* the pair terms it computes (SPS__TERM_ bits) */
+    const sps__pair_loop* modes; /* its instances, by world mode */
+} sps__loop_row;
+#define SPS__PRESSURE_ROW(variant, terms) {terms, sps__pressure_pairs_##variant},
+#define SPS__CONTINUITY_ROW(variant, terms) {terms, sps__continuity_pairs_##variant},
+#define SPS__PENALTY_ROW(variant, terms) {terms, sps__penalty_pairs_##variant},
+/* a granular body's loop sums its stress diffusion whether or not the finish stores it */
+#ifdef SPHSOLID_NO_GRANULAR
+#define SPS__PRESSURE_DIFFUSION_ROW
+#else
+#define SPS__PRESSURE_DIFFUSION_ROW {SPS__TERM_STRESS | SPS__TERM_LIMITED | SPS__TERM_DIFFUSION, sps__pressure_pairs_granular},
+#endif
+static const sps__loop_row sps__pressure_rows[] = {SPS__PRESSURE_LOOPS(SPS__PRESSURE_ROW) SPS__PRESSURE_DIFFUSION_ROW};
+static const sps__loop_row sps__continuity_rows[] = {SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_ROW)};
+static const sps__loop_row sps__penalty_rows[] = {SPS__PENALTY_LOOPS(SPS__PENALTY_ROW)};
+#define SPS__NROWS(rows) ((int)(sizeof rows / sizeof rows[0]))
 
-/* The kernel of the row whose key is key, in mode; NULL when no row has that key (the caller
-   names the combination: sps__missing_pass). */
-static sps__group_kernel sps__find_kernel(const sps__variant_row* rows, int nrows, const int key[6], int mode) {
+/* The instance in mode of the row whose terms are terms; NULL when no row has them or the row
+   has no instance in that mode (the caller names the combination: sps__missing_pass). */
+static sps__pair_loop sps__find_loop(const sps__loop_row* rows, int nrows, int terms, int mode) {
     int r;
     for (r = 0; r < nrows; ++r)
-        if (memcmp(rows[r].key, key, sizeof rows[r].key) == 0) return rows[r].modes[mode];
+        if (rows[r].terms == terms) return rows[r].modes[mode];
     return NULL;
+}
+
+/* The pair terms of a model's passes. */
+static int sps__pressure_terms(const sps__model* m) {
+    return (m->stabilisation->stress_force ? SPS__TERM_STRESS : 0) | (m->paired ? SPS__TERM_PAIRED : 0) |
+           (m->limited ? SPS__TERM_LIMITED : 0) | (m->viscous == SPS__VISCOUS_NEWTON ? SPS__TERM_NEWTON : 0) |
+           (m->diffusion ? SPS__TERM_DIFFUSION : 0);
+}
+static int sps__continuity_terms(const sps__model* m) {
+    const int eno = m->stabilisation->eno;
+    return (m->gradient ? SPS__TERM_GRADIENT : 0) | (eno && !m->paired ? SPS__TERM_LAPLACIAN : 0) | (eno && m->paired ? SPS__TERM_PAIRED : 0) |
+           (m->riemann_density ? SPS__TERM_RIEMANN : 0);
+}
+static int sps__penalty_terms(const sps__model* m) {
+    return (m->stabilisation->projected ? SPS__TERM_PROJECTED : 0) | (m->paired ? SPS__TERM_PAIRED : 0) |
+           (m->scaled_penalty ? SPS__TERM_SCALED : 0);
 }
 
 static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m);
 static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
-    const sps__stabilisation* st = m->stabilisation;
     const int mode = sps__mode(w);
-    const int eno = !st->eno ? SPS__ENO_NONE : m->paired ? SPS__ENO_PAIRS : SPS__ENO_PARTICLES;
-    const int pressure_key[6] = {st->stress_force, st->artificial_stress, m->paired, m->limited, m->viscous, m->diffusion};
-    const int continuity_key[6] = {m->gradient, eno, m->riemann_density, 0, 0, 0};
-    const int penalty_key[6] = {st->projected, m->paired, (int)m->turn, m->scaled_penalty, 0, 0};
     sps__passes p;
-    if (m->material->kinematic) {
-        memset(&p, 0, sizeof p);
-        return p;
-    }
+    memset(&p, 0, sizeof p);
+    if (m->material->kinematic) return p;
     if (m->total_lagrangian) return sps__tl_passes(w, m);
-    p.pressure = sps__find_kernel(sps__pressure_rows, (int)(sizeof sps__pressure_rows / sizeof sps__pressure_rows[0]), pressure_key, mode);
-    p.continuity = sps__find_kernel(sps__continuity_rows, (int)(sizeof sps__continuity_rows / sizeof sps__continuity_rows[0]), continuity_key, mode);
-    p.penalty = st->penalty ? sps__find_kernel(sps__penalty_rows, (int)(sizeof sps__penalty_rows / sizeof sps__penalty_rows[0]), penalty_key, mode) : NULL;
-    p.stress = NULL;
+    p.pressure_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), sps__pressure_terms(m), mode);
+    if (m->stabilisation->artificial_stress) p.art_pairs = sps__rare_pressure_pairs_art[mode];
+    if (m->viscous == SPS__VISCOUS_KELVIN_VOIGT) p.damping_pairs = sps__rare_pressure_pairs_damping[mode];
+    p.continuity_pairs = sps__find_loop(sps__continuity_rows, SPS__NROWS(sps__continuity_rows), sps__continuity_terms(m), mode);
+    if (m->stabilisation->penalty)
+        p.penalty_pairs = sps__find_loop(sps__penalty_rows, SPS__NROWS(sps__penalty_rows), sps__penalty_terms(m), mode);
+    p.pressure = p.pressure_pairs && (p.art_pairs || !m->stabilisation->artificial_stress) ? sps__pressure : NULL;
+    p.continuity = p.continuity_pairs ? sps__continuity : NULL;
+    p.penalty = p.penalty_pairs ? sps__penalty : NULL;
     return p;
 }
 
 /* A pass the model needs but sps__choose_passes found no instance for (a combination the
-   variant lists do not hold): its name and the model's choices into msg, 1; else 0. Checked by
+   loop lists do not hold): its name and the model's choices into msg, 1; else 0. Checked by
    sps_world_add_body in every build, so a missing instance is an error there and not a pass
    the step would skip (sps__run_groups runs nothing for a NULL kernel). */
 static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* msg, size_t size) {
@@ -6095,8 +6277,8 @@ static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* ms
     else if (!m->total_lagrangian && st->penalty && !p->penalty) pass = "penalty";
     if (!pass) return 0;
     snprintf(msg, size, "no %s pass instance for material.kind = %s with %s (stress force %d, artificial stress %d, pair forces %d, "
-             "limiter %d, viscous %d, stress diffusion %d, gradient %d, Riemann density %d, turn %d, scaled penalty %d): add its row "
-             "to the pass's variant list (SPS__PRESSURE_VARIANTS, SPS__CONTINUITY_VARIANTS, SPS__PENALTY_VARIANTS)", pass,
+             "limiter %d, viscous %d, stress diffusion %d, gradient %d, Riemann density %d, turn %d, scaled penalty %d): add its pair "
+             "loop to the pass's list (SPS__PRESSURE_LOOPS, SPS__CONTINUITY_LOOPS, SPS__PENALTY_LOOPS)", pass,
              m->material->name, st->name, st->stress_force, st->artificial_stress, m->paired, m->limited, (int)m->viscous, m->diffusion,
              m->gradient, m->riemann_density, (int)m->turn, m->scaled_penalty);
     return 1;
@@ -6669,36 +6851,33 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
     }
 }
 
-/* The pass instances (named, for a profiler) and the choice of a total-Lagrangian model's. */
-#ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN /* else no instance: sps_world_add_body refuses the bodies */
-static void sps__tl_stress_svk_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
-static void sps__tl_stress_svk_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_SAINT_VENANT_KIRCHHOFF); }
-static void sps__tl_stress_neo_hookean_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_NEO_HOOKEAN); }
-static void sps__tl_stress_neo_hookean_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_NEO_HOOKEAN); }
-static void sps__tl_stress_j2_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 2, SPS__LAW_J2); }
-static void sps__tl_stress_j2_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_stress(w, b, g, dt, 3, SPS__LAW_J2); }
-static void sps__tl_force_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 0); }
-static void sps__tl_force_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 0); }
-static void sps__tl_force_plastic_2d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 2, 1); }
-static void sps__tl_force_plastic_3d(sps_world* w, const sps__body* b, int g, sps_real dt) { sps__tl_force(w, b, g, dt, 3, 1); }
+/* The passes' kernels: like the updated-Lagrangian passes' finishes, compiled once per dimension
+   (a total-Lagrangian body's pair geometry is its reference one: no mode of its own), the law
+   (sps__tl_law_of) read at run time. */
+#ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN /* else no kernel: sps_world_add_body refuses the bodies */
+static int sps__tl_law_of(sps_material_kind kind);
+static void sps__tl_stress_pass(sps_world* w, const sps__body* b, int g, sps_real dt) {
+    const int law = sps__tl_law_of(b->model.material->kind);
+    if (w->dim == 2) sps__tl_stress(w, b, g, dt, 2, law);
+    else sps__tl_stress(w, b, g, dt, 3, law);
+}
+static void sps__tl_force_pass(sps_world* w, const sps__body* b, int g, sps_real dt) {
+    const int plastic = sps__tl_law_of(b->model.material->kind) == SPS__LAW_J2;
+    if (w->dim == 2) sps__tl_force(w, b, g, dt, 2, plastic);
+    else sps__tl_force(w, b, g, dt, 3, plastic);
+}
 #endif
 
 static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
     sps__passes p;
     memset(&p, 0, sizeof p);
+    (void)w;
 #ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN
-    {
-        static const sps__group_kernel stress[3][2] = {{sps__tl_stress_svk_2d, sps__tl_stress_svk_3d},
-                                                       {sps__tl_stress_neo_hookean_2d, sps__tl_stress_neo_hookean_3d},
-                                                       {sps__tl_stress_j2_2d, sps__tl_stress_j2_3d}};
-        const int law = sps__tl_law_of(m->material->kind), d = w->dim - 2;
-        if (law == SPS__LAW_NONE) return p; /* no kernel: sps__missing_pass names it */
-        p.stress = stress[law][d];
-        if (law == SPS__LAW_J2) p.pressure = d ? sps__tl_force_plastic_3d : sps__tl_force_plastic_2d;
-        else p.pressure = d ? sps__tl_force_3d : sps__tl_force_2d;
-    }
+    if (sps__tl_law_of(m->material->kind) == SPS__LAW_NONE) return p; /* no kernel: sps__missing_pass names it */
+    p.stress = sps__tl_stress_pass;
+    p.pressure = sps__tl_force_pass;
 #else
-    (void)w; (void)m;
+    (void)m;
 #endif
     return p;
 }
@@ -7881,16 +8060,15 @@ static sps_result sps__watch_energy(sps_world* w) {
    (the reference code's fluids) was measured too weak to hold OG's zigzag modes (the plate of
    C3 at H/dp 20 broke within 0.1 s; per sub-step it swings with min spacing 0.83 dp). */
 
-/* Transport pass 1 for lane group g: g_i, div r_i and, with normal (UTVF), the normal. */
-SPS__INLINE void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                                     const int normal) {
+/* Transport pass 1, the pair loop for lane group g: g_i into rows 0-2, B_i^-1 into rows 3-8. */
+SPS__INLINE void sps__transport_sum_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
+                                          const int geo, const int terms) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
-    sps_real sum[3][SPS__LANES], A[6][SPS__LANES], B[9][SPS__LANES];
-    int k, l, a, c;
+    sps_real(*sum)[SPS__LANES] = sums->row, (*A)[SPS__LANES] = sums->row + 3;
+    int k, l;
     (void)dt;
-    for (l = 0; l < SPS__LANES; ++l)
-        for (a = 0; a < 6; ++a) A[a][l] = a < 3 ? (sum[a][l] = 0) : 0;
+    (void)terms;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real dwv = e.dw * vol[j];
             sum[0][l] += dwv * e.ex;
@@ -7898,6 +8076,14 @@ SPS__INLINE void sps__transport_sums(sps_world* w, const sps__body* b, int g, sp
             if (dim == 3) sum[2][l] += dwv * e.ez;
             sps__add_moment(&A[0][l], SPS__LANES, e.ex, e.ey, e.ez, e.r * dwv, dim);
     })
+}
+
+/* Transport pass 1's finish: g_i, div r_i and, for UTVF, the normal. */
+SPS__INLINE void sps__transport_sums_finish(const sps__body* b, sps__group q, sps__lane_sums* sums, const int dim) {
+    const int normal = b->model.transport == SPS_TRANSPORT_UTVF;
+    sps_real(*sum)[SPS__LANES] = sums->row, (*A)[SPS__LANES] = sums->row + 3;
+    sps_real B[9][SPS__LANES];
+    int l, a, c;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         sps_real* t = b->transport + (size_t)SPS__TRANSPORT_VALUES * (q.i0 + l - b->begin);
         sps_real n[3] = {0, 0, 0}, n2 = 0;
@@ -7914,23 +8100,32 @@ SPS__INLINE void sps__transport_sums(sps_world* w, const sps__body* b, int g, sp
     }
 }
 
-/* Transport pass 2 for lane group g: the surface flags (div r of the particle and of its
-   neighbours within h) and the shift, into the particle's first values. utvf is a literal. */
-SPS__INLINE void sps__transport_shift(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int geo,
-                                      const int utvf) {
+/* Transport pass 2, the pair loop for lane group g: the neighbours within h on the surface (div
+   r below 0.75 d), per lane into row 0. */
+SPS__INLINE void sps__transport_surface_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
+                                              const int geo, const int terms) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT t = b->transport;
     const int begin = b->begin;
-    const sps_real surface_divr = SPS_R(0.75) * dim, splash_divr = SPS_R(0.6) * dim;
-    const sps_real scale = -2 * b->transport_alpha * w->h * w->h, h = w->h;
-    sps_real near[SPS__LANES];
-    int k, l, a;
+    const sps_real surface_divr = SPS_R(0.75) * dim, h = w->h;
+    sps_real* near = sums->row[0];
+    int k, l;
     (void)dt;
-    for (l = 0; l < SPS__LANES; ++l) near[l] = 0;
+    (void)terms;
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const int outer_j = t[SPS__TRANSPORT_VALUES * (j - begin) + SPS__TR_DIVR] < surface_divr; /* an int offset: a gather */
             near[l] += (sps_real)(outer_j & (e.r < h) & (e.dw != 0)); /* padding (j = i, dW = 0) counts not; & not &&: no branch */
     })
+}
+
+/* Transport pass 2's finish: the surface flags (div r of the particle and of its neighbours
+   within h) and the shift, into the particle's first values. */
+SPS__INLINE void sps__transport_shift_finish(sps_world* w, const sps__body* b, sps__group q, sps__lane_sums* sums, const int dim) {
+    const int begin = b->begin, utvf = b->model.transport == SPS_TRANSPORT_UTVF;
+    const sps_real surface_divr = SPS_R(0.75) * dim, splash_divr = SPS_R(0.6) * dim;
+    const sps_real scale = -2 * b->transport_alpha * w->h * w->h;
+    const sps_real* near = sums->row[0];
+    int l, a;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         sps_real* ti = b->transport + (size_t)SPS__TRANSPORT_VALUES * (q.i0 + l - begin);
         const sps_real divr = ti[SPS__TR_DIVR], *n = ti + SPS__TR_NORMAL;
@@ -7947,21 +8142,35 @@ SPS__INLINE void sps__transport_shift(sps_world* w, const sps__body* b, int g, s
         }
     }
 }
-SPS__INSTANCES(transport_sums, tvf, 0)
-SPS__INSTANCES(transport_sums, utvf, 1)
-SPS__INSTANCES(transport_shift, tvf, 0)
-SPS__INSTANCES(transport_shift, utvf, 1)
+SPS__INSTANCES(transport_sum_pairs, plain, 0)
+SPS__INSTANCES(transport_surface_pairs, plain, 0)
+
+/* The transport passes' kernels for lane group g: the world mode's pair loop, the finish. */
+static void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_real dt) {
+    sps__lane_sums sums;
+    const sps__group q = sps__group_of(w, b, g);
+    sps__clear_sums(&sums, 9);
+    sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    if (w->dim == 2) sps__transport_sums_finish(b, q, &sums, 2);
+    else sps__transport_sums_finish(b, q, &sums, 3);
+}
+static void sps__transport_shift(sps_world* w, const sps__body* b, int g, sps_real dt) {
+    sps__lane_sums sums;
+    const sps__group q = sps__group_of(w, b, g);
+    sps__clear_sums(&sums, 1);
+    sps__transport_surface_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    if (w->dim == 2) sps__transport_shift_finish(w, b, q, &sums, 2);
+    else sps__transport_shift_finish(w, b, q, &sums, 3);
+}
 
 /* The transport correction of every body that has one, by every thread of the step's team. */
 static void sps__transport(sps_world* w) {
-    const int mode = sps__mode(w);
     int bi, i, i0, i1, a;
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
-        const int utvf = b->model.transport == SPS_TRANSPORT_UTVF;
         if (b->model.transport == SPS_TRANSPORT_NONE || b->end == b->begin) continue;
-        sps__run_groups(w, b, utvf ? sps__transport_sums_utvf[mode] : sps__transport_sums_tvf[mode], 0);
-        sps__run_groups(w, b, utvf ? sps__transport_shift_utvf[mode] : sps__transport_shift_tvf[mode], 0);
+        sps__run_groups(w, b, sps__transport_sums, 0);
+        sps__run_groups(w, b, sps__transport_shift, 0);
         sps__thread_share(b, &i0, &i1);
         for (i = i0; i < i1; ++i)
             for (a = 0; a < w->dim; ++a) w->pos[a][i] += b->transport[(size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G + a];

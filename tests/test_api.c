@@ -2513,3 +2513,40 @@ static int test_generic_dispatch_per_kind(void) {
     }
     return 0;
 }
+
+/* ============================================================================================ */
+/* >>solver: the updated-Lagrangian passes: the pressure pass's rare terms' loops                */
+
+/* OAS's artificial stress is a loop of its own, instanced in 2D only (the combination rules
+   refuse OAS in 3D): a 2D OAS model finds it (and, with a Kelvin-Voigt viscosity, the damping's
+   loop beside it), while a 3D one, the rule bypassed, finds no pressure kernel and
+   sps__missing_pass names the combination. */
+static int test_oas_instances_2d_only(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps__model m;
+    sps__passes p;
+    char msg[768];
+    wd.log = quiet_log;
+    bd.shear = SPS_SHEAR_OAS;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK && w->dim == 2);
+    m = sps__resolve_model(&bd);
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure && p.art_pairs && !p.damping_pairs && !sps__missing_pass(&m, &p, msg, sizeof msg));
+    bd.material.viscosity = 1;
+    m = sps__resolve_model(&bd);
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure && p.art_pairs && p.damping_pairs);
+    sps_world_destroy(w);
+    wd.dim = 3;
+    bd.material.viscosity = 0;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    m = sps__resolve_model(&bd);
+    p = sps__choose_passes(w, &m);
+    ENSURE(p.pressure == NULL && p.art_pairs == NULL && p.pressure_pairs != NULL);
+    ENSURE(sps__missing_pass(&m, &p, msg, sizeof msg) && strstr(msg, "no pressure pass instance for material.kind = elastic with OAS"));
+    ENSURE(strstr(msg, "artificial stress 1") != NULL);
+    sps_world_destroy(w);
+    return 0;
+}

@@ -333,6 +333,7 @@ int main(int argc, char** argv) {
     RUN(test_fluid_rest_long);
     RUN(test_zigzag_tells_zigzag_from_flow);
     RUN(test_generic_dispatch_per_kind);
+    RUN(test_oas_instances_2d_only);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
