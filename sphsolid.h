@@ -5517,6 +5517,40 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
     }
 }
 
+/* >>generic (continued): the stress update of a lane group, by its yield surface */
+
+/* The stress update of lane group q from its velocity gradients L (the continuity pass's
+   finish): the return map of the body's yield surface (chapters >>material: J2 plasticity and
+   >>material: Drucker-Prager) or, without one, the Jaumann update of a tracked stress. A
+   plastic body is never ENO (combination rules) and its stress is always integrated (it is of
+   the OG family). relax: the GNO penalty is stored per particle (not per pair), so a scaled
+   penalty's stored acceleration relaxes with the stress (sps__penalty). A yield surface the
+   build left out has no body (CONFIG MACROS), so its case is empty there. */
+SPS__INLINE void sps__stress_update_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
+                                          sps_real L[9][SPS__LANES], int relax) {
+    const sps__model* m = &b->model;
+    (void)w; (void)relax; /* read by the return maps only, which a build may leave out */
+    switch ((sps__yield)m->plastic) {
+    case SPS__YIELD_DRUCKER_PRAGER:
+#ifndef SPHSOLID_NO_GRANULAR
+        sps__granular_stress_lanes(w, b, q, dim, dt, L, m->diffusion, m->scaled_penalty, relax);
+#endif
+        break;
+    case SPS__YIELD_VON_MISES:
+#ifndef SPHSOLID_NO_PLASTICITY
+        if (m->scaled_penalty && relax) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
+        else if (m->scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
+        else sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);
+#endif
+        break;
+    case SPS__YIELD_NONE:
+        if (m->stress) sps__stress_lanes(b, q, dim, dt, L);
+        break;
+    }
+}
+
+/* >>solver: the updated-Lagrangian passes (continued) */
+
 /* The Rodrigues matrix of each particle of lane group q from its velocity gradient: from the
    lane arrays L when given (the continuity pass has them at hand; contiguous, so the lanes
    vectorise), else from the body's velocity gradients. Lanes that turned more than 0.01 rad are redone by sin and cos. */
@@ -5843,11 +5877,12 @@ static void sps__mirror_continuity(sps_world* w, const sps__body* b, sps__group 
    bodies that touch: the contact penalty is not applied to it), so a fluid pays for the
    coupling only where it is within 2h of a solid, and a scene without one runs none of it. */
 
-/* Whether bodies a and b are a fluid and a solid (in either order): a solid is a body whose
-   walls are not mirror images (elastic, J2, total Lagrangian, rigid; not granular). */
+/* Whether bodies a and b are a fluid and a solid (in either order): a fluid is a material
+   without shear stress (its row's shear = 0), a solid a body whose walls are not mirror images
+   (elastic, J2, total Lagrangian, rigid; not granular). */
 static int sps__fluid_solid(const sps_world* w, int a, int b) {
     const sps__material_model *ma = w->bodies[a].model.material, *mb = w->bodies[b].model.material;
-    return (ma->kind == SPS_MATERIAL_FLUID && !mb->mirrored) || (mb->kind == SPS_MATERIAL_FLUID && !ma->mirrored);
+    return (!ma->shear && !mb->mirrored) || (!mb->shear && !ma->mirrored);
 }
 
 static int sps__bodies_touch(const sps_world* w, int a, int b);
@@ -5877,7 +5912,7 @@ static sps_real sps__coupling_speed(const sps_world* w) {
         for (b = 0; b < w->nbodies; ++b) {
             const sps__body *fluid = &w->bodies[a], *solid = &w->bodies[b];
             sps_real c;
-            if (w->touch[(size_t)a * w->nbodies + b] != SPS__TOUCH_COUPLED || fluid->model.material->kind != SPS_MATERIAL_FLUID ||
+            if (w->touch[(size_t)a * w->nbodies + b] != SPS__TOUCH_COUPLED || fluid->model.material->shear ||
                 solid->model.material->kinematic)
                 continue;
             c = fluid->mat.c0 * SPS__SQRT(fluid->rho0 / solid->rho0);
@@ -5909,7 +5944,7 @@ static void sps__solid_image(const sps_world* w, int f, int s, sps__image* image
    particle f, the other a solid particle s. The force on f is V_f times sps__image_force's
    sum; s gets its opposite. */
 static void sps__coupling_force(sps_world* w, int i, int j, sps_real force[3]) {
-    const int i_fluid = w->bodies[w->body[i]].model.material->kind == SPS_MATERIAL_FLUID;
+    const int i_fluid = !w->bodies[w->body[i]].model.material->shear; /* the fluid: no shear stress */
     const int f = i_fluid ? i : j, s = i_fluid ? j : i;
     const sps_real sign = i_fluid ? w->vol[f] : -w->vol[f];
     sps_real acc[3] = {0, 0, 0};
@@ -6003,31 +6038,12 @@ SPS__INLINE void sps__continuity_finish(sps_world* w, const sps__body* b, sps__g
     sps_real da[3][SPS__LANES], L[9][SPS__LANES], R[9][SPS__LANES];
     sps_real rsum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     int l, a;
-    (void)relax; /* read by the return maps only, which a build may leave out */
     if (m->mirrored && w->nwalls > 0) sps__mirror_continuity(w, b, q, sum);
     if (m->riemann_density && b->coupled) sps__coupling_continuity(w, b, q, sum);
     if (!m->gradient) sps__continuity_lanes(w, b, q, dim, 0, 0, shear_rate, sum, da, L);
     else if (!m->riemann_density) sps__continuity_lanes(w, b, q, dim, 1, 0, shear_rate, sum, da, L);
     else sps__continuity_lanes(w, b, q, dim, 1, 1, shear_rate, sum, da, L);
-    /* generic dispatch: the stress update of the body's yield surface; a plastic body is never
-       ENO (combination rules), and its stress is always integrated (it is of the OG family) */
-    switch ((sps__yield)m->plastic) { /* a kind the build left out has no body (CONFIG MACROS) */
-    case SPS__YIELD_DRUCKER_PRAGER:
-#ifndef SPHSOLID_NO_GRANULAR
-        sps__granular_stress_lanes(w, b, q, dim, dt, L, m->diffusion, m->scaled_penalty, relax);
-#endif
-        break;
-    case SPS__YIELD_VON_MISES:
-#ifndef SPHSOLID_NO_PLASTICITY
-        if (m->scaled_penalty && relax) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
-        else if (m->scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
-        else sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);
-#endif
-        break;
-    case SPS__YIELD_NONE:
-        if (m->stress) sps__stress_lanes(b, q, dim, dt, L);
-        break;
-    }
+    sps__stress_update_lanes(w, b, q, dim, dt, L, relax);
     if (turn != SPS__TURN_NONE) sps__rotation_lanes(b, q, dt, dim, L, R);
     if (turn == SPS__TURN_MEAN) {
         for (l = 0; l < SPS__LANES && q.i0 + l < end; ++l)
