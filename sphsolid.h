@@ -8197,7 +8197,12 @@ static void sps__transport(sps_world* w) {
 /* >>stepping: configuration updates, the advection step and its acoustic sub-steps */
 
 /* One acoustic sub-step (steps 1-5) from time t, called by every thread of the step's team.
-   Returns max |v|^2 after the kick. */
+   Returns max |v|^2 after the kick. A GNO body's three neighbour passes cannot share a pair loop
+   bit for bit: the pressure pass sees the half-drifted positions x^(n+1/2), the continuity and
+   penalty passes the kicked x^(n+1), and the penalty (ANG eqs. 43-46) reads the L_j of every
+   neighbour, which the continuity pass finishes (a barrier between the two). Its sums inside the
+   next sub-step's pressure loop would take that loop's e_ij, dW, V_j and rho_i, half a sub-step
+   later, and leave a step's last increments pending (bench/VALIDATION.md, "Pass fusion"). */
 static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt) {
     int bi;
     sps_real vmax2;

@@ -2,8 +2,8 @@
 # The speed of two builds of the examples, run interleaved (old, new, new, old, ...) so that a
 # machine whose load drifts treats both alike: the wall time per particle and sub-step of the 2D
 # plate (ENO-A and GNO-A), the 3D plate and the column collapse, --threads 1 and 2, ROUNDS rounds,
-# the median of each and the ratio new / old. Written for issue 36's "Specialise only the pair
-# loop" (bench/VALIDATION.md, "Instancing"); any two builds of the examples serve.
+# the median of each and the ratio new / old (bench/VALIDATION.md, "Instancing"); any two
+# builds of the examples serve.
 #   bench/instancing_cost.sh OLD_BUILD_DIR NEW_BUILD_DIR [ROUNDS]
 # e.g. make build/plate2d build/plate3d build/column_collapse2d in each tree, then
 #   bench/instancing_cost.sh /tmp/base/build build 3
