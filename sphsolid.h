@@ -4580,11 +4580,11 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
 /* Correction matrices B_i (ANG eq. 21) from the current positions into out (9 per particle,
    row-major), summed and inverted as in the continuity pass (sps__add_moment), and the trace of
    B_i^-1, the position divergence (UTVF eq. 31), into divr. */
-static void sps__correction_matrices(sps_world* w, sps_real* out, sps_real* divr) {
+static void sps__correction_matrices(sps_world* w, int begin, int end, sps_real* out, sps_real* divr) {
     const int geo = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
     int i;
-    SPS__PARALLEL_FOR(w, w->n)
-    for (i = 0; i < w->n; ++i) {
+    SPS__PARALLEL_FOR(w, end - begin)
+    for (i = begin; i < end; ++i) {
         sps_real A[6] = {0, 0, 0, 0, 0, 0}, *B = out + (size_t)9 * i;
         int k;
         for (k = 0; k < 9; ++k) B[k] = 0;
@@ -8201,54 +8201,55 @@ static sps_real sps__damage(const sps_world* w, int i) {
     return b->damage && i - b->begin < b->field_count ? b->damage[i - b->begin] : 0;
 }
 
-/* Hourglass indicator and zigzag indicator (see DIAGNOSTICS): displacement and velocity gradients
-   with B from current positions; also the smallest spacing and the count of surface particles of
-   [begin, end). */
-static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing, int* surface, sps_real* zigzag) {
-    sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, *divr = w->diag_scratch + (size_t)18 * w->cap;
-    sps_real* Gv = w->diag_scratch + (size_t)19 * w->cap;
+/* The displacement and velocity gradients Gu_i, Gv_i (9 each, zero outside dim x dim) of
+   particle i with its correction matrix B_i. dim is a literal (2 or 3), so the small loops over
+   the axes unroll (the caller's parallel loop picks the dim: inside a function with its own
+   parallel loop, OpenMP would outline the loop before the literal reached it). */
+SPS__INLINE void sps__diagnostic_gradients(const sps_world* w, int i, const sps_real* B, sps_real* Gu, sps_real* Gv, const int dim) {
+    sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Mv[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    int k, a, c, m;
+    for (k = 0; k < w->nb_count[i]; ++k) {
+        int j = sps__neighbor(w, i, k);
+        sps_real d[3] = {0, 0, 0}, r2 = 0, r, f;
+        for (a = 0; a < dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+        r = SPS__SQRT(r2);
+        f = r > 0 ? sps__dwdr(w, r) / r * w->vol[j] : 0; /* particles at one point: no direction (sps__pair) */
+        for (a = 0; a < dim; ++a) {
+            sps_real uij = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
+            const sps_real vij = w->vel[a][i] - w->vel[a][j];
+            for (c = 0; c < dim; ++c) M[3 * a + c] -= uij * d[c] * f;
+            for (c = 0; c < dim; ++c) Mv[3 * a + c] -= vij * d[c] * f;
+        }
+    }
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0, sv = 0;
+            for (m = 0; m < dim; ++m) s += M[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
+            for (m = 0; m < dim; ++m) sv += Mv[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
+            Gu[(size_t)9 * i + 3 * a + c] = a < dim && c < dim ? s : 0;
+            Gv[(size_t)9 * i + 3 * a + c] = a < dim && c < dim ? sv : 0;
+        }
+}
+
+/* The pair sums of the two indicators over the pairs of [begin, end), serial in a fixed order
+   (deterministic): sum[0] |u_ij - Gu r_ij|, sum[1] r_ij, sum[2] |v_ij - Gv r_ij|, sum[3]
+   |Gv r_ij| (the gradients averaged over i and j). Returns the smallest squared pair distance,
+   -1 without pairs. dim is a literal (2 or 3). */
+SPS__INLINE sps_real sps__hourglass_sums(const sps_world* w, int begin, int end, const sps_real* Gu, const sps_real* Gv, sps_real sum[4],
+                                         const int dim) {
     sps_real num = 0, den = 0, rmin2 = -1, zig_num = 0, zig_den = 0;
     int i;
-    sps__correction_matrices(w, B, divr);
-    *surface = 0;
-    for (i = begin; i < end; ++i) *surface += divr[i] < SPS_R(0.75) * w->dim;
-    SPS__PARALLEL_FOR(w, w->n)
-    for (i = 0; i < w->n; ++i) {
-        sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Mv[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        int k, a, c, m;
-        for (k = 0; k < w->nb_count[i]; ++k) {
-            int j = sps__neighbor(w, i, k);
-            sps_real d[3] = {0, 0, 0}, r2 = 0, r, f;
-            for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
-            r = SPS__SQRT(r2);
-            f = r > 0 ? sps__dwdr(w, r) / r * w->vol[j] : 0; /* particles at one point: no direction (sps__pair) */
-            for (a = 0; a < w->dim; ++a) {
-                sps_real uij = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
-                const sps_real vij = w->vel[a][i] - w->vel[a][j];
-                for (c = 0; c < w->dim; ++c) M[3 * a + c] -= uij * d[c] * f;
-                for (c = 0; c < w->dim; ++c) Mv[3 * a + c] -= vij * d[c] * f;
-            }
-        }
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) {
-                sps_real s = 0, sv = 0;
-                for (m = 0; m < w->dim; ++m) s += M[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
-                for (m = 0; m < w->dim; ++m) sv += Mv[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
-                Gu[(size_t)9 * i + 3 * a + c] = a < w->dim && c < w->dim ? s : 0;
-                Gv[(size_t)9 * i + 3 * a + c] = a < w->dim && c < w->dim ? sv : 0;
-            }
-    }
-    for (i = begin; i < end; ++i) { /* serial sum: fixed order, deterministic */
+    for (i = begin; i < end; ++i) {
         int k, a, c;
         for (k = 0; k < w->nb_count[i]; ++k) {
             int j = sps__neighbor(w, i, k);
             sps_real d[3] = {0, 0, 0}, r2 = 0, e2 = 0, ev2 = 0, smooth2 = 0;
-            for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
-            for (a = 0; a < w->dim; ++a) {
+            for (a = 0; a < dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+            for (a = 0; a < dim; ++a) {
                 sps_real err = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
                 sps_real smooth = 0; /* the relative velocity the velocity gradient gives the pair */
-                for (c = 0; c < w->dim; ++c) err -= SPS_R(0.5) * (Gu[(size_t)9 * i + 3 * a + c] + Gu[(size_t)9 * j + 3 * a + c]) * d[c];
-                for (c = 0; c < w->dim; ++c) smooth += SPS_R(0.5) * (Gv[(size_t)9 * i + 3 * a + c] + Gv[(size_t)9 * j + 3 * a + c]) * d[c];
+                for (c = 0; c < dim; ++c) err -= SPS_R(0.5) * (Gu[(size_t)9 * i + 3 * a + c] + Gu[(size_t)9 * j + 3 * a + c]) * d[c];
+                for (c = 0; c < dim; ++c) smooth += SPS_R(0.5) * (Gv[(size_t)9 * i + 3 * a + c] + Gv[(size_t)9 * j + 3 * a + c]) * d[c];
                 e2 += err * err;
                 ev2 += (w->vel[a][i] - w->vel[a][j] - smooth) * (w->vel[a][i] - w->vel[a][j] - smooth);
                 smooth2 += smooth * smooth;
@@ -8260,10 +8261,36 @@ static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_s
             if (rmin2 < 0 || r2 < rmin2) rmin2 = r2;
         }
     }
+    sum[0] = num;
+    sum[1] = den;
+    sum[2] = zig_num;
+    sum[3] = zig_den;
+    return rmin2;
+}
+
+/* Hourglass indicator and zigzag indicator (see DIAGNOSTICS) of the particles [begin, end) (whole
+   bodies): displacement and velocity gradients with B from current positions; also the smallest
+   spacing and the count of surface particles. Only the range is computed: a call for one body
+   costs that body's pairs. */
+static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing, int* surface, sps_real* zigzag) {
+    sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, *divr = w->diag_scratch + (size_t)18 * w->cap;
+    sps_real* Gv = w->diag_scratch + (size_t)19 * w->cap;
+    sps_real sum[4], rmin2;
+    int i;
+    sps__correction_matrices(w, begin, end, B, divr);
+    *surface = 0;
+    for (i = begin; i < end; ++i) *surface += divr[i] < SPS_R(0.75) * w->dim;
+    /* a body's neighbours are of the same body: a range of whole bodies needs nothing outside it */
+    SPS__PARALLEL_FOR(w, end - begin)
+    for (i = begin; i < end; ++i) {
+        if (w->dim == 2) sps__diagnostic_gradients(w, i, B, Gu, Gv, 2);
+        else sps__diagnostic_gradients(w, i, B, Gu, Gv, 3);
+    }
+    rmin2 = w->dim == 2 ? sps__hourglass_sums(w, begin, end, Gu, Gv, sum, 2) : sps__hourglass_sums(w, begin, end, Gu, Gv, sum, 3);
     *min_spacing = rmin2 < 0 ? 0 : SPS__SQRT(rmin2) / w->def.dp;
     /* no velocity gradient anywhere: no zigzag if nothing moves relative to anything, else all is */
-    *zigzag = zig_den > 0 ? zig_num / zig_den : zig_num > 0 ? (sps_real)INFINITY : 0;
-    return den > 0 ? num / den : 0;
+    *zigzag = sum[3] > 0 ? sum[2] / sum[3] : sum[2] > 0 ? (sps_real)INFINITY : 0;
+    return sum[1] > 0 ? sum[0] / sum[1] : 0;
 }
 
 SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnostics* out) {
