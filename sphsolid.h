@@ -1811,6 +1811,7 @@ struct sps_world {
     sps_real* pair_friction; /* nbodies x nbodies: the friction coefficient of two touching bodies
                                 (allocated when a body has friction) */
     int *ct_first, *ct_j, *ct_cell, *ct_order, *ct_cell_start, ct_cap;
+    int* ct_cell_body; /* per cell of the contact grid: the one body its particles belong to, or -1 */
     long ct_pair_cap;
     sps_real* sigma;
     int sigma_cap;
@@ -3054,7 +3055,7 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->good); sps__free(w, w->good_id);
     sps__free(w, w->walls); sps__free(w, w->separate); sps__free(w, w->touch); sps__free(w, w->pair_friction); sps__free(w, w->sigma);
     sps__free(w, w->ct_first); sps__free(w, w->ct_j); sps__free(w, w->ct_cell); sps__free(w, w->ct_order);
-    sps__free(w, w->ct_cell_start);
+    sps__free(w, w->ct_cell_start); sps__free(w, w->ct_cell_body);
 }
 
 SPSDEF void sps_world_destroy(sps_world* w) {
@@ -6724,6 +6725,40 @@ static int sps__any_contact(const sps_world* w) {
     return 0;
 }
 
+/* The contact partners of particle i in the cell grid of sps__find_contact_pairs: the particles
+   of the bodies its body touches within the support, in cell order, written to out (NULL: only
+   counted). Returns their count. */
+static int sps__contact_partners(const sps_world* w, int i, int* out) {
+    const int dim = w->dim, bi = w->body[i], cx = w->ct_cell[i] % w->grid_n[0], cy = w->ct_cell[i] / w->grid_n[0] % w->grid_n[1];
+    const int cz = w->ct_cell[i] / (w->grid_n[0] * w->grid_n[1]);
+    const sps_real cut2 = w->support * w->support;
+    int dx, dy, dz, m = 0;
+    for (dz = -(dim == 3); dz <= (dim == 3); ++dz)
+        for (dy = -1; dy <= 1; ++dy)
+            for (dx = -1; dx <= 1; ++dx) {
+                int x = cx + dx, y = cy + dy, z = cz + dz, s, c;
+                if ((!w->grid_wrap[0] && (x < 0 || x >= w->grid_n[0])) || (!w->grid_wrap[1] && (y < 0 || y >= w->grid_n[1])) ||
+                    (!w->grid_wrap[2] && (z < 0 || z >= w->grid_n[2])))
+                    continue;
+                x += x < 0 ? w->grid_n[0] : x >= w->grid_n[0] ? -w->grid_n[0] : 0; /* wrapped (one cell at most) */
+                y += y < 0 ? w->grid_n[1] : y >= w->grid_n[1] ? -w->grid_n[1] : 0;
+                z += z < 0 ? w->grid_n[2] : z >= w->grid_n[2] ? -w->grid_n[2] : 0;
+                c = x + w->grid_n[0] * (y + w->grid_n[1] * z);
+                if (w->ct_cell_body[c] == bi) continue; /* its own body's particles only (most cells, inside a body) */
+                for (s = w->ct_cell_start[c]; s < w->ct_cell_start[c + 1]; ++s) {
+                    const int j = w->ct_order[s];
+                    sps_real r2 = 0;
+                    int a;
+                    if (w->body[j] == bi || !w->touch[(size_t)bi * w->nbodies + w->body[j]]) continue;
+                    for (a = 0; a < dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+                    if (!(r2 < cut2)) continue;
+                    if (out) out[m] = j;
+                    ++m;
+                }
+            }
+    return m;
+}
+
 /* Contact pairs (at each configuration update): for every particle, the particles of the
    bodies its body touches within the support, found through one cell grid over the world that
    orders particle indices by cell (the particles themselves are not moved); in cell order, so
@@ -6731,15 +6766,16 @@ static int sps__any_contact(const sps_world* w) {
    ct_j[ct_first[i] .. ct_first[i + 1]). */
 static sps_result sps__find_contact_pairs(sps_world* w) {
     const int n = w->n, dim = w->dim;
-    const sps_real cut2 = w->support * w->support;
-    int i, c, ncell, pass;
+    int i, c, ncell, total = 0;
     if (w->ct_cap < w->cap) {
         sps__free(w, w->ct_first); sps__free(w, w->ct_cell); sps__free(w, w->ct_order); sps__free(w, w->ct_cell_start);
+        sps__free(w, w->ct_cell_body);
         w->ct_first = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->cap + 1));
         w->ct_cell = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
         w->ct_order = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
         w->ct_cell_start = (int*)sps__alloc(w, sizeof(int) * (4 * (size_t)w->cap + 64 + 2));
-        w->ct_cap = w->ct_first && w->ct_cell && w->ct_order && w->ct_cell_start ? w->cap : 0;
+        w->ct_cell_body = (int*)sps__alloc(w, sizeof(int) * (4 * (size_t)w->cap + 64 + 1));
+        w->ct_cap = w->ct_first && w->ct_cell && w->ct_order && w->ct_cell_start && w->ct_cell_body ? w->cap : 0;
         if (!w->ct_cap) return sps__oom(w, "the contact lists");
     }
     ncell = sps__setup_grid(w, w->pos, 0, n);
@@ -6754,48 +6790,31 @@ static sps_result sps__find_contact_pairs(sps_world* w) {
     for (i = 0; i < n; ++i) w->ct_order[w->ct_cell_start[w->ct_cell[i]]++] = i;
     for (c = ncell; c > 0; --c) w->ct_cell_start[c] = w->ct_cell_start[c - 1];
     w->ct_cell_start[0] = 0;
-    for (pass = 0; pass < 2; ++pass) { /* count, then fill */
-        int total = 0;
-        for (i = 0; i < n; ++i) {
-            const int bi = w->body[i], cx = w->ct_cell[i] % w->grid_n[0], cy = w->ct_cell[i] / w->grid_n[0] % w->grid_n[1];
-            const int cz = w->ct_cell[i] / (w->grid_n[0] * w->grid_n[1]);
-            int dx, dy, dz, m = 0;
-            if (pass == 1) { m = w->ct_first[i]; }
-            else w->ct_first[i] = total;
-            for (dz = -(dim == 3); dz <= (dim == 3); ++dz)
-                for (dy = -1; dy <= 1; ++dy)
-                    for (dx = -1; dx <= 1; ++dx) {
-                        int x = cx + dx, y = cy + dy, z = cz + dz, s;
-                        if ((!w->grid_wrap[0] && (x < 0 || x >= w->grid_n[0])) || (!w->grid_wrap[1] && (y < 0 || y >= w->grid_n[1])) ||
-                            (!w->grid_wrap[2] && (z < 0 || z >= w->grid_n[2])))
-                            continue;
-                        x = (x + w->grid_n[0]) % w->grid_n[0];
-                        y = (y + w->grid_n[1]) % w->grid_n[1];
-                        z = (z + w->grid_n[2]) % w->grid_n[2];
-                        c = x + w->grid_n[0] * (y + w->grid_n[1] * z);
-                        for (s = w->ct_cell_start[c]; s < w->ct_cell_start[c + 1]; ++s) {
-                            const int j = w->ct_order[s];
-                            sps_real r2 = 0;
-                            int a;
-                            if (w->body[j] == bi || !w->touch[(size_t)bi * w->nbodies + w->body[j]]) continue;
-                            for (a = 0; a < dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
-                            if (!(r2 < cut2)) continue;
-                            if (pass == 1) w->ct_j[m] = j;
-                            ++m;
-                        }
-                    }
-            if (pass == 0) total += m;
-        }
-        if (pass == 0) {
-            w->ct_first[n] = total;
-            if (total > w->ct_pair_cap) { /* grows when more particles come into contact */
-                const long cap = (long)total + total / 2 + 64;
-                sps__free(w, w->ct_j);
-                if (!(w->ct_j = (int*)sps__alloc(w, sizeof(int) * (size_t)cap))) { w->ct_pair_cap = 0; return sps__oom(w, "the contact pairs"); }
-                w->ct_pair_cap = cap;
-            }
-        }
+    for (c = 0; c < ncell; ++c) { /* a cell of one body has no partner for that body's particles */
+        int s, only = w->ct_cell_start[c] < w->ct_cell_start[c + 1] ? w->body[w->ct_order[w->ct_cell_start[c]]] : -1;
+        for (s = w->ct_cell_start[c] + 1; s < w->ct_cell_start[c + 1] && only >= 0; ++s)
+            if (w->body[w->ct_order[s]] != only) only = -1;
+        w->ct_cell_body[c] = only;
     }
+    /* each particle's partners counted, then written to its own run of ct_j: in parallel, the
+       lists the same for any thread count */
+    SPS__PARALLEL_FOR(w, n)
+    for (i = 0; i < n; ++i) w->ct_first[i] = sps__contact_partners(w, i, NULL);
+    for (i = 0; i < n; ++i) { /* counts to offsets */
+        const int m = w->ct_first[i];
+        w->ct_first[i] = total;
+        total += m;
+    }
+    w->ct_first[n] = total;
+    if (total > w->ct_pair_cap) { /* grows when more particles come into contact */
+        const long cap = (long)total + total / 2 + 64;
+        sps__free(w, w->ct_j);
+        if (!(w->ct_j = (int*)sps__alloc(w, sizeof(int) * (size_t)cap))) { w->ct_pair_cap = 0; return sps__oom(w, "the contact pairs"); }
+        w->ct_pair_cap = cap;
+    }
+    SPS__PARALLEL_FOR(w, n)
+    for (i = 0; i < n; ++i)
+        if (w->ct_first[i + 1] > w->ct_first[i]) sps__contact_partners(w, i, w->ct_j + w->ct_first[i]);
     return SPS_OK;
 }
 
