@@ -114,7 +114,8 @@
       is cut to the sub-steps that still fit (at the cost per sub-step measured in this frame, or
       in the last budgeted one, one sub-step's time kept for the neighbour-list rebuild), so a
       frame overruns by about one sub-step at most on an idle core, and a machine too slow for
-      the scene shows slow motion (covered < 1/F) instead of dropping frames. Every frame starts
+      the scene shows slow motion (covered < 1/F, one sub-step per frame at least) instead of
+      dropping frames. Every frame starts
       a fresh advection step (one extra neighbour-list rebuild per frame). The budget is measured
       with SPHSOLID_WALL_SECONDS() (CONFIG MACROS). sps_world_advance_substeps runs a fixed
       count of sub-steps instead. sps_body_drag_begin grabs a body for the mouse: a spring of
@@ -9347,8 +9348,8 @@ SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, dou
 
 /* A budgeted frame in seconds: every step is cut to the sub-steps that fit in what is left of
    the budget, at the cost per sub-step measured so far in this frame or, for its first step,
-   in the last budgeted frame (a first frame ever runs one sub-step to measure it). The step
-   lands on the frame's end like any step of sps_world_advance. */
+   in the last budgeted frame; every frame runs one sub-step at least (slow motion when even
+   that does not fit). The step lands on the frame's end like any step of sps_world_advance. */
 SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, double wall_budget_s, sps_real* covered) {
     sps_result r = SPS_OK;
     const sps_real t0 = w ? w->time : 0, t_end = t0 + frame_seconds;
@@ -9371,7 +9372,10 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, 
             const double per_substep = done > 0 ? spent / (double)done : w->substep_wall_s;
             /* one sub-step's time kept for the step's neighbour-list rebuild */
             fitting = per_substep > 0 ? (wall_budget_s - spent) / per_substep - 1 : 1;
-            if (fitting < 1) break;
+            /* the frame's first sub-step runs anyway: the last frame's cost alone (say the first
+               sub-step ever, with its allocations) must not stop the world */
+            if (fitting < 1 && done > 0) break;
+            if (fitting < 1) fitting = 1;
         }
         if (fitting < w->def.max_substeps) { /* cut this step to what fits: sps__capped_step's cap */
             const int cap_of_def = w->def.max_substeps;

@@ -332,6 +332,7 @@ int main(int argc, char** argv) {
     RUN(test_missing_pass_instance);
     RUN(test_fluid_rest_long);
     RUN(test_zigzag_tells_zigzag_from_flow);
+    RUN(test_frame_budget_always_advances);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
