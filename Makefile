@@ -295,12 +295,18 @@ memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 bench: examples
 	sh bench/run_bench.sh
 # probes that reach into the library's private state (sps__ functions): built only on request
-probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith $(BUILD)/fsi_cost
+probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith $(BUILD)/fsi_cost $(BUILD)/particle_cost
 # each neighbour pass against its gathers alone and its arithmetic alone (bench/pass_bound.sh)
 $(BUILD)/pass_bound: bench/pass_bound.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/pass_bound_arith: bench/pass_bound.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) -DPASS_BOUND_ARITHMETIC $< -o $@ $(LDLIBS)
+# what one particle costs: time per sub-step, bytes, neighbours, contact pairs (bench/scaling.sh)
+$(BUILD)/particle_cost: bench/particle_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(FLOAT)/particle_cost: bench/particle_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	@mkdir -p $(FLOAT)
+	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
 # the fluid-structure coupling's cost against the fluid passes alone
 $(BUILD)/fsi_cost: bench/fsi_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)

@@ -114,7 +114,8 @@
       is cut to the sub-steps that still fit (at the cost per sub-step measured in this frame, or
       in the last budgeted one, one sub-step's time kept for the neighbour-list rebuild), so a
       frame overruns by about one sub-step at most on an idle core, and a machine too slow for
-      the scene shows slow motion (covered < 1/F) instead of dropping frames. Every frame starts
+      the scene shows slow motion (covered < 1/F, one sub-step per frame at least) instead of
+      dropping frames. Every frame starts
       a fresh advection step (one extra neighbour-list rebuild per frame). The budget is measured
       with SPHSOLID_WALL_SECONDS() (CONFIG MACROS). sps_world_advance_substeps runs a fixed
       count of sub-steps instead. sps_body_drag_begin grabs a body for the mouse: a spring of
@@ -1832,6 +1833,7 @@ struct sps_world {
     sps_real* pair_friction; /* nbodies x nbodies: the friction coefficient of two touching bodies
                                 (allocated when a body has friction) */
     int *ct_first, *ct_j, *ct_cell, *ct_order, *ct_cell_start, ct_cap;
+    int* ct_cell_body; /* per cell of the contact grid: the one body its particles belong to, or -1 */
     long ct_pair_cap;
     sps_real* sigma;
     int sigma_cap;
@@ -3312,7 +3314,7 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->good); sps__free(w, w->good_id);
     sps__free(w, w->walls); sps__free(w, w->separate); sps__free(w, w->touch); sps__free(w, w->pair_friction); sps__free(w, w->sigma);
     sps__free(w, w->ct_first); sps__free(w, w->ct_j); sps__free(w, w->ct_cell); sps__free(w, w->ct_order);
-    sps__free(w, w->ct_cell_start);
+    sps__free(w, w->ct_cell_start); sps__free(w, w->ct_cell_body);
 }
 
 SPSDEF void sps_world_destroy(sps_world* w) {
@@ -4833,11 +4835,11 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
 /* Correction matrices B_i (ANG eq. 21) from the current positions into out (9 per particle,
    row-major), summed and inverted as in the continuity pass (sps__add_moment), and the trace of
    B_i^-1, the position divergence (UTVF eq. 31), into divr. */
-static void sps__correction_matrices(sps_world* w, sps_real* out, sps_real* divr) {
+static void sps__correction_matrices(sps_world* w, int begin, int end, sps_real* out, sps_real* divr) {
     const int geo = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
     int i;
-    SPS__PARALLEL_FOR(w, w->n)
-    for (i = 0; i < w->n; ++i) {
+    SPS__PARALLEL_FOR(w, end - begin)
+    for (i = begin; i < end; ++i) {
         sps_real A[6] = {0, 0, 0, 0, 0, 0}, *B = out + (size_t)9 * i;
         int k;
         for (k = 0; k < 9; ++k) B[k] = 0;
@@ -7137,6 +7139,40 @@ static int sps__any_contact(const sps_world* w) {
     return 0;
 }
 
+/* The contact partners of particle i in the cell grid of sps__find_contact_pairs: the particles
+   of the bodies its body touches within the support, in cell order, written to out (NULL: only
+   counted). Returns their count. */
+static int sps__contact_partners(const sps_world* w, int i, int* out) {
+    const int dim = w->dim, bi = w->body[i], cx = w->ct_cell[i] % w->grid_n[0], cy = w->ct_cell[i] / w->grid_n[0] % w->grid_n[1];
+    const int cz = w->ct_cell[i] / (w->grid_n[0] * w->grid_n[1]);
+    const sps_real cut2 = w->support * w->support;
+    int dx, dy, dz, m = 0;
+    for (dz = -(dim == 3); dz <= (dim == 3); ++dz)
+        for (dy = -1; dy <= 1; ++dy)
+            for (dx = -1; dx <= 1; ++dx) {
+                int x = cx + dx, y = cy + dy, z = cz + dz, s, c;
+                if ((!w->grid_wrap[0] && (x < 0 || x >= w->grid_n[0])) || (!w->grid_wrap[1] && (y < 0 || y >= w->grid_n[1])) ||
+                    (!w->grid_wrap[2] && (z < 0 || z >= w->grid_n[2])))
+                    continue;
+                x += x < 0 ? w->grid_n[0] : x >= w->grid_n[0] ? -w->grid_n[0] : 0; /* wrapped (one cell at most) */
+                y += y < 0 ? w->grid_n[1] : y >= w->grid_n[1] ? -w->grid_n[1] : 0;
+                z += z < 0 ? w->grid_n[2] : z >= w->grid_n[2] ? -w->grid_n[2] : 0;
+                c = x + w->grid_n[0] * (y + w->grid_n[1] * z);
+                if (w->ct_cell_body[c] == bi) continue; /* its own body's particles only (most cells, inside a body) */
+                for (s = w->ct_cell_start[c]; s < w->ct_cell_start[c + 1]; ++s) {
+                    const int j = w->ct_order[s];
+                    sps_real r2 = 0;
+                    int a;
+                    if (w->body[j] == bi || !w->touch[(size_t)bi * w->nbodies + w->body[j]]) continue;
+                    for (a = 0; a < dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+                    if (!(r2 < cut2)) continue;
+                    if (out) out[m] = j;
+                    ++m;
+                }
+            }
+    return m;
+}
+
 /* Contact pairs (at each configuration update): for every particle, the particles of the
    bodies its body touches within the support, found through one cell grid over the world that
    orders particle indices by cell (the particles themselves are not moved); in cell order, so
@@ -7144,15 +7180,16 @@ static int sps__any_contact(const sps_world* w) {
    ct_j[ct_first[i] .. ct_first[i + 1]). */
 static sps_result sps__find_contact_pairs(sps_world* w) {
     const int n = w->n, dim = w->dim;
-    const sps_real cut2 = w->support * w->support;
-    int i, c, ncell, pass;
+    int i, c, ncell, total = 0;
     if (w->ct_cap < w->cap) {
         sps__free(w, w->ct_first); sps__free(w, w->ct_cell); sps__free(w, w->ct_order); sps__free(w, w->ct_cell_start);
+        sps__free(w, w->ct_cell_body);
         w->ct_first = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->cap + 1));
         w->ct_cell = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
         w->ct_order = (int*)sps__alloc(w, sizeof(int) * (size_t)w->cap);
         w->ct_cell_start = (int*)sps__alloc(w, sizeof(int) * (4 * (size_t)w->cap + 64 + 2));
-        w->ct_cap = w->ct_first && w->ct_cell && w->ct_order && w->ct_cell_start ? w->cap : 0;
+        w->ct_cell_body = (int*)sps__alloc(w, sizeof(int) * (4 * (size_t)w->cap + 64 + 1));
+        w->ct_cap = w->ct_first && w->ct_cell && w->ct_order && w->ct_cell_start && w->ct_cell_body ? w->cap : 0;
         if (!w->ct_cap) return sps__oom(w, "the contact lists");
     }
     ncell = sps__setup_grid(w, w->pos, 0, n);
@@ -7167,48 +7204,31 @@ static sps_result sps__find_contact_pairs(sps_world* w) {
     for (i = 0; i < n; ++i) w->ct_order[w->ct_cell_start[w->ct_cell[i]]++] = i;
     for (c = ncell; c > 0; --c) w->ct_cell_start[c] = w->ct_cell_start[c - 1];
     w->ct_cell_start[0] = 0;
-    for (pass = 0; pass < 2; ++pass) { /* count, then fill */
-        int total = 0;
-        for (i = 0; i < n; ++i) {
-            const int bi = w->body[i], cx = w->ct_cell[i] % w->grid_n[0], cy = w->ct_cell[i] / w->grid_n[0] % w->grid_n[1];
-            const int cz = w->ct_cell[i] / (w->grid_n[0] * w->grid_n[1]);
-            int dx, dy, dz, m = 0;
-            if (pass == 1) { m = w->ct_first[i]; }
-            else w->ct_first[i] = total;
-            for (dz = -(dim == 3); dz <= (dim == 3); ++dz)
-                for (dy = -1; dy <= 1; ++dy)
-                    for (dx = -1; dx <= 1; ++dx) {
-                        int x = cx + dx, y = cy + dy, z = cz + dz, s;
-                        if ((!w->grid_wrap[0] && (x < 0 || x >= w->grid_n[0])) || (!w->grid_wrap[1] && (y < 0 || y >= w->grid_n[1])) ||
-                            (!w->grid_wrap[2] && (z < 0 || z >= w->grid_n[2])))
-                            continue;
-                        x = (x + w->grid_n[0]) % w->grid_n[0];
-                        y = (y + w->grid_n[1]) % w->grid_n[1];
-                        z = (z + w->grid_n[2]) % w->grid_n[2];
-                        c = x + w->grid_n[0] * (y + w->grid_n[1] * z);
-                        for (s = w->ct_cell_start[c]; s < w->ct_cell_start[c + 1]; ++s) {
-                            const int j = w->ct_order[s];
-                            sps_real r2 = 0;
-                            int a;
-                            if (w->body[j] == bi || !w->touch[(size_t)bi * w->nbodies + w->body[j]]) continue;
-                            for (a = 0; a < dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
-                            if (!(r2 < cut2)) continue;
-                            if (pass == 1) w->ct_j[m] = j;
-                            ++m;
-                        }
-                    }
-            if (pass == 0) total += m;
-        }
-        if (pass == 0) {
-            w->ct_first[n] = total;
-            if (total > w->ct_pair_cap) { /* grows when more particles come into contact */
-                const long cap = (long)total + total / 2 + 64;
-                sps__free(w, w->ct_j);
-                if (!(w->ct_j = (int*)sps__alloc(w, sizeof(int) * (size_t)cap))) { w->ct_pair_cap = 0; return sps__oom(w, "the contact pairs"); }
-                w->ct_pair_cap = cap;
-            }
-        }
+    for (c = 0; c < ncell; ++c) { /* a cell of one body has no partner for that body's particles */
+        int s, only = w->ct_cell_start[c] < w->ct_cell_start[c + 1] ? w->body[w->ct_order[w->ct_cell_start[c]]] : -1;
+        for (s = w->ct_cell_start[c] + 1; s < w->ct_cell_start[c + 1] && only >= 0; ++s)
+            if (w->body[w->ct_order[s]] != only) only = -1;
+        w->ct_cell_body[c] = only;
     }
+    /* each particle's partners counted, then written to its own run of ct_j: in parallel, the
+       lists the same for any thread count */
+    SPS__PARALLEL_FOR(w, n)
+    for (i = 0; i < n; ++i) w->ct_first[i] = sps__contact_partners(w, i, NULL);
+    for (i = 0; i < n; ++i) { /* counts to offsets */
+        const int m = w->ct_first[i];
+        w->ct_first[i] = total;
+        total += m;
+    }
+    w->ct_first[n] = total;
+    if (total > w->ct_pair_cap) { /* grows when more particles come into contact */
+        const long cap = (long)total + total / 2 + 64;
+        sps__free(w, w->ct_j);
+        if (!(w->ct_j = (int*)sps__alloc(w, sizeof(int) * (size_t)cap))) { w->ct_pair_cap = 0; return sps__oom(w, "the contact pairs"); }
+        w->ct_pair_cap = cap;
+    }
+    SPS__PARALLEL_FOR(w, n)
+    for (i = 0; i < n; ++i)
+        if (w->ct_first[i + 1] > w->ct_first[i]) sps__contact_partners(w, i, w->ct_j + w->ct_first[i]);
     return SPS_OK;
 }
 
@@ -8649,54 +8669,55 @@ static sps_real sps__damage(const sps_world* w, int i) {
     return b->damage && i - b->begin < b->field_count ? b->damage[i - b->begin] : 0;
 }
 
-/* Hourglass indicator and zigzag indicator (see DIAGNOSTICS): displacement and velocity gradients
-   with B from current positions; also the smallest spacing and the count of surface particles of
-   [begin, end). */
-static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing, int* surface, sps_real* zigzag) {
-    sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, *divr = w->diag_scratch + (size_t)18 * w->cap;
-    sps_real* Gv = w->diag_scratch + (size_t)19 * w->cap;
+/* The displacement and velocity gradients Gu_i, Gv_i (9 each, zero outside dim x dim) of
+   particle i with its correction matrix B_i. dim is a literal (2 or 3), so the small loops over
+   the axes unroll (the caller's parallel loop picks the dim: inside a function with its own
+   parallel loop, OpenMP would outline the loop before the literal reached it). */
+SPS__INLINE void sps__diagnostic_gradients(const sps_world* w, int i, const sps_real* B, sps_real* Gu, sps_real* Gv, const int dim) {
+    sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Mv[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    int k, a, c, m;
+    for (k = 0; k < w->nb_count[i]; ++k) {
+        int j = sps__neighbor(w, i, k);
+        sps_real d[3] = {0, 0, 0}, r2 = 0, r, f;
+        for (a = 0; a < dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+        r = SPS__SQRT(r2);
+        f = r > 0 ? sps__dwdr(w, r) / r * w->vol[j] : 0; /* particles at one point: no direction (sps__pair) */
+        for (a = 0; a < dim; ++a) {
+            sps_real uij = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
+            const sps_real vij = w->vel[a][i] - w->vel[a][j];
+            for (c = 0; c < dim; ++c) M[3 * a + c] -= uij * d[c] * f;
+            for (c = 0; c < dim; ++c) Mv[3 * a + c] -= vij * d[c] * f;
+        }
+    }
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0, sv = 0;
+            for (m = 0; m < dim; ++m) s += M[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
+            for (m = 0; m < dim; ++m) sv += Mv[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
+            Gu[(size_t)9 * i + 3 * a + c] = a < dim && c < dim ? s : 0;
+            Gv[(size_t)9 * i + 3 * a + c] = a < dim && c < dim ? sv : 0;
+        }
+}
+
+/* The pair sums of the two indicators over the pairs of [begin, end), serial in a fixed order
+   (deterministic): sum[0] |u_ij - Gu r_ij|, sum[1] r_ij, sum[2] |v_ij - Gv r_ij|, sum[3]
+   |Gv r_ij| (the gradients averaged over i and j). Returns the smallest squared pair distance,
+   -1 without pairs. dim is a literal (2 or 3). */
+SPS__INLINE sps_real sps__hourglass_sums(const sps_world* w, int begin, int end, const sps_real* Gu, const sps_real* Gv, sps_real sum[4],
+                                         const int dim) {
     sps_real num = 0, den = 0, rmin2 = -1, zig_num = 0, zig_den = 0;
     int i;
-    sps__correction_matrices(w, B, divr);
-    *surface = 0;
-    for (i = begin; i < end; ++i) *surface += divr[i] < SPS_R(0.75) * w->dim;
-    SPS__PARALLEL_FOR(w, w->n)
-    for (i = 0; i < w->n; ++i) {
-        sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Mv[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        int k, a, c, m;
-        for (k = 0; k < w->nb_count[i]; ++k) {
-            int j = sps__neighbor(w, i, k);
-            sps_real d[3] = {0, 0, 0}, r2 = 0, r, f;
-            for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
-            r = SPS__SQRT(r2);
-            f = r > 0 ? sps__dwdr(w, r) / r * w->vol[j] : 0; /* particles at one point: no direction (sps__pair) */
-            for (a = 0; a < w->dim; ++a) {
-                sps_real uij = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
-                const sps_real vij = w->vel[a][i] - w->vel[a][j];
-                for (c = 0; c < w->dim; ++c) M[3 * a + c] -= uij * d[c] * f;
-                for (c = 0; c < w->dim; ++c) Mv[3 * a + c] -= vij * d[c] * f;
-            }
-        }
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) {
-                sps_real s = 0, sv = 0;
-                for (m = 0; m < w->dim; ++m) s += M[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
-                for (m = 0; m < w->dim; ++m) sv += Mv[3 * a + m] * B[(size_t)9 * i + 3 * c + m];
-                Gu[(size_t)9 * i + 3 * a + c] = a < w->dim && c < w->dim ? s : 0;
-                Gv[(size_t)9 * i + 3 * a + c] = a < w->dim && c < w->dim ? sv : 0;
-            }
-    }
-    for (i = begin; i < end; ++i) { /* serial sum: fixed order, deterministic */
+    for (i = begin; i < end; ++i) {
         int k, a, c;
         for (k = 0; k < w->nb_count[i]; ++k) {
             int j = sps__neighbor(w, i, k);
             sps_real d[3] = {0, 0, 0}, r2 = 0, e2 = 0, ev2 = 0, smooth2 = 0;
-            for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
-            for (a = 0; a < w->dim; ++a) {
+            for (a = 0; a < dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+            for (a = 0; a < dim; ++a) {
                 sps_real err = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
                 sps_real smooth = 0; /* the relative velocity the velocity gradient gives the pair */
-                for (c = 0; c < w->dim; ++c) err -= SPS_R(0.5) * (Gu[(size_t)9 * i + 3 * a + c] + Gu[(size_t)9 * j + 3 * a + c]) * d[c];
-                for (c = 0; c < w->dim; ++c) smooth += SPS_R(0.5) * (Gv[(size_t)9 * i + 3 * a + c] + Gv[(size_t)9 * j + 3 * a + c]) * d[c];
+                for (c = 0; c < dim; ++c) err -= SPS_R(0.5) * (Gu[(size_t)9 * i + 3 * a + c] + Gu[(size_t)9 * j + 3 * a + c]) * d[c];
+                for (c = 0; c < dim; ++c) smooth += SPS_R(0.5) * (Gv[(size_t)9 * i + 3 * a + c] + Gv[(size_t)9 * j + 3 * a + c]) * d[c];
                 e2 += err * err;
                 ev2 += (w->vel[a][i] - w->vel[a][j] - smooth) * (w->vel[a][i] - w->vel[a][j] - smooth);
                 smooth2 += smooth * smooth;
@@ -8708,10 +8729,36 @@ static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_s
             if (rmin2 < 0 || r2 < rmin2) rmin2 = r2;
         }
     }
+    sum[0] = num;
+    sum[1] = den;
+    sum[2] = zig_num;
+    sum[3] = zig_den;
+    return rmin2;
+}
+
+/* Hourglass indicator and zigzag indicator (see DIAGNOSTICS) of the particles [begin, end) (whole
+   bodies): displacement and velocity gradients with B from current positions; also the smallest
+   spacing and the count of surface particles. Only the range is computed: a call for one body
+   costs that body's pairs. */
+static sps_real sps__hourglass(sps_world* w, int begin, int end, sps_real* min_spacing, int* surface, sps_real* zigzag) {
+    sps_real *B = w->diag_scratch, *Gu = w->diag_scratch + (size_t)9 * w->cap, *divr = w->diag_scratch + (size_t)18 * w->cap;
+    sps_real* Gv = w->diag_scratch + (size_t)19 * w->cap;
+    sps_real sum[4], rmin2;
+    int i;
+    sps__correction_matrices(w, begin, end, B, divr);
+    *surface = 0;
+    for (i = begin; i < end; ++i) *surface += divr[i] < SPS_R(0.75) * w->dim;
+    /* a body's neighbours are of the same body: a range of whole bodies needs nothing outside it */
+    SPS__PARALLEL_FOR(w, end - begin)
+    for (i = begin; i < end; ++i) {
+        if (w->dim == 2) sps__diagnostic_gradients(w, i, B, Gu, Gv, 2);
+        else sps__diagnostic_gradients(w, i, B, Gu, Gv, 3);
+    }
+    rmin2 = w->dim == 2 ? sps__hourglass_sums(w, begin, end, Gu, Gv, sum, 2) : sps__hourglass_sums(w, begin, end, Gu, Gv, sum, 3);
     *min_spacing = rmin2 < 0 ? 0 : SPS__SQRT(rmin2) / w->def.dp;
     /* no velocity gradient anywhere: no zigzag if nothing moves relative to anything, else all is */
-    *zigzag = zig_den > 0 ? zig_num / zig_den : zig_num > 0 ? (sps_real)INFINITY : 0;
-    return den > 0 ? num / den : 0;
+    *zigzag = sum[3] > 0 ? sum[2] / sum[3] : sum[2] > 0 ? (sps_real)INFINITY : 0;
+    return sum[1] > 0 ? sum[0] / sum[1] : 0;
 }
 
 SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnostics* out) {
@@ -9749,8 +9796,8 @@ SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, dou
 
 /* A budgeted frame in seconds: every step is cut to the sub-steps that fit in what is left of
    the budget, at the cost per sub-step measured so far in this frame or, for its first step,
-   in the last budgeted frame (a first frame ever runs one sub-step to measure it). The step
-   lands on the frame's end like any step of sps_world_advance. */
+   in the last budgeted frame; every frame runs one sub-step at least (slow motion when even
+   that does not fit). The step lands on the frame's end like any step of sps_world_advance. */
 SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, double wall_budget_s, sps_real* covered) {
     sps_result r = SPS_OK;
     const sps_real t0 = w ? w->time : 0, t_end = t0 + frame_seconds;
@@ -9773,7 +9820,10 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, 
             const double per_substep = done > 0 ? spent / (double)done : w->substep_wall_s;
             /* one sub-step's time kept for the step's neighbour-list rebuild */
             fitting = per_substep > 0 ? (wall_budget_s - spent) / per_substep - 1 : 1;
-            if (fitting < 1) break;
+            /* the frame's first sub-step runs anyway: the last frame's cost alone (say the first
+               sub-step ever, with its allocations) must not stop the world */
+            if (fitting < 1 && done > 0) break;
+            if (fitting < 1) fitting = 1;
         }
         if (fitting < w->def.max_substeps) { /* cut this step to what fits: sps__capped_step's cap */
             const int cap_of_def = w->def.max_substeps;

@@ -2550,3 +2550,29 @@ static int test_oas_instances_2d_only(void) {
     sps_world_destroy(w);
     return 0;
 }
+
+/* ------------------------------------------------------------------------------------------ */
+/* >>realtime: a budgeted frame always advances                                               */
+/* ------------------------------------------------------------------------------------------ */
+
+/* A budget smaller than any sub-step: each frame still runs one sub-step (slow motion), so a
+   slow sub-step (the first ever, with its allocations) cannot stop the world for good. It can
+   fail: a frame that trusted the last frame's cost alone ran none, and the world never moved
+   again. */
+static int test_frame_budget_always_advances(void) {
+    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL);
+    sps_diagnostics d;
+    sps_real covered = 0;
+    long before;
+    int k;
+    ENSURE(w);
+    for (k = 0; k < 5; ++k) {
+        ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
+        before = d.acoustic_steps;
+        ENSURE(sps_world_advance_frame(w, (sps_real)(1.0 / 60), 1e-12, &covered) == SPS_OK);
+        ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
+        ENSURE(d.acoustic_steps - before == 1 && covered > 0); /* one sub-step, no more (the hard cap's promise) */
+    }
+    sps_world_destroy(w);
+    return 0;
+}

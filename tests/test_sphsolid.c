@@ -334,6 +334,7 @@ int main(int argc, char** argv) {
     RUN(test_zigzag_tells_zigzag_from_flow);
     RUN(test_generic_dispatch_per_kind);
     RUN(test_oas_instances_2d_only);
+    RUN(test_frame_budget_always_advances);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
