@@ -256,10 +256,10 @@ pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 .PHONY: test-pinned pinned-update
 
 # The parts run two at a time (each prints its output when it is done); the test runner's
-# "N passed, M failed" is repeated last so that it closes make test. About 4.5 minutes on 2 cores.
+# "N passed, M failed" is repeated last so that it closes make test. About 4 minutes on 2 cores.
 TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned test-relax fuzz fuzz-sanitize test-sanitize test-fast
 test:
-	@echo "make test: the header checks, examples, demo, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4.5 minutes on 2 cores (a fresh build included)"
+	@echo "make test: the header checks, examples, demo, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4 minutes on 2 cores (a fresh build included)"
 	@$(MAKE) --no-print-directory -j2 --output-sync=target $(TEST_PARTS)
 	@tail -n 1 $(BUILD)/test_fast.log
 
