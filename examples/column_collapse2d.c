@@ -97,11 +97,9 @@ int main(int argc, char** argv) {
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     memset(&s, 0, sizeof s);
     hi[0] = (sps_real)length;
-    bd.name = "soil"; /* a Drucker-Prager soil of the granular options (density, E, nu: the common ones) */
+    bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)g.cohesion;
-    bd.material.friction_angle = (sps_real)g.phi;
-    bd.stress_diffusion = (sps_real)g.diffusion;
+    apply_granular(&g, &bd);
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;

@@ -537,6 +537,12 @@ typedef struct {
     {"cohesion", OPT_REAL, &(g).cohesion, "cohesion c [Pa]", 0, 1e9, NULL},                          \
     {"phi", OPT_REAL, &(g).phi, "friction angle [degrees]", 0, 89, NULL},                            \
     {"diffusion", OPT_REAL, &(g).diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL}
+/* Copies them into a Drucker-Prager body's def (its density, E and nu are the common options). */
+EX_UNUSED static void apply_granular(const granular_options* g, sps_body_def* bd) {
+    bd->material.cohesion = (sps_real)g->cohesion;
+    bd->material.friction_angle = (sps_real)g->phi;
+    bd->stress_diffusion = (sps_real)g->diffusion;
+}
 /* The UTVF paper's gravity [m/s^2] (down y) in the granular examples' worlds. */
 #define GRANULAR_GRAVITY 9.8
 EX_UNUSED static const char* transport_name(int t) { return t == 0 ? "none" : t == 1 ? "TVF" : "UTVF"; }

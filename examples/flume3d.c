@@ -123,11 +123,9 @@ int main(int argc, char** argv) {
        2 x 1.6 m^2 x 5 kPa against its 7.8 kN weight */
     ex_check(w, sps_world_add_wall(w, side_lo, plus_z, SPS_WALL_FREE_SLIP));
     ex_check(w, sps_world_add_wall(w, side_hi, minus_z, SPS_WALL_FREE_SLIP));
-    bd.name = "soil"; /* a Drucker-Prager soil of the granular options (density, E, nu: the common ones) */
+    bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)g.cohesion;
-    bd.material.friction_angle = (sps_real)g.phi;
-    bd.stress_diffusion = (sps_real)g.diffusion;
+    apply_granular(&g, &bd);
     ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     lo[0] = (sps_real)shape.x0; hi[0] = (sps_real)shape.x1;

@@ -138,11 +138,9 @@ int main(int argc, char** argv) {
     apply_common(&c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     memset(&s, 0, sizeof s);
-    bd.name = "soil"; /* a Drucker-Prager soil of the granular options (density, E, nu: the common ones) */
+    bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)g.cohesion;
-    bd.material.friction_angle = (sps_real)g.phi;
-    bd.stress_diffusion = (sps_real)g.diffusion;
+    apply_granular(&g, &bd);
     bd.damping = (sps_real)damping;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
