@@ -81,7 +81,9 @@ check: $(CHECK_SRC) $(HEADER) README.md examples/hello.c tests/check_compile_out
 	  $(CC) -std=c99 -O0 $(WARN) -Werror -DSPHSOLID_NO_$$out tests/check_compile_out.c -o $(BUILD)/check_compile_out $(LDLIBS) && \
 	  ./$(BUILD)/check_compile_out || { echo "check: SPHSOLID_NO_$$out failed"; exit 1; }; \
 	done
-	@echo "header checks passed (and the quick starts of the README and of the header's manual compile; each compile-out switch)"
+	# every bench program (the probes are built only on request) still compiles against the header and the scenes
+	for prog in bench/*.c; do $(CC) -std=c99 -fsyntax-only $(WARN) -Werror -fopenmp $$prog || { echo "check: $$prog does not compile"; exit 1; }; done
+	@echo "header checks passed (and the quick starts of the README and of the header's manual compile; each compile-out switch; the bench programs)"
 
 # ---- examples ----
 $(BUILD)/impl.o: examples/impl.c $(HEADER) | $(BUILD)

@@ -23,6 +23,7 @@
    Smoke: ball_plate2d --dp 0.01 --v0 0.12 --tend 0.0015
    Smoke: ball_plate3d --dp 0.02 --v0 0.12 --tend 0.0015 */
 #include "common.h"
+#include "scenes/ball_plate.h"
 #include <stdlib.h>
 
 #ifndef BALL_PLATE_DIM
@@ -35,26 +36,6 @@
 #define BP_NAME "ball_plate2d"
 #define BP_ABOUT "2D rubber ball hitting a plate held at both ends (benchmark A9, ENO 6.7)"
 #endif
-
-#define BALL_PLATE_RADIUS 0.05
-#define BALL_PLATE_CENTRE_Y 0.1
-#define BALL_PLATE_LENGTH 0.5
-#define BALL_PLATE_THICKNESS 0.02
-#define BALL_PLATE_RHO0 1200
-#define BALL_PLATE_E 1e7
-#define BALL_PLATE_NU 0.49
-#define BALL_PLATE_HOLDER_LAYERS 4 /* more than the kernel support (2.6 dp) */
-
-/* The ball: its signed distance and its velocity (0, -v0, 0), v0 [m/s] the user pointer. */
-static sps_real ball_plate_sdf(const sps_real x[3], void* user) {
-    double dy = x[1] - BALL_PLATE_CENTRE_Y, r2 = x[0] * x[0] + dy * dy + (BALL_PLATE_DIM == 3 ? x[2] * x[2] : 0);
-    (void)user;
-    return (sps_real)(sqrt(r2) - BALL_PLATE_RADIUS);
-}
-static void ball_plate_velocity(const sps_real x[3], sps_real v[3], void* user) {
-    (void)x;
-    v[0] = 0; v[1] = -*(const double*)user; v[2] = 0;
-}
 
 /* The smallest distance between a particle of body a and one of body b, in dp (brute force over
    the particles of each within the other's bounding box widened by 3 dp); 1e30 if none is that
@@ -179,33 +160,10 @@ int main(int argc, char** argv) {
     c0 = sqrt(c.E / (3 * (1 - 2 * c.nu)) / c.rho0);
     v0_ms = v0 * c0;
     setup = wall_seconds();
-    wd.dim = BALL_PLATE_DIM;
-    wd.dp = (sps_real)dp;
     wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    bd.name = "plate";
-    ex_check(w, sps_world_add_body(w, &bd, &s.plate));
-    bd.name = "ball";
-    ex_check(w, sps_world_add_body(w, &bd, &s.ball));
-    { /* the plate 0.5 x 0.02 (x 0.5), its holders beyond x = +-a (3D: and z = +-a) clamped */
-        const double hl = BALL_PLATE_HOLDER_LAYERS * dp, a = 0.5 * BALL_PLATE_LENGTH, t = 0.5 * BALL_PLATE_THICKNESS;
-        sps_real lo[3] = {-a - hl, -t, BALL_PLATE_DIM == 3 ? -a - hl : 0}, hi[3] = {a + hl, t, BALL_PLATE_DIM == 3 ? a + hl : 0};
-        int axis;
-        ex_check(w, sps_body_add_box(w, s.plate, lo, hi, NULL));
-        for (axis = 0; axis < (BALL_PLATE_DIM == 3 ? 3 : 1); axis += 2) {
-            sps_real clamp_lo[3] = {-1, -1, -1}, clamp_hi[3] = {1, 1, 1};
-            clamp_hi[axis] = -a; /* x < -a */
-            ex_check(w, sps_body_constrain_box(w, s.plate, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL));
-            clamp_hi[axis] = 1; clamp_lo[axis] = a; /* x > a */
-            ex_check(w, sps_body_constrain_box(w, s.plate, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL));
-        }
-    }
-    { /* the ball of radius R centred at (0, cy, 0), body-fitted or the lattice cut by the sphere, moving down at v0 */
-        const double R = BALL_PLATE_RADIUS, cy = BALL_PLATE_CENTRE_Y;
-        sps_real lo[3] = {-R - dp, cy - R - dp, BALL_PLATE_DIM == 3 ? -R - dp : 0}, hi[3] = {R + dp, cy + R + dp, BALL_PLATE_DIM == 3 ? R + dp : 0};
-        if (fill == 0) ex_check(w, sps_body_add_sdf_relaxed(w, s.ball, lo, hi, ball_plate_sdf, NULL, relax_iterations, NULL));
-        else ex_check(w, sps_body_add_sdf(w, s.ball, lo, hi, ball_plate_sdf, NULL, NULL));
-        ex_check(w, sps_body_set_velocity(w, s.ball, ball_plate_velocity, &v0_ms));
+    {
+        ball_plate_params p = {.dim = BALL_PLATE_DIM, .dp = dp, .v0 = v0_ms, .relaxed = fill == 0, .relax_iterations = relax_iterations};
+        ex_check(NULL, ball_plate_create(wd, &bd, &p, &w, &s.ball, &s.plate));
     }
     setup = wall_seconds() - setup;
     ex_check(w, sps_body_material_constants(w, s.ball, &c0r, NULL, NULL));
