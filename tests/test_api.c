@@ -1837,7 +1837,7 @@ static int stop_after_one_step(sps_world* w, void* user) {
 
 /* The tumbling body with the public API: a rubber cube (3D, side 0.1 m, E 1e6,
    dp 0.01) or disc (2D, radius 0.05 m) spinning at spin rad/s about z, its lowest point 0.2 m
-   above a no-slip floor, under gravity; the watchdog's limit 2 % (the issue's acceptance). */
+   above a no-slip floor, under gravity; the watchdog's limit 2 % (a body that gains 2 % has created energy a user sees). */
 static sps_world* tumbling_body(int dim, sps_shear shear, sps_rotation rotation, int use_default, double spin, int stops,
                                 sps_wall_slip slip, sps_body* out) {
     sps_world_def wd = sps_default_world_def();
@@ -1864,9 +1864,9 @@ static sps_world* tumbling_body(int dim, sps_shear shear, sps_rotation rotation,
 }
 
 /* The default body (rotation auto = pair) through the tumbling scene: the watchdog's account
-   never rises 2 % above its start (the issue's acceptance), while the mean rotation, the old
-   default, gains more than the limit in the 2D scene (so the check can fail). 2D over the
-   issue's 1 s, 3D over 0.3 s (the first impact and rebound; bench/user_scenes runs the whole
+   never rises 2 % above its start (the watchdog's limit), while the mean rotation, the old
+   default, gains more than the limit in the 2D scene (so the check can fail). 2D over
+   1 s, 3D over 0.3 s (the first impact and rebound; bench/user_scenes runs the whole
    second: bench/VALIDATION.md). */
 static int test_user_scene_tumbling_default(void) {
     int dim;
@@ -2248,7 +2248,7 @@ static int test_restart_every_def_field(void) {
     return 0;
 }
 
-/* The issue's case: an updated-Lagrangian J2 body saved, restored into a total-Lagrangian J2
+/* A user's mistake: an updated-Lagrangian J2 body saved, restored into a total-Lagrangian J2
    world: SPS_ERR_STATE naming the solver (it was SPS_ERR_IO, "its velocity gradient do not fit"). */
 static int test_restart_ul_j2_into_tl_j2(void) {
     char path[] = "/tmp/test_sphsolid_fingerprint_XXXXXX";

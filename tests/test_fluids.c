@@ -450,7 +450,7 @@ static int test_coupling_hydrostatic_rest(void) {
            "(column %.1f), max speed %.3g m/s (%.2g sqrt(2 g H))\n", first_speed, floor_gap, wall_gap, p_mid, 1000 * g * depth / 2,
            (double)d.max_speed, (double)d.max_speed / v_ref);
     ENSURE(first_speed < 0.005 * v_ref);      /* no kick (measured 0.25 %; the penalty threw a particle at 130 %) */
-    ENSURE(fabs(floor_gap - 0.5) < 0.1);      /* the dp/2 +- 0.1 dp (measured 0.53) */
+    ENSURE(fabs(floor_gap - 0.5) < 0.1);      /* a lattice's first layer sits dp/2 from the surface; +- 0.1 dp (measured 0.53) */
     ENSURE(fabs(wall_gap - 0.5) < 0.1);       /* (measured 0.51) */
     /* 4 %: as the analytic-wall tank (test_fluid_hydrostatic_rest), the column rings after its start (measured +3.3 %) */
     ENSURE_NEAR(p_mid, 1000 * g * depth / 2, 0.04 * 1000 * g * depth / 2);
@@ -499,7 +499,7 @@ static int test_coupling_floating_block(void) {
         mean += fsi_draft(w, water, block, size, width) / 10;
     }
     printf("    draft %.4f m, Archimedes %.4f m (%+.2f %%)\n", mean, draft, 100 * (mean / draft - 1));
-    ENSURE_NEAR(mean, draft, 0.03 * draft); /* the 3 % (measured -1.1 %) */
+    ENSURE_NEAR(mean, draft, 0.03 * draft); /* 3 %: Archimedes within the kernel's surface layer (measured -1.1 %) */
     sps_world_destroy(w);
     return 0;
 }
@@ -554,7 +554,7 @@ static int test_coupling_bad_input(void) {
 /* ---- granular media that hold their shape (GRANULAR; chapter >>material: Drucker-Prager,
    >>walls for fluids) ---- */
 
-/* The issue's acceptance: a geostatic block at rest for 2 s keeps its shape with the GNO-A
+/* A geostatic block at rest for 2 s keeps its shape with the GNO-A
    penalty (switched off on the cone): hourglass indicator below 0.005 and the mid-depth
    vertical stress within 2 % of rho0 g H/2. The paper's formulation (the default, no
    penalty) fails the first (measured 0.11 at 2 s: the zigzag mode grows under the load), so
@@ -567,8 +567,8 @@ static int test_granular_block_holds_shape(void) {
     hourglass = (double)r.d.hourglass;
     error = r.sigma_mid / geostatic - 1;
     printf("    GNO-A: hourglass %.4f, mid-depth stress %+.2f %%\n", hourglass, 100 * error);
-    ENSURE(hourglass < 0.005); /* the bound (measured 0.0000) */
-    ENSURE(fabs(error) < 0.02); /* the bound (measured +0.5 %: the lattice scale leaves 0.7 % of weight to the surface layer) */
+    ENSURE(hourglass < 0.005); /* 0.005: ten times below a visible zigzag (measured 0.0000) */
+    ENSURE(fabs(error) < 0.02); /* 2 % of the weight (measured +0.5 %: the lattice scale leaves 0.7 % of weight to the surface layer) */
     if (granular_block_run(SPS_SHEAR_OG, 2, &r)) return 1;
     hourglass = (double)r.d.hourglass;
     printf("    OG (no penalty): hourglass %.4f, mid-depth stress %+.2f %%\n", hourglass, 100 * (r.sigma_mid / geostatic - 1));

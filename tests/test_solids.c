@@ -327,7 +327,7 @@ static int test_contact_momentum(void) {
            (double)d1.linear_momentum[0], scale, (double)d1.linear_momentum[1], gap);
     ENSURE_NEAR(d1.linear_momentum[0], d0.linear_momentum[0], 1e-12 * scale); /* round-off of sums of ~1e5 pair forces */
     ENSURE_NEAR(d1.linear_momentum[1], d0.linear_momentum[1], 1e-12 * scale);
-    ENSURE(gap > 0.5); /* the bound: contact keeps the bodies apart */
+    ENSURE(gap > 0.5); /* half a spacing: contact keeps the bodies apart */
     ENSURE(sps_world_diagnostics(w, left, &dl) == SPS_OK && dl.linear_momentum[0] < 0.5 * scale); /* the collision slowed it */
     sps_world_destroy(w);
     return 0;
@@ -1178,16 +1178,16 @@ done:
 
 /* On a 30-degree slope with mu = 0.3 a block slides with a = g (sin - mu cos) (Coulomb); on a
    10-degree slope (tan 10 = 0.18 < mu) it sticks: it creeps less than 1 % of the frictionless
-   distance (the issue's bound; the velocity-regularised stick lets it creep a little). */
+   distance (the velocity-regularised stick lets it creep a little). */
 static int test_friction_block_on_slope(void) {
-    const double g = 9.81, pi = 3.14159265358979323846, t = 0.3, t_stick = 1; /* the creep bound is over 1 s */
+    const double g = 9.81, pi = 3.14159265358979323846, t = 0.3, t_stick = 1; /* the creep bound is over 1 s */
     const double a30 = g * (sin(pi / 6) - 0.3 * cos(pi / 6)), slid30 = slope_slide(0.3, 30, t), slid10 = slope_slide(0.3, 10, t_stick);
     const double free10 = 0.5 * g * sin(10 * pi / 180) * t_stick * t_stick;
     printf("    30 degrees: a = %.5g m/s^2 (Coulomb %.5g); 10 degrees: crept %.3g m, %.3f %% of the frictionless %.4g m\n",
            2 * slid30 / (t * t), a30, slid10, 100 * slid10 / free10, free10);
     ENSURE(slid30 > 0 && slid10 > -1);
     ENSURE_NEAR(2 * slid30 / (t * t), a30, 0.01 * a30); /* measured 0.01 % over 1 s (bench/VALIDATION.md, Friction); 1 %: the short run */
-    ENSURE(fabs(slid10) < 0.01 * free10);                 /* the bound (measured 0.36 % over 1 s) */
+    ENSURE(fabs(slid10) < 0.01 * free10);                 /* 1 %: a stuck block, the regularised stick's creep (measured 0.36 % over 1 s) */
     return 0;
 }
 
@@ -1446,7 +1446,7 @@ static int test_contact_damping_pair(void) {
     }
     printf("    energy account with the dissipated work: %.4f of its start\n", account);
     ENSURE(restitution[0] > 0 && restitution[1] < restitution[0] - 0.05); /* the dashpot is felt (measured: see the output) */
-    ENSURE_NEAR(account, 1, 0.02); /* the 2 %: the work is summed at the velocities before the kick (first order in dt) */
+    ENSURE_NEAR(account, 1, 0.02); /* 2 %: the work is summed at the velocities before the kick (first order in dt) */
     return 0;
 }
 
@@ -1482,7 +1482,7 @@ static int test_contact_damping_wall(void) {
     }
     printf("    energy account with the dissipated work: %.4f of its start\n", account);
     ENSURE(restitution[0] > 0 && restitution[1] < restitution[0] - 0.05); /* the dashpot is felt */
-    ENSURE_NEAR(account, 1, 0.02); /* the 2 % (first order in dt, as above) */
+    ENSURE_NEAR(account, 1, 0.02); /* 2 % (first order in dt, as above) */
     return 0;
 }
 
