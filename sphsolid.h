@@ -5709,18 +5709,18 @@ typedef struct sps__image {
     sps_real x[3], v[3], vv[3], p;
 } sps__image;
 /* Calls visit(w, b, i, image, user) for every image within 2h of particle i of body b (a
-   mirrored body: fluid or granular): across wall wl (sps__wall_images), across every wall
-   (sps__each_image). */
+   mirrored body: fluid or granular): across wall wl (sps__wall_images, for a particle at a
+   distance d_i < 2h from it: its callers skip the others, most particles, before the call),
+   across every wall (sps__each_image). */
 typedef void (*sps__image_fn)(sps_world* w, const sps__body* b, int i, const sps__image* image, void* user);
 /* The image of j is d_i + d_j from i along the wall's normal, so no image with d_i + d_j
    beyond the support is within it: those (most of the neighbours' images of the second and
    third row) are skipped before their mirror and geometry are formed. The bound has a margin of
    a thousandth of the support for the rounding, so an image at the support's edge is still left
    to sps__image_geometry's own test and nothing changes. */
-static void sps__wall_images(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps__image_fn visit, void* user) {
-    const sps_real d_i = sps__wall_distance(w, wl, i), beyond = w->support * SPS_R(1.001);
+static void sps__wall_images(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real d_i, sps__image_fn visit, void* user) {
+    const sps_real beyond = w->support * SPS_R(1.001);
     int m;
-    if (!(d_i < w->support)) return;
     for (m = -1; m < w->nb_count[i]; ++m) {
         sps__image image;
         sps_real d_j;
@@ -5734,7 +5734,10 @@ static void sps__wall_images(sps_world* w, const sps__body* b, int i, const sps_
 }
 static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_fn visit, void* user) {
     int k;
-    for (k = 0; k < w->nwalls; ++k) sps__wall_images(w, b, i, &w->walls[k], visit, user);
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps_real d_i = sps__wall_distance(w, &w->walls[k], i);
+        if (d_i < w->support) sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
+    }
 }
 
 /* An image pair's geometry: e = (x_i - x') / r, dW/dr; 0 if beyond the support. */
@@ -5819,9 +5822,11 @@ static void sps__add_backstop(const sps_world* w, const sps__body* b, int i, con
    Coulomb bound tan(phi) f_n added there stopped C4's free grains but shot a particle out of
    C7 at dp 0.04 (11 m/s at 0.5 s), so it is not applied (bench/VALIDATION.md). */
 static void sps__grain_wall_force(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real dt, sps_real acc[3]) {
+    const sps_real d_i = sps__wall_distance(w, wl, i);
     sps_real f[3] = {0, 0, 0}, f_n = 0, v_n = 0, v_t[3] = {0, 0, 0};
     int a;
-    sps__wall_images(w, b, i, wl, sps__image_force, f);
+    if (!(d_i < w->support)) return; /* no image, no backstop, no friction: most particles */
+    sps__wall_images(w, b, i, wl, d_i, sps__image_force, f);
     sps__add_backstop(w, b, i, wl, f);
     if (wl->slip != SPS_WALL_NO_SLIP && wl->friction > 0) {
         for (a = 0; a < w->dim; ++a) {
