@@ -5449,10 +5449,12 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
     }
 }
 
-/* The Drucker-Prager update (sps__drucker_prager_update) of granular body b's lane group q from
-   the lanes' velocity gradients L and the stress diffusion of the pressure pass (diffused, a
-   literal): sigma = tau - p I, its deviator back into tau and -tr(sigma)/3 into next_pressure
-   (p itself is read by the neighbours' continuity sums of this pass), the accumulated
+/* The Drucker-Prager update (sps__drucker_prager_update) of lane l of granular body b's lane
+   group q from its velocity gradient (gradient) and the stress diffusion of the pressure pass
+   (spread; NULL: none), both as tau, its stress deviator, entries SPS__LANES apart (the lane
+   arrays of sps__granular_stress_lanes): sigma = tau - p I, its deviator back into tau and
+   -tr(sigma)/3 into next_pressure (p itself is read by the neighbours' continuity sums of this
+   pass), the accumulated
    deviatoric plastic strain, grown by sqrt(2/3) |dev(t - sigma)| / (2G) with t the elastic trial
    (the plastic strain increment's deviator), and the plastic work, grown by the particle's
    volume times sigma : d_eps_p, the work of the returned stress on the plastic strain
