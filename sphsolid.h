@@ -5449,10 +5449,12 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
     }
 }
 
-/* The Drucker-Prager update (sps__drucker_prager_update) of granular body b's lane group q from
-   the lanes' velocity gradients L and the stress diffusion of the pressure pass (diffused, a
-   literal): sigma = tau - p I, its deviator back into tau and -tr(sigma)/3 into next_pressure
-   (p itself is read by the neighbours' continuity sums of this pass), the accumulated
+/* The Drucker-Prager update (sps__drucker_prager_update) of lane l of granular body b's lane
+   group q from its velocity gradient (gradient) and the stress diffusion of the pressure pass
+   (spread; NULL: none), both as tau, its stress deviator, entries SPS__LANES apart (the lane
+   arrays of sps__granular_stress_lanes): sigma = tau - p I, its deviator back into tau and
+   -tr(sigma)/3 into next_pressure (p itself is read by the neighbours' continuity sums of this
+   pass), the accumulated
    deviatoric plastic strain, grown by sqrt(2/3) |dev(t - sigma)| / (2G) with t the elastic trial
    (the plastic strain increment's deviator), and the plastic work, grown by the particle's
    volume times sigma : d_eps_p, the work of the returned stress on the plastic strain
@@ -5469,63 +5471,75 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
    measured in C4, 521 particles closer than 0.5 dp (118 with this switch, 88 without a
    penalty) and, before the divergence's lattice scale, a front particle shot off at 0.51 s.
    Padding lanes compute and do not store. */
-SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
-                                            sps_real L[9][SPS__LANES], const int diffused, const int scaled, const int relax) {
-    const size_t k0 = (size_t)(q.i0 - b->begin);
-    sps_real* SPS__RESTRICT tau = b->tau + 6 * k0;
-    sps_real* SPS__RESTRICT strain = b->plastic_strain + k0;
-    sps_real* SPS__RESTRICT work = b->plastic_work + k0;
-    sps_real* SPS__RESTRICT next_p = b->next_pressure + k0;
-    const sps_real* SPS__RESTRICT spread = diffused ? b->diffusion + 6 * k0 : NULL;
-    sps_real* SPS__RESTRICT factor = scaled ? b->return_factor + k0 : NULL;
-    const sps_real *SPS__RESTRICT p = w->p + q.i0, *SPS__RESTRICT mass = w->mass + q.i0, *SPS__RESTRICT rho = w->rho + q.i0;
+SPS__INLINE void sps__granular_stress_lane(sps_world* w, const sps__body* b, sps__group q, int l, sps_real* tau, const sps_real* spread,
+                                           const sps_real* gradient, const int dim, sps_real dt, const int scaled, const int relax) {
+    const size_t k = (size_t)(q.i0 + l - b->begin);
+    const int i = q.i0 + l, mine = i < b->end;
+    const sps_real rho_read = w->rho[i], rho_i = mine ? rho_read : 1; /* padding lanes: no 1/0 */
     const sps_real G = b->mat.G, K = b->mat.K, sqrt_2_3 = SPS_R(0.81649658092772603273);
     const sps__yield_cone cone = b->cone;
-    const int end = b->end;
-    int l, a;
-    SPS__PRAGMA(omp simd)
-    for (l = 0; l < SPS__LANES; ++l) {
-        const int mine = q.i0 + l < end;
-        const sps_real rho_l = mine ? rho[l] : 1; /* padding lanes: no 1/0 */
-        sps_real sig[6], trial[6], gradient[9], rate[6], flow[6], i1, flow_trace, p_next, p_trial, s_trial[6], s_next[6];
-        SPS__UNROLL
-        for (a = 0; a < 9; ++a) gradient[a] = a / 3 < dim && a % 3 < dim ? L[a][l] : 0;
-        SPS__UNROLL
-        for (a = 0; a < 6; ++a) {
-            sig[a] = tau[6 * l + a] - (sps__sym_diagonal(a) ? p[l] : 0);
-            rate[a] = diffused ? spread[6 * l + a] : 0;
-        }
-        sps__drucker_prager_update(sig, gradient, 1, rate, 1, &cone, G, K, dt, trial);
-        i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ];
-        p_next = -i1 / 3;
-        p_trial = -(trial[SPS__XX] + trial[SPS__YY] + trial[SPS__ZZ]) / 3;
-        flow_trace = p_next - p_trial; /* tr(t - sigma)/3 */
-        SPS__UNROLL
-        for (a = 0; a < 6; ++a) {
-            const int diagonal = sps__sym_diagonal(a);
-            s_next[a] = sig[a] + (diagonal ? p_next : 0);
-            s_trial[a] = trial[a] + (diagonal ? p_trial : 0);
-            flow[a] = trial[a] - sig[a] - (diagonal ? flow_trace : 0);
-        }
-        if (mine) {
-            SPS__UNROLL
-            for (a = 0; a < 6; ++a) tau[6 * l + a] = s_next[a];
-            next_p[l] = p_next;
-            strain[l] += sqrt_2_3 * SPS__SQRT(sps__sym_contract(flow, flow)) / (2 * G);
-            if (scaled) { /* the penalty's factor: 1 while elastic, 0 on the cone (see the function's head) */
-                const sps_real trial_norm2 = sps__sym_contract(s_trial, s_trial), norm2 = sps__sym_contract(s_next, s_next);
-                const sps_real r = trial_norm2 > norm2 || cone.alpha_phi * i1 >= cone.k_c ? 0 : 1; /* returned, or at the apex */
-                int c;
-                factor[l] = r;
-                if (relax)
-                    SPS__UNROLL
-                    for (c = 0; c < dim; ++c) w->acc_s[c][q.i0 + l] *= r;
-            }
-            SPS__UNROLL
-            for (a = 0; a < 6; ++a) s_trial[a] -= s_next[a];
-            work[l] += mass[l] / rho_l * (sps__sym_contract(s_next, s_trial) / (2 * G) + p_next * (p_trial - p_next) / K);
-        }
+    /* the arrays read before the branch: GCC masks no load of a pointer */
+    sps_real *SPS__RESTRICT next_p = b->next_pressure, *SPS__RESTRICT strain = b->plastic_strain, *SPS__RESTRICT work = b->plastic_work;
+    sps_real *SPS__RESTRICT factor = b->return_factor, *SPS__RESTRICT acc_s[3] = {w->acc_s[0], w->acc_s[1], w->acc_s[2]};
+    const sps_real* SPS__RESTRICT mass = w->mass;
+    sps_real sig[6], trial[6], rate[6], flow[6], i1, flow_trace, p_next, p_trial, s_trial[6], s_next[6];
+    int a;
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) {
+        sig[a] = tau[a * SPS__LANES] - (sps__sym_diagonal(a) ? w->p[i] : 0);
+        rate[a] = spread ? spread[a * SPS__LANES] : 0;
     }
+    sps__drucker_prager_update(sig, gradient, SPS__LANES, rate, 1, &cone, G, K, dt, trial);
+    i1 = sig[SPS__XX] + sig[SPS__YY] + sig[SPS__ZZ];
+    p_next = -i1 / 3;
+    p_trial = -(trial[SPS__XX] + trial[SPS__YY] + trial[SPS__ZZ]) / 3;
+    flow_trace = p_next - p_trial; /* tr(t - sigma)/3 */
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a) {
+        const int diagonal = sps__sym_diagonal(a);
+        s_next[a] = sig[a] + (diagonal ? p_next : 0);
+        s_trial[a] = trial[a] + (diagonal ? p_trial : 0);
+        flow[a] = trial[a] - sig[a] - (diagonal ? flow_trace : 0);
+        tau[a * SPS__LANES] = s_next[a];
+    }
+    if (mine) {
+        next_p[k] = p_next;
+        strain[k] += sqrt_2_3 * SPS__SQRT(sps__sym_contract(flow, flow)) / (2 * G);
+        if (scaled) { /* the penalty's factor: 1 while elastic, 0 on the cone (see the function's head) */
+            const sps_real trial_norm2 = sps__sym_contract(s_trial, s_trial), norm2 = sps__sym_contract(s_next, s_next);
+            const sps_real r = trial_norm2 > norm2 || cone.alpha_phi * i1 >= cone.k_c ? 0 : 1; /* returned, or at the apex */
+            int c;
+            factor[k] = r;
+            if (relax)
+                SPS__UNROLL
+                for (c = 0; c < dim; ++c) acc_s[c][i] *= r;
+        }
+        SPS__UNROLL
+        for (a = 0; a < 6; ++a) s_trial[a] -= s_next[a];
+        work[k] += mass[i] / rho_i * (sps__sym_contract(s_next, s_trial) / (2 * G) + p_next * (p_trial - p_next) / K);
+    }
+}
+/* The lane loop, vectorised: each lane's update is a function of its own, so that its tensors
+   (sig, trial, ...) are no locals of the SIMD loop (OpenMP gives each addressable local of the
+   loop a copy per lane, an array GCC does not vectorise), and the lanes' stresses and stress
+   diffusions are side by side (sps__own_lanes: GCC vectorises no group of six strided
+   entries). In 2D the velocity gradient's entries outside dim are made 0 first: the update
+   reads all nine. */
+SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
+                                            sps_real L[9][SPS__LANES], const int diffused, const int scaled, const int relax) {
+    const int first = q.i0 - b->begin;
+    sps_real tau[6][SPS__LANES], spread[6][SPS__LANES];
+    int l, a;
+    for (a = 0; a < 9; ++a)
+        if (a / 3 >= dim || a % 3 >= dim)
+            for (l = 0; l < SPS__LANES; ++l) L[a][l] = 0;
+    sps__own_lanes(b->tau, 6, first, tau);
+    if (diffused) sps__own_lanes(b->diffusion, 6, first, spread);
+    SPS__PRAGMA(omp simd)
+    for (l = 0; l < SPS__LANES; ++l)
+        sps__granular_stress_lane(w, b, q, l, &tau[0][l], diffused ? &spread[0][l] : NULL, &L[0][l], dim, dt, scaled, relax);
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l)
+        for (a = 0; a < 6; ++a) b->tau[(size_t)6 * (first + l) + a] = tau[a][l];
 }
 
 /* >>generic (continued): the stress update of a lane group, by its yield surface */
@@ -5697,24 +5711,35 @@ typedef struct sps__image {
     sps_real x[3], v[3], vv[3], p;
 } sps__image;
 /* Calls visit(w, b, i, image, user) for every image within 2h of particle i of body b (a
-   mirrored body: fluid or granular): across wall wl (sps__wall_images), across every wall
-   (sps__each_image). */
+   mirrored body: fluid or granular): across wall wl (sps__wall_images, for a particle at a
+   distance d_i < 2h from it: its callers skip the others, most particles, before the call),
+   across every wall (sps__each_image). */
 typedef void (*sps__image_fn)(sps_world* w, const sps__body* b, int i, const sps__image* image, void* user);
-static void sps__wall_images(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps__image_fn visit, void* user) {
+/* The image of j is d_i + d_j from i along the wall's normal, so no image with d_i + d_j
+   beyond the support is within it: those (most of the neighbours' images of the second and
+   third row) are skipped before their mirror and geometry are formed. The bound has a margin of
+   a thousandth of the support for the rounding, so an image at the support's edge is still left
+   to sps__image_geometry's own test and nothing changes. */
+static void sps__wall_images(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real d_i, sps__image_fn visit, void* user) {
+    const sps_real beyond = w->support * SPS_R(1.001);
     int m;
-    if (!(sps__wall_distance(w, wl, i) < w->support)) return;
     for (m = -1; m < w->nb_count[i]; ++m) {
         sps__image image;
+        sps_real d_j;
         image.j = m < 0 ? i : sps__neighbor(w, i, m);
         image.wall = wl;
-        if (!(sps__wall_distance(w, wl, image.j) < w->support)) continue;
+        d_j = sps__wall_distance(w, wl, image.j);
+        if (!(d_j < w->support) || d_i + d_j > beyond) continue;
         sps__mirror(w, b, wl, image.j, image.x, image.v, image.vv, &image.p);
         visit(w, b, i, &image, user);
     }
 }
 static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_fn visit, void* user) {
     int k;
-    for (k = 0; k < w->nwalls; ++k) sps__wall_images(w, b, i, &w->walls[k], visit, user);
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps_real d_i = sps__wall_distance(w, &w->walls[k], i);
+        if (d_i < w->support) sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
+    }
 }
 
 /* An image pair's geometry: e = (x_i - x') / r, dW/dr; 0 if beyond the support. */
@@ -5799,9 +5824,11 @@ static void sps__add_backstop(const sps_world* w, const sps__body* b, int i, con
    Coulomb bound tan(phi) f_n added there stopped C4's free grains but shot a particle out of
    C7 at dp 0.04 (11 m/s at 0.5 s), so it is not applied (bench/VALIDATION.md). */
 static void sps__grain_wall_force(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real dt, sps_real acc[3]) {
+    const sps_real d_i = sps__wall_distance(w, wl, i);
     sps_real f[3] = {0, 0, 0}, f_n = 0, v_n = 0, v_t[3] = {0, 0, 0};
     int a;
-    sps__wall_images(w, b, i, wl, sps__image_force, f);
+    if (!(d_i < w->support)) return; /* no image, no backstop, no friction: most particles */
+    sps__wall_images(w, b, i, wl, d_i, sps__image_force, f);
     sps__add_backstop(w, b, i, wl, f);
     if (wl->slip != SPS_WALL_NO_SLIP && wl->friction > 0) {
         for (a = 0; a < w->dim; ++a) {
