@@ -34,6 +34,7 @@ jelly3d|build/float/realtime --dim 3 --dp 0.0765 --E 1e5 --omega 2 --frames 200 
         /usr/bin/time -f "%U" -o "$tmp/cpu" $3 --threads 1 --penalty "$2" --quiet --vtk-every 0 --out "$tmp/o" > "$tmp/log" 2>&1
         grep '^RESULT' "$tmp/log" | sed "s/^/$1 $2: /"
         echo "$1 $2 $(cat "$tmp/cpu") $(sed -n 's/.*physics_ms_mean=\([0-9.]*\).*/\1/p' "$tmp/log" | head -1)" >> "$tmp/times"
+        tail -n 1 "$tmp/times" | sed 's/^/times: /'
     }
     r=1
     while [ "$r" -le "$rounds" ]; do
