@@ -175,8 +175,8 @@
       state. Two neighbour passes per sub-step instead of three, for elastic and J2 bodies with
       the mean or per-particle rotation (not rotation = pair, whose pair forces the pressure pass
       reads, nor Drucker-Prager bodies, whose pressure pass is their own). Results are not bit
-      for bit the paper form's (the pinned cases keep 0): the GNO-A plate's period and amplitude
-      agree to 6 digits; measured speed and every figure: bench/VALIDATION.md, "Pass fusion".
+      for bit the paper form's (the pinned cases keep 0): the GNO-A plate's period agrees to 6
+      digits; measured speed and every figure: bench/VALIDATION.md, "Pass fusion".
       Default 0, the paper's form.
 
    PLASTICITY (material.kind = SPS_MATERIAL_J2; ANG section 2.2)
