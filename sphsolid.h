@@ -95,6 +95,7 @@
          ENO: da_i = 2 zeta G/rho_i sum_j (e_ij.v_ij)/r_ij dW_ij e_ij V_j dt (ENO eq. 24)
       4b. GNO family, after L is known everywhere: the hourglass penalty increment da_i
          (ANG eqs. 43-49). ENO, GNO: a_s += da; ENO-A, GNO-A: a_s = R a_s + da (ANG eqs. 34-42)
+         (or in the next sub-step's pressure pass: PENALTY IN THE PRESSURE PASS)
       5. rho += dt/2 drho/dt
       The configuration update (every advection step) sorts particles by cell and rebuilds the
       CSR neighbour lists. The pair geometry e_ij, dW/dr and the correction matrix
@@ -159,6 +160,24 @@
       int per pair slot.
       The shear stress tau (Jaumann rate, ENO eqs. 6-8) is integrated for the OG family always,
       for ENO bodies only with track_stress = 1 (von Mises output, strain energy).
+
+   PENALTY IN THE PRESSURE PASS (sps_body_def.penalty_in_pressure_pass; GNO, GNO-A)
+      The paper's sub-step runs three neighbour passes on a GNO body: pressure, continuity and
+      the penalty (step 4b), which needs every neighbour's L_j from the continuity pass. With
+      penalty_in_pressure_pass = 1 the penalty of sub-step n is summed in the pair loop of
+      sub-step n+1's pressure pass instead, with the paper's inputs: v^(n+1) and L^(n+1) (nothing
+      changes them in between), the pair geometry of x^(n+1), formed again in that loop from
+      x - dt/2 v (the half drift's inverse), and sub-step n's own dt; its increments reach a_s
+      before sub-step n+1's kick, as in the paper (the mean rotation turns a_s in sub-step n's
+      step 5 and they are added after it). What lags: V_j and rho_i, which are those of one
+      density update later (a relative change of dt drho/rho per sub-step). Each advection step's
+      last sub-step runs the penalty as a pass of its own, so a step returns with the paper's
+      state. Two neighbour passes per sub-step instead of three, for elastic and J2 bodies with
+      the mean or per-particle rotation (not rotation = pair, whose pair forces the pressure pass
+      reads, nor Drucker-Prager bodies, whose pressure pass is their own). Results are not bit
+      for bit the paper form's (the pinned cases keep 0): the GNO-A plate's period agrees to 6
+      digits; measured speed and every figure: bench/VALIDATION.md, "Pass fusion".
+      Default 0, the paper's form.
 
    PLASTICITY (material.kind = SPS_MATERIAL_J2; ANG section 2.2)
       von Mises plasticity with linear isotropic hardening: after the Jaumann update (the trial
@@ -576,8 +595,9 @@
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
       c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
-      rotation (0..3), zeta [0, 100], xi [0, 100], oas_epsilon [0, 1], oas_exponent [1, 12],
-      track_stress 0/1, damping finite >= 0 (0 for a wall body), friction finite >= 0 (0 without
+      rotation (0..3), zeta [0, 100], xi [0, 100], penalty_in_pressure_pass 0/1 (1 not with
+      rotation = pair or Drucker-Prager), oas_epsilon [0, 1], oas_exponent [1, 12], track_stress 0/1,
+      damping finite >= 0 (0 for a wall body), friction finite >= 0 (0 without
       contact and for fluid and Drucker-Prager bodies), material.viscosity finite >= 0 (0 for
       wall and Drucker-Prager bodies), wall friction (finite >= 0, an existing free-slip wall),
       solver 0..1, hourglass_alpha [0, 1000], hourglass 0..1, damage_strain [0, 100] and
@@ -1029,6 +1049,11 @@ typedef struct sps_body_def {
                                   pair; GNO-A: mean). */
     sps_real zeta;             /* ENO coefficient; 0 selects 0.7 d + 2.1 (ENO section 4). Default 0. */
     sps_real xi;               /* GNO penalty coefficient xi_G; 0 selects 2 (ANG section 4.2). Default 0. */
+    int penalty_in_pressure_pass; /* GNO, GNO-A: 1 sums each sub-step's hourglass penalty (ANG
+                                  eqs. 43-46) in the next sub-step's pressure pass, two neighbour
+                                  passes per sub-step instead of three (PENALTY IN THE PRESSURE
+                                  PASS); 0: the paper's pass of its own. Not with rotation = pair
+                                  or Drucker-Prager bodies. Default 0. */
     sps_real oas_epsilon;      /* OAS artificial-stress factor, [0, 1]. Default 0.3 (Gray et al.). */
     sps_real oas_exponent;     /* OAS exponent n of f = (W(r)/W(dp))^n, [1, 12]. Default 4. */
     int track_stress;          /* 1: integrate the shear stress (von Mises, strain energy). Default 0. */
@@ -1639,6 +1664,9 @@ typedef void (*sps__pair_loop)(sps_world* w, const struct sps__body* b, int g, s
 typedef struct sps__passes {
     sps__group_kernel pressure, continuity, penalty, stress;
     sps__pair_loop pressure_pairs, continuity_pairs, penalty_pairs;
+    /* penalty_in_pressure_pass: the pressure pass's pair loop that also sums the previous
+       sub-step's penalty (NULL without) */
+    sps__pair_loop pressure_penalty_pairs;
     /* the pressure pass's rare terms, each a loop of its own, or NULL: OAS's artificial stress, a
        solid's Kelvin-Voigt damping */
     sps__pair_loop art_pairs, damping_pairs;
@@ -1660,6 +1688,8 @@ typedef struct sps__model {
     int plastic;  /* an sps__yield: the return map after the stress update (J2's radial return, the
                      Drucker-Prager cone); plastic strain and work fields */
     int scaled_penalty; /* the GNO penalty scaled per pair by the particles' return factors */
+    int penalty_in_pressure; /* the GNO penalty summed in the next sub-step's pressure pass
+                                (penalty_in_pressure_pass; chapter >>solver: the penalty) */
     int limited;  /* the Riemann dissipation limited (material limiter > 0: fluids) */
     int viscous;  /* SPS__VISCOUS_NEWTON: a Newtonian viscous force (a fluid with viscosity > 0);
                      SPS__VISCOUS_KELVIN_VOIGT: a solid's material damping (>>material: Kelvin-Voigt) */
@@ -2301,6 +2331,7 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM_READ_BY(rotation, SPS__DEF_INT, sps__reads_rotation),
     SPS__BODY_ITEM_READ_BY(zeta, SPS__DEF_REAL, sps__reads_zeta),
     SPS__BODY_ITEM_READ_BY(xi, SPS__DEF_REAL, sps__reads_xi),
+    SPS__BODY_ITEM_READ_BY(penalty_in_pressure_pass, SPS__DEF_INT, sps__reads_xi),
     SPS__BODY_ITEM_READ_BY(oas_epsilon, SPS__DEF_REAL, sps__reads_oas),
     SPS__BODY_ITEM_READ_BY(oas_exponent, SPS__DEF_REAL, sps__reads_oas),
     SPS__BODY_ITEM_READ_BY(track_stress, SPS__DEF_INT, sps__reads_stress),
@@ -3003,6 +3034,14 @@ static int sps__contact_damping_without_contact(int dim, const sps_body_def* def
     (void)dim;
     return def->contact_damping > 0 && (!def->contact || (material && material->mirrored));
 }
+/* penalty_in_pressure_pass where its pressure pass cannot hold the penalty: a pair force g_ij
+   (rotation = pair), which that pass reads, or a Drucker-Prager body, whose pressure loop is its
+   own (the limiter, the stress diffusion) */
+static int sps__penalty_outside_pressure_pass(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->penalty_in_pressure_pass == 1 && sps__reads_xi(def) &&
+           (def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER || (def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR)); /* GNO-A's auto: mean */
+}
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__viscous_wall_or_granular, "material.viscosity > 0 with material.kind = rigid or Drucker-Prager: the Kelvin-Voigt damping is "
                                     "for elastic, J2, Saint Venant-Kirchhoff and Neo-Hookean bodies (a wall body moves as given; a "
@@ -3015,6 +3054,10 @@ static const sps__combination_rule sps__combination_rules[] = {
                                            "particles)"},
     {sps__granular_pair_rotation, "material.kind = Drucker-Prager with shear = GNO-A and rotation = pair: a granular body keeps its "
                                   "penalty per particle; use rotation = mean or per particle"},
+    {sps__penalty_outside_pressure_pass, "penalty_in_pressure_pass = 1 with rotation = pair or material.kind = Drucker-Prager: the "
+                                         "pressure pass reads the pair forces the penalty writes, and a granular body's pressure pass "
+                                         "has no penalty terms; use 0 (the penalty's own pass) or, for GNO-A, rotation = mean or per "
+                                         "particle"},
     {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
     {sps__shifted_reference, "transport = TVF or UTVF with solver = total Lagrangian: its neighbours are those of the reference "
                              "configuration, which a shift of the particles would not move"},
@@ -3066,6 +3109,9 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(!sps__left_out_by(def), "material.kind = %d with solver = %d: this build left it out (%s is defined)",
                (int)def->material.kind, (int)def->solver, sps__left_out_by(def));
     SPS__CHECK(def->xi >= 0 && def->xi <= 100, "xi = %g, allowed 0 (default 2) or (0, 100]", (double)def->xi);
+    SPS__CHECK(def->penalty_in_pressure_pass == 0 || def->penalty_in_pressure_pass == 1,
+               "penalty_in_pressure_pass = %d, allowed 0 (the penalty's own pass, the paper's) or 1 (in the next pressure pass)",
+               def->penalty_in_pressure_pass);
     SPS__CHECK(def->oas_epsilon >= 0 && def->oas_epsilon <= 1, "oas_epsilon = %g, allowed [0, 1]", (double)def->oas_epsilon);
     SPS__CHECK(def->oas_exponent >= 1 && def->oas_exponent <= SPS__OAS_MAX_EXPONENT, "oas_exponent = %g, allowed [1, %d]", (double)def->oas_exponent, SPS__OAS_MAX_EXPONENT);
     SPS__CHECK(def->rotation == SPS_ROTATION_MEAN || def->rotation == SPS_ROTATION_PER_PARTICLE || def->rotation == SPS_ROTATION_PAIR ||
@@ -3130,6 +3176,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
         m.paired = m.gradient = m.artificial_stress = m.scaled_penalty = 0;
         m.turn = SPS__TURN_NONE;
     }
+    m.penalty_in_pressure = def->penalty_in_pressure_pass && m.stabilisation->penalty;
     return m;
 }
 
@@ -4794,15 +4841,15 @@ static int sps__mode(const sps_world* w) {
     return (w->dim == 3) * 3 + geo;
 }
 
-/* Pair geometry of slot s = (i, j): e_ij, dW/dr, dW/dr / r_ij and r_ij from the current
-   positions; when frozen, dW/dr is the configuration update's. A padding slot (j = i) gives
+/* Pair geometry of slot s = (i, j) from the offset x_i - x_j = (dx, dy, dz): e_ij, dW/dr,
+   dW/dr / r_ij and r_ij; when frozen, dW/dr is the configuration update's. A padding slot (j = i) gives
    zeros: stored zeros when frozen, and here r = 1 with dW = 0 (no division by zero). Returned by
    value (no addressable locals) so the neighbour loops that call it vectorise. */
 typedef struct sps__pair_geometry {
     sps_real ex, ey, ez, dw, dw_r, r;
 } sps__pair_geometry;
 
-SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j, const int dim, const int geo) {
+SPS__INLINE sps__pair_geometry sps__pair_of_offset(const sps_world* w, int s, sps_real dx, sps_real dy, sps_real dz, const int geo) {
     sps__pair_geometry q;
     if (geo == SPS__GEO_FROZEN) {
         /* dW as stored, but e_ij and 1/r from the current positions: a stored direction lags a
@@ -4814,8 +4861,6 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
            -1.6%). 1/|x_ij| is the stored 1/r_0 after one Newton step (relative error 1.5 x the
            square of the strain since the update; the factor is kept >= 1/2, so e_ij never
            turns round however far the pair stretches). */
-        const sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
-        const sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] : 0;
         const sps_real r2 = dx * dx + dy * dy + dz * dz, inv_r0 = w->nb_inv_r[s], t = r2 * inv_r0 * inv_r0;
         const sps_real inv_r = inv_r0 * (SPS_R(1.5) - SPS_R(0.5) * (t < 2 ? t : 2));
         q.ex = dx * inv_r;
@@ -4827,8 +4872,7 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
     } else {
         /* pad: a padding slot (j = i) or two particles at the same point, which have no
            direction between them and no force (dW(0) = 0): both take e = 0, dW = 0 */
-        const sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
-        const sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] : 0, r2 = dx * dx + dy * dy + dz * dz;
+        const sps_real r2 = dx * dx + dy * dy + dz * dz;
         const sps_real pad = (sps_real)(r2 == 0), r = SPS__SQRT(r2 == 0 ? 1 : r2), inv = 1 / r; /* a select, not r2 + pad: GCC
                                                     would branch round the add, and AVX2 (no masked add) could not vectorise it */
         q.ex = dx * inv;
@@ -4839,6 +4883,22 @@ SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j
         q.r = r;
     }
     return q;
+}
+
+/* The pair geometry of slot s = (i, j) from the current positions (sps__pair_of_offset). */
+SPS__INLINE sps__pair_geometry sps__pair(const sps_world* w, int i, int s, int j, const int dim, const int geo) {
+    const sps_real dx = w->pos[0][i] - w->pos[0][j], dy = w->pos[1][i] - w->pos[1][j];
+    const sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] : 0;
+    return sps__pair_of_offset(w, s, dx, dy, dz, geo);
+}
+
+/* The pair geometry of slot s = (i, j) at the positions before the half drift x += h v of this
+   sub-step (sps__drift_range): x - h v, x^(n+1) in sub-step n+1's pressure pass. */
+SPS__INLINE sps__pair_geometry sps__pair_before_drift(const sps_world* w, int i, int s, int j, const int dim, const int geo, sps_real h) {
+    const sps_real dx = w->pos[0][i] - w->pos[0][j] - h * (w->vel[0][i] - w->vel[0][j]);
+    const sps_real dy = w->pos[1][i] - w->pos[1][j] - h * (w->vel[1][i] - w->vel[1][j]);
+    const sps_real dz = dim == 3 ? w->pos[2][i] - w->pos[2][j] - h * (w->vel[2][i] - w->vel[2][j]) : 0;
+    return sps__pair_of_offset(w, s, dx, dy, dz, geo);
 }
 
 /* Correction matrices B_i (ANG eq. 21) from the current positions into out (9 per particle,
@@ -4960,8 +5020,10 @@ enum {
     SPS__TERM_RIEMANN = 1 << 8,   /* continuity: the Riemann solver's density term (fluids) */
     SPS__TERM_PROJECTED = 1 << 9, /* penalty: projected on e_ij (GNO-A) */
     SPS__TERM_SCALED = 1 << 10,   /* penalty: scaled by the return factors (plastic bodies) */
-    SPS__TERM_DIFFUSION = 1 << 11 /* pressure: a granular body's stress diffusion is stored (its loop
+    SPS__TERM_DIFFUSION = 1 << 11, /* pressure: a granular body's stress diffusion is stored (its loop
                                      sums it in any case: a row, not a loop of its own) */
+    SPS__TERM_PENALTY = 1 << 12    /* pressure: also the previous sub-step's GNO penalty sums
+                                     (penalty_in_pressure_pass), PROJECTED and SCALED as the penalty's */
 };
 
 /* The sums of a pass's pair loop, per lane, that it hands to the pass's finish: lane arrays
@@ -4974,10 +5036,12 @@ enum {
     SPS__A00, SPS__A01, SPS__A02, SPS__A11, SPS__A12, SPS__A22, SPS__NSUM
 };
 /* pressure: the acceleration's sum, Gray's artificial stress, the accumulated shear forces, the
-   stress diffusion's rate, the Kelvin-Voigt damping (with the Riemann dissipation) */
-enum { SPS__ACC = 0, SPS__GRAY = 3, SPS__SHEAR = 5, SPS__SPREAD = 8, SPS__DAMP = 14, SPS__PRESSURE_SUMS = 17 };
+   stress diffusion's rate, the Kelvin-Voigt damping (with the Riemann dissipation); with the
+   penalty in the pressure pass, the penalty's sums after them */
+enum { SPS__ACC = 0, SPS__GRAY = 3, SPS__SHEAR = 5, SPS__SPREAD = 8, SPS__DAMP = 14, SPS__PRESSURE_SUMS = 17, SPS__PENALTY_SUMS = 17 };
+enum { SPS__SUM_ROWS = SPS__PENALTY_SUMS + 3 > SPS__NSUM ? SPS__PENALTY_SUMS + 3 : SPS__NSUM };
 typedef struct sps__lane_sums {
-    sps_real row[SPS__NSUM][SPS__LANES];
+    sps_real row[SPS__SUM_ROWS][SPS__LANES];
 } sps__lane_sums;
 
 /* Zeroes the first `rows` rows of sums. */
@@ -5035,6 +5099,55 @@ SPS__INLINE sps_real sps__approach(const sps_world* w, int i, int j, sps_real ex
     return (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
 }
 
+/* The GNO penalty's term of a pair: v^_ij / r_ij dW per axis and the pair's weight. */
+typedef struct sps__penalty_velocity {
+    sps_real v[3], scale;
+} sps__penalty_velocity;
+
+/* The GNO penalty's term of pair (i, j) in lane l with geometry e (sps__penalty_pairs; the
+   pressure pass sums it too with penalty_in_pressure_pass): v^_ij / r_ij dW = v_ij dW/r -
+   1/2 (L_i + L_j) e_ij dW per axis (ANG eq. 44 with r_ij = r e_ij), weighted by the scale
+   1/2 (r_i + r_j) when scaled (1 unscaled); L_i the lanes' own gradients. Returned by value, as
+   sps__pair, so that the loops vectorise. */
+SPS__INLINE sps__penalty_velocity sps__penalty_term(const sps_world* w, const sps__body* b, int i, int j, int l, sps__pair_geometry e,
+                                                    sps_real L_i[9][SPS__LANES], const int dim, const int scaled) {
+    const sps_real* SPS__RESTRICT L = b->grad;
+    const sps_real* SPS__RESTRICT factor = b->return_factor; /* J2 and Drucker-Prager bodies only */
+    const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
+    const int begin = b->begin, lj = 9 * (j - begin); /* an int offset from the array: a gather */
+    const sps_real dv[3] = {vx[i] - vx[j], vy[i] - vy[j], dim == 3 ? vz[i] - vz[j] : 0};
+    const sps_real dir[3] = {e.ex, e.ey, e.ez};
+    sps__penalty_velocity t;
+    int a, c;
+    t.scale = scaled ? SPS_R(0.5) * (factor[i - begin] + factor[j - begin]) : 1;
+    t.v[2] = 0;
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) {
+        sps_real le = 0;
+        SPS__UNROLL
+        for (c = 0; c < dim; ++c) le += (L_i[3 * a + c][l] + L[lj + 3 * a + c]) * dir[c];
+        t.v[a] = dv[a] * e.dw_r - SPS_R(0.5) * le * e.dw;
+        if (scaled) t.v[a] *= t.scale;
+    }
+    return t;
+}
+
+/* Adds the penalty term t of a pair with geometry e and neighbour volume V_j to lane l's sums:
+   v^_ij / r_ij dW V_j (GNO, ANG eq. 43) or its projection on e_ij (GNO-A, ANG eq. 46). */
+SPS__INLINE void sps__add_penalty_term(sps_real (*sum)[SPS__LANES], int l, sps__penalty_velocity t, sps__pair_geometry e, sps_real vol_j,
+                                       const int dim, const int projected) {
+    const sps_real dir[3] = {e.ex, e.ey, e.ez};
+    sps_real vhat[3], u = 0;
+    int a;
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) {
+        vhat[a] = t.v[a] * vol_j;
+        u += vhat[a] * dir[a];
+    }
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * dir[a] : vhat[a];
+}
+
 /* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with
    beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of the shear stress
    (ENO eq. 17); with paired (SPS_ROTATION_PAIR) the accumulated shear forces (1/m_i) sum_j g_ij
@@ -5047,13 +5160,18 @@ SPS__INLINE sps_real sps__approach(const sps_world* w, int i, int j, sps_real ex
    The rare terms, which add to sums of their own, have a pair loop of their own
    (sps__rare_pressure_pairs); a Kelvin-Voigt body's Riemann dissipation is among them (kept
    with its viscous force, for its work), so its pressure force here has Z = 0, which leaves
-   (p_i + p_j) dW V_j bit for bit. Each lane sums its own particle's neighbours in list order,
-   so the result does not depend on the vector width. */
+   (p_i + p_j) dW V_j bit for bit. With penalty (penalty_in_pressure_pass) the loop also sums the
+   previous sub-step's GNO penalty terms into rows SPS__PENALTY_SUMS in that penalty's pair
+   geometry (sps__pair_before_drift; chapter >>solver: the penalty in the next pressure pass).
+   Each lane sums its own particle's neighbours in list order, so the result does not depend on
+   the vector width. */
 SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                      const int geo, const int terms) {
     const int stress = (terms & SPS__TERM_STRESS) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
     const int limited = (terms & SPS__TERM_LIMITED) != 0, newton = (terms & SPS__TERM_NEWTON) != 0;
     const int granular = stress && limited; /* a Drucker-Prager body: its divergence scaled (sps__lattice_gradient_moment) */
+    const int penalty = (terms & SPS__TERM_PENALTY) != 0, projected = (terms & SPS__TERM_PROJECTED) != 0;
+    const int scaled = (terms & SPS__TERM_SCALED) != 0;
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT ? 0 : b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
     const sps_real scale = granular ? b->divergence_scale : 1;
@@ -5066,10 +5184,12 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
     sps_real(*acc)[SPS__LANES] = sums->row + SPS__ACC;
     sps_real(*shear)[SPS__LANES] = sums->row + SPS__SHEAR;
     sps_real(*spread)[SPS__LANES] = sums->row + SPS__SPREAD;
-    sps_real tau_i[6][SPS__LANES];
+    sps_real(*penalty_sum)[SPS__LANES] = sums->row + SPS__PENALTY_SUMS;
+    sps_real tau_i[6][SPS__LANES], L_i[9][SPS__LANES];
     int k, l;
     (void)dt;
     if (stress) sps__own_lanes(tau, 6, q.i0 - begin, tau_i);
+    if (penalty) sps__own_lanes(b->grad, 9, q.i0 - begin, L_i);
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
             const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
             const sps_real u = sps__approach(w, i, j, ex, ey, ez, dim);
@@ -5117,6 +5237,11 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
                         spread[4][l] += weight * (tau_i[4][l] - tau[tj + 4] - geostatic[4] * g_x);
                     }
                 }
+            }
+            if (penalty) { /* in the penalty's configuration, before this sub-step's half drift */
+                const sps__pair_geometry e_kicked = sps__pair_before_drift(w, i, s, j, dim, geo, SPS_R(0.5) * dt);
+                const sps__penalty_velocity t = sps__penalty_term(w, b, i, j, l, e_kicked, L_i, dim, scaled);
+                sps__add_penalty_term(penalty_sum, l, t, e_kicked, vol[j], dim, projected);
             }
     })
 }
@@ -5199,17 +5324,22 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
     }
 }
 
-/* The pressure pass's kernel for lane group g: the body's pair loop, its rare terms' loops, the
-   finish. */
+/* The pressure pass for lane group g with the pair loop `pairs` (the body's, or the one that also
+   sums the penalty) into the cleared sums: that loop, the rare terms' loops, the finish. */
+static void sps__pressure_sums(sps_world* w, const sps__body* b, int g, sps_real dt, sps__pair_loop pairs, sps__lane_sums* sums) {
+    const sps__group q = sps__group_of(w, b, g);
+    pairs(w, b, g, dt, sums);
+    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, sums);
+    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, sums);
+    if (w->dim == 2) sps__pressure_finish(w, b, q, dt, sums, 2);
+    else sps__pressure_finish(w, b, q, dt, sums, 3);
+}
+
+/* The pressure pass's kernel for lane group g. */
 static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
-    const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, SPS__PRESSURE_SUMS);
-    b->model.pass.pressure_pairs(w, b, g, dt, &sums);
-    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, &sums);
-    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, &sums);
-    if (w->dim == 2) sps__pressure_finish(w, b, q, dt, &sums, 2);
-    else sps__pressure_finish(w, b, q, dt, &sums, 3);
+    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_pairs, &sums);
 }
 
 /* The pressure pass's pair loops: (name, pair terms). */
@@ -5227,11 +5357,22 @@ static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) 
 #else
 #define SPS__PRESSURE_GRANULAR_LOOPS(X) X(granular, SPS__TERM_STRESS | SPS__TERM_LIMITED)
 #endif
+/* with the GNO penalty of the previous sub-step (penalty_in_pressure_pass; J2 bodies' scaled) */
+#ifdef SPHSOLID_NO_PLASTICITY
+#define SPS__PRESSURE_J2_PENALTY_LOOPS(X)
+#else
+#define SPS__PRESSURE_J2_PENALTY_LOOPS(X)                                                \
+    X(stress_gno_j2, SPS__TERM_STRESS | SPS__TERM_PENALTY | SPS__TERM_SCALED)             \
+    X(stress_gno_a_j2, SPS__TERM_STRESS | SPS__TERM_PENALTY | SPS__TERM_PROJECTED | SPS__TERM_SCALED)
+#endif
 #define SPS__PRESSURE_LOOPS(X)                             \
     X(plain, 0)                                            \
     X(pairs, SPS__TERM_PAIRED)                             \
     X(stress, SPS__TERM_STRESS)                            \
     X(stress_pairs, SPS__TERM_STRESS | SPS__TERM_PAIRED)   \
+    X(stress_gno, SPS__TERM_STRESS | SPS__TERM_PENALTY)    \
+    X(stress_gno_a, SPS__TERM_STRESS | SPS__TERM_PENALTY | SPS__TERM_PROJECTED) \
+    SPS__PRESSURE_J2_PENALTY_LOOPS(X)                      \
     SPS__PRESSURE_FLUID_LOOPS(X)                           \
     SPS__PRESSURE_GRANULAR_LOOPS(X)
 #define SPS__PRESSURE_INSTANCES(variant, terms) SPS__INSTANCES(pressure_pairs, variant, terms)
@@ -6162,46 +6303,34 @@ SPS__INLINE void sps__penalty_pairs(sps_world* w, const sps__body* b, int g, sps
     const int scaled = (terms & SPS__TERM_SCALED) != 0;
     const sps__group q = sps__group_of(w, b, g);
     const sps_real* SPS__RESTRICT vol = w->vol;
-    const sps_real* SPS__RESTRICT L = b->grad; /* the body's own: particle begin + k at 9 k */
-    const sps_real* SPS__RESTRICT factor = b->return_factor; /* likewise, J2 bodies only */
-    const int begin = b->begin;
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
-    const sps_real* const vel[3] = {w->vel[0], w->vel[1], w->vel[2]};
     sps_real(*sum)[SPS__LANES] = sums->row;
     sps_real L_i[9][SPS__LANES];
-    int k, l, a, c;
-    sps__own_lanes(L, 9, q.i0 - begin, L_i);
+    int k, l, a;
+    sps__own_lanes(b->grad, 9, q.i0 - b->begin, L_i);
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
-            const sps_real dir[3] = {e.ex, e.ey, e.ez}, dw = e.dw, dw_r = e.dw_r;
-            const sps_real pair_scale = scaled ? SPS_R(0.5) * (factor[i - begin] + factor[j - begin]) : 1;
-            const int lj = 9 * (j - begin); /* an int offset from the array: a gather */
-            sps_real vhat[3], u = 0, u_pair = 0;
-            SPS__UNROLL
-            for (a = 0; a < dim; ++a) {
-                sps_real le = 0, v_r;
-                SPS__UNROLL
-                for (c = 0; c < dim; ++c) le += (L_i[3 * a + c][l] + L[lj + 3 * a + c]) * dir[c];
-                v_r = (vel[a][i] - vel[a][j]) * dw_r - SPS_R(0.5) * le * dw; /* v^_ij / r_ij dW */
-                if (scaled) v_r *= pair_scale;
-                vhat[a] = v_r * vol[j];
-                u += vhat[a] * dir[a];
-                if (paired) u_pair += v_r * dir[a];
-            }
+            const sps__penalty_velocity t = sps__penalty_term(w, b, i, j, l, e, L_i, dim, scaled);
             if (paired) {
-                if (scaled) w->pair_force[s] *= pair_scale;
+                const sps_real dir[3] = {e.ex, e.ey, e.ez};
+                sps_real u_pair = 0;
+                SPS__UNROLL
+                for (a = 0; a < dim; ++a) u_pair += t.v[a] * dir[a];
+                if (scaled) w->pair_force[s] *= t.scale;
                 w->pair_force[s] += penalty_rate * u_pair * (vol[i] * vol[j]);
             } else {
-                SPS__UNROLL
-                for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * dir[a] : vhat[a];
+                sps__add_penalty_term(sum, l, t, e, vol[j], dim, projected);
             }
     })
 }
 
-/* The penalty pass's finish for lane group q: the increments da = xi G dt / rho_i sum, turned
-   as the body's model says (sps__add_increments). */
-SPS__INLINE void sps__penalty_finish(sps_world* w, const sps__body* b, sps__group q, sps_real dt, sps__lane_sums* sums, const int dim) {
+/* The penalty pass's finish for lane group q: the increments da = xi G dt / rho_i sum (the sums'
+   rows sum), turned as the body's model says (sps__add_increments). With the penalty in the
+   pressure pass, sps__finish has already turned a_s by the mean rotation (without increments),
+   so they are added to it: a_s = mean(R) a_s + da as ANG eq. 42 in two places. */
+SPS__INLINE void sps__penalty_finish(sps_world* w, const sps__body* b, sps__group q, sps_real dt, sps_real (*sum)[SPS__LANES],
+                                     const int dim) {
     const sps_real penalty_rate = b->xi * b->mat.G * dt; /* ANG eqs. 43, 46 without 1/rho_i */
-    sps_real(*sum)[SPS__LANES] = sums->row;
+    const sps__turn turn = b->model.penalty_in_pressure && b->model.turn == SPS__TURN_MEAN ? SPS__TURN_NONE : b->model.turn;
     sps_real da[3][SPS__LANES], R[9][SPS__LANES];
     int l, a;
     SPS__PRAGMA(omp simd)
@@ -6210,7 +6339,7 @@ SPS__INLINE void sps__penalty_finish(sps_world* w, const sps__body* b, sps__grou
         SPS__UNROLL
         for (a = 0; a < dim; ++a) da[a][l] = penalty_rate / rho * sum[a][l];
     }
-    switch (b->model.turn) {
+    switch (turn) {
     case SPS__TURN_NONE: sps__add_increments(w, b, q, dim, da, R, SPS__TURN_NONE); break;
     case SPS__TURN_MEAN: sps__add_increments(w, b, q, dim, da, R, SPS__TURN_MEAN); break;
     case SPS__TURN_PARTICLE:
@@ -6228,8 +6357,60 @@ static void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__clear_sums(&sums, 3);
     b->model.pass.penalty_pairs(w, b, g, dt, &sums);
     if (b->model.paired) return; /* the pair loop added to the pair forces */
-    if (w->dim == 2) sps__penalty_finish(w, b, q, dt, &sums, 2);
-    else sps__penalty_finish(w, b, q, dt, &sums, 3);
+    if (w->dim == 2) sps__penalty_finish(w, b, q, dt, sums.row, 2);
+    else sps__penalty_finish(w, b, q, dt, sums.row, 3);
+}
+
+/* >>solver: the updated-Lagrangian passes (continued): the penalty in the next pressure pass
+   (penalty_in_pressure_pass)
+
+   Sub-step n's penalty reads v^(n+1) and the L^(n+1) of every neighbour, which nothing changes
+   before sub-step n+1's kick, so sub-step n+1's pressure loop can sum it: two neighbour passes
+   per sub-step instead of three, the pair's gathers (x_j, v_j, V_j) and loop shared. Its pair
+   geometry is the paper's: the half drift moved every particle by dt/2 v^(n+1), so the loop
+   forms e_ij, dW and 1/r_ij again from x^(n+1) = x - dt/2 v (sps__pair_before_drift; with the
+   half-drifted geometry instead, the GNO-A plate's period moved +0.6 % at CFL 0.4 and +0.3 %
+   at 0.2: the lag of r_ij against L^(n+1) r_ij, first order in dt). What lags: V_j and rho_i
+   are those of rho^(n+3/2) instead of rho^(n+1/2) (a relative change of dt drho/rho, about
+   1e-6 a sub-step). The increments, da = xi G dt_n / rho_i sum with the sub-step's own length
+   dt_n, reach a_s before sub-step n+1's kick, as in the paper, so that kick sees the same
+   penalty; the mean rotation (ANG eq. 42) turns a_s in sub-step n's finish and the increments
+   are added after it; a per-particle rotation is made here from L^(n+1) and dt_n, as in the
+   paper's pass. An advection step's last sub-step runs the penalty as a pass of its own after
+   the sub-step (sps__step_until), so a step always returns with every increment applied
+   (outputs, diagnostics and restarts see the paper's state) and the next step's first
+   pressure pass has none pending. */
+
+/* The pressure pass's kernel for lane group g with the previous sub-step's penalty (of length
+   penalty_dt) in the same pair loop. */
+static void sps__pressure_and_penalty(sps_world* w, const sps__body* b, int g, sps_real dt, sps_real penalty_dt) {
+    sps__lane_sums sums;
+    const sps__group q = sps__group_of(w, b, g);
+    sps__clear_sums(&sums, SPS__PENALTY_SUMS + 3);
+    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_penalty_pairs, &sums);
+    if (w->dim == 2) sps__penalty_finish(w, b, q, penalty_dt, sums.row + SPS__PENALTY_SUMS, 2);
+    else sps__penalty_finish(w, b, q, penalty_dt, sums.row + SPS__PENALTY_SUMS, 3);
+}
+
+/* The pressure pass of body b: with the previous sub-step's penalty in it when the body has it
+   there and one is pending (penalty_dt > 0, that sub-step's length). */
+static void sps__pressure_pass(sps_world* w, const sps__body* b, sps_real dt, sps_real penalty_dt) {
+    int g, g0, g1;
+    if (!b->model.penalty_in_pressure || !(penalty_dt > 0)) {
+        sps__run_groups(w, b, b->model.pass.pressure, dt);
+        return;
+    }
+    sps__group_share(w, b, &g0, &g1);
+    for (g = g0; g < g1; ++g) sps__pressure_and_penalty(w, b, g, dt, penalty_dt);
+    SPS__PRAGMA(omp barrier)
+}
+
+/* The penalty of the last sub-step of an advection step for the bodies that have it in the
+   pressure pass, as a pass of its own (the paper's, with dt the sub-step's length). */
+static void sps__pending_penalties(sps_world* w, sps_real dt) {
+    int bi;
+    for (bi = 0; bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.penalty_in_pressure) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
 }
 
 /* The penalty pass's pair loops: (name, pair terms). */
@@ -6311,6 +6492,9 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     p.continuity_pairs = sps__find_loop(sps__continuity_rows, SPS__NROWS(sps__continuity_rows), sps__continuity_terms(m), mode);
     if (m->stabilisation->penalty)
         p.penalty_pairs = sps__find_loop(sps__penalty_rows, SPS__NROWS(sps__penalty_rows), sps__penalty_terms(m), mode);
+    if (m->penalty_in_pressure)
+        p.pressure_penalty_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows),
+                                                  sps__pressure_terms(m) | SPS__TERM_PENALTY | sps__penalty_terms(m), mode);
     p.pressure = p.pressure_pairs && (p.art_pairs || !m->stabilisation->artificial_stress) ? sps__pressure : NULL;
     p.continuity = p.continuity_pairs ? sps__continuity : NULL;
     p.penalty = p.penalty_pairs ? sps__penalty : NULL;
@@ -6329,6 +6513,7 @@ static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* ms
     else if (m->total_lagrangian && !p->stress) pass = "total-Lagrangian stress";
     else if (!m->total_lagrangian && !p->continuity) pass = "continuity";
     else if (!m->total_lagrangian && st->penalty && !p->penalty) pass = "penalty";
+    else if (m->penalty_in_pressure && !p->pressure_penalty_pairs) pass = "pressure with the penalty (penalty_in_pressure_pass)";
     if (!pass) return 0;
     snprintf(msg, size, "no %s pass instance for material.kind = %s with %s (stress force %d, artificial stress %d, pair forces %d, "
              "limiter %d, viscous %d, stress diffusion %d, gradient %d, Riemann density %d, turn %d, scaled penalty %d): add its pair "
@@ -7748,6 +7933,7 @@ static void sps__finish(sps_world* w, sps_real dt) {
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
         const int dim = w->dim, mean = b->model.turn == SPS__TURN_MEAN;
+        const int increments = !b->model.penalty_in_pressure; /* else added in the next pressure pass */
         const sps_real* R = b->mean_rotation;
         int i, i0, i1;
         sps__thread_share(b, &i0, &i1);
@@ -7764,7 +7950,7 @@ static void sps__finish(sps_world* w, sps_real dt) {
                 sps_real old[3];
                 for (a = 0; a < dim; ++a) old[a] = w->acc_s[a][i];
                 for (a = 0; a < dim; ++a) {
-                    sps_real s = b->acc_d[a][i - b->begin];
+                    sps_real s = increments ? b->acc_d[a][i - b->begin] : 0;
                     for (c = 0; c < dim; ++c) s += R[3 * a + c] * old[c];
                     w->acc_s[a][i] = s;
                 }
@@ -8258,18 +8444,22 @@ static void sps__transport(sps_world* w) {
    penalty passes the kicked x^(n+1), and the penalty (ANG eqs. 43-46) reads the L_j of every
    neighbour, which the continuity pass finishes (a barrier between the two). Its sums inside the
    next sub-step's pressure loop would take that loop's e_ij, dW, V_j and rho_i, half a sub-step
-   later, and leave a step's last increments pending (bench/VALIDATION.md, "Pass fusion"). */
-static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt) {
+   later, and leave a step's last increments pending (bench/VALIDATION.md, "Pass fusion"): the
+   choice penalty_in_pressure_pass, with the previous sub-step's penalty, of length penalty_dt
+   (0: none pending), in this one's pressure pass (chapter >>solver: the penalty in the next
+   pressure pass). */
+static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt, sps_real penalty_dt) {
     int bi;
     sps_real vmax2;
     sps__half_drift(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.stress, dt); /* TL */
-    for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.pressure, dt);
+    for (bi = 0; bi < w->nbodies; ++bi) sps__pressure_pass(w, &w->bodies[bi], dt, penalty_dt);
     sps__contact_pass(w, dt);
     vmax2 = sps__kick(w, t, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */
-        if (w->bodies[bi].model.pass.penalty) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
+        if (w->bodies[bi].model.pass.penalty && !w->bodies[bi].model.penalty_in_pressure)
+            sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.penalty, dt);
     sps__finish(w, dt);
     return vmax2;
 }
@@ -8432,15 +8622,16 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
        the loop together and no barrier is spent on shared loop state. */
     SPS__PRAGMA(omp parallel num_threads(w->threads) if (w->n > 512))
     {
-        sps_real elapsed = 0, travel = 0, t = w->time, vmax = w->vmax, dt_last = w->dt;
+        sps_real elapsed = 0, travel = 0, t = w->time, vmax = w->vmax, dt_last = w->dt, penalty_dt = 0;
         int sub = 0, done = 0, blew_up = 0;
         for (;;) {
             sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, dt_ad, t_limit), vmax2;
             if (!(dt > 0)) break;
-            vmax2 = sps__acoustic_substep(w, t, dt);
+            vmax2 = sps__acoustic_substep(w, t, dt, penalty_dt);
             elapsed += dt;
             ++sub;
             if (!(vmax2 < (sps_real)INFINITY)) { blew_up = 1; break; } /* same in all threads */
+            penalty_dt = dt; /* its penalty is pending where it goes into the next pressure pass */
             sps__transport(w); /* UTVF eq. 42, after the step's eqs. 39-41 */
             t += dt; /* the time of the last finished sub-step */
             dt_last = dt;
@@ -8450,6 +8641,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             travel += vmax * dt;
             if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || t >= t_limit) break;
         }
+        if (!blew_up && penalty_dt > 0) sps__pending_penalties(w, penalty_dt); /* the step returns complete */
         SPS__PRAGMA(omp barrier) /* every thread has left the loop before the shared state changes */
         SPS__PRAGMA(omp master)
         {

@@ -9,8 +9,62 @@
 # Defaults: 3 rounds, --threads 1 and 2 (THREADS), the plate to t = 0.3 and the column collapse to
 # t = 0.1 (TEND_PLATE2D, TEND_COLUMN). Medians mean something on a quiet
 # machine only (see bench/instancing_cost.sh).
+#
+# The penalty in the pressure pass (penalty_in_pressure_pass, the examples' --penalty fused)
+# against the paper's pass of its own, both from the same binaries, interleaved (paper, fused,
+# fused, paper, ...), one thread, user CPU seconds; medians and paper / fused (the speed-up):
+#   sh bench/pass_fusion.sh fused [ROUNDS]
+# Cases: plate2d --res 10 --shear gno-a --tend 0.3; plate3d --res 3 --shear gno-a to
+# TEND_PLATE3D (default 0.002 s); the 3D jelly build/float/realtime --dim 3 --dp 0.0765 --E 1e5
+# --omega 2 --frames 200 --tend 100 --budget 0 (also its physics_ms_mean). Each RESULT line's
+# figures are printed, so both forms' answers can be compared.
 set -eu
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = fused ]; then
+    rounds=${2:-3}
+    tend_plate3d=${TEND_PLATE3D:-0.002}
+    make -s build/plate2d build/plate3d build/float/realtime
+    tmp=$(mktemp -d)
+    trap 'rm -rf "$tmp"' EXIT
+    cases="plate2d|build/plate2d --res 10 --shear gno-a --tend 0.3
+plate3d|build/plate3d --res 3 --shear gno-a --tend $tend_plate3d
+jelly3d|build/float/realtime --dim 3 --dp 0.0765 --E 1e5 --omega 2 --frames 200 --tend 100 --budget 0"
+    run() { # case name, penalty, command line -> "name penalty user_s physics_ms" into $tmp/times
+        # shellcheck disable=SC2086
+        /usr/bin/time -f "%U" -o "$tmp/cpu" $3 --threads 1 --penalty "$2" --quiet --vtk-every 0 --out "$tmp/o" > "$tmp/log" 2>&1
+        grep '^RESULT' "$tmp/log" | sed "s/^/$1 $2: /"
+        echo "$1 $2 $(cat "$tmp/cpu") $(sed -n 's/.*physics_ms_mean=\([0-9.]*\).*/\1/p' "$tmp/log" | head -1)" >> "$tmp/times"
+        tail -n 1 "$tmp/times" | sed 's/^/times: /'
+    }
+    r=1
+    while [ "$r" -le "$rounds" ]; do
+        echo "$cases" | while IFS='|' read -r name cmd; do
+            if [ $((r % 2)) -eq 1 ]; then run "$name" paper "$cmd"; run "$name" fused "$cmd"
+            else run "$name" fused "$cmd"; run "$name" paper "$cmd"; fi
+        done
+        r=$((r + 1))
+    done
+    echo "case paper_user_s fused_user_s paper/fused [paper_physics_ms fused_physics_ms] (medians of $rounds interleaved rounds, 1 thread)"
+    awk '
+        function median(key, col,    m, i, j, x, a) {
+            m = n[key]; for (i = 1; i <= m; ++i) a[i] = t[key, i, col]
+            for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
+            return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2
+        }
+        { key = $1 " " $2; n[key]++; t[key, n[key], 1] = $3; t[key, n[key], 2] = $4 }
+        END {
+            for (key in n) {
+                split(key, p, " ")
+                if (p[2] != "paper") continue
+                other = p[1] " fused"
+                pu = median(key, 1); fu = median(other, 1)
+                line = sprintf("%s %.2f %.2f %.3f", p[1], pu, fu, pu / fu)
+                if (t[key, 1, 2] != "") line = line sprintf(" %.2f %.2f", median(key, 2), median(other, 2))
+                print line
+            }
+        }' "$tmp/times" | sort
+    exit 0
+fi
 rounds=${1:-3}
 bins="build/plate2d build/plate3d build/column_collapse2d"
 tmp=$(mktemp -d)

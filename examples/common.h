@@ -223,6 +223,7 @@ EX_UNUSED static const char* rotation_name(int r) {
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, stress, threads, quiet; /* choice indices and flags */
     int transport; /* sps_transport: none, TVF, UTVF */
+    int penalty;   /* GNO, GNO-A: 0 the penalty's own pass (the paper's), 1 in the next pressure pass */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
     double png_every;   /* > 0: a PNG every png_every s; 0: none; < 0: one PNG at the end */
     int svg;            /* 1: the final picture as SVG too (one circle per particle: large for big 3D runs) */
@@ -267,6 +268,7 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"rho0", OPT_REAL, &(c).rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},                                 \
     {"zeta", OPT_REAL, &(c).zeta, "ENO/ENO-A coefficient zeta, 0 = 0.7 d + 2.1 (ENO section 4)", 0, 100, NULL}, \
     {"xi", OPT_REAL, &(c).xi, "GNO/GNO-A penalty coefficient xi_G, 0 = 2 (ANG section 5)", 0, 100, NULL}, \
+    {"penalty", OPT_CHOICE, &(c).penalty, "GNO/GNO-A: the penalty in a pass of its own (the paper's) or in the next sub-step's pressure pass", 0, 0, "paper|fused"}, \
     {"tend", OPT_REAL, &(c).t_end, "end time [s]", 0, 1e4, NULL},                                       \
     {"out", OPT_STRING, &(c).out, "output folder", 0, 0, NULL},                                         \
     {"vtk-every", OPT_REAL, &(c).vtk_every, "VTK snapshot interval [s], 0 = none", 0, 1e4, NULL},       \
@@ -297,13 +299,14 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->shear = (sps_shear)c->shear;
     bd->zeta = c->zeta;
     bd->xi = c->xi;
+    bd->penalty_in_pressure_pass = c->penalty;
     bd->rotation = (sps_rotation)c->rotation; /* choices in enum order */
     bd->transport = (sps_transport)c->transport; /* likewise */
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
 /* The shared options set an updated-Lagrangian solid's formulation (shear, rotation, zeta, xi,
-   track_stress) on every body; a body that does not read one of them (a fluid; a total-Lagrangian
+   penalty_in_pressure_pass, track_stress) on every body; a body that does not read one of them (a fluid; a total-Lagrangian
    body; Drucker-Prager without GNO's penalty; rotation outside the -A variants) would be warned
    about it by sps_world_add_body, so it gets the library's default back (no effect on results).
    Call it on a def just before sps_world_add_body. */
@@ -317,6 +320,7 @@ EX_UNUSED static void ex_unset_unread(sps_body_def* bd) {
         bd->zeta = d0.zeta;
         bd->xi = d0.xi;
     }
+    if (!reads_shear || (bd->shear != SPS_SHEAR_GNO && bd->shear != SPS_SHEAR_GNO_A)) bd->penalty_in_pressure_pass = d0.penalty_in_pressure_pass;
     if (!reads_shear || (bd->shear != SPS_SHEAR_ENO_A && bd->shear != SPS_SHEAR_GNO_A)) bd->rotation = d0.rotation;
     if (fluid) bd->track_stress = d0.track_stress;
 }
@@ -412,7 +416,8 @@ EX_UNUSED static const char* common_result_fields(const common_options* c) {
     if (c->stress) n += snprintf(fields + n, sizeof fields - (size_t)n, " stress=off");
     if (c->transport) n += snprintf(fields + n, sizeof fields - (size_t)n, " transport=%s", c->transport == 1 ? "tvf" : "utvf");
     if (c->zeta > 0) n += snprintf(fields + n, sizeof fields - (size_t)n, " zeta=%g", c->zeta); /* only when not the papers' */
-    if (c->xi > 0) snprintf(fields + n, sizeof fields - (size_t)n, " xi=%g", c->xi);
+    if (c->xi > 0) n += snprintf(fields + n, sizeof fields - (size_t)n, " xi=%g", c->xi);
+    if (c->penalty) snprintf(fields + n, sizeof fields - (size_t)n, " penalty=fused");
     return fields;
 }
 

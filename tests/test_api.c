@@ -2170,6 +2170,7 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 44: bd->friction = 0.3; break;
     case 45: bd->contact_damping = 0.5; break;
     case 46: bd->damage_strain = 0.01; break;
+    case 47: bd->penalty_in_pressure_pass = 1; break;
     }
 }
 
@@ -2210,7 +2211,7 @@ static int test_restart_every_def_field(void) {
         BODY_FIELD("oas_exponent"), BODY_FIELD("track_stress"), BODY_FIELD("solver"), BODY_FIELD("transport"),
         BODY_FIELD("contact"), BODY_FIELD("transport_coefficient"), BODY_FIELD("damping"), BODY_FIELD("hourglass_alpha"),
         BODY_FIELD("hourglass"), TL_FIELD("artificial_viscosity"), BODY_FIELD("stress_diffusion"), BODY_FIELD("friction"),
-        BODY_FIELD("contact_damping"), TL_FIELD("damage_strain")};
+        BODY_FIELD("contact_damping"), TL_FIELD("damage_strain"), BODY_FIELD("penalty_in_pressure_pass")};
 #undef WORLD_FIELD
 #undef BODY_FIELD
 #undef TL_FIELD
@@ -2574,5 +2575,65 @@ static int test_frame_budget_always_advances(void) {
         ENSURE(d.acoustic_steps - before == 1 && covered > 0); /* one sub-step, no more (the hard cap's promise) */
     }
     sps_world_destroy(w);
+    return 0;
+}
+
+/* ============================================================================================ */
+/* >>solver: the penalty in the next pressure pass: its def field                               */
+
+/* The body def's result of sps_world_add_body in a world of dim, pair geometry frozen and
+   kernel; the message in g_log_last. */
+static sps_result add_penalty_body(const sps_body_def* bd, int dim, int frozen, sps_kernel_type kernel) {
+    sps_world_def wd = sps_default_world_def();
+    sps_world* w = NULL;
+    sps_body b;
+    sps_result r;
+    wd.dim = dim; wd.frozen_geometry = frozen; wd.kernel = kernel; wd.log = quiet_log;
+    if (sps_world_create(&wd, &w) != SPS_OK) return SPS_ERR_STATE;
+    r = sps_world_add_body(w, bd, &b);
+    if (r != SPS_OK) snprintf(g_log_last, sizeof g_log_last, "%s", sps_world_last_error(w));
+    sps_world_destroy(w);
+    return r;
+}
+
+/* penalty_in_pressure_pass: a value other than 0 or 1, and 1 where the pressure pass cannot hold
+   the penalty (GNO-A with rotation = pair, a Drucker-Prager body), are refused naming the field;
+   on a body without a GNO penalty it is warned about as unread (on GNO-A not); GNO and GNO-A, elastic and J2,
+   mean and per-particle rotation find their pressure pass instance in all six world modes. */
+static int test_penalty_in_pressure_pass_def(void) {
+    static const sps_shear shears[2] = {SPS_SHEAR_GNO, SPS_SHEAR_GNO_A};
+    static const sps_rotation rotations[2] = {SPS_ROTATION_MEAN, SPS_ROTATION_PER_PARTICLE};
+    sps_body_def bd = sps_default_body_def();
+    int s, r, j2, mode;
+    bd.shear = SPS_SHEAR_GNO_A;
+    bd.penalty_in_pressure_pass = 2;
+    ENSURE(add_penalty_body(&bd, 2, 0, SPS_KERNEL_WENDLAND_C2) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(g_log_last, "penalty_in_pressure_pass = 2, allowed 0") != NULL);
+    bd.penalty_in_pressure_pass = 1;
+    bd.rotation = SPS_ROTATION_PAIR;
+    ENSURE(add_penalty_body(&bd, 2, 0, SPS_KERNEL_WENDLAND_C2) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(g_log_last, "penalty_in_pressure_pass = 1 with rotation = pair") != NULL);
+    bd.rotation = SPS_ROTATION_MEAN;
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER; bd.material.cohesion = 5; bd.material.friction_angle = 30;
+    ENSURE(add_penalty_body(&bd, 2, 0, SPS_KERNEL_WENDLAND_C2) == SPS_ERR_INVALID_ARG);
+    ENSURE(strstr(g_log_last, "material.kind = Drucker-Prager") != NULL);
+    bd = sps_default_body_def(); /* ENO-A: no penalty to move */
+    bd.penalty_in_pressure_pass = 1;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "penalty_in_pressure_pass = 1"));
+    bd.shear = SPS_SHEAR_GNO_A; /* where it is read: no warning */
+    ENSURE(unread_warnings(&bd) == 0);
+    for (j2 = 0; j2 < 2; ++j2)
+        for (s = 0; s < 2; ++s)
+            for (r = 0; r < 2; ++r)
+                for (mode = 0; mode < 6; ++mode) {
+                    bd = sps_default_body_def();
+                    bd.shear = shears[s];
+                    bd.rotation = rotations[r];
+                    bd.penalty_in_pressure_pass = 1;
+                    if (j2) { bd.material.kind = SPS_MATERIAL_J2; bd.material.yield_stress = 1e4; }
+                    if (add_penalty_body(&bd, 2 + mode / 3, mode % 3 == 2, mode % 3 == 1 ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2) != SPS_OK)
+                        printf("    %s shear %d rotation %d mode %d: %s\n", j2 ? "J2" : "elastic", (int)shears[s], (int)rotations[r], mode, g_log_last);
+                    ENSURE(add_penalty_body(&bd, 2 + mode / 3, mode % 3 == 2, mode % 3 == 1 ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2) == SPS_OK);
+                }
     return 0;
 }

@@ -335,6 +335,9 @@ int main(int argc, char** argv) {
     RUN(test_generic_dispatch_per_kind);
     RUN(test_oas_instances_2d_only);
     RUN(test_frame_budget_always_advances);
+    RUN(test_penalty_in_pressure_pass_matches_paper);
+    RUN(test_penalty_in_pressure_pass_holds_plate);
+    RUN(test_penalty_in_pressure_pass_def);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
