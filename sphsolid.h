@@ -1287,6 +1287,9 @@ SPSDEF sps_result sps_world_step(sps_world* w);
    step (may be NULL; return nonzero to stop early). */
 SPSDEF sps_result sps_world_advance(sps_world* w, sps_real t_end, sps_step_fn fn, void* user);
 SPSDEF sps_real sps_world_time(const sps_world* w);
+/* Acoustic sub-steps taken since the world was created (0 for NULL): what a real-time loop
+   counts per frame without the cost of sps_world_diagnostics (which reports the same number). */
+SPSDEF long sps_world_substep_count(const sps_world* w);
 /* One frame of a real-time loop (see REAL-TIME FRAMES): runs max_substeps acoustic sub-steps,
    or fewer when wall_budget_s > 0 and the wall clock runs out first.
      max_substeps   acoustic sub-steps in the frame, >= 1. The frame runs whole advection steps
@@ -3389,6 +3392,7 @@ SPSDEF const char* sps_world_last_error(const sps_world* w) {
     return w ? w->error : "world is NULL (sps_world_create failed? sps_world_def_check(&def, msg, size) lists every broken rule of its def)";
 }
 SPSDEF sps_real sps_world_time(const sps_world* w) { return w ? w->time : 0; }
+SPSDEF long sps_world_substep_count(const sps_world* w) { return w ? w->acoustic_steps : 0; }
 SPSDEF int sps_world_particle_count(const sps_world* w) { return w ? w->n : 0; }
 
 /* >>bodies */

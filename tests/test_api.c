@@ -2573,7 +2573,9 @@ static int test_frame_budget_always_advances(void) {
         ENSURE(sps_world_advance_frame(w, (sps_real)(1.0 / 60), 1e-12, &covered) == SPS_OK);
         ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
         ENSURE(d.acoustic_steps - before == 1 && covered > 0); /* one sub-step, no more (the hard cap's promise) */
+        ENSURE(sps_world_substep_count(w) == d.acoustic_steps); /* the loop's cheap count is the diagnostics' */
     }
+    ENSURE(sps_world_substep_count(NULL) == 0);
     sps_world_destroy(w);
     return 0;
 }
