@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.11.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.12.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -725,6 +725,13 @@
       the contact surface's velocity (a thrown disc leaves with omega R / v_t 1.09-1.21).
 
    REVISION HISTORY
+      0.12.0 (2026-12-03) GNO/GNO-A: the penalty may be summed in the next sub-step's pressure
+                         pass (penalty_in_pressure_pass; two neighbour passes a sub-step instead
+                         of three, 1.15-1.2x faster, the published figures' digits kept; the
+                         paper's own pass stays the default); the Drucker-Prager return map
+                         vectorised and the mirror walls' images beyond the support skipped
+                         before their geometry (a granular particle-step 1.7x an elastic one's,
+                         was 2.1x; bit-identical); sps_world_substep_count.
       0.11.0 (2026-12-03) one generic chapter of switches over the material kind (>>generic):
                          each material's row, check, constants, energy, rules and stress update
                          in its own chapter, no kind tested elsewhere (bench/kind_tests.sh); only
@@ -820,9 +827,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 11
+#define SPHSOLID_VERSION_MINOR 12
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.11.0"
+#define SPHSOLID_VERSION_STRING "0.12.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
