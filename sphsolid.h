@@ -8453,12 +8453,11 @@ static void sps__transport(sps_world* w) {
    Returns max |v|^2 after the kick. A GNO body's three neighbour passes cannot share a pair loop
    bit for bit: the pressure pass sees the half-drifted positions x^(n+1/2), the continuity and
    penalty passes the kicked x^(n+1), and the penalty (ANG eqs. 43-46) reads the L_j of every
-   neighbour, which the continuity pass finishes (a barrier between the two). Its sums inside the
-   next sub-step's pressure loop would take that loop's e_ij, dW, V_j and rho_i, half a sub-step
-   later, and leave a step's last increments pending (bench/VALIDATION.md, "Pass fusion"): the
-   choice penalty_in_pressure_pass, with the previous sub-step's penalty, of length penalty_dt
-   (0: none pending), in this one's pressure pass (chapter >>solver: the penalty in the next
-   pressure pass). */
+   neighbour, which the continuity pass finishes (a barrier between the two). With
+   penalty_in_pressure_pass the previous sub-step's penalty, of length penalty_dt (0: none
+   pending), is summed in this one's pressure loop in its own geometry, not bit for bit the
+   paper's (chapter >>solver: the penalty in the next pressure pass; bench/VALIDATION.md, "Pass
+   fusion"). */
 static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt, sps_real penalty_dt) {
     int bi;
     sps_real vmax2;

@@ -53,19 +53,8 @@ while [ "$r" -le "$rounds" ]; do
     r=$((r + 1))
 done
 echo "case threads old_wall_ns new_wall_ns new/old old_cpu_ns new_cpu_ns new/old (medians of $rounds interleaved rounds; ns per particle and sub-step)"
-sort "$out/times" | awk '
-    function median(key, col,    m, i, j, x, a) {
-        m = n[key]; for (i = 1; i <= m; ++i) a[i] = t[key, i, col]
-        for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
-        return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2
-    }
-    { key = $1 " " $2; n[key]++; t[key, n[key], 1] = $3; t[key, n[key], 2] = $4 }
-    END {
-        for (key in n) {
-            split(key, p, " "); split(p[1], c, ":")
-            if (c[2] != "old") continue
-            other = c[1] ":new " p[2]
-            ow = median(key, 1); nw = median(other, 1); oc = median(key, 2); nc = median(other, 2)
-            printf "%s %s %.1f %.1f %.3f %.1f %.1f %.3f\n", c[1], p[2], ow, nw, nw / ow, oc, nc, nc / oc
-        }
-    }' | sort
+awk -f "$(dirname "$0")/medians.awk" "$out/times" | awk '
+    { split($1, c, ":"); k = c[1] " " $2 }
+    c[2] == "old" { ow[k] = $3; oc[k] = $4 }
+    c[2] == "new" { nw[k] = $3; nc[k] = $4 }
+    END { for (k in ow) printf "%s %.1f %.1f %.3f %.1f %.1f %.3f\n", k, ow[k], nw[k], nw[k] / ow[k], oc[k], nc[k], nc[k] / oc[k] }' | sort

@@ -45,24 +45,16 @@ jelly3d|build/float/realtime --dim 3 --dp 0.0765 --E 1e5 --omega 2 --frames 200 
         r=$((r + 1))
     done
     echo "case paper_user_s fused_user_s paper/fused [paper_physics_ms fused_physics_ms] (medians of $rounds interleaved rounds, 1 thread)"
-    awk '
-        function median(key, col,    m, i, j, x, a) {
-            m = n[key]; for (i = 1; i <= m; ++i) a[i] = t[key, i, col]
-            for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
-            return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2
-        }
-        { key = $1 " " $2; n[key]++; t[key, n[key], 1] = $3; t[key, n[key], 2] = $4 }
+    awk -f bench/medians.awk "$tmp/times" | awk '
+        $2 == "paper" { pu[$1] = $3; pm[$1] = $4 }
+        $2 == "fused" { fu[$1] = $3; fm[$1] = $4 }
         END {
-            for (key in n) {
-                split(key, p, " ")
-                if (p[2] != "paper") continue
-                other = p[1] " fused"
-                pu = median(key, 1); fu = median(other, 1)
-                line = sprintf("%s %.2f %.2f %.3f", p[1], pu, fu, pu / fu)
-                if (t[key, 1, 2] != "") line = line sprintf(" %.2f %.2f", median(key, 2), median(other, 2))
+            for (c in pu) {
+                line = sprintf("%s %.2f %.2f %.3f", c, pu[c], fu[c], pu[c] / fu[c])
+                if (pm[c] != "") line = line sprintf(" %.2f %.2f", pm[c], fm[c])
                 print line
             }
-        }' "$tmp/times" | sort
+        }' | sort
     exit 0
 fi
 rounds=${1:-3}
