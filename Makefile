@@ -138,7 +138,9 @@ $(BUILD)/granular_cost: bench/granular_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(B
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/fluid_rest: bench/fluid_rest.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
+$(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh

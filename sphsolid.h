@@ -1756,8 +1756,9 @@ typedef struct sps__body {
     sps__yield_cone cone;  /* Drucker-Prager: the yield cone */
     sps_real limiter_eta_c0; /* eta / c0 of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
     sps_real diffusion_rate; /* 2 zeta h c0 of the stress diffusion */
-    sps_real divergence_scale; /* Drucker-Prager: 1 / the lattice's kernel-gradient moment
-                                  (sps__lattice_gradient_moment), the stress divergence's scale */
+    sps_real divergence_scale; /* fluid, Drucker-Prager: 1 / the lattice's kernel-gradient moment
+                                  (sps__lattice_gradient_moment), the pressure force's and
+                                  stress divergence's scale */
     sps_real geostatic[6]; /* -rho0 [g^ g^ + K0 (I - g^ g^)] (g^ = g/|g|): the geostatic stress
                               difference of a pair is this times g . x_ij, which the stress
                               diffusion leaves alone */
@@ -2507,6 +2508,8 @@ static sps_real sps__kelvin_voigt_dt(const sps_world* w, const sps__body* b) {
 
 /* >>material: weakly compressible fluid (UTVF sections 2.1, 3.1.1) */
 
+static sps_real sps__lattice_gradient_moment(const sps_world* w); /* >>kernel */
+
 /* c0 is given (sound_speed), K = rho0 c0^2 and no shear modulus: a fluid's pressure is its only
    stress, besides the viscous force when viscosity > 0 (sps__pressure). */
 static sps__material_constants sps__fluid_constants(const sps_material_def* m) {
@@ -2543,13 +2546,15 @@ static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid
    (UTVF section 3.1.1, after Zhang et al. 2017). */
 static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, 3, 0, 1, 1, 1,
                                                         SPS__VISCOUS_NEWTON, SPS__READS_SOUND_SPEED};
-/* Its model (sps__kind_model): no shear stress to track (track_stress is moot), and the velocity
-   gradient for the density rate -rho tr L (FLUIDS). */
+/* Its model (sps__kind_model): no shear stress to track (track_stress is moot) and no velocity
+   gradient: its density rate is the pair sum of the continuity pass (sps__continuity_pairs). */
 static void sps__fluid_model(sps__model* m) {
     m->stress = 0;
-    m->gradient = 1;
+    m->gradient = 0;
 }
-/* The density diffusion of the Riemann solver, drho_i += rho_i sum_j (p_i - p_j) / (rho0 c0)
+/* A fluid's constants: the divergence's scale (sps__lattice_gradient_moment: the pressure
+   force reads the hydrostatic gradient at its lattice value) and the rest pressure gradient.
+   The density diffusion of the Riemann solver, drho_i += rho_i sum_j (p_i - p_j) / (rho0 c0)
    dW_ij V_j (sps__continuity_pairs), acts on the pressure difference of a pair less its
    hydrostatic part rho0 g . x_ij: in water at rest p_i - p_j is that part, and where the
    kernel is cut by the free surface its sum is not zero (below a surface particle, no
@@ -2560,6 +2565,7 @@ static void sps__fluid_model(sps__model* m) {
 static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
     int a;
     for (a = 0; a < 3; ++a) b->rest_pressure_gradient[a] = a < w->dim ? b->rho0 * w->def.gravity[a] : 0;
+    b->divergence_scale = 1 / sps__lattice_gradient_moment(w);
 }
 /* >>material: Drucker-Prager (granular media; UTVF sections 2.3, 3.1.3)
 
@@ -2625,29 +2631,6 @@ static void sps__granular_model(const sps_body_def* def, sps__model* m) { m->dif
 static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
     (void)dim;
     return def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER && def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR;
-}
-
-/* The kernel-gradient moment c = -(1/d) sum_j r_ij dW/dr(r_ij) V_j of a particle inside the
-   square (cubic) lattice of spacing dp, V_j = dp^d. The continuum's integral is 1; the lattice
-   sum is not (Wendland C2 at h = 1.3 dp: 0.974 in 2D), so the stress divergence
-   sum_j (sigma_i + sigma_j) grad W_ij V_j reads a linear stress's gradient c times too small and
-   a granular layer at rest balances its weight only at 1/c of its geostatic stress (measured:
-   +3.1 % at mid-depth, dp 0.05; +0.9 % at h = 1.5 dp, where c = 0.997). A Drucker-Prager body's
-   divergence is divided by c: the lattice value of the correction B_i = (-sum_j r_ij (x)
-   grad W_ij V_j)^-1 (ANG eq. 21), which keeps the pair forces antisymmetric (momentum exact)
-   and costs nothing per pair. */
-static sps_real sps__lattice_gradient_moment(const sps_world* w) {
-    const int reach = (int)(w->support / w->def.dp) + 1, dim = w->dim;
-    const sps_real volume = dim == 2 ? w->def.dp * w->def.dp : w->def.dp * w->def.dp * w->def.dp;
-    sps_real sum = 0;
-    int a, b, c;
-    for (a = -reach; a <= reach; ++a)
-        for (b = -reach; b <= reach; ++b)
-            for (c = dim == 3 ? -reach : 0; c <= (dim == 3 ? reach : 0); ++c) {
-                const sps_real r = w->def.dp * SPS__SQRT((sps_real)(a * a + b * b + c * c));
-                if (r > 0 && r < w->support) sum += r * sps_world_kernel_derivative(w, r) * volume;
-            }
-    return -sum / dim;
 }
 
 /* A Drucker-Prager body's constants: its cone, the stress diffusion's 2 zeta h c0, the
@@ -3232,6 +3215,32 @@ SPSDEF sps_real sps_world_kernel(const sps_world* w, sps_real r) {
 SPSDEF sps_real sps_world_kernel_derivative(const sps_world* w, sps_real r) {
     return w ? w->kernel_norm / w->h * sps__kernel_df(w->def.kernel, r / w->h) : 0;
 }
+
+/* The kernel-gradient moment c = -(1/d) sum_j r_ij dW/dr(r_ij) V_j of a particle inside the
+   square (cubic) lattice of spacing dp, V_j = dp^d. The continuum's integral is 1; the lattice
+   sum is not (Wendland C2 at h = 1.3 dp: 0.974 in 2D), so the stress divergence
+   sum_j (sigma_i + sigma_j) grad W_ij V_j reads a linear stress's gradient c times too small and
+   a layer at rest balances its weight only at 1/c of its hydrostatic or geostatic stress
+   (measured: a granular layer +3.1 % at mid-depth, dp 0.05; +0.9 % at h = 1.5 dp, where c =
+   0.997; water 0.5 m deep at dp 0.02 +2.6 % at its floor, bench/VALIDATION.md "Still water").
+   The pressure force of a fluid and the stress divergence of a Drucker-Prager body are divided
+   by c (sps__body.divergence_scale): the lattice value of the correction B_i = (-sum_j r_ij (x)
+   grad W_ij V_j)^-1 (ANG eq. 21), which keeps the pair forces antisymmetric (momentum exact)
+   and costs nothing per pair. */
+static sps_real sps__lattice_gradient_moment(const sps_world* w) {
+    const int reach = (int)(w->support / w->def.dp) + 1, dim = w->dim;
+    const sps_real volume = dim == 2 ? w->def.dp * w->def.dp : w->def.dp * w->def.dp * w->def.dp;
+    sps_real sum = 0;
+    int a, b, c;
+    for (a = -reach; a <= reach; ++a)
+        for (b = -reach; b <= reach; ++b)
+            for (c = dim == 3 ? -reach : 0; c <= (dim == 3 ? reach : 0); ++c) {
+                const sps_real r = w->def.dp * SPS__SQRT((sps_real)(a * a + b * b + c * c));
+                if (r > 0 && r < w->support) sum += r * sps_world_kernel_derivative(w, r) * volume;
+            }
+    return -sum / dim;
+}
+
 
 /* dW/dr for the world's kernel, used in the hot loops (no division: constants precomputed). */
 SPS__INLINE sps_real sps__dwdr(const sps_world* w, sps_real r) {
@@ -5033,8 +5042,10 @@ enum {
     SPS__TERM_SCALED = 1 << 10,   /* penalty: scaled by the return factors (plastic bodies) */
     SPS__TERM_DIFFUSION = 1 << 11, /* pressure: a granular body's stress diffusion is stored (its loop
                                      sums it in any case: a row, not a loop of its own) */
-    SPS__TERM_PENALTY = 1 << 12    /* pressure: also the previous sub-step's GNO penalty sums
+    SPS__TERM_PENALTY = 1 << 12,   /* pressure: also the previous sub-step's GNO penalty sums
                                      (penalty_in_pressure_pass), PROJECTED and SCALED as the penalty's */
+    SPS__TERM_DIVERGENCE = 1 << 13 /* continuity, with RIEMANN: a fluid's velocity divergence as the pair
+                                     sum, scaled as its pressure force (sps__continuity_pairs) */
 };
 
 /* The sums of a pass's pair loop, per lane, that it hands to the pass's finish: lane arrays
@@ -5166,8 +5177,8 @@ SPS__INLINE void sps__add_penalty_term(sps_real (*sum)[SPS__LANES], int l, sps__
    beta = min(eta max(-v_ij . e_ij / c0, 0), 1) (UTVF eq. 20: only approaching pairs, fully from
    a 1/eta of c0 on), and with newton the Newtonian viscous force
    (2 mu / rho_i) sum_j v_ij dW / (r_ij + 0.01 h) V_j (Morris et al. 1997; 0.01 h keeps it finite
-   for coinciding particles). A granular body (stress and limited) has its divergence scaled
-   (sps__lattice_gradient_moment) and its stress diffusion summed (stored when its def has it).
+   for coinciding particles). A fluid's pressure force and a granular body's divergence (limited)
+   are scaled (sps__lattice_gradient_moment); a granular body has its stress diffusion summed (stored when its def has it).
    The rare terms, which add to sums of their own, have a pair loop of their own
    (sps__rare_pressure_pairs); a Kelvin-Voigt body's Riemann dissipation is among them (kept
    with its viscous force, for its work), so its pressure force here has Z = 0, which leaves
@@ -5180,12 +5191,12 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
                                      const int geo, const int terms) {
     const int stress = (terms & SPS__TERM_STRESS) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
     const int limited = (terms & SPS__TERM_LIMITED) != 0, newton = (terms & SPS__TERM_NEWTON) != 0;
-    const int granular = stress && limited; /* a Drucker-Prager body: its divergence scaled (sps__lattice_gradient_moment) */
+    const int granular = stress && limited; /* a Drucker-Prager body: its stress divergence scaled too */
     const int penalty = (terms & SPS__TERM_PENALTY) != 0, projected = (terms & SPS__TERM_PROJECTED) != 0;
     const int scaled = (terms & SPS__TERM_SCALED) != 0;
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT ? 0 : b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
-    const sps_real scale = granular ? b->divergence_scale : 1;
+    const sps_real scale = limited ? b->divergence_scale : 1; /* fluid, granular: sps__lattice_gradient_moment */
     const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h, soft2 = SPS_R(0.01) * w->h * w->h;
     const sps_real *gravity = w->def.gravity, *geostatic = b->geostatic;
     const int begin = b->begin; /* the body's own arrays (tau) hold particle begin + k at k */
@@ -5206,8 +5217,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
             const sps_real u = sps__approach(w, i, j, ex, ey, ez, dim);
             sps_real f2, beta = 1;
             if (limited) beta = sps__riemann_limiter(u, eta_c0);
-            if (granular) f2 = ((p[i] + p[j]) * scale - z * beta * u) * dw * vol[j];
-            else f2 = (p[i] + p[j] - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
+            f2 = ((p[i] + p[j]) * scale - z * beta * u) * dw * vol[j]; /* 2 P* dW V_j, ENO eqs. 12-14 */
             acc[0][l] -= f2 * ex;
             acc[1][l] -= f2 * ey;
             if (dim == 3) acc[2][l] -= f2 * ez;
@@ -5830,12 +5840,19 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__gr
    count (an image is never nearer than its particle); in a corner the image across both walls
    is missing. The solids' penalty contact with walls (sigma) is not applied to a fluid. */
 
-/* The distance of particle i from wall wl along its normal. */
-static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int i) {
+/* The distance of point x from wall wl along its normal. */
+static sps_real sps__wall_distance_of(const sps_world* w, const sps__wall* wl, const sps_real x[3]) {
     sps_real d = 0;
     int a;
-    for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
+    for (a = 0; a < w->dim; ++a) d += (x[a] - wl->point[a]) * wl->normal[a];
     return d;
+}
+/* The distance of particle i from wall wl along its normal. */
+static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int i) {
+    sps_real x[3] = {0, 0, 0};
+    int a;
+    for (a = 0; a < w->dim; ++a) x[a] = w->pos[a][i];
+    return sps__wall_distance_of(w, wl, x);
 }
 
 /* The image of particle j across wall wl: position x, velocity v, viscous velocity vv and
@@ -5886,11 +5903,60 @@ static void sps__wall_images(sps_world* w, const sps__body* b, int i, const sps_
         visit(w, b, i, &image, user);
     }
 }
+/* Image m reflected across a second wall wl at right angles to its own (a corner): position,
+   velocities and the pressure continued hydrostatically across the second reflection. */
+static void sps__reflect_image(const sps_world* w, const sps__body* b, const sps__wall* wl, sps__image* m) {
+    const sps_real d = sps__wall_distance_of(w, wl, m->x);
+    sps_real vn = 0, vvn = 0, gd = 0;
+    int a;
+    for (a = 0; a < w->dim; ++a) {
+        vn += m->v[a] * wl->normal[a];
+        vvn += m->vv[a] * wl->normal[a];
+    }
+    for (a = 0; a < w->dim; ++a) {
+        gd -= 2 * d * w->def.gravity[a] * wl->normal[a];
+        m->x[a] -= 2 * d * wl->normal[a];
+        m->v[a] -= 2 * vn * wl->normal[a];
+        m->vv[a] -= 2 * vvn * wl->normal[a];
+    }
+    m->p += b->rho0 * gd;
+}
+/* The corner images of particle i between walls wa and wb at right angles: each neighbour
+   within 2h of both walls reflected across both. Without them a particle in a corner misses
+   the image diagonally across it, and the pressure of the rest pulls it into the corner (the
+   corner particle of a tank at rest: 33 m/s^2, enough to stir the whole tank within a second;
+   bench/VALIDATION.md, "Still water"). Exact for a box; walls at other angles get none (the
+   backstop holds their corners). */
+static void sps__corner_images(sps_world* w, const sps__body* b, int i, const sps__wall* wa, const sps__wall* wb, sps__image_fn visit,
+                               void* user) {
+    int m;
+    for (m = -1; m < w->nb_count[i]; ++m) {
+        sps__image image;
+        image.j = m < 0 ? i : sps__neighbor(w, i, m);
+        if (!(sps__wall_distance(w, wa, image.j) < w->support) || !(sps__wall_distance(w, wb, image.j) < w->support)) continue;
+        image.wall = wa;
+        sps__mirror(w, b, wa, image.j, image.x, image.v, image.vv, &image.p);
+        sps__reflect_image(w, b, wb, &image);
+        visit(w, b, i, &image, user);
+    }
+}
+/* Whether walls a and b meet at a right angle (their normals orthogonal to rounding). */
+static int sps__walls_square(const sps_world* w, const sps__wall* a, const sps__wall* b) {
+    sps_real dot = 0;
+    int c;
+    for (c = 0; c < w->dim; ++c) dot += a->normal[c] * b->normal[c];
+    return dot * dot < SPS_R(1e-10);
+}
 static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_fn visit, void* user) {
-    int k;
+    int k, k2;
     for (k = 0; k < w->nwalls; ++k) {
         const sps_real d_i = sps__wall_distance(w, &w->walls[k], i);
-        if (d_i < w->support) sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
+        if (!(d_i < w->support)) continue;
+        sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
+        if (b->model.stress) continue; /* a granular body's walls act one by one (sps__grain_wall_force) */
+        for (k2 = k + 1; k2 < w->nwalls; ++k2)
+            if (sps__wall_distance(w, &w->walls[k2], i) < w->support && sps__walls_square(w, &w->walls[k], &w->walls[k2]))
+                sps__corner_images(w, b, i, &w->walls[k], &w->walls[k2], visit, user);
     }
 }
 
@@ -5936,10 +6002,7 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
     if (dw == 0) return;
     for (a = 0; a < w->dim; ++a) u += (w->vel[a][i] - m->v[a]) * e[a];
     beta = sps__riemann_limiter(u, b->limiter_eta_c0);
-    if (b->model.stress) /* granular: the divergence scaled as in sps__pressure */
-        f2 = ((w->p[i] + m->p) * b->divergence_scale - b->z_riemann * beta * u) * dw * vol;
-    else
-        f2 = (w->p[i] + m->p - b->z_riemann * beta * u) * dw * vol;
+    f2 = ((w->p[i] + m->p) * b->divergence_scale - b->z_riemann * beta * u) * dw * vol; /* scaled as in sps__pressure */
     for (a = 0; a < w->dim; ++a) {
         acc[a] -= f2 * e[a];
         if (b->model.viscous == SPS__VISCOUS_NEWTON) acc[a] += 2 * b->def.material.viscosity * dw * vol / (r + SPS_R(0.01) * w->h) * (w->vel[a][i] - m->vv[a]);
@@ -6015,7 +6078,7 @@ typedef struct {
 } sps__image_sums;
 /* The velocity gradient of a body with a stress (granular) takes the no-slip image velocity
    at a no-slip wall (the shear that carries the wall's friction); a fluid's the reflected one
-   (its density rate is tr L, the normal part alone). */
+   (the normal part alone enters its density rate). */
 static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
     const sps__image_sums* s = (const sps__image_sums*)user;
     const sps_real* v = b->model.stress ? m->vv : m->v;
@@ -6027,6 +6090,10 @@ static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const
     for (a = 0; a < 3; ++a) dv[a] = a < w->dim ? w->vel[a][i] - v[a] : 0;
     rest_dp = r * (rest[0] * e[0] + rest[1] * e[1] + rest[2] * e[2]); /* the image pair's hydrostatic difference */
     s->sum[SPS__DRHO][s->lane] += (w->p[i] - m->p - rest_dp) / b->z_riemann * dwv;
+    if (!b->model.gradient) { /* a fluid: its divergence as sps__continuity_pairs', no velocity gradient */
+        s->sum[SPS__DRHO][s->lane] += b->divergence_scale * (dv[0] * e[0] + dv[1] * e[1] + dv[2] * e[2]) * dwv;
+        return;
+    }
     for (a = 0; a < w->dim; ++a)
         for (c = 0; c < w->dim; ++c) s->sum[SPS__M00 + 3 * a + c][s->lane] -= dv[a] * dwv * e[c];
     sps__add_moment(&s->sum[SPS__A00][s->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
@@ -6170,12 +6237,19 @@ static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__grou
    i, j bit for bit, so g_ij = g_ji and the shear forces stay exactly antisymmetric. riemann (a
    fluid) adds the Riemann solver's pressure term to the density rate, drho += (p_i - p_j -
    rho0 g . x_ij) / (rho0 c0) dW V_j (UTVF eqs. 16, 18: 2 (v_i - v*) . e_ij with the acoustic
-   U*), which diffuses the density (less its hydrostatic part: sps__fluid_rest_gradient). */
+   U*), which diffuses the density (less its hydrostatic part: sps__fluid_rest_gradient), in
+   place of u dW V_j: a granular body's velocity divergence is tr L (sps__continuity_lanes); a
+   fluid's (divergence) is u dW V_j / c, scaled by the lattice moment as its pressure force
+   (sps__lattice_gradient_moment), so that the two are adjoint and a fluid's energy is
+   conserved (tr L is not: water at rest gained energy and its pressure crept up, and a
+   standing wave its amplitude; bench/VALIDATION.md, "Still water"). */
 SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
                                        const int geo, const int terms) {
     const int gradient = (terms & SPS__TERM_GRADIENT) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
     const int laplacian = (terms & SPS__TERM_LAPLACIAN) != 0, riemann = (terms & SPS__TERM_RIEMANN) != 0;
+    const int divergence = (terms & SPS__TERM_DIVERGENCE) != 0;
     const sps__group q = sps__group_of(w, b, g);
+    const sps_real scale = divergence ? b->divergence_scale : 0;
     const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
     const sps_real inv_z = riemann ? 1 / b->z_riemann : 0;
     const sps_real rest_x = b->rest_pressure_gradient[0], rest_y = b->rest_pressure_gradient[1], rest_z = b->rest_pressure_gradient[2];
@@ -6189,7 +6263,7 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, 
             const sps_real dvx = vx[i] - vx[j], dvy = vy[i] - vy[j], dvz = dim == 3 ? vz[i] - vz[j] : 0;
             const sps_real u = dvx * ex + dvy * ey + dvz * ez, dwv = dw * vol[j];
             const sps_real rest_dp = riemann ? e.r * (rest_x * ex + rest_y * ey + (dim == 3 ? rest_z * ez : 0)) : 0;
-            sum[SPS__DRHO][l] += riemann ? (p[i] - p[j] - rest_dp) * inv_z * dwv : u * dwv; /* a fluid's u: in tr L */
+            sum[SPS__DRHO][l] += riemann ? (p[i] - p[j] - rest_dp) * inv_z * dwv + scale * u * dwv : u * dwv; /* granular: u in tr L */
             if (paired) {
                 pair_force[s] += shear_rate * (u * dw_r) * (vol[i] * vol[j]);
             } else if (laplacian) {
@@ -6232,7 +6306,7 @@ SPS__INLINE void sps__continuity_finish(sps_world* w, const sps__body* b, sps__g
     if (m->riemann_density && b->coupled) sps__coupling_continuity(w, b, q, sum);
     if (!m->gradient) sps__continuity_lanes(w, b, q, dim, 0, 0, shear_rate, sum, da, L);
     else if (!m->riemann_density) sps__continuity_lanes(w, b, q, dim, 1, 0, shear_rate, sum, da, L);
-    else sps__continuity_lanes(w, b, q, dim, 1, 1, shear_rate, sum, da, L);
+    else sps__continuity_lanes(w, b, q, dim, 1, 1, shear_rate, sum, da, L); /* granular: the divergence tr L */
     sps__stress_update_lanes(w, b, q, dim, dt, L, relax);
     if (turn != SPS__TURN_NONE) sps__rotation_lanes(b, q, dt, dim, L, R);
     if (turn == SPS__TURN_MEAN) {
@@ -6262,7 +6336,12 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
 #ifdef SPHSOLID_NO_FLUID
 #define SPS__CONTINUITY_FLUID_LOOPS(X)
 #else
-#define SPS__CONTINUITY_FLUID_LOOPS(X) X(fluid, SPS__TERM_GRADIENT | SPS__TERM_RIEMANN)
+#define SPS__CONTINUITY_FLUID_LOOPS(X) X(fluid, SPS__TERM_RIEMANN | SPS__TERM_DIVERGENCE)
+#endif
+#ifdef SPHSOLID_NO_GRANULAR
+#define SPS__CONTINUITY_GRANULAR_LOOPS(X)
+#else
+#define SPS__CONTINUITY_GRANULAR_LOOPS(X) X(granular, SPS__TERM_GRADIENT | SPS__TERM_RIEMANN)
 #endif
 #define SPS__CONTINUITY_LOOPS(X)                                  \
     X(eno, SPS__TERM_LAPLACIAN)                                   \
@@ -6270,7 +6349,8 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
     X(eno_pairs, SPS__TERM_PAIRED)                                \
     X(eno_pairs_gradient, SPS__TERM_PAIRED | SPS__TERM_GRADIENT)  \
     X(gradient, SPS__TERM_GRADIENT)                               \
-    SPS__CONTINUITY_FLUID_LOOPS(X)
+    SPS__CONTINUITY_FLUID_LOOPS(X)                                \
+    SPS__CONTINUITY_GRANULAR_LOOPS(X)
 #define SPS__CONTINUITY_INSTANCES(variant, terms) SPS__INSTANCES(continuity_pairs, variant, terms)
 SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_INSTANCES)
 
@@ -6483,7 +6563,7 @@ static int sps__pressure_terms(const sps__model* m) {
 static int sps__continuity_terms(const sps__model* m) {
     const int eno = m->stabilisation->eno;
     return (m->gradient ? SPS__TERM_GRADIENT : 0) | (eno && !m->paired ? SPS__TERM_LAPLACIAN : 0) | (eno && m->paired ? SPS__TERM_PAIRED : 0) |
-           (m->riemann_density ? SPS__TERM_RIEMANN : 0);
+           (m->riemann_density ? SPS__TERM_RIEMANN : 0) | (m->riemann_density && !m->stress ? SPS__TERM_DIVERGENCE : 0);
 }
 static int sps__penalty_terms(const sps__model* m) {
     return (m->stabilisation->projected ? SPS__TERM_PROJECTED : 0) | (m->paired ? SPS__TERM_PAIRED : 0) |
