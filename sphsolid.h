@@ -209,19 +209,33 @@
       equation's pressure term (p_i - p_j)/(rho0 c0) dW V_j, which diffuses the density; with
       gravity it takes p_i - p_j - rho0 g . x_ij, so that the hydrostatic pressure of water at
       rest, cut by its free surface, does not make its density creep up (bench/VALIDATION.md,
-      "Fluid at rest over long times"). The
-      velocity divergence is tr L of the corrected velocity gradient L = -sum v_ij (x) B_i grad
-      W_ij V_j instead of UTVF eq. 16's sum (v_ij . e_ij) dW V_j: exact for a linear flow also
-      where a free surface cuts the kernel (the elliptical drop's semi-axis a at dp = 0.02 was
-      3.5 % off with the plain sum, 0.5 % with tr L; bench/VALIDATION.md, C1). With
+      "Fluid at rest over long times"). Under gravity the velocity divergence is UTVF eq. 16's
+      pair sum sum (v_ij . e_ij) dW V_j, the adjoint of the pressure force, so that the work of
+      pressure and the change of stored energy balance and water at rest keeps its energy, and
+      both are scaled by c = 1 / sum_j x_ij,x dW_ij/dx V_j of the lattice (0.974 for the Wendland
+      kernel at h = 1.3 dp in 2D, 0.999 at 2 dp), so that a hydrostatic column weighs what its
+      pressure carries (else the force is that much weak and water sinks into its floor). Without
+      gravity it is tr L of the corrected velocity gradient, exact for a linear flow where a free
+      surface cuts the kernel, so the elliptical drop converges (semi-axis +0.39 % at dp = 0.02,
+      +0.27 % at 0.01; with the pair sum +0.65 % at 0.02, growing as dp shrinks); tr L is not
+      the force's adjoint, and under gravity a tank at rest gained energy with it
+      (bench/VALIDATION.md, "Still water").
+      Smoothing length: water under gravity needs h_over_dp >= 2; at smaller h a tank at rest
+      on the lattice grows a particle mode under its pressure (at 1.3 dp within a few seconds,
+      at 1.8 dp by 3 s; with either kernel) and churns, and a fluid body added to such a world
+      under gravity gets a warning. At 2 dp a 2D tank at rest keeps its speed RMS near 1e-5
+      sqrt(g H) for a minute and standing waves run within 1 % of linear theory; the cost is
+      about twice the neighbours of 1.3 dp in 2D. With
       material.viscosity = mu > 0 the viscous force (2 mu/rho_i) sum_j v_ij dW/(r_ij + 0.01 h)
       V_j (Morris et al. 1997) joins, and the advection step keeps nu/h below its speed.
       Free surfaces need nothing (particles carry their density). Walls: analytic walls
       (CONTACT) act on a fluid through mirror particles, the images of its particles across each
-      wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), so
-      a column stands on its floor at its hydrostatic pressure; a backstop (the solids' contact
-      pressure counted from dp/2) keeps particles out of corners, where the image across both
-      walls is missing. sps_body_set_pressure gives an initial pressure field (hydrostatic,
+      wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), and
+      where two perpendicular walls meet, the images across both (a corner particle without them
+      misses a quarter of its neighbours and was pulled into the corner at 33 m/s^2), so a column
+      stands on its floor at its hydrostatic pressure; a backstop (the solids' contact pressure
+      counted from dp/2) keeps particles out of corners the images do not close (walls at other
+      angles). sps_body_set_pressure gives an initial pressure field (hydrostatic,
       or one that goes with an initial flow). Stored energy: p^2/(2 K), K = rho0 c0^2. A fluid
       meets a solid body through FLUID-STRUCTURE, another fluid or a granular body through the
       solids' contact penalty.
@@ -2546,11 +2560,21 @@ static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid
    (UTVF section 3.1.1, after Zhang et al. 2017). */
 static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, 3, 0, 1, 1, 1,
                                                         SPS__VISCOUS_NEWTON, SPS__READS_SOUND_SPEED};
-/* Its model (sps__kind_model): no shear stress to track (track_stress is moot) and no velocity
-   gradient: its density rate is the pair sum of the continuity pass (sps__continuity_pairs). */
-static void sps__fluid_model(sps__model* m) {
+/* Whether the world has gravity (a fluid then has a hydrostatic state to hold). */
+static int sps__has_gravity(const sps_world* w) {
+    const sps_real* g = w->def.gravity;
+    return g[0] * g[0] + g[1] * g[1] + g[2] * g[2] > 0;
+}
+/* Its model (sps__kind_model): no shear stress to track (track_stress is moot). Under gravity no
+   velocity gradient either: the density rate is the pair sum of the continuity pass, the adjoint
+   of the pressure force (sps__continuity_pairs), so that water at rest keeps its energy; without
+   gravity the divergence is tr L of the corrected gradient, exact for a linear flow where a free
+   surface cuts the kernel (FLUIDS; bench/VALIDATION.md, "Still water": the elliptical drop's
+   semi-axis converges with tr L, +0.39 % at dp 0.02 and +0.27 % at 0.01, but not with the pair
+   sum, +0.25 / +0.41 / +0.65 % at dp 0.1 / 0.05 / 0.02). */
+static void sps__fluid_model(const sps_world* w, sps__model* m) {
     m->stress = 0;
-    m->gradient = 0;
+    m->gradient = !sps__has_gravity(w);
 }
 /* A fluid's constants: the divergence's scale (sps__lattice_gradient_moment: the pressure
    force reads the hydrostatic gradient at its lattice value) and the rest pressure gradient.
@@ -2565,7 +2589,17 @@ static void sps__fluid_model(sps__model* m) {
 static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
     int a;
     for (a = 0; a < 3; ++a) b->rest_pressure_gradient[a] = a < w->dim ? b->rho0 * w->def.gravity[a] : 0;
-    b->divergence_scale = 1 / sps__lattice_gradient_moment(w);
+    b->divergence_scale = b->model.gradient ? 1 : 1 / sps__lattice_gradient_moment(w); /* tr L: no scale */
+}
+/* Its warnings (sps__material_warnings): water under gravity with a smoothing length at which
+   water at rest does not stay at rest (FLUIDS; bench/VALIDATION.md, "Still water": at h = 1.8 dp
+   a tank at rest churns by 3 s, at 2 dp it holds for a minute). */
+#define SPS__FLUID_STILL_H_OVER_DP SPS_R(2)
+static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
+    if (sps__has_gravity(w) && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
+        sps__warn(w, "body '%s': a fluid under gravity with h_over_dp = %g: water at rest does not stay at rest below %g (it churns "
+                  "within seconds); set the world's h_over_dp = %g (about twice the neighbours of 1.3 in 2D; bench/VALIDATION.md, "
+                  "\"Still water\")", b->name, (double)w->def.h_over_dp, (double)SPS__FLUID_STILL_H_OVER_DP, (double)SPS__FLUID_STILL_H_OVER_DP);
 }
 /* >>material: Drucker-Prager (granular media; UTVF sections 2.3, 3.1.3)
 
@@ -2861,14 +2895,14 @@ static const sps__stabilisation* sps__kind_stabilisation(const sps_body_def* def
 
 /* What a kind sets in the model sps__resolve_model builds from a checked def, after the parts
    every kind shares (the total-Lagrangian solver's parts come after it). */
-static void sps__kind_model(const sps_body_def* def, sps__model* m) {
+static void sps__kind_model(const sps_world* w, const sps_body_def* def, sps__model* m) {
     switch (def->material.kind) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_J2:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: return;
     case SPS_MATERIAL_RIGID: sps__rigid_model(m); return;
-    case SPS_MATERIAL_FLUID: sps__fluid_model(m); return;
+    case SPS_MATERIAL_FLUID: sps__fluid_model(w, m); return;
     case SPS_MATERIAL_DRUCKER_PRAGER: sps__granular_model(def, m); return;
     }
 }
@@ -2895,9 +2929,9 @@ static void sps__material_warnings(const sps_world* w, const sps__body* b) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
     case SPS_MATERIAL_J2:
-    case SPS_MATERIAL_FLUID:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: return;
+    case SPS_MATERIAL_FLUID: sps__fluid_warnings(w, b); return;
     case SPS_MATERIAL_DRUCKER_PRAGER: sps__granular_warnings(w, b); return;
     }
 }
@@ -3139,8 +3173,8 @@ static sps_rotation sps__rotation_of(const sps_body_def* def) {
     return def->shear == SPS_SHEAR_GNO_A ? SPS_ROTATION_MEAN : SPS_ROTATION_PAIR;
 }
 
-/* The model of a checked def (pass kernels excepted: sps__choose_passes). */
-static sps__model sps__resolve_model(const sps_body_def* def) {
+/* The model of a checked def in world w (pass kernels excepted: sps__choose_passes). */
+static sps__model sps__resolve_model(const sps_world* w, const sps_body_def* def) {
     const sps_rotation rotation = sps__rotation_of(def);
     sps__model m;
     memset(&m, 0, sizeof m);
@@ -3161,7 +3195,7 @@ static sps__model sps__resolve_model(const sps_body_def* def) {
     m.viscous = def->material.viscosity > 0 ? m.material->viscous : SPS__VISCOUS_NONE;
     m.riemann_density = m.material->riemann_density;
     m.transport = def->transport;
-    sps__kind_model(def, &m);
+    sps__kind_model(w, def, &m);
     if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) { /* its stress comes from F: tau holds its Cauchy stress + p I */
         m.stabilisation = &sps__tl_hourglass;
         m.total_lagrangian = m.stress = 1; /* m.plastic stays: a J2 body's return map is sps__tl_j2 */
@@ -3472,7 +3506,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->def = *def;
     snprintf(b->name, sizeof b->name, "%s", def->name ? def->name : "body");
     b->def.name = b->name;
-    b->model = sps__resolve_model(def);
+    b->model = sps__resolve_model(w, def);
     b->model.pass = sps__choose_passes(w, &b->model);
     if (sps__missing_pass(&b->model, &b->model.pass, msg, sizeof msg)) {
         sps__set_error(w, 0, "sps_world_add_body: body '%s': %s", b->name, msg);
@@ -6238,8 +6272,9 @@ static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__grou
    fluid) adds the Riemann solver's pressure term to the density rate, drho += (p_i - p_j -
    rho0 g . x_ij) / (rho0 c0) dW V_j (UTVF eqs. 16, 18: 2 (v_i - v*) . e_ij with the acoustic
    U*), which diffuses the density (less its hydrostatic part: sps__fluid_rest_gradient), in
-   place of u dW V_j: a granular body's velocity divergence is tr L (sps__continuity_lanes); a
-   fluid's (divergence) is u dW V_j / c, scaled by the lattice moment as its pressure force
+   place of u dW V_j: a granular body's velocity divergence is tr L (sps__continuity_lanes), and
+   so is a fluid's without gravity (sps__fluid_model); under gravity a fluid's (divergence) is
+   u dW V_j / c, scaled by the lattice moment as its pressure force
    (sps__lattice_gradient_moment), so that the two are adjoint and a fluid's energy is
    conserved (tr L is not: water at rest gained energy and its pressure crept up, and a
    standing wave its amplitude; bench/VALIDATION.md, "Still water"). */
@@ -6338,9 +6373,9 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
 #else
 #define SPS__CONTINUITY_FLUID_LOOPS(X) X(fluid, SPS__TERM_RIEMANN | SPS__TERM_DIVERGENCE)
 #endif
-#ifdef SPHSOLID_NO_GRANULAR
+#if defined(SPHSOLID_NO_GRANULAR) && defined(SPHSOLID_NO_FLUID)
 #define SPS__CONTINUITY_GRANULAR_LOOPS(X)
-#else
+#else /* granular media, and fluids without gravity (sps__fluid_model) */
 #define SPS__CONTINUITY_GRANULAR_LOOPS(X) X(granular, SPS__TERM_GRADIENT | SPS__TERM_RIEMANN)
 #endif
 #define SPS__CONTINUITY_LOOPS(X)                                  \
@@ -6563,7 +6598,7 @@ static int sps__pressure_terms(const sps__model* m) {
 static int sps__continuity_terms(const sps__model* m) {
     const int eno = m->stabilisation->eno;
     return (m->gradient ? SPS__TERM_GRADIENT : 0) | (eno && !m->paired ? SPS__TERM_LAPLACIAN : 0) | (eno && m->paired ? SPS__TERM_PAIRED : 0) |
-           (m->riemann_density ? SPS__TERM_RIEMANN : 0) | (m->riemann_density && !m->stress ? SPS__TERM_DIVERGENCE : 0);
+           (m->riemann_density ? SPS__TERM_RIEMANN : 0) | (m->riemann_density && !m->gradient ? SPS__TERM_DIVERGENCE : 0);
 }
 static int sps__penalty_terms(const sps__model* m) {
     return (m->stabilisation->projected ? SPS__TERM_PROJECTED : 0) | (m->paired ? SPS__TERM_PAIRED : 0) |

@@ -12,7 +12,7 @@
    within 1 %, surface within dp/5, mass constant (bench/VALIDATION.md, "Still water").
 
    Usage: ./build/still_water [--dim 2] [--res 25] [--width 1] [--breadth 0.25] [--walls analytic|body]
-          [--tend 60] [--from 5] [--sample 0.05] [--mach-factor 10] [--viscosity 0] [--h-over-dp 2] [--threads 1]
+          [--tend 60] [--from 5] [--sample 0.05] [--mach-factor 10] [--viscosity 0] [--h-over-dp 2] [--cfl 0.4] [--threads 1]
           [--csv FILE] */
 #define SPHSOLID_IMPLEMENTATION
 #include "../examples/common.h"
@@ -76,7 +76,7 @@ static int add_tank(sps_world* w, int dim, int as_body, const double size[3], do
 
 int main(int argc, char** argv) {
     double res = 25, width = 1, breadth = 0.25, t_end = 60, from = 5, sample = 0.05, mach_factor = 10, viscosity = 0, dimd = 2,
-           threadsd = 1, h_over_dp = 2;
+           threadsd = 1, h_over_dp = 2, cfl = 0.4;
     const char *walls = "analytic", *csv_path = NULL;
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
                     : !strcmp(argv[a], "--tend") ? &t_end : !strcmp(argv[a], "--from") ? &from : !strcmp(argv[a], "--sample") ? &sample
                     : !strcmp(argv[a], "--mach-factor") ? &mach_factor : !strcmp(argv[a], "--viscosity") ? &viscosity
                     : !strcmp(argv[a], "--dim") ? &dimd : !strcmp(argv[a], "--threads") ? &threadsd
-                    : !strcmp(argv[a], "--h-over-dp") ? &h_over_dp : NULL;
+                    : !strcmp(argv[a], "--h-over-dp") ? &h_over_dp : !strcmp(argv[a], "--cfl") ? &cfl : NULL;
         if (!strcmp(argv[a], "--walls")) { walls = argv[a + 1]; continue; }
         if (!strcmp(argv[a], "--csv")) { csv_path = argv[a + 1]; continue; }
         if (!opt) break;
@@ -101,9 +101,9 @@ int main(int argc, char** argv) {
     dim = (int)dimd;
     as_body = !strcmp(walls, "body");
     if (a < argc || (dim != 2 && dim != 3) || !(res >= 4 && res <= 400) || !(width > 0.1) || !(breadth > 0.05) || !(t_end > 0)
-        || !(sample > 0) || !(from >= 0) || !(mach_factor > 0) || !(viscosity >= 0) || !(h_over_dp >= 1 && h_over_dp <= 3) || (!as_body && strcmp(walls, "analytic"))) {
+        || !(sample > 0) || !(from >= 0) || !(mach_factor > 0) || !(viscosity >= 0) || !(h_over_dp >= 1 && h_over_dp <= 3) || !(cfl > 0 && cfl <= 1) || (!as_body && strcmp(walls, "analytic"))) {
         fprintf(stderr, "usage: %s [--dim 2|3] [--res 25] [--width 1] [--breadth 0.25] [--walls analytic|body] [--tend 60] [--from 5] "
-                        "[--sample 0.05] [--mach-factor 10] [--viscosity 0] [--h-over-dp 2] [--threads 1] [--csv FILE]\n", argv[0]);
+                        "[--sample 0.05] [--mach-factor 10] [--viscosity 0] [--h-over-dp 2] [--cfl 0.4] [--threads 1] [--csv FILE]\n", argv[0]);
         return 2;
     }
     up = dim - 1;
@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
     nbins = (int)ceil(t_end - 1e-9);
     bins = (second_bin*)calloc((size_t)nbins, sizeof *bins);
     wd.h_over_dp = (sps_real)h_over_dp;
+    wd.cfl_acoustic = (sps_real)cfl;
     wd.dim = dim;
     wd.dp = (sps_real)dp;
     wd.threads = (int)threadsd;
@@ -203,8 +204,8 @@ int main(int argc, char** argv) {
     }
     printf("RESULT case=still_water dim=%d res=%g width=%g walls=%s c0=%.4g viscosity=%g particles=%d t_end=%g from=%g "
            "worst_rms=%.3e (target 2e-4) worst_max=%.3e (target 1e-3) floor_err=%.3f%% (target 1%%) surface_spread=%.3f dp (target 0.2) "
-           "mass_err=%.2e h_over_dp=%g steps=%ld wall_s=%.1f\n", dim, res, width, walls, c0, viscosity, count, t_end, from, worst_rms, worst_max,
-           100 * floor_err, flat, mass_err, h_over_dp, sps_world_substep_count(w), wall_seconds() - wall0);
+           "mass_err=%.2e h_over_dp=%g cfl=%g steps=%ld wall_s=%.1f\n", dim, res, width, walls, c0, viscosity, count, t_end, from, worst_rms, worst_max,
+           100 * floor_err, flat, mass_err, h_over_dp, cfl, sps_world_substep_count(w), wall_seconds() - wall0);
     if (csv) fclose(csv);
     free(bins);
     sps_world_destroy(w);

@@ -225,6 +225,7 @@ typedef struct {
     int transport; /* sps_transport: none, TVF, UTVF */
     int penalty;   /* GNO, GNO-A: 0 the penalty's own pass (the paper's), 1 in the next pressure pass */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
+    double h_over_dp;   /* smoothing length / dp; 0 = the library's default (1.3) */
     double png_every;   /* > 0: a PNG every png_every s; 0: none; < 0: one PNG at the end */
     int svg;            /* 1: the final picture as SVG too (one circle per particle: large for big 3D runs) */
     int vtk_binary;     /* 1: binary legacy VTK (faster to write, exact values) */
@@ -263,6 +264,7 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"stress", OPT_CHOICE, &(c).stress, "ENO bodies: integrate the shear stress (von Mises, strain energy)", 0, 0, "on|off"}, \
     {"transport", OPT_CHOICE, &(c).transport, "transport-velocity correction (UTVF sections 3.2-3.3)", 0, 0, "none|tvf|utvf"}, \
     {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number CFL_ac", 0.01, 1, NULL},                            \
+    {"h-over-dp", OPT_REAL, &(c).h_over_dp, "smoothing length / dp (water under gravity: 2)", 1, 3, NULL},  \
     {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
     {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
     {"rho0", OPT_REAL, &(c).rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},                                 \
@@ -292,6 +294,7 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     wd->frozen_geometry = c->geometry == 1;
     wd->kernel = c->kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
     wd->cfl_acoustic = c->cfl;
+    if (c->h_over_dp > 0) wd->h_over_dp = c->h_over_dp;
     wd->threads = c->threads;
     bd->material.density = c->rho0;
     bd->material.youngs_modulus = c->E;

@@ -78,7 +78,7 @@ static void compare(const run_state* s, const char* who, const double* T, const 
 
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 2, .vtk_every = 0.1, .csv_every = 0.005, .E = 1e6, .nu = 0.3,
-                        .rho0 = 1000, .out = "out/dam_break2d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
+                        .rho0 = 1000, .out = "out/dam_break2d", .h_over_dp = 2, .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
     double dp = 0.025, viscosity = 0;
     int no_slip = 0;
     opt_spec opts[] = {

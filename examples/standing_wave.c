@@ -81,9 +81,9 @@ static void on_step(sps_world* w, run_state* s) {
 }
 
 int main(int argc, char** argv) {
-    common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0.01, .rho0 = RHO_WATER, .out = "out/standing_wave",
+    common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0.01, .rho0 = RHO_WATER, .out = "out/standing_wave", .h_over_dp = 2,
                         PNG_DEFAULTS};
-    double kh = 1, res = 50, amplitude = 0.01, periods = 5, viscosity = 0, mach = 10, h_over_dp = 2;
+    double kh = 1, res = 50, amplitude = 0.01, periods = 5, viscosity = 0, mach = 10;
     opt_spec opts[] = {
         {"kh", OPT_REAL, &kh, "k H of the first mode (tank length pi H / kh)", 0.1, 6, NULL},
         {"res", OPT_REAL, &res, "depth / dp", 4, 400, NULL},
@@ -91,7 +91,6 @@ int main(int argc, char** argv) {
         {"periods", OPT_REAL, &periods, "run length in periods of linear theory (--tend overrides)", 0.01, 1000, NULL},
         {"viscosity", OPT_REAL, &viscosity, "dynamic viscosity mu [Pa s] (0: inviscid)", 0, 1e3, NULL},
         {"mach-factor", OPT_REAL, &mach, "c0 = factor sqrt(g H)", 2, 100, NULL},
-        {"h-over-dp", OPT_REAL, &h_over_dp, "smoothing length / dp (2: water at rest stays still; 1.3: the solids' default)", 1, 3, NULL},
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -118,7 +117,6 @@ int main(int argc, char** argv) {
     water_def.material = sps_default_material_def(); /* the shared options' solid parameters are not the water's */
     wd.dim = 2;
     wd.dp = (sps_real)dp;
-    wd.h_over_dp = (sps_real)h_over_dp;
     wd.gravity[1] = (sps_real)-G_ACC;
     wd.log = ex_log;
     water_def.name = "water";
@@ -169,7 +167,7 @@ int main(int argc, char** argv) {
     }
     printf("RESULT case=standing_wave kh=%g res=%g h_over_dp=%g amplitude=%g viscosity=%g c0=%.4g period=%.5f theory=%.5f err=%+.2f%% "
            "decay_per_period=%.4f lamb=%.4f first_peak=%.4g last_peak=%.4g half_periods=%d particles=%d steps=%ld wall_s=%.2f out=%s\n",
-           kh, res, h_over_dp, amplitude, viscosity, (double)water_def.material.sound_speed, period, period_theory,
+           kh, res, c.h_over_dp, amplitude, viscosity, (double)water_def.material.sound_speed, period, period_theory,
            period > 0 ? 100 * (period / period_theory - 1) : 0.0, decay, lamb, s.first_peak / s.theory.amplitude,
            s.last_peak / s.theory.amplitude, s.peaks, n, sps_world_substep_count(w), wall, c.out);
     free(s.surface_ids);

@@ -2345,7 +2345,7 @@ static int test_missing_pass_instance(void) {
     int mode, kind, shear, variant, accepted = 0;
     wd.log = quiet_log;
     ENSURE(sps_world_create(&wd, &w) == SPS_OK);
-    m = sps__resolve_model(&bd);
+    m = sps__resolve_model(w, &bd);
     p = sps__choose_passes(w, &m);
     ENSURE(p.pressure && !sps__missing_pass(&m, &p, msg, sizeof msg));
     m.diffusion = 1;
@@ -2355,7 +2355,7 @@ static int test_missing_pass_instance(void) {
     ENSURE(strstr(msg, "stress diffusion 1") != NULL);
     /* a total-Lagrangian model of a kind without a law of F (sps__tl_law_of maps no kind silently) */
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
-    m = sps__resolve_model(&bd);
+    m = sps__resolve_model(w, &bd);
     m.material = sps__material_of(SPS_MATERIAL_ELASTIC);
     p = sps__choose_passes(w, &m);
     ENSURE(p.pressure == NULL && p.stress == NULL);
@@ -2532,18 +2532,18 @@ static int test_oas_instances_2d_only(void) {
     wd.log = quiet_log;
     bd.shear = SPS_SHEAR_OAS;
     ENSURE(sps_world_create(&wd, &w) == SPS_OK && w->dim == 2);
-    m = sps__resolve_model(&bd);
+    m = sps__resolve_model(w, &bd);
     p = sps__choose_passes(w, &m);
     ENSURE(p.pressure && p.art_pairs && !p.damping_pairs && !sps__missing_pass(&m, &p, msg, sizeof msg));
     bd.material.viscosity = 1;
-    m = sps__resolve_model(&bd);
+    m = sps__resolve_model(w, &bd);
     p = sps__choose_passes(w, &m);
     ENSURE(p.pressure && p.art_pairs && p.damping_pairs);
     sps_world_destroy(w);
     wd.dim = 3;
     bd.material.viscosity = 0;
     ENSURE(sps_world_create(&wd, &w) == SPS_OK);
-    m = sps__resolve_model(&bd);
+    m = sps__resolve_model(w, &bd);
     p = sps__choose_passes(w, &m);
     ENSURE(p.pressure == NULL && p.art_pairs == NULL && p.pressure_pairs != NULL);
     ENSURE(sps__missing_pass(&m, &p, msg, sizeof msg) && strstr(msg, "no pressure pass instance for material.kind = elastic with OAS"));

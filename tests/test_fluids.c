@@ -13,48 +13,156 @@ static sps_real water_at_rest(const sps_real x[3], void* user) {
     return (sps_real)(1000 * 9.81 * (level - (double)x[1]));
 }
 
-/* A water column 0.4 m deep at rest in a tank of analytic walls, started hydrostatic, stays at
-   rest: the pressure at mid-depth stays that of the column and no current builds up. */
-static int test_fluid_hydrostatic_rest(void) {
+/* Water H = 0.5 m deep and `width` wide at rest in a tank of free-slip analytic walls, open top,
+   depth/dp = layers, h = h_over_dp dp, c0 = 10 sqrt(g H), started on the lattice at its
+   hydrostatic pressure (bench/still_water's tank). */
+static sps_world* still_tank(double width, int layers, double h_over_dp, sps_body* water) {
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
     sps_world* w = NULL;
-    sps_body water, all = {0};
-    sps_diagnostics d;
-    sps_real lo[3] = {0, 0, 0}, hi[3] = {0.4, 0.4, 0}, tank_hi[3] = {0.4, 1, 0};
-    const sps_real *y, *p;
-    const double g = 9.81, depth = 0.4, v_ref = sqrt(2 * g * depth), dp = 0.02;
-    double p_mid = 0;
-    int i, n, mid = 0;
+    sps_real lo[3] = {0, 0, 0}, hi[3] = {0, (sps_real)level_05, 0}, tank_hi[3] = {0, 2, 0};
+    hi[0] = tank_hi[0] = (sps_real)width;
     wd.dim = 2;
-    wd.dp = dp;
+    wd.dp = (sps_real)(level_05 / layers);
+    wd.h_over_dp = (sps_real)h_over_dp;
     wd.threads = 1;
-    wd.gravity[1] = -g;
+    wd.gravity[1] = -9.81;
     wd.log = quiet_log;
-    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10 * v_ref;
-    ENSURE(sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
-    ENSURE(sps_world_add_body(w, &bd, &water) == SPS_OK);
-    ENSURE(sps_body_add_box(w, water, lo, hi, NULL) == SPS_OK);
-    ENSURE(sps_body_set_pressure(w, water, water_at_rest, (void*)&level_04) == SPS_OK);
-    ENSURE(sps_world_advance(w, 1, NULL, NULL) == SPS_OK); /* about 70 acoustic crossings of the column */
-    ENSURE(sps_world_diagnostics(w, all, &d) == SPS_OK);
+    bd.material.sound_speed = (sps_real)(10 * sqrt(9.81 * level_05));
+    if (sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) != SPS_OK || sps_world_add_body(w, &bd, water) != SPS_OK
+        || sps_body_add_box(w, *water, lo, hi, NULL) != SPS_OK || sps_body_set_pressure(w, *water, water_at_rest, (void*)&level_05) != SPS_OK) {
+        sps_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+/* The particle speeds' mean square and largest value, and the bottom layer's mean of p + rho0 g y
+   (rho0 g H at rest). */
+static void still_tank_state(const sps_world* w, double dp, double* mean_square, double* largest, double* floor_pressure) {
+    const sps_real *u = sps_world_field(w, SPS_FIELD_VELOCITY_X), *v = sps_world_field(w, SPS_FIELD_VELOCITY_Y);
+    const sps_real *y = sps_world_field(w, SPS_FIELD_POSITION_Y), *p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    const int n = sps_world_particle_count(w);
+    double sum = 0, floor_sum = 0;
+    int i, nfloor = 0;
+    *largest = 0;
+    for (i = 0; i < n; ++i) {
+        const double s2 = (double)u[i] * u[i] + (double)v[i] * v[i];
+        sum += s2;
+        if (s2 > *largest * *largest) *largest = sqrt(s2);
+        if (y[i] < dp) { floor_sum += p[i] + 1000 * 9.81 * y[i]; ++nfloor; }
+    }
+    *mean_square = sum / n;
+    *floor_pressure = floor_sum / (nfloor ? nfloor : 1);
+}
+
+/* A tank at rest stays still (FLUIDS; bench/VALIDATION.md, "Still water"): 20 layers, h = 2 dp;
+   over 3-4 s (the start's ringing, 5e-3 sqrt(g H) at first, has died down) the speed's RMS and
+   largest value stay within the acceptance figures of the long runs and the floor carries the
+   column. At h = 1.3 dp the same tank churns from 2.5 s (RMS 9e-3 sqrt(g H) over 3-4 s), and
+   at 2 dp without the corner images and with tr L as the divergence it reaches 3.5e-3. */
+static int test_still_water(void) {
+    sps_body water;
+    sps_world* w = still_tank(0.5, 20, 2, &water);
+    const double u_ref = sqrt(9.81 * level_05), dp = level_05 / 20, rho_g_h = 1000 * 9.81 * level_05;
+    double rms2 = 0, largest = 0, floor_pressure = 0;
+    int k, samples = 0;
+    ENSURE(w != NULL);
+    ENSURE(sps_world_advance(w, 3, NULL, NULL) == SPS_OK);
+    for (k = 1; k <= 10; ++k) {
+        double ms, top;
+        ENSURE(sps_world_advance(w, (sps_real)(3 + 0.1 * k), NULL, NULL) == SPS_OK);
+        still_tank_state(w, dp, &ms, &top, &floor_pressure);
+        rms2 += ms;
+        ++samples;
+        if (top > largest) largest = top;
+    }
+    printf("    3-4 s: speed RMS %.3g sqrt(g H), largest %.3g sqrt(g H); floor p + rho g y at 4 s %.5f rho g H\n", sqrt(rms2 / samples) / u_ref,
+           largest / u_ref, floor_pressure / rho_g_h);
+    /* the long runs' targets (bench/VALIDATION.md, below PySPH's 3.3e-4 and 1.1e-3; measured 4.1e-5 and 1.3e-4) */
+    ENSURE(sqrt(rms2 / samples) < 2e-4 * u_ref);
+    ENSURE(largest < 1e-3 * u_ref);
+    /* 1 %: the acceptance figure; the bottom layer reads +0.75 % (its kernel cut by the floor, made up by images) */
+    ENSURE_NEAR(floor_pressure, rho_g_h, 0.01 * rho_g_h);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* A particle in a corner of two walls sees its images across both (FLUIDS): without the corner
+   image it misses a quarter of its neighbours and is pulled into the corner (measured 53.6 m/s^2
+   at h = 2 dp). Over the first 2 ms its acceleration stays that of its neighbours on the floor. */
+static int test_fluid_corner_images(void) {
+    sps_body water;
+    sps_world* w = still_tank(0.5, 20, 2, &water);
+    const sps_real *x, *y, *u, *v;
+    const double t = 0.002, dp = level_05 / 20;
+    double corner = 0, floor_middle = 0;
+    int i, n;
+    ENSURE(w != NULL);
+    ENSURE(sps_world_advance(w, (sps_real)t, NULL, NULL) == SPS_OK);
+    x = sps_world_field(w, SPS_FIELD_POSITION_X);
     y = sps_world_field(w, SPS_FIELD_POSITION_Y);
-    p = sps_world_field(w, SPS_FIELD_PRESSURE);
+    u = sps_world_field(w, SPS_FIELD_VELOCITY_X);
+    v = sps_world_field(w, SPS_FIELD_VELOCITY_Y);
     n = sps_world_particle_count(w);
-    for (i = 0; i < n; ++i)
-        if (fabs(y[i] - depth / 2) < dp) { p_mid += p[i]; ++mid; }
-    ENSURE(mid > 0);
-    p_mid /= mid;
-    printf("    mid-depth pressure %.1f Pa (column %.1f), max speed %.3g m/s (%.2g sqrt(2 g H))\n", p_mid, 1000 * g * depth / 2,
-           (double)d.max_speed, (double)d.max_speed / v_ref);
-    /* 4 %: the column rings after its start (measured: mid-depth pressure within +5.5 % / -2 %
-       over the first second at dp = 0.02, 20 particles deep) */
-    ENSURE_NEAR(p_mid, 1000 * g * depth / 2, 0.04 * 1000 * g * depth / 2);
-    /* 3 % of the speed a fall from the surface gives: the ripple (measured <= 2 %), no current
-       (a particle leaking through a corner reached 30 % before the walls' backstop) */
-    ENSURE(d.max_speed < 0.03 * v_ref);
+    for (i = 0; i < n; ++i) {
+        const double a = sqrt((double)u[i] * u[i] + (double)v[i] * v[i]) / t;
+        if (y[i] < dp && (x[i] < dp || x[i] > 0.5 - dp) && a > corner) corner = a;
+        if (y[i] < dp && fabs(x[i] - 0.25) < dp && a > floor_middle) floor_middle = a;
+    }
+    printf("    mean acceleration over the first %g s: corner particles %.3g m/s^2, mid-floor %.3g m/s^2\n", t, corner, floor_middle);
+    /* 5 % of g: the start's hydrostatic imbalance on the lattice (corner and mid-floor both measured 0.21 m/s^2, 2 % of g) */
+    ENSURE(corner < 0.05 * 9.81);
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* Linear theory's velocity of a standing wave of amplitude 1 % of the depth as its surface passes
+   through the level, in a tank 0.5 m deep; *user is its wavenumber k. */
+static void standing_wave_velocity(const sps_real x[3], sps_real v[3], void* user) {
+    const double k = *(const double*)user, omega = sqrt(9.81 * k * tanh(k * level_05));
+    const double scale = 0.01 * level_05 * omega / sinh(k * level_05);
+    v[0] = (sps_real)(-scale * cosh(k * x[1]) * sin(k * x[0]));
+    v[1] = (sps_real)(scale * sinh(k * x[1]) * cos(k * x[0]));
+    v[2] = 0;
+}
+
+/* The first sloshing mode of a tank (kh = 1, 10 layers, h = 2 dp, amplitude 1 % of the depth)
+   runs at linear theory's period omega^2 = g k tanh(k H) (examples/standing_wave.c; bench/
+   VALIDATION.md, "Still water"): the surface's first Fourier mode, started with the wave's
+   velocity, crosses zero at half periods. At h = 1.3 dp the same wave runs 4.9 % fast (the
+   lattice's unstable mode stiffens it; 17 % at 25 layers). */
+static int test_standing_wave_period(void) {
+    sps_body water;
+    const int layers = 10;
+    const double dp = level_05 / layers, length = dp * floor(PI / 1.0 * level_05 / dp + 0.5), k = PI / length;
+    const double omega = sqrt(9.81 * k * tanh(k * level_05)), period = 2 * PI / omega;
+    sps_world* w = still_tank(length, layers, 2, &water);
+    double crossings[8], previous = 0;
+    int ncross = 0, step, i, n;
+    ENSURE(w != NULL);
+    ENSURE(sps_body_set_velocity(w, water, standing_wave_velocity, (void*)&k) == SPS_OK);
+    n = sps_world_particle_count(w);
+    for (step = 1; step <= 320 && ncross < 4; ++step) { /* 200 samples a period over 1.6 periods */
+        const sps_real *x, *y;
+        double mode = 0;
+        int surface = 0;
+        const double t = step * period / 200;
+        ENSURE(sps_world_advance(w, (sps_real)t, NULL, NULL) == SPS_OK);
+        x = sps_world_field(w, SPS_FIELD_POSITION_X);
+        y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+        for (i = 0; i < n; ++i)
+            if (y[i] > level_05 - dp) { mode += (y[i] - (level_05 - dp / 2)) * cos(k * x[i]); ++surface; } /* the top layer */
+        mode /= surface;
+        if (step > 1 && (mode > 0) != (previous > 0)) crossings[ncross++] = t - period / 200 * mode / (mode - previous);
+        previous = mode;
+    }
+    ENSURE(ncross >= 3);
+    printf("    period %.5f s, linear theory %.5f s (%+.2f %%)\n", crossings[2] - crossings[0], period, 100 * ((crossings[2] - crossings[0]) / period - 1));
+    /* 2 %: 10 layers (measured -0.87 %; -0.74 % at 25 layers, the validation record's runs converge to theory) */
+    ENSURE_NEAR(crossings[2] - crossings[0], period, 0.02 * period);
     sps_world_destroy(w);
     return 0;
 }
@@ -452,7 +560,7 @@ static int test_coupling_hydrostatic_rest(void) {
     ENSURE(first_speed < 0.005 * v_ref);      /* no kick (measured 0.25 %; the penalty threw a particle at 130 %) */
     ENSURE(fabs(floor_gap - 0.5) < 0.1);      /* a lattice's first layer sits dp/2 from the surface; +- 0.1 dp (measured 0.53) */
     ENSURE(fabs(wall_gap - 0.5) < 0.1);       /* (measured 0.51) */
-    /* 4 %: as the analytic-wall tank (test_fluid_hydrostatic_rest), the column rings after its start (measured +3.3 %) */
+    /* 4 %: the column rings after its start, at h = 1.3 dp (measured +3.3 %) */
     ENSURE_NEAR(p_mid, 1000 * g * depth / 2, 0.04 * 1000 * g * depth / 2);
     ENSURE(d.max_speed < 0.03 * v_ref);       /* no current: the ripple (measured 2.0 %) */
     sps_world_destroy(w);
@@ -708,7 +816,7 @@ static int test_fluid_rest_long(void) {
     /* 1 % of the mean hydrostatic pressure over 4 s: the mean density only moves with the
        surface's ripple at rest (measured +0.1 Pa; diffusing the full pressure difference: +148 Pa) */
     ENSURE(fabs(p_mean[1] - p_mean[0]) < 0.01 * p_scale);
-    /* 4 %: the column's pressure at mid-depth, as test_fluid_hydrostatic_rest (measured +2 %) */
+    /* 4 %: the column's pressure at mid-depth rings at h = 1.3 dp (measured +2 %) */
     ENSURE_NEAR(p_mid[1], p_mid_ref[1], 0.04 * p_mid_ref[1]);
     sps_world_destroy(w);
     return 0;

@@ -233,7 +233,9 @@ int main(int argc, char** argv) {
     RUN(test_determinism_threads);
     RUN(test_bodies_independent);
     RUN(test_contact_momentum);
-    RUN(test_fluid_hydrostatic_rest);
+    RUN(test_still_water);
+    RUN(test_fluid_corner_images);
+    RUN(test_standing_wave_period);
     RUN(test_drucker_prager_return_on_cone);
     RUN(test_granular_limiter_off_in_expansion);
     RUN(test_granular_block_at_rest);
