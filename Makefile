@@ -3,7 +3,10 @@
 #   make run      the main job: 2D plate, H/dp = 10, v_f = 0.05, ENO-A, to t = 1 s
 #   make test     the README quick start and every example (brief runs, pictures read back), the demo (headless),
 #                 the pinned results (tests/pinned.c), the randomized API test (10,000 cases), the test
-#                 runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases)
+#                 runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases);
+#                 crafted restart files under ASan + UBSan (tests/fuzz_restore.c, 1,000 cases)
+#   make fuzz-restore-full  the crafted restart files' 10,000 cases (about 3 min)
+#   make fuzz-libfuzzer FUZZ_SECONDS=600  the restart reader under clang's libFuzzer (one core)
 #   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
 #   make gallery  one picture per example into bench/gallery/ (about 15 s)
 #   make probes   the bench probes that read the library's private state (torque_probe, rotation_probe)
@@ -261,7 +264,7 @@ pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 
 # The parts run two at a time (each prints its output when it is done); the test runner's
 # "N passed, M failed" is repeated last so that it closes make test. About 4 minutes on 2 cores.
-TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned test-relax fuzz fuzz-sanitize test-sanitize test-fast
+TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned test-relax fuzz fuzz-sanitize fuzz-restore test-sanitize test-fast
 test:
 	@echo "make test: the header checks, examples, demo, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4 minutes on 2 cores (a fresh build included)"
 	@$(MAKE) --no-print-directory -j2 --output-sync=target $(TEST_PARTS)
@@ -280,6 +283,33 @@ fuzz: $(BUILD)/fuzz_api
 fuzz-sanitize: $(BUILD)/fuzz_sanitize
 	mkdir -p $(BUILD)/fuzz_sanitized
 	OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_sanitize --cases 1000 --out $(BUILD)/fuzz_sanitized
+
+# ---- crafted restart files (tests/fuzz_restore.c): saves of six scenes damaged, their checksum
+# recomputed, restored under ASan + UBSan: refused with a message naming the item and the world
+# untouched, or restored valid. make test runs FUZZ_RESTORE_CASES of them; fuzz-restore-full the
+# 10,000 of the figures in bench/VALIDATION.md ("Untrusted files") ----
+FUZZ_RESTORE_CASES ?= 1000
+$(BUILD)/fuzz_restore_sanitize: tests/fuzz_restore.c tests/fuzz_restore_scenes.h $(HEADER) | $(BUILD)
+	$(CC) -std=c99 -O1 $(SANITIZE_DEBUG) $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
+fuzz-restore: $(BUILD)/fuzz_restore_sanitize
+	OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_restore_sanitize --cases $(FUZZ_RESTORE_CASES) --dir $(BUILD)
+fuzz-restore-full: $(BUILD)/fuzz_restore_sanitize
+	OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_restore_sanitize --cases 10000 --dir $(BUILD)
+# coverage-guided (clang's libFuzzer, tests/fuzz_restore_libfuzzer.c) for FUZZ_SECONDS on one core;
+# the seeds: tests/restore_corpus/ and this build's saves of the same scenes (a header whose
+# fingerprint changed would leave the committed ones behind); findings go to $(BUILD)/libfuzzer/
+FUZZ_SECONDS ?= 600
+LIBFUZZER_CC ?= clang
+$(BUILD)/fuzz_restore_libfuzzer: tests/fuzz_restore_libfuzzer.c tests/fuzz_restore_scenes.h $(HEADER) | $(BUILD)
+	$(LIBFUZZER_CC) -std=c99 -O1 -g $(WARN) -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $< -o $@ $(LDLIBS)
+$(BUILD)/fuzz_restore: tests/fuzz_restore.c tests/fuzz_restore_scenes.h $(HEADER) | $(BUILD)
+	$(CC) -std=c99 -O1 $(WARN) -fopenmp $< -o $@ $(LDLIBS)
+fuzz-libfuzzer: $(BUILD)/fuzz_restore_libfuzzer $(BUILD)/fuzz_restore
+	mkdir -p $(BUILD)/libfuzzer/corpus $(BUILD)/libfuzzer/seeds
+	./$(BUILD)/fuzz_restore --seeds $(BUILD)/libfuzzer/seeds
+	cd $(BUILD)/libfuzzer && ASAN_OPTIONS=detect_leaks=1 nice ../fuzz_restore_libfuzzer -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
+	  -rss_limit_mb=2048 -print_final_stats=1 corpus ../../tests/restore_corpus seeds
+.PHONY: fuzz-restore fuzz-restore-full fuzz-libfuzzer
 
 # ---- valgrind: serial builds (no OpenMP runtime and its thread caches to suppress) ----
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect

@@ -1489,15 +1489,20 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
    sps_world_restore reads it into a world the program has built the same way (same defs,
    bodies, fills, velocities set, constraints, walls, contact settings, observers), and the run
    goes on bit for bit as the saved one would have, for any thread count.
-   save: SPS_ERR_INVALID_ARG (w or path NULL), SPS_ERR_STATE (a world that cannot step, or
-   particles added since the last step: step first), SPS_ERR_IO (cannot open or write). No allocation; O(N
-   neighbours) (the file holds the neighbour lists); does not change the world.
+   save: SPS_ERR_INVALID_ARG (w or path NULL), SPS_ERR_STATE (a world that cannot step: stopped
+   at an instability, particles added since the last step: step first, or a state a restore
+   would refuse, e.g. a density gone negative in the last sub-step, which the next step's guard
+   stops at), SPS_ERR_IO (cannot open or write). Allocates the state's size in scratch (freed);
+   O(N neighbours) (the file holds the neighbour lists); does not change the world.
    restore: SPS_ERR_INVALID_ARG (NULL, not a restart file, another format version, byte order
    or sps_real), SPS_ERR_STATE (the file's scene differs from the world's: the message names
    the first item, e.g. a def field such as gravity[1] or a body's shear, a particle count, or
    the reference positions),
-   SPS_ERR_IO (cannot open or read, truncated, checksum wrong); on error the world's state is
-   unchanged (it may have been prepared for stepping, as the first step does). Allocates the
+   SPS_ERR_IO (cannot open or read, truncated, checksum wrong, or any item of the state out of
+   its range: the file is untrusted, every index, count and real is checked before anything is
+   applied, and the message names the item, the particle or body, the value and the range); on
+   error the world's state is unchanged (it may have been prepared for stepping, as the first
+   step does), and a restored world passes sps_world_validate. Allocates the
    file's size in scratch (freed) and, before the first step, what the first step allocates;
    O(N neighbours). Compiled out with SPHSOLID_NO_STDIO. */
 SPSDEF sps_result sps_world_save(const sps_world* w, const char* path);
@@ -8890,19 +8895,50 @@ static void sps__tally_report(const sps_world* w, const sps__tally* t, const cha
               w->id[t->first], w->bodies[w->body[t->first]].name, t->value);
 }
 
-/* Tallies the count values (components each) of x, particle first + k at k, that are not
-   finite (or, positive, not > 0). */
-static void sps__tally_values(sps__tally* t, const sps_real* x, int first, int count, int components, int positive) {
+/* The values a real field may hold, one rule for sps_world_validate and for the check of a
+   restart file (chapter >>restart): finite; > 0 where marked SPS__POSITIVE (density, mass,
+   volume); a state variable within the range its law keeps it in (sps__state_ranges). */
+typedef struct {
+    double lo, hi;
+    int lo_open; /* 1: lo itself excluded; 2: any value, even NaN (sps__any_range) */
+} sps__range;
+static const struct {
+    const char* field;
+    sps__range range;
+} sps__state_ranges[] = {
+    {"damage", {0, 1, 0}},                 /* D starts at 0, never falls and stops at 1 (TL eq. 45) */
+    {"plastic_strain", {0, HUGE_VAL, 0}}, /* accumulated from 0 by |increments| (J2, Drucker-Prager) */
+};
+static sps__range sps__field_range(const sps__field_info* f) {
+    const sps__range finite = {-HUGE_VAL, HUGE_VAL, 0}, positive = {0, HUGE_VAL, 1};
+    size_t k;
+    for (k = 0; k < sizeof sps__state_ranges / sizeof sps__state_ranges[0]; ++k)
+        if (strcmp(sps__state_ranges[k].field, f->name) == 0) return sps__state_ranges[k].range;
+    return f->care & SPS__POSITIVE ? positive : finite;
+}
+static int sps__in_range(const sps__range* r, sps_real v) {
+    return r->lo_open == 2 || (sps__finite(v) && (r->lo_open ? v > r->lo : v >= r->lo) && v <= r->hi);
+}
+/* The range in words, for messages: "finite", "finite > 0", "finite >= 0", "in [0, 1]". */
+static const char* sps__range_text(const sps__range* r, char* text, size_t size) {
+    if (r->lo == -HUGE_VAL && r->hi == HUGE_VAL) return "finite";
+    if (r->hi == HUGE_VAL) snprintf(text, size, "finite %s %g", r->lo_open ? ">" : ">=", r->lo);
+    else snprintf(text, size, "in %s%g, %g]", r->lo_open ? "(" : "[", r->lo, r->hi);
+    return text;
+}
+
+/* Tallies the count values (components each) of x, particle first + k at k, outside range. */
+static void sps__tally_values(sps__tally* t, const sps_real* x, int first, int count, int components, const sps__range* range) {
     int k, m;
     for (k = 0; x && k < count; ++k)
         for (m = 0; m < components; ++m) {
             const sps_real v = x[(size_t)k * components + m];
-            sps__tally_check(t, sps__finite(v) && (!positive || v > 0), first + k, v);
+            sps__tally_check(t, sps__in_range(range, v), first + k, v);
         }
 }
 
-/* Particles: every value of the fields marked SPS__VALIDATED finite (and > 0 where marked
-   SPS__POSITIVE: density, mass, volume), ids a permutation, body indices in range. */
+/* Particles: every value of the fields marked SPS__VALIDATED in its range (sps__field_range),
+   ids a permutation, body indices in range. */
 static void sps__validate_particles(const sps_world* w, char* msg, size_t msg_size, int* broken) {
     sps__tally id = {0, 0, 0};
     char rule[64];
@@ -8914,17 +8950,18 @@ static void sps__validate_particles(const sps_world* w, char* msg, size_t msg_si
         }
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];
-        const int positive = (f->care & SPS__POSITIVE) != 0;
+        const sps__range range = sps__field_range(f);
         sps__tally t = {0, 0, 0};
+        char text[32];
         int bi;
         if (!(f->care & SPS__VALIDATED)) continue;
         for (a = 0; a < (f->axes ? w->dim : 1); ++a) {
-            if (!f->per_body) sps__tally_values(&t, sps__real_array(w, NULL, f, a), 0, w->n, f->components, positive);
+            if (!f->per_body) sps__tally_values(&t, sps__real_array(w, NULL, f, a), 0, w->n, f->components, &range);
             else /* a body's arrays hold its particles of the last commit (none before the first step) */
                 for (bi = 0; bi < w->nbodies; ++bi)
-                    sps__tally_values(&t, sps__real_array(w, &w->bodies[bi], f, a), w->bodies[bi].begin, w->bodies[bi].field_count, f->components, positive);
+                    sps__tally_values(&t, sps__real_array(w, &w->bodies[bi], f, a), w->bodies[bi].begin, w->bodies[bi].field_count, f->components, &range);
         }
-        snprintf(rule, sizeof rule, "%s not finite%s", f->what, positive ? " > 0" : "");
+        snprintf(rule, sizeof rule, "%s not %s", f->what, sps__range_text(&range, text, sizeof text));
         sps__tally_report(w, &t, rule, msg, msg_size, broken);
     }
     for (i = 0; i < w->n; ++i) sps__tally_check(&id, w->id[i] >= 0 && w->id[i] < w->n && w->slot_of_id[w->id[i]] == i, i, w->id[i]);
@@ -9664,24 +9701,38 @@ static void sps__body_print(const sps__body* b, double v[SPS__BODY_PRINT]) {
     for (k = 0; k < SPS__BODY_DEF_ITEMS; ++k) v[k] = sps__def_value(&b->def, &sps__body_def_items[k]);
     v[SPS__BODY_DEF_ITEMS] = b->count;
 }
-/* The scene as built: body, reference position, mass and constraint of each particle by id. */
-static uint64_t sps__scene_hash(const sps_world* w) {
+/* The scene as built: body, reference position, mass and constraint of each particle by id,
+   from the world's arrays or (restoring) from a payload's, as bytes: the same hash of either. */
+typedef struct sps__scene_arrays {
+    const unsigned char *body, *ref[3], *mass, *cons; /* cons NULL: no constraints */
+} sps__scene_arrays;
+static uint64_t sps__scene_hash_of(const sps_world* w, const int* slot_of_id, const sps__scene_arrays* at) {
     uint64_t hash = SPS__FNV_OFFSET;
     int id, a;
     for (id = 0; id < w->n; ++id) {
-        const int i = w->slot_of_id[id];
-        hash = sps__fnv(hash, &w->body[i], sizeof(int));
-        for (a = 0; a < w->dim; ++a) hash = sps__fnv(hash, &w->ref[a][i], sizeof(sps_real));
-        hash = sps__fnv(hash, &w->mass[i], sizeof(sps_real));
-        if (w->cons) hash = sps__fnv(hash, &w->cons[i], sizeof(int));
+        const size_t i = (size_t)slot_of_id[id];
+        hash = sps__fnv(hash, at->body + i * sizeof(int), sizeof(int));
+        for (a = 0; a < w->dim; ++a) hash = sps__fnv(hash, at->ref[a] + i * sizeof(sps_real), sizeof(sps_real));
+        hash = sps__fnv(hash, at->mass + i * sizeof(sps_real), sizeof(sps_real));
+        if (at->cons) hash = sps__fnv(hash, at->cons + i * sizeof(int), sizeof(int));
     }
     return hash;
+}
+static uint64_t sps__scene_hash(const sps_world* w) {
+    sps__scene_arrays at;
+    int a;
+    at.body = (const unsigned char*)w->body;
+    for (a = 0; a < 3; ++a) at.ref[a] = (const unsigned char*)w->ref[a];
+    at.mass = (const unsigned char*)w->mass;
+    at.cons = (const unsigned char*)w->cons;
+    return sps__scene_hash_of(w, w->slot_of_id, &at);
 }
 
 /* Block m of the last good state of good_n particles that holds values, in
    sps__save_good_state's layout (field by field, one block per axis up to dim, each
-   good_n * components values from its start), and its length in reals; NULL past the last. */
-static sps_real* sps__good_block(const sps_world* w, int good_n, int m, size_t* length) {
+   good_n * components values from its start), its length in reals and its field; NULL past
+   the last. */
+static sps_real* sps__good_block(const sps_world* w, int good_n, int m, size_t* length, const sps__field_info** field) {
     size_t base = 0;
     int k, a;
     for (k = 0; k < SPS__NFIELDS; ++k) {
@@ -9690,19 +9741,23 @@ static sps_real* sps__good_block(const sps_world* w, int good_n, int m, size_t* 
         for (a = 0; a < sps__field_arrays(f); ++a, base += (size_t)f->components)
             if (!(f->axes && a >= w->dim) && m-- == 0) {
                 *length = (size_t)good_n * (size_t)f->components;
+                *field = f;
                 return w->good + base * (size_t)w->good_cap;
             }
     }
     return NULL;
 }
 
-/* Where the state goes: a file (hashed as written), or nowhere (f NULL: only counts the bytes). */
+/* Where the state goes: a file (hashed as written), memory (mem: the payload, checked before
+   it is written), or nowhere (both NULL: only counts the bytes). */
 typedef struct sps__writer {
     FILE* f;
+    unsigned char* mem;
     uint64_t bytes, hash;
     int failed;
 } sps__writer;
 static void sps__put(sps__writer* s, const void* data, size_t size) {
+    if (s->mem) memcpy(s->mem + s->bytes, data, size);
     s->bytes += size;
     if (!s->f || s->failed) return;
     s->hash = sps__fnv(s->hash, data, size);
@@ -9710,15 +9765,45 @@ static void sps__put(sps__writer* s, const void* data, size_t size) {
 }
 static void sps__put_int(sps__writer* s, int v) { sps__put(s, &v, sizeof v); }
 
-/* Where the state comes from: the payload in memory. apply = 0: a dry run that checks every
-   length and index against the world and writes nothing; apply = 1: the same reads, into the
-   world. */
+/* Where the state comes from: the payload in memory. A file is untrusted (damaged and its
+   checksum recomputed, or crafted): nothing of it reaches the world before every rule below
+   holds on the payload itself, so that a refused file leaves the world as it was and a
+   restored world passes sps_world_validate. The payload is read three times, by the same
+   list of items (sps__transfer_state):
+     SPS__READ_LAYOUT  every length and count, and every index: the ids a permutation of
+                       0..n-1, each particle in the body its slot lies in, the constraint
+                       indices, the neighbour lists (within the particle's own body, not the
+                       particle itself, none for a wall body), the kept pairs' and the last
+                       good state's ids, the flags;
+     SPS__READ_VALUES  every real within the range the library keeps it in (the fields':
+                       sps__field_range, as sps_world_validate checks them), after the layout
+                       so that a message can name the particle by its id; then the bodies,
+                       reference positions, masses and constraints by id against the header's
+                       scene hash (sps__check_scene);
+     SPS__READ_APPLY   the same reads, into the world.
+   The first rule broken is reported: the item, the particle or body, the value, the range. */
+enum { SPS__READ_LAYOUT, SPS__READ_VALUES, SPS__READ_APPLY };
 typedef struct sps__reader {
     const unsigned char* at;
     size_t left;
-    int apply;
-    const char* bad; /* what was found wrong, or NULL */
+    int pass;          /* SPS__READ_* */
+    const char* bad;   /* the item found wrong, or NULL */
+    char why[320];     /* what is wrong with it; empty when it is its length */
+    int id_field;      /* the index of field "id" in sps__fields */
+    int* slot_of_id;   /* the file's ids inverted (n of them), built by SPS__READ_LAYOUT */
+    unsigned char* seen; /* the last good state's ids met so far (n) */
+    const unsigned char* field_at[SPS__NFIELDS]; /* a world field's first array in the payload, once its rule held */
 } sps__reader;
+static int sps__applying(const sps__reader* r) { return r->pass == SPS__READ_APPLY; }
+/* The first broken rule: the item, and what is wrong with it. */
+static void sps__refuse(sps__reader* r, const char* what, const char* fmt, ...) {
+    va_list ap;
+    if (r->bad) return;
+    r->bad = what;
+    va_start(ap, fmt);
+    vsnprintf(r->why, sizeof r->why, fmt, ap);
+    va_end(ap);
+}
 static const unsigned char* sps__take(sps__reader* r, size_t size, const char* what) {
     const unsigned char* p = r->at;
     if (r->bad) return NULL;
@@ -9727,17 +9812,37 @@ static const unsigned char* sps__take(sps__reader* r, size_t size, const char* w
     r->left -= size;
     return p;
 }
-static void sps__get(sps__reader* r, void* to, size_t size, const char* what) {
-    const unsigned char* p = sps__take(r, size, what);
-    if (p && r->apply) memcpy(to, p, size);
+/* Value k of an array in the payload (which aligns nothing: copied out). */
+static sps_real sps__real_at(const unsigned char* p, size_t k) {
+    sps_real v;
+    memcpy(&v, p + k * sizeof v, sizeof v);
+    return v;
+}
+static int sps__int_at(const unsigned char* p, size_t k) {
+    int v;
+    memcpy(&v, p + k * sizeof v, sizeof v);
+    return v;
 }
 /* A count always read (a dry run needs it too), checked against [0, limit]. */
 static int sps__get_count(sps__reader* r, int limit, const char* what) {
     const unsigned char* p = sps__take(r, sizeof(int), what);
     int v = 0;
     if (p) memcpy(&v, p, sizeof v);
-    if (!r->bad && (v < 0 || v > limit)) r->bad = what;
+    if (!r->bad && (v < 0 || v > limit)) sps__refuse(r, what, "%s = %d, allowed [0, %d]", what, v, limit);
     return r->bad ? 0 : v;
+}
+/* The particle in slot i, for messages: its id once the ids have been checked, and its body. */
+static const char* sps__particle_name(const sps_world* w, const sps__reader* r, int i, char* text, size_t size) {
+    const unsigned char* ids = r->field_at[r->id_field];
+    if (ids) snprintf(text, size, "particle id %d (body '%s')", sps__int_at(ids, (size_t)i), w->bodies[w->body[i]].name);
+    else snprintf(text, size, "the particle in slot %d (body '%s')", i, w->bodies[w->body[i]].name);
+    return text;
+}
+/* Refuses real value v of item `what` (axis a, or -1) of the particle in slot i: out of range. */
+static void sps__refuse_value(const sps_world* w, sps__reader* r, const char* what, int a, int i, sps_real v, const sps__range* range) {
+    char name[96], text[32];
+    sps__refuse(r, what, "%s%s of %s = %g, allowed %s", what, a < 0 ? "" : a == 0 ? "[0]" : a == 1 ? "[1]" : "[2]",
+                sps__particle_name(w, r, i, name, sizeof name), (double)v, sps__range_text(range, text, sizeof text));
 }
 
 /* The payload goes one way: out (sps_world_save) or in (sps_world_restore). Its items are
@@ -9747,19 +9852,128 @@ typedef struct sps__stream {
     sps__reader* in;  /* restoring: the reader; NULL when writing */
 } sps__stream;
 static int sps__stream_bad(const sps__stream* s) { return s->in && s->in->bad; }
-/* size bytes at data: written, or read into data (when the reader applies). */
-static void sps__item(sps__stream* s, void* data, size_t size, const char* what) {
-    if (s->out) sps__put(s->out, data, size);
-    else sps__get(s->in, data, size, what);
-}
 /* An int in [0, limit]: written, or read (always, a dry run needs it too), checked and, when
    the reader applies, stored. Returns the value. */
 static int sps__count_item(sps__stream* s, int* v, int limit, const char* what) {
     int read;
     if (s->out) { sps__put_int(s->out, *v); return *v; }
     read = sps__get_count(s->in, limit, what);
-    if (s->in->apply && !s->in->bad) *v = read;
+    if (sps__applying(s->in) && !s->in->bad) *v = read;
     return read;
+}
+/* count reals in range: written, or read, checked and (applying) stored. Of body bi, or of the
+   world (bi < 0). */
+static const sps__range sps__finite_range = {-HUGE_VAL, HUGE_VAL, 0}, sps__nonnegative_range = {0, HUGE_VAL, 0};
+/* The energy watchdog's account may overflow in a run at extreme values (a state the guards
+   let through gives inf, inf - inf gives NaN); it is only compared, so it is taken as written. */
+static const sps__range sps__any_range = {-HUGE_VAL, HUGE_VAL, 2};
+static void sps__real_item(sps__stream* s, sps_world* w, int bi, sps_real* x, int count, const sps__range* range, const char* what) {
+    const size_t bytes = sizeof(sps_real) * (size_t)count;
+    const unsigned char* p;
+    int k;
+    if (s->out) { sps__put(s->out, x, bytes); return; }
+    if (!(p = sps__take(s->in, bytes, what))) return;
+    if (sps__applying(s->in)) memcpy(x, p, bytes);
+    else if (s->in->pass == SPS__READ_VALUES)
+        for (k = 0; k < count; ++k) {
+            const sps_real v = sps__real_at(p, (size_t)k);
+            char text[32], index[16] = "", body[64] = "";
+            if (sps__in_range(range, v)) continue;
+            if (count > 1) snprintf(index, sizeof index, "[%d]", k);
+            if (bi >= 0) snprintf(body, sizeof body, " of body %d ('%s')", bi, w->bodies[bi].name);
+            sps__refuse(s->in, what, "%s%s%s = %g, allowed %s", what, index, body, (double)v, sps__range_text(range, text, sizeof text));
+            return;
+        }
+}
+/* A step counter (int64_t or long, size bytes): written, or read, checked >= 0 and within a
+   long (the world's counters), and (applying) stored. */
+static void sps__counter_item(sps__stream* s, void* x, size_t size, const char* what) {
+    const int64_t long_max = (int64_t)(~0UL >> 1); /* LONG_MAX, without <limits.h> */
+    const unsigned char* p;
+    int64_t v;
+    if (s->out) { sps__put(s->out, x, size); return; }
+    if (!(p = sps__take(s->in, size, what))) return;
+    if (sps__applying(s->in)) { memcpy(x, p, size); return; }
+    if (size == sizeof(long)) {
+        long l;
+        memcpy(&l, p, sizeof l);
+        v = l;
+    } else memcpy(&v, p, sizeof v);
+    if (v < 0 || v > long_max) sps__refuse(s->in, what, "%s = %.0f, allowed [0, %.0f]", what, (double)v, (double)long_max);
+}
+/* A message of size bytes: written, or read, checked to end within them, and (applying)
+   stored. Returns its first character (0 when empty or refused). */
+static char sps__text_item(sps__stream* s, char* x, size_t size, const char* what) {
+    const unsigned char* p;
+    if (s->out) { sps__put(s->out, x, size); return x[0]; }
+    if (!(p = sps__take(s->in, size, what))) return 0;
+    if (sps__applying(s->in)) memcpy(x, p, size);
+    else if (!memchr(p, 0, size)) sps__refuse(s->in, what, "%s has no end within its %u bytes", what, (unsigned)size);
+    return s->in->bad ? 0 : (char)p[0];
+}
+
+/* SPS__READ_LAYOUT: the file's ids (slot order) are a permutation of 0..n-1; inverted into
+   r->slot_of_id. */
+static void sps__check_ids(const sps_world* w, sps__reader* r, const unsigned char* ids) {
+    char name[96];
+    int i;
+    for (i = 0; i < w->n; ++i) r->slot_of_id[i] = -1;
+    for (i = 0; i < w->n; ++i) {
+        const int id = sps__int_at(ids, (size_t)i);
+        if (id < 0 || id >= w->n || r->slot_of_id[id] >= 0) {
+            sps__refuse(r, "id", "id of %s = %d, allowed a permutation of 0..%d (%s)", sps__particle_name(w, r, i, name, sizeof name), id,
+                        w->n - 1, id < 0 || id >= w->n ? "out of range" : "a duplicate");
+            return;
+        }
+        r->slot_of_id[id] = i;
+    }
+}
+/* SPS__READ_LAYOUT: a carried int field, by its rule; one without a rule here is refused, so
+   that a new one cannot pass unchecked (give it its rule). */
+static void sps__check_int_field(const sps_world* w, sps__reader* r, const sps__field_info* f, const unsigned char* p) {
+    char name[96];
+    int i;
+    if (f == &sps__fields[r->id_field]) sps__check_ids(w, r, p);
+    else if (strcmp(f->name, "body") == 0) { /* the layout the world was committed in: the counts are the header's */
+        for (i = 0; i < w->n; ++i)
+            if (sps__int_at(p, (size_t)i) != w->body[i]) {
+                const sps__body* b = &w->bodies[w->body[i]];
+                sps__refuse(r, f->what, "body of %s = %d, allowed %d (its slot %d lies in body %d's slots [%d, %d))",
+                            sps__particle_name(w, r, i, name, sizeof name), sps__int_at(p, (size_t)i), w->body[i], i, w->body[i], b->begin, b->end);
+                return;
+            }
+    } else if (strcmp(f->name, "constraint") == 0) { /* sps_world_validate's rule */
+        for (i = 0; i < w->n; ++i)
+            if (sps__int_at(p, (size_t)i) < -1 || sps__int_at(p, (size_t)i) >= w->ncons) {
+                sps__refuse(r, f->what, "constraint index of %s = %d, allowed -1 (none) or [0, %d)", sps__particle_name(w, r, i, name, sizeof name),
+                            sps__int_at(p, (size_t)i), w->ncons);
+                return;
+            }
+    } else sps__refuse(r, f->what, "%s: no rule checks this field of a restart file (sps__check_int_field)", f->what);
+}
+/* SPS__READ_VALUES: the values of array a (of dim, or -1 for a one-array field) of real field
+   f, particles first .. first + count - 1, within the field's range. */
+static void sps__check_real_field(const sps_world* w, sps__reader* r, const sps__field_info* f, int a, const unsigned char* p, int first,
+                                  int count) {
+    const sps__range range = sps__field_range(f);
+    const size_t values = (size_t)count * (size_t)f->components;
+    size_t k;
+    for (k = 0; k < values; ++k)
+        if (!sps__in_range(&range, sps__real_at(p, k))) {
+            sps__refuse_value(w, r, f->what, a, first + (int)(k / (size_t)f->components), sps__real_at(p, k), &range);
+            return;
+        }
+}
+/* Array a of field f (count particles: of body b, or of the world) from the payload into x:
+   checked by the dry runs, copied when applying. */
+static void sps__read_field(sps_world* w, const sps__body* b, const sps__field_info* f, int a, void* x, int count, sps__reader* r) {
+    const size_t bytes = sps__field_bytes(f) * (size_t)count;
+    const unsigned char* p = sps__take(r, bytes, f->what);
+    if (!p) return;
+    if (sps__applying(r)) memcpy(x, p, bytes);
+    else if (f->is_int && r->pass == SPS__READ_LAYOUT) sps__check_int_field(w, r, f, p);
+    else if (!f->is_int && r->pass == SPS__READ_VALUES) sps__check_real_field(w, r, f, f->axes ? a : -1, p, b ? b->begin : 0, count);
+    if (!f->per_body && a == 0 && !r->bad) r->field_at[f - sps__fields] = p;
 }
 
 /* The arrays of field f for body b (per-body fields) or the world (b NULL): count values per
@@ -9780,14 +9994,18 @@ static void sps__transfer_field(sps_world* w, sps__body* b, const sps__field_inf
     for (a = 0; a < arrays && present && !sps__stream_bad(s); ++a) {
         void* x;
         memcpy(&x, sps__field_slot(w, b, f, a), sizeof x);
-        sps__item(s, x, sps__field_bytes(f) * (size_t)count, f->what);
+        if (s->out) sps__put(s->out, x, sps__field_bytes(f) * (size_t)count);
+        else sps__read_field(w, b, f, a, x, count, s->in);
     }
 }
 
 /* The neighbour lists: counts, then each particle's neighbours; read into the per-particle
-   lists (nb_ell) the lane slots are built from, each count and index checked. */
+   lists (nb_ell) the lane slots are built from, each count and index checked: a neighbour is
+   a particle of the same body other than itself (the passes index the body's arrays with it),
+   and a wall body has no lists (sps__build_neighbors). */
 static void sps__transfer_lists(sps_world* w, sps__stream* s) {
     const unsigned char* counts;
+    char name[96];
     int i, m;
     if (s->out) {
         sps__put(s->out, w->nb_count, sizeof(int) * (size_t)w->n);
@@ -9797,23 +10015,30 @@ static void sps__transfer_lists(sps_world* w, sps__stream* s) {
     }
     counts = sps__take(s->in, sizeof(int) * (size_t)w->n, "neighbour counts");
     for (i = 0; i < w->n && counts && !s->in->bad; ++i) {
-        int count;
-        memcpy(&count, counts + sizeof(int) * (size_t)i, sizeof count);
-        if (count < 0 || count > w->ell_width) { s->in->bad = "neighbour counts"; break; }
-        if (s->in->apply) w->nb_count[i] = count;
+        const sps__body* b = &w->bodies[w->body[i]];
+        const int count = sps__int_at(counts, (size_t)i), limit = b->model.material->kinematic ? 0 : w->ell_width;
+        if (count < 0 || count > limit) {
+            sps__refuse(s->in, "neighbour counts", "neighbour count of %s = %d, allowed [0, %d]%s", sps__particle_name(w, s->in, i, name, sizeof name),
+                        count, limit, limit ? "" : " (a wall body has no neighbour lists)");
+            break;
+        }
+        if (sps__applying(s->in)) w->nb_count[i] = count;
         for (m = 0; m < count && !s->in->bad; ++m) {
             const int j = sps__get_count(s->in, w->n - 1, "neighbours");
-            if (s->in->apply) w->nb_ell[(size_t)i * w->ell_width + m] = j;
+            if (sps__applying(s->in)) w->nb_ell[(size_t)i * w->ell_width + m] = j;
+            else if (!s->in->bad && (j < b->begin || j >= b->end || j == i))
+                sps__refuse(s->in, "neighbours", "neighbour %d of %s: slot %d, allowed a slot of its body, [%d, %d), other than its own (%d)", m,
+                            sps__particle_name(w, s->in, i, name, sizeof name), j, b->begin, b->end, i);
         }
     }
 }
 
 /* SPS_ROTATION_PAIR: the kept pair forces of `kept` ids, laid out by id: the counts, then each
-   id's neighbour ids and forces. */
+   id's neighbour ids and forces (at most a full list each, ids in range, forces finite). */
 static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
-    const unsigned char* counts;
+    const unsigned char *counts, *ids, *forces;
     long first = 0;
-    int id;
+    int id, k;
     if (s->out) {
         sps__put(s->out, w->kept_count, sizeof(int) * (size_t)kept);
         for (id = 0; id < kept; ++id) {
@@ -9824,42 +10049,104 @@ static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
     }
     counts = sps__take(s->in, sizeof(int) * (size_t)kept, "kept pair counts");
     for (id = 0; id < kept && counts && !s->in->bad; ++id) {
-        int count;
-        memcpy(&count, counts + sizeof(int) * (size_t)id, sizeof count);
-        if (count < 0 || first + count > w->pair_force_cap) { s->in->bad = "kept pair counts"; break; }
-        if (s->in->apply) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
-        sps__get(s->in, w->kept_neighbor_id + first, sizeof(int) * (size_t)count, "kept pairs");
-        sps__get(s->in, w->kept_force + first, sizeof(sps_real) * (size_t)count, "kept pair forces");
+        const int count = sps__int_at(counts, (size_t)id);
+        if (count < 0 || count > w->ell_width || first + count > w->pair_force_cap) {
+            sps__refuse(s->in, "kept pair counts", "kept pair count of particle id %d = %d, allowed [0, %d] and %ld in all", id, count,
+                        w->ell_width, w->pair_force_cap);
+            break;
+        }
+        if (sps__applying(s->in)) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
+        ids = sps__take(s->in, sizeof(int) * (size_t)count, "kept pairs");
+        forces = sps__take(s->in, sizeof(sps_real) * (size_t)count, "kept pair forces");
+        if (!forces) break;
+        if (sps__applying(s->in)) {
+            memcpy(w->kept_neighbor_id + first, ids, sizeof(int) * (size_t)count);
+            memcpy(w->kept_force + first, forces, sizeof(sps_real) * (size_t)count);
+        }
+        for (k = 0; k < count && !sps__applying(s->in) && !s->in->bad; ++k) {
+            const int j = sps__int_at(ids, (size_t)k);
+            const sps_real g = sps__real_at(forces, (size_t)k);
+            if (j < 0 || j >= w->n)
+                sps__refuse(s->in, "kept pairs", "kept pair %d of particle id %d: neighbour id %d, allowed [0, %d)", k, id, j, w->n);
+            else if (s->in->pass == SPS__READ_VALUES && !sps__finite(g))
+                sps__refuse(s->in, "kept pair forces", "kept pair force %d of particle id %d = %g, allowed finite", k, id, (double)g);
+        }
         first += count;
     }
 }
 
+/* keep_last_good_state: the copy of the last configuration update of good_n particles: its
+   time, its ids (distinct, in range), its blocks (sps__good_block), each value in its field's
+   range. */
+static void sps__transfer_good(sps_world* w, int good_n, sps__stream* s) {
+    const unsigned char *ids = NULL, *p;
+    const sps__field_info* f;
+    sps_real* block;
+    size_t length, k;
+    int m, j;
+    sps__real_item(s, w, -1, &w->good_time, 1, &sps__nonnegative_range, "last good time");
+    if (s->out) sps__put(s->out, w->good_id, sizeof(int) * (size_t)good_n);
+    else if ((ids = sps__take(s->in, sizeof(int) * (size_t)good_n, "last good ids")) != NULL) {
+        if (sps__applying(s->in)) memcpy(w->good_id, ids, sizeof(int) * (size_t)good_n);
+        else if (s->in->pass == SPS__READ_LAYOUT) {
+            memset(s->in->seen, 0, (size_t)w->n);
+            for (j = 0; j < good_n; ++j) {
+                const int id = sps__int_at(ids, (size_t)j);
+                if (id < 0 || id >= w->n || s->in->seen[id]) {
+                    sps__refuse(s->in, "last good ids", "last good id %d = %d, allowed distinct ids in [0, %d)", j, id, w->n);
+                    break;
+                }
+                s->in->seen[id] = 1;
+            }
+        }
+    }
+    for (m = 0; (block = sps__good_block(w, good_n, m, &length, &f)) != NULL && !sps__stream_bad(s); ++m) {
+        if (s->out) { sps__put(s->out, block, sizeof(sps_real) * length); continue; }
+        if (!(p = sps__take(s->in, sizeof(sps_real) * length, "last good state"))) break;
+        if (sps__applying(s->in)) memcpy(block, p, sizeof(sps_real) * length);
+        else if (s->in->pass == SPS__READ_VALUES) {
+            const sps__range range = sps__field_range(f);
+            for (k = 0; k < length; ++k)
+                if (!sps__in_range(&range, sps__real_at(p, k))) {
+                    const int id = sps__int_at(ids, k / (size_t)f->components);
+                    sps__refuse_value(w, s->in, "last good state", -1, s->in->slot_of_id[id], sps__real_at(p, k), &range);
+                    break;
+                }
+        }
+    }
+}
+
 /* The payload, both ways: every item of the state once, in file order. Saving passes the
-   world cast from const (nothing is written into it); restoring runs it twice, a dry run that
-   checks and then the one that applies (sps__restore), into a world whose storage is committed
-   (sps__ready_to_step). Returns whether the payload holds the neighbour lists. */
+   world cast from const (nothing is written into it); restoring runs it three times (the
+   passes of sps__reader), into a world whose storage is committed (sps__ready_to_step).
+   Returns whether the payload holds the neighbour lists. */
 static int sps__transfer_state(sps_world* w, sps__stream* s) {
     int64_t steps[2];
-    int k, bi, m, kept, good_n, lists;
+    int k, bi, kept, good_n, lists, stopped;
+    char failure;
     steps[0] = w->acoustic_steps; steps[1] = w->advection_steps;
-    sps__item(s, &w->time, sizeof w->time, "time");
-    sps__item(s, &w->dt, sizeof w->dt, "time step");
-    sps__item(s, &w->vmax, sizeof w->vmax, "maximum speed");
-    sps__item(s, steps, sizeof steps, "step counters");
-    sps__count_item(s, &w->stopped, 1, "stopped flag");
-    sps__item(s, w->failure, sizeof w->failure, "failure message");
+    sps__real_item(s, w, -1, &w->time, 1, &sps__nonnegative_range, "time");
+    sps__real_item(s, w, -1, &w->dt, 1, &sps__nonnegative_range, "time step");
+    sps__real_item(s, w, -1, &w->vmax, 1, &sps__nonnegative_range, "maximum speed");
+    sps__counter_item(s, &steps[0], sizeof steps[0], "acoustic step count");
+    sps__counter_item(s, &steps[1], sizeof steps[1], "advection step count");
+    stopped = sps__count_item(s, &w->stopped, 1, "stopped flag");
+    failure = sps__text_item(s, w->failure, sizeof w->failure, "failure message");
+    if (s->in && !sps__applying(s->in) && (stopped || failure)) /* sps_world_save refuses a stopped world */
+        sps__refuse(s->in, stopped ? "stopped flag" : "failure message", "%s, allowed a run that has not stopped (nothing goes on from a state "
+                    "that failed: sps_world_save refuses it)", stopped ? "stopped flag = 1" : "failure message not empty");
     sps__count_item(s, &w->watch.armed, 1, "energy watchdog flag"); /* the guards' memory: the watchdog's start, what was said */
     sps__count_item(s, &w->watch.fired, 1, "energy watchdog flag");
-    sps__item(s, &w->watch.checked_at, sizeof w->watch.checked_at, "energy watchdog");
-    sps__item(s, &w->watch.start, sizeof w->watch.start, "energy watchdog");
-    sps__item(s, &w->watch.scale, sizeof w->watch.scale, "energy watchdog");
-    sps__item(s, &w->watch.start_time, sizeof w->watch.start_time, "energy watchdog");
+    sps__counter_item(s, &w->watch.checked_at, sizeof w->watch.checked_at, "energy watchdog check");
+    sps__real_item(s, w, -1, &w->watch.start, 1, &sps__any_range, "energy watchdog start");
+    sps__real_item(s, w, -1, &w->watch.scale, 1, &sps__any_range, "energy watchdog scale");
+    sps__real_item(s, w, -1, &w->watch.start_time, 1, &sps__any_range, "energy watchdog start time");
     sps__count_item(s, &w->impact_warned, 1, "impact warning flag");
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
-        sps__item(s, b->mean_rotation, sizeof b->mean_rotation, "mean rotation");
-        sps__item(s, b->mean_spin, sizeof b->mean_spin, "mean spin");
-        sps__item(s, &b->energy_start, sizeof b->energy_start, "energy watchdog");
+        sps__real_item(s, w, bi, b->mean_rotation, 9, &sps__finite_range, "mean rotation");
+        sps__real_item(s, w, bi, b->mean_spin, 9, &sps__finite_range, "mean spin");
+        sps__real_item(s, w, bi, &b->energy_start, 1, &sps__any_range, "energy watchdog start");
         sps__count_item(s, &b->fragment_reported, 1, "fragment warning flag");
     }
     for (k = 0; k < SPS__NFIELDS; ++k) {
@@ -9874,15 +10161,8 @@ static int sps__transfer_state(sps_world* w, sps__stream* s) {
     kept = w->pair_force ? w->kept_ids : 0;
     if ((kept = sps__count_item(s, &kept, w->pair_force ? w->n : 0, "kept pair count")) != 0) sps__transfer_kept_forces(w, kept, s);
     good_n = w->good ? w->good_n : 0;
-    if ((good_n = sps__count_item(s, &good_n, w->good ? w->n : 0, "last good state")) != 0) {
-        sps_real* block;
-        size_t length;
-        sps__item(s, &w->good_time, sizeof w->good_time, "last good time");
-        sps__item(s, w->good_id, sizeof(int) * (size_t)good_n, "last good ids");
-        for (m = 0; (block = sps__good_block(w, good_n, m, &length)) != NULL; ++m)
-            sps__item(s, block, sizeof(sps_real) * length, "last good state");
-    }
-    if (s->in && s->in->apply && !s->in->bad) {
+    if ((good_n = sps__count_item(s, &good_n, w->good ? w->n : 0, "last good state")) != 0) sps__transfer_good(w, good_n, s);
+    if (s->in && sps__applying(s->in) && !s->in->bad) {
         if (kept) w->kept_ids = kept;
         w->good_n = good_n;
         w->acoustic_steps = (long)steps[0];
@@ -9890,6 +10170,50 @@ static int sps__transfer_state(sps_world* w, sps__stream* s) {
     }
     if (s->in && !s->in->bad && s->in->left != 0) s->in->bad = "payload length";
     return lists;
+}
+
+/* SPS__READ_VALUES, last: the payload's bodies, reference positions, masses and constraints by
+   id hash to the scene hash of the header, which the world's matched (sps__read_fingerprint):
+   the file's state belongs to this scene, particle by particle. */
+static void sps__check_scene(const sps_world* w, sps__reader* r, uint64_t scene) {
+    const int ref = (int)(sps__field_named("reference") - sps__fields);
+    sps__scene_arrays at;
+    int a;
+    at.body = r->field_at[sps__field_named("body") - sps__fields];
+    at.mass = r->field_at[sps__field_named("mass") - sps__fields];
+    at.cons = w->cons ? r->field_at[sps__field_named("constraint") - sps__fields] : NULL;
+    for (a = 0; a < 3; ++a) at.ref[a] = r->field_at[ref] ? r->field_at[ref] + (size_t)a * (size_t)w->n * sizeof(sps_real) : NULL;
+    if (!at.body || !at.mass || !at.ref[0] || (w->cons && !at.cons))
+        sps__refuse(r, "scene", "the bodies, reference positions, masses or constraints are missing");
+    else if (sps__scene_hash_of(w, r->slot_of_id, &at) != scene)
+        sps__refuse(r, "scene", "the particles' bodies, reference positions, masses or constraints by id are not the scene's of its header");
+}
+
+/* Reads the payload with reader r in the passes of sps__reader up to `last`, until a rule is
+   broken (r->bad); the scratch of the checks is allocated here and freed. Returns
+   SPS_ERR_OUT_OF_MEMORY or SPS_OK, and in *lists whether the payload holds the neighbour lists. */
+static sps_result sps__read_passes(sps_world* w, sps__reader* r, const unsigned char* payload, size_t bytes, uint64_t scene, int last,
+                                   int* lists) {
+    sps__stream reading;
+    int pass;
+    memset(r, 0, sizeof *r);
+    r->id_field = (int)(sps__field_named("id") - sps__fields);
+    r->slot_of_id = (int*)sps__alloc(w, (sizeof(int) + 1) * (size_t)w->n); /* and the marks of `seen` after them */
+    if (!r->slot_of_id) return SPS_ERR_OUT_OF_MEMORY;
+    r->seen = (unsigned char*)(r->slot_of_id + w->n);
+    reading.out = NULL;
+    reading.in = r;
+    for (pass = SPS__READ_LAYOUT; pass <= last && !r->bad; ++pass) {
+        r->at = payload;
+        r->left = bytes;
+        r->pass = pass;
+        *lists = sps__transfer_state(w, &reading);
+        if (pass == SPS__READ_VALUES && !r->bad) sps__check_scene(w, r, scene);
+    }
+    sps__free(w, r->slot_of_id);
+    r->slot_of_id = NULL;
+    r->seen = NULL;
+    return SPS_OK;
 }
 
 static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__writer* s) {
@@ -9910,8 +10234,11 @@ static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__wri
 }
 
 SPSDEF sps_result sps_world_save(const sps_world* w, const char* path) {
-    sps__writer count = {NULL, 0, 0, 0}, out = {NULL, 0, SPS__FNV_OFFSET, 0};
+    sps__writer count = {NULL, NULL, 0, 0, 0}, mem = {NULL, NULL, 0, 0, 0}, out = {NULL, NULL, 0, SPS__FNV_OFFSET, 0};
     sps__stream counting = {NULL, NULL}, writing = {NULL, NULL};
+    sps__reader check;
+    uint64_t hash;
+    int lists;
     if (!w) return SPS_ERR_INVALID_ARG;
     if (!path) { sps__set_error_const(w, "sps_world_save: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
     if (w->n == 0 || w->needs_sort_by_body) {
@@ -9919,21 +10246,41 @@ SPSDEF sps_result sps_world_save(const sps_world* w, const char* path) {
                              w->n == 0 ? "the world has no particles" : "particles were added since the last step");
         return SPS_ERR_STATE;
     }
-    /* a world that cannot step (an empty body added since) has no state to go on from; the
-       check writes only the error message (see sps__set_error_const) */
+    /* a world that cannot step (an empty body added since, or stopped at an instability) has
+       no state to go on from; the check writes only the error message (see sps__set_error_const) */
     if (sps__check_bodies_filled((sps_world*)w) != SPS_OK) return SPS_ERR_STATE;
+    if (w->stopped) {
+        sps__set_error_const(w, "sps_world_save: the world stopped at an instability and cannot go on from its state (save before the failure, "
+                             "e.g. every few steps): %s", w->failure);
+        return SPS_ERR_STATE;
+    }
+    /* the payload in memory, checked by the reader's rules: what is saved restores (a state the
+       guards have not met yet, e.g. a density gone negative in the last sub-step, is refused
+       here rather than in the restore) */
     counting.out = &count;
     sps__transfer_state((sps_world*)w, &counting); /* writes nothing into the world (see sps__transfer_state) */
+    if (count.bytes > (uint64_t)((size_t)-1) || !(mem.mem = (unsigned char*)sps__alloc(w, (size_t)count.bytes)))
+        return sps__oom((sps_world*)w, "sps_world_save: the state");
+    writing.out = &mem;
+    sps__transfer_state((sps_world*)w, &writing);
+    if (sps__read_passes((sps_world*)w, &check, mem.mem, (size_t)count.bytes, sps__scene_hash(w), SPS__READ_VALUES, &lists) != SPS_OK) {
+        sps__free(w, mem.mem);
+        return sps__oom((sps_world*)w, "sps_world_save: the check of the state");
+    }
+    if (check.bad) {
+        sps__set_error_const(w, "sps_world_save: the world's state is out of range (a restore would refuse it; a step stops at it): %s",
+                             check.why[0] ? check.why : check.bad);
+        sps__free(w, mem.mem);
+        return SPS_ERR_STATE;
+    }
     out.f = fopen(path, "wb");
-    if (!out.f) { sps__set_error_const(w, "sps_world_save: cannot open '%s' for writing", path); return SPS_ERR_IO; }
+    if (!out.f) { sps__free(w, mem.mem); sps__set_error_const(w, "sps_world_save: cannot open '%s' for writing", path); return SPS_ERR_IO; }
     sps__put_header(w, count.bytes, &out);
     out.hash = SPS__FNV_OFFSET; /* the checksum covers the payload */
-    writing.out = &out;
-    sps__transfer_state((sps_world*)w, &writing);
-    {
-        const uint64_t hash = out.hash;
-        sps__put(&out, &hash, sizeof hash);
-    }
+    sps__put(&out, mem.mem, (size_t)count.bytes);
+    sps__free(w, mem.mem);
+    hash = out.hash;
+    sps__put(&out, &hash, sizeof hash);
     if (fclose(out.f) != 0 || out.failed) { sps__set_error_const(w, "sps_world_save: error writing '%s'", path); return SPS_ERR_IO; }
     return SPS_OK;
 }
@@ -9969,8 +10316,9 @@ static sps_result sps__read_header(sps_world* w, FILE* f, const char* path, uint
     return SPS_OK;
 }
 
-/* The fingerprint: every world and body item, and the scene hash, must be the world's. */
-static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path) {
+/* The fingerprint: every world and body item, and the scene hash (returned in *scene), must be
+   the world's. */
+static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path, uint64_t* scene_hash) {
     double file[SPS__WORLD_PRINT], mine[SPS__WORLD_PRINT], body_file[SPS__BODY_PRINT], body_mine[SPS__BODY_PRINT];
     uint64_t scene;
     int k, bi;
@@ -10004,6 +10352,7 @@ static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path)
                        "bodies or constraints differ (build the scene as it was built before the save, then restore)", path);
         return SPS_ERR_STATE;
     }
+    *scene_hash = scene;
     return SPS_OK;
 }
 
@@ -10038,27 +10387,23 @@ static sps_result sps__read_payload(sps_world* w, FILE* f, const char* path, uin
 }
 
 static sps_result sps__restore(sps_world* w, FILE* f, const char* path) {
-    uint64_t payload_bytes = 0;
+    uint64_t payload_bytes = 0, scene = 0;
     unsigned char* payload = NULL;
     sps__reader r;
-    sps__stream reading;
     sps_result res;
     int i, lists;
-    if ((res = sps__read_header(w, f, path, &payload_bytes)) != SPS_OK || (res = sps__read_fingerprint(w, f, path)) != SPS_OK) return res;
+    if ((res = sps__read_header(w, f, path, &payload_bytes)) != SPS_OK || (res = sps__read_fingerprint(w, f, path, &scene)) != SPS_OK) return res;
     if ((res = sps__ready_to_step(w)) != SPS_OK) return res; /* the storage the state goes into */
     if ((res = sps__read_payload(w, f, path, payload_bytes, &payload)) != SPS_OK) { sps__free(w, payload); return res; }
-    reading.out = NULL; reading.in = &r;
-    r.at = payload; r.left = (size_t)payload_bytes; r.apply = 0; r.bad = NULL;
-    sps__transfer_state(w, &reading);
-    if (r.bad) {
-        sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: its %s do not fit this world", path, r.bad);
-        sps__free(w, payload);
+    res = sps__read_passes(w, &r, payload, (size_t)payload_bytes, scene, SPS__READ_APPLY, &lists);
+    sps__free(w, payload);
+    if (res != SPS_OK) return sps__oom(w, "sps_world_restore: the check of the file's state"); /* nothing was applied */
+    if (r.bad) { /* nothing was applied */
+        if (r.why[0]) sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: %s", path, r.why);
+        else sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: its %s do not fit this world", path, r.bad);
         return SPS_ERR_IO;
     }
-    r.at = payload; r.left = (size_t)payload_bytes; r.apply = 1;
-    lists = sps__transfer_state(w, &reading);
-    sps__free(w, payload);
-    for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i;
+    for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i; /* a permutation (SPS__READ_LAYOUT) */
     for (i = 0; lists && i < w->nbodies; ++i) /* total Lagrangian: the restored lists are the reference ones */
         if (w->bodies[i].model.total_lagrangian && w->bodies[i].end > w->bodies[i].begin) sps__tl_reference(w, &w->bodies[i]);
     w->lists_valid = lists && sps__fill_lane_slots(w) == SPS_OK; /* else diagnostics rebuild them */

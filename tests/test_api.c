@@ -1819,6 +1819,87 @@ static int test_restart_refused(void) {
     return 0;
 }
 
+/* A crafted file: damaged and its checksum recomputed (as a re-saved damaged file has it). The
+   reader trusted the file's ids (slot_of_id[id[i]] = i wrote out of bounds) and let any value
+   in; now each item is checked before anything is applied: a duplicated id, a density < 0, a
+   NaN time and a neighbour outside its body are refused with SPS_ERR_IO naming the item, the
+   particle and the value, and the world's state is bit-identical (its save, before and after). */
+static int crafted_refused(sps_world* w, const unsigned char* file, long size, long at, const void* value, size_t bytes, const char* needle,
+                           const char* path) {
+    unsigned char* m = (unsigned char*)malloc((size_t)size);
+    uint64_t length, hash;
+    FILE* f;
+    int same;
+    long k;
+    ENSURE(m);
+    memcpy(m, file, (size_t)size);
+    memcpy(m + at, value, bytes);
+    memcpy(&length, m + 28, sizeof length); /* the header's payload length, then the checksum of it */
+    hash = sps__fnv(SPS__FNV_OFFSET, m + size - 8 - (long)length, (size_t)length);
+    memcpy(m + size - 8, &hash, sizeof hash);
+    f = fopen(path, "wb");
+    ENSURE(f && fwrite(m, 1, (size_t)size, f) == (size_t)size && fclose(f) == 0);
+    if (sps_world_restore(w, path) != SPS_ERR_IO || !strstr(sps_world_last_error(w), needle))
+        printf("    expected SPS_ERR_IO naming '%s': %s\n", needle, sps_world_last_error(w));
+    ENSURE(strstr(sps_world_last_error(w), needle) != NULL);
+    ENSURE(sps_world_save(w, path) == SPS_OK); /* the state as it was: the same file */
+    f = fopen(path, "rb");
+    ENSURE(f && fread(m, 1, (size_t)size, f) == (size_t)size && fgetc(f) == EOF);
+    fclose(f);
+    for (same = 1, k = 0; k < size; ++k) same &= m[k] == file[k];
+    free(m);
+    ENSURE(same);
+    return 0;
+}
+static long find_in(const unsigned char* file, long size, const void* needle, size_t bytes) {
+    long k;
+    for (k = 0; k + (long)bytes <= size; ++k)
+        if (memcmp(file + k, needle, bytes) == 0) return k;
+    return -1;
+}
+static int test_restart_crafted(void) {
+    char path[] = "/tmp/test_sphsolid_restart_XXXXXX", part[] = "/tmp/test_sphsolid_part_XXXXXX";
+    const restart_scene sc = {SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 0, 0, 1, 0, 0, 0};
+    const sps_real minus_one = -1, not_a_number = (sps_real)NAN;
+    sps_observer obs;
+    sps_world* w = restart_build(&sc, 1, &obs);
+    unsigned char* file;
+    long size, ids, rho, counts, payload;
+    uint64_t length;
+    int fd, k, n;
+    FILE* f;
+    ENSURE(w);
+    ENSURE((fd = mkstemp(path)) >= 0); close(fd);
+    ENSURE((fd = mkstemp(part)) >= 0); close(fd);
+    for (k = 0; k < 3; ++k) ENSURE(sps_world_step(w) == SPS_OK);
+    ENSURE(sps_world_save(w, path) == SPS_OK);
+    f = fopen(path, "rb");
+    ENSURE(f && fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 1000 && fseek(f, 0, SEEK_SET) == 0);
+    ENSURE((file = (unsigned char*)malloc((size_t)size)) && fread(file, 1, (size_t)size, f) == (size_t)size);
+    fclose(f);
+    n = w->n;
+    memcpy(&length, file + 28, sizeof length);
+    payload = size - 8 - (long)length;
+    ids = find_in(file, size, w->id, sizeof(int) * (size_t)n); /* the arrays in the file, as the world holds them */
+    rho = find_in(file, size, w->rho, sizeof(sps_real) * (size_t)n);
+    counts = find_in(file, size, w->nb_count, sizeof(int) * (size_t)n);
+    ENSURE(ids > payload && rho > payload && counts > payload && w->nb_count[0] > 0);
+    ENSURE(crafted_refused(w, file, size, ids + (long)sizeof(int), &w->id[0], sizeof(int), "a duplicate", part) == 0);
+    ENSURE(crafted_refused(w, file, size, ids, &n, sizeof(int), "allowed a permutation of 0..", part) == 0);
+    ENSURE(crafted_refused(w, file, size, rho + 5 * (long)sizeof(sps_real), &minus_one, sizeof minus_one, "density of particle id", part) == 0);
+    ENSURE(strstr(sps_world_last_error(w), "= -1, allowed finite > 0"));
+    ENSURE(crafted_refused(w, file, size, payload, &not_a_number, sizeof not_a_number, "time = nan, allowed finite >= 0", part) == 0);
+    ENSURE(crafted_refused(w, file, size, counts + (long)sizeof(int) * n, &n, sizeof(int), "neighbours = ", part) == 0);
+    k = 0; /* particle 0 its own neighbour */
+    ENSURE(crafted_refused(w, file, size, counts + (long)sizeof(int) * n, &k, sizeof(int), "other than its own (0)", part) == 0);
+    ENSURE(sps_world_restore(w, path) == SPS_OK); /* the file as saved */
+    free(file);
+    sps_world_destroy(w);
+    remove(path);
+    remove(part);
+    return 0;
+}
+
 /* ============================================================================================ */
 /* >>user scenes: safe for the scenes users write (default rotation, watchdog, set-up checks, game API) */
 

@@ -291,6 +291,7 @@ int main(int argc, char** argv) {
     RUN(test_restart_round_trip);
     RUN(test_restart_last_good_state);
     RUN(test_restart_refused);
+    RUN(test_restart_crafted);
     RUN(test_csv_row);
     RUN_LONG(test_plate2d_period_eno_a);
     RUN_LONG(test_plate2d_period_eno);
