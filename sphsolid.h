@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.12.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.13.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -739,6 +739,12 @@
       the contact surface's velocity (a thrown disc leaves with omega R / v_t 1.09-1.21).
 
    REVISION HISTORY
+      0.13.0 (2026-12-06) sps_world_restore checks every field of an untrusted file before it
+                         changes the world (fuzzed past its checksum); water under gravity: the
+                         corner images of perpendicular walls, the pressure force and divergence
+                         scaled by the lattice's gradient moment, the divergence the pair sum
+                         adjoint to the pressure force (tr L without gravity), a warning below
+                         h_over_dp = 2; still water and standing waves measured (bench/VALIDATION.md).
       0.12.0 (2026-12-03) GNO/GNO-A: the penalty may be summed in the next sub-step's pressure
                          pass (penalty_in_pressure_pass; two neighbour passes a sub-step instead
                          of three, 1.15-1.2x faster, the published figures' digits kept; the
@@ -841,9 +847,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 12
+#define SPHSOLID_VERSION_MINOR 13
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.12.0"
+#define SPHSOLID_VERSION_STRING "0.13.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF

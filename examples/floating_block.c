@@ -69,7 +69,7 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 4, .vtk_every = 0.1, .csv_every = 0.005, .E = 2e6, .nu = 0.3,
-                        .rho0 = 500, .out = "out/floating_block", .h_over_dp = 2, .jitter = 0, .seed = 1, PNG_DEFAULTS};
+                        .rho0 = 500, .out = "out/floating_block", .jitter = 0, .seed = 1, PNG_DEFAULTS};
     double dp = 0.02, drop = 0, damping = 10, window = 2.4;
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (block 0.2 m, water 0.5 m deep)", 2e-3, 0.05, NULL},

@@ -86,7 +86,7 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.6, .vtk_every = 0.1, .csv_every = 0.002, .E = 1e7, .nu = 0.3,
-                        .rho0 = 2000, .out = "out/hydrostatic_fsi", .h_over_dp = 2, .jitter = 0, .seed = 1, PNG_DEFAULTS};
+                        .rho0 = 2000, .out = "out/hydrostatic_fsi", .jitter = 0, .seed = 1, PNG_DEFAULTS};
     int res = 10, body_load = 0;
     double damping = 0, window = 0.1, load_acceleration = 0;
     opt_spec opts[] = {
