@@ -2609,8 +2609,9 @@ static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
 static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
     if (sps__has_gravity(w) && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
         sps__warn(w, "body '%s': a fluid under gravity with h_over_dp = %g: water at rest does not stay at rest below %g (it churns "
-                  "within seconds); set the world's h_over_dp = %g (about twice the neighbours of 1.3 in 2D; bench/VALIDATION.md, "
-                  "\"Still water\")", b->name, (double)w->def.h_over_dp, (double)SPS__FLUID_STILL_H_OVER_DP, (double)SPS__FLUID_STILL_H_OVER_DP);
+                  "within seconds); set the world's h_over_dp = %g (about twice the neighbours of 1.3 in 2D; the solids of the same "
+                  "world take it too, and their figures change: bench/VALIDATION.md, \"Still water\")",
+                  b->name, (double)w->def.h_over_dp, (double)SPS__FLUID_STILL_H_OVER_DP, (double)SPS__FLUID_STILL_H_OVER_DP);
 }
 /* >>material: Drucker-Prager (granular media; UTVF sections 2.3, 3.1.3)
 
