@@ -224,8 +224,9 @@
       on the lattice grows a particle mode under its pressure (at 1.3 dp within a few seconds,
       at 1.8 dp by 3 s; with either kernel) and churns, and a fluid body added to such a world
       under gravity gets a warning. At 2 dp a 2D tank at rest keeps its speed RMS near 1e-5
-      sqrt(g H) for a minute and standing waves run within 1 % of linear theory; the cost is
-      about twice the neighbours of 1.3 dp in 2D. With
+      sqrt(g H) for 8-14 s, after which its free surface bursts to about 1e-3 sqrt(g H) (the
+      density diffusion where the surface cuts the kernel: not yet fixed), and standing waves
+      run within 1 % of linear theory; the cost is about twice the neighbours of 1.3 dp in 2D. With
       material.viscosity = mu > 0 the viscous force (2 mu/rho_i) sum_j v_ij dW/(r_ij + 0.01 h)
       V_j (Morris et al. 1997) joins, and the advection step keeps nu/h below its speed.
       Free surfaces need nothing (particles carry their density). Walls: analytic walls
@@ -2604,7 +2605,7 @@ static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
 }
 /* Its warnings (sps__material_warnings): water under gravity with a smoothing length at which
    water at rest does not stay at rest (FLUIDS; bench/VALIDATION.md, "Still water": at h = 1.8 dp
-   a tank at rest churns by 3 s, at 2 dp it holds for a minute). */
+   a tank at rest churns by 3 s, at 2 dp it is quiet until its free surface bursts at 8-14 s). */
 #define SPS__FLUID_STILL_H_OVER_DP SPS_R(2)
 static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
     if (sps__has_gravity(w) && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
@@ -3002,7 +3003,6 @@ static int sps__tl_law_of(sps_material_kind kind) {
     }
     return SPS__LAW_NONE; /* a value outside the enum (refused by the def check) */
 }
-
 
 /* >>model (continued): the rows */
 
@@ -5970,8 +5970,7 @@ static void sps__reflect_image(const sps_world* w, const sps__body* b, const sps
 /* The corner images of particle i between walls wa and wb at right angles: each neighbour
    within 2h of both walls reflected across both. Without them a particle in a corner misses
    the image diagonally across it, and the pressure of the rest pulls it into the corner (the
-   corner particle of a tank at rest: 33 m/s^2, enough to stir the whole tank within a second;
-   bench/VALIDATION.md, "Still water"). Exact for a box; walls at other angles get none (the
+   corner particle of a tank at rest: 33 m/s^2 at h = 1.3 dp; bench/VALIDATION.md, "Still water"). Exact for a box; walls at other angles get none (the
    backstop holds their corners). */
 static void sps__corner_images(sps_world* w, const sps__body* b, int i, const sps__wall* wa, const sps__wall* wb, sps__image_fn visit,
                                void* user) {
@@ -6386,9 +6385,9 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
 #define SPS__CONTINUITY_FLUID_LOOPS(X) X(fluid, SPS__TERM_RIEMANN | SPS__TERM_DIVERGENCE)
 #endif
 #if defined(SPHSOLID_NO_GRANULAR) && defined(SPHSOLID_NO_FLUID)
-#define SPS__CONTINUITY_GRANULAR_LOOPS(X)
-#else /* granular media, and fluids without gravity (sps__fluid_model) */
-#define SPS__CONTINUITY_GRANULAR_LOOPS(X) X(granular, SPS__TERM_GRADIENT | SPS__TERM_RIEMANN)
+#define SPS__CONTINUITY_RIEMANN_GRADIENT_LOOPS(X)
+#else /* granular media, and fluids without gravity (sps__fluid_model): the divergence tr L */
+#define SPS__CONTINUITY_RIEMANN_GRADIENT_LOOPS(X) X(riemann_gradient, SPS__TERM_GRADIENT | SPS__TERM_RIEMANN)
 #endif
 #define SPS__CONTINUITY_LOOPS(X)                                  \
     X(eno, SPS__TERM_LAPLACIAN)                                   \
@@ -6397,7 +6396,7 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
     X(eno_pairs_gradient, SPS__TERM_PAIRED | SPS__TERM_GRADIENT)  \
     X(gradient, SPS__TERM_GRADIENT)                               \
     SPS__CONTINUITY_FLUID_LOOPS(X)                                \
-    SPS__CONTINUITY_GRANULAR_LOOPS(X)
+    SPS__CONTINUITY_RIEMANN_GRADIENT_LOOPS(X)
 #define SPS__CONTINUITY_INSTANCES(variant, terms) SPS__INSTANCES(continuity_pairs, variant, terms)
 SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_INSTANCES)
 
