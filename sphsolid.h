@@ -937,6 +937,14 @@ typedef struct sps_allocator {
 /* Log callback: level 0 = error, 1 = warning, 2 = info. */
 typedef void (*sps_log_fn)(int level, const char* message, void* user);
 
+/* Where two bodies, or a body and an analytic wall, are at rest against each other (CONTACT). */
+typedef enum sps_contact_rest {
+    SPS_CONTACT_REST_FLUSH = 0,  /* filled flush: a body's first row dp/2 from a wall, two bodies'
+                                    rows dp apart (their surfaces meet) */
+    SPS_CONTACT_REST_KERNEL = 1  /* the papers' contact density, repulsive from the kernel's edge:
+                                    at rest about 1.5 dp from a wall and 2 dp between rows */
+} sps_contact_rest;
+
 /* World definition. Get one from sps_default_world_def(), edit, pass to sps_world_create(). */
 typedef struct sps_world_def {
     int dim;                          /* space dimension, 2 or 3. Default 2. */
@@ -977,6 +985,8 @@ typedef struct sps_world_def {
                                          off. Default 0.05. */
     int energy_growth_stops;          /* 1: the watchdog's finding stops the run with
                                          SPS_ERR_UNSTABLE instead. Default 0. */
+    sps_contact_rest contact_rest;    /* where contacts are at rest (CONTACT). Default
+                                         SPS_CONTACT_REST_FLUSH. */
     int keep_last_good_state;         /* 1: copy positions, velocities, densities, pressures and
                                          stresses at every configuration update, and on
                                          SPS_ERR_UNSTABLE roll the world back to that copy (see
@@ -1901,6 +1911,9 @@ struct sps_world {
     int nwalls;
     sps_real wall_sigma[SPS__WALL_TABLE + 1], wall_plane[SPS__WALL_TABLE + 1];
     sps_real wall_sigma_half; /* a wall's contact density at dp/2 (the fluids' backstop, sps__mirror_force) */
+    sps_real rest_wall_sigma, rest_pair_sigma; /* contact densities at rest (contact_rest): a
+                                                  wall's at rest_wall_distance, a flush lattice's */
+    sps_real rest_wall_distance;
     int *separate, nseparate;   /* body pairs turned off by sps_world_set_contact */
     unsigned char* touch;       /* nbodies x nbodies: 0, or how bodies a and b touch (SPS__TOUCH_*) */
     int touch_n, contact_bodies, contact_dirty;
@@ -2282,6 +2295,7 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
     SPS__CHECK(def->neighbor_capacity >= 1 && def->neighbor_capacity <= 64, "neighbor_capacity = %g, allowed [1, 64]", (double)def->neighbor_capacity);
     SPS__CHECK(def->threads >= 0 && def->threads <= SPS__MAX_THREADS, "threads = %d, allowed [0, %d]", def->threads, SPS__MAX_THREADS);
     SPS__CHECK(def->escape_distance >= 0, "escape_distance = %g, allowed 0 (automatic), > 0 or INFINITY", (double)def->escape_distance);
+    SPS__CHECK(def->contact_rest == SPS_CONTACT_REST_FLUSH || def->contact_rest == SPS_CONTACT_REST_KERNEL, "contact_rest = %d, allowed 0 (flush) or 1 (kernel)", (int)def->contact_rest);
     SPS__CHECK(def->keep_last_good_state == 0 || def->keep_last_good_state == 1, "keep_last_good_state = %d, allowed 0 or 1", def->keep_last_good_state);
     SPS__CHECK(def->report_fragments == 0 || def->report_fragments == 1, "report_fragments = %d, allowed 0 or 1", def->report_fragments);
     SPS__CHECK(def->energy_growth_limit > 0, "energy_growth_limit = %g, allowed > 0 (INFINITY: off)", (double)def->energy_growth_limit);
@@ -2350,7 +2364,8 @@ static const sps__def_item sps__world_def_items[] = {
     SPS__WORLD_ITEM(gravity[0], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[1], SPS__DEF_REAL), SPS__WORLD_ITEM(gravity[2], SPS__DEF_REAL),
     SPS__WORLD_ITEM(frozen_geometry, SPS__DEF_INT), SPS__WORLD_ITEM(neighbor_capacity, SPS__DEF_REAL),
     SPS__WORLD_ITEM(escape_distance, SPS__DEF_REAL), SPS__WORLD_ITEM(energy_growth_limit, SPS__DEF_REAL),
-    SPS__WORLD_ITEM(energy_growth_stops, SPS__DEF_INT), SPS__WORLD_ITEM(keep_last_good_state, SPS__DEF_INT)};
+    SPS__WORLD_ITEM(energy_growth_stops, SPS__DEF_INT), SPS__WORLD_ITEM(keep_last_good_state, SPS__DEF_INT),
+    SPS__WORLD_ITEM(contact_rest, SPS__DEF_INT)};
 static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM(solver, SPS__DEF_INT),
     SPS__BODY_ITEM(material.kind, SPS__DEF_INT),
@@ -3368,6 +3383,28 @@ static sps_result sps__create_error(const sps_world_def* def, sps_result r, cons
     return r;
 }
 
+/* Where contacts are at rest (contact_rest; chapter >>contact). SPS_CONTACT_REST_FLUSH: a
+   wall's contact density above its value at dp/2 pushes, and a particle's density from other
+   bodies above the density a lattice row sees from a flush lattice of the same spacing beyond
+   the surface between them (rows at dp, 2 dp, ... straight across; summed, not integrated, so
+   that two filled boxes side by side start at rest to round-off). SPS_CONTACT_REST_KERNEL: all
+   of it pushes (the papers' law), a wall up to the kernel's edge. The wall's density at rest
+   waits for the wall tables (sps_world_add_wall). */
+static void sps__contact_rest(sps_world* w) {
+    const int reach = (int)(w->support / w->def.dp) + 1;
+    double sum = 0;
+    int m, k, l;
+    w->rest_pair_sigma = 0;
+    w->rest_wall_distance = w->support;
+    if (w->def.contact_rest == SPS_CONTACT_REST_KERNEL) return;
+    for (m = 1; m <= reach; ++m)
+        for (k = -reach; k <= reach; ++k)
+            for (l = w->dim == 3 ? -reach : 0; l <= (w->dim == 3 ? reach : 0); ++l)
+                sum += (double)sps_world_kernel(w, w->def.dp * SPS__SQRT((sps_real)(m * m + k * k + l * l)));
+    w->rest_pair_sigma = (sps_real)sum * w->dp_volume;
+    w->rest_wall_distance = SPS_R(0.5) * w->def.dp;
+}
+
 SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
     char msg[1024];
     sps_world_def d;
@@ -3404,6 +3441,7 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
     w->dw_scale = w->kernel_norm / w->h;
     w->dp_volume = d.dim == 2 ? d.dp * d.dp : d.dp * d.dp * d.dp;
     w->viscous_dt = (sps_real)INFINITY;
+    sps__contact_rest(w);
     *out = w;
     return SPS_OK;
 }
@@ -7400,6 +7438,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
     if (w->nwalls == 0) {
         sps__kernel_plane_tables(w, SPS__WALL_TABLE, w->wall_plane, w->wall_sigma);
         w->wall_sigma_half = sps__wall_sigma(w, SPS_R(0.5) * w->def.dp);
+        w->rest_wall_sigma = sps__wall_sigma(w, w->rest_wall_distance);
     }
     w->walls[w->nwalls++] = wall;
     w->contact_dirty = 1;
@@ -7671,7 +7710,8 @@ static sps_real sps__wall_sigma(const sps_world* w, sps_real d) {
     return d >= 0 ? sps__plane_table_at(w, w->wall_sigma, SPS__WALL_TABLE, d) : 1 - sps__plane_table_at(w, w->wall_sigma, SPS__WALL_TABLE, -d);
 }
 
-/* Contact density of particle i from the other bodies' particles (its contact pairs). */
+/* Contact density of particle i from the other bodies' particles (its contact pairs), above
+   its rest value. */
 static sps_real sps__pair_contact_density(const sps_world* w, int i) {
     sps_real sigma = 0;
     int k, a;
@@ -7683,15 +7723,15 @@ static sps_real sps__pair_contact_density(const sps_world* w, int i) {
         for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
         sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
     }
-    return sigma;
+    return sigma > w->rest_pair_sigma ? sigma - w->rest_pair_sigma : 0;
 }
-/* sigma plus the contact density of particle i from the walls. */
+/* sigma plus the contact density of particle i from the walls, each above its rest value. */
 static sps_real sps__wall_contact_density(const sps_world* w, int i, sps_real sigma) {
     int k;
     for (k = 0; k < w->nwalls; ++k) {
         const sps__wall* wl = &w->walls[k];
         const sps_real d = sps__wall_distance(w, wl, i);
-        if (d < w->support) sigma += sps__wall_sigma(w, d);
+        if (d < w->rest_wall_distance) sigma += sps__wall_sigma(w, d) - w->rest_wall_sigma;
     }
     return sigma;
 }
@@ -7817,7 +7857,7 @@ static void sps__contact_force(sps_world* w, int i, sps_real dt) {
         const sps__wall* wl = &w->walls[k];
         const sps_real d = sps__wall_distance(w, wl, i);
         sps_real plane, vn = 0;
-        if (!(d < w->support)) continue;
+        if (!(d < w->rest_wall_distance)) continue;
         plane = sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d); /* at its peak for d <= 0 */
         for (a = 0; a < w->dim; ++a) f[a] += 2 * bi->mat.K * si * plane * wl->normal[a];
         if (wl->slip == SPS_WALL_NO_SLIP) {

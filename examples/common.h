@@ -226,6 +226,7 @@ typedef struct {
     int penalty;   /* GNO, GNO-A: 0 the penalty's own pass (the paper's), 1 in the next pressure pass */
     double cfl, t_end, vtk_every, csv_every, E, nu, rho0;
     double h_over_dp;   /* smoothing length / dp; 0 = the library's default (1.3) */
+    int contact_rest;   /* sps_contact_rest: 0 flush (the library's default), 1 the papers' kernel-edge law */
     double png_every;   /* > 0: a PNG every png_every s; 0: none; < 0: one PNG at the end */
     int svg;            /* 1: the final picture as SVG too (one circle per particle: large for big 3D runs) */
     int vtk_binary;     /* 1: binary legacy VTK (faster to write, exact values) */
@@ -265,6 +266,7 @@ EX_UNUSED static const char* png_field_choices(void) {
     {"transport", OPT_CHOICE, &(c).transport, "transport-velocity correction (UTVF sections 3.2-3.3)", 0, 0, "none|tvf|utvf"}, \
     {"cfl", OPT_REAL, &(c).cfl, "acoustic CFL number CFL_ac", 0.01, 1, NULL},                            \
     {"h-over-dp", OPT_REAL, &(c).h_over_dp, "smoothing length / dp (water under gravity: 2)", 1, 3, NULL},  \
+    {"contact-rest", OPT_CHOICE, &(c).contact_rest, "where contacts rest: bodies filled flush, or the papers' law (about 1.5 dp off a wall)", 0, 0, "flush|kernel"}, \
     {"E", OPT_REAL, &(c).E, "Young's modulus [Pa]", 1e-3, 1e15, NULL},                                  \
     {"nu", OPT_REAL, &(c).nu, "Poisson ratio", -0.99, 0.4999, NULL},                                    \
     {"rho0", OPT_REAL, &(c).rho0, "density [kg/m^3]", 1e-6, 1e6, NULL},                                 \
@@ -295,6 +297,7 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     wd->kernel = c->kernel ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2;
     wd->cfl_acoustic = c->cfl;
     if (c->h_over_dp > 0) wd->h_over_dp = c->h_over_dp;
+    wd->contact_rest = (sps_contact_rest)c->contact_rest; /* choices in enum order */
     wd->threads = c->threads;
     bd->material.density = c->rho0;
     bd->material.youngs_modulus = c->E;

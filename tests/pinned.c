@@ -228,8 +228,8 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
         if (c->fluid == 3 && add_floating_block(w, c, lo, hi) != SPS_OK) return -1;
         return sps_world_add_box_walls(w, lo, tank_hi, c->dim == 2 ? SPS_FACE_Y_HI : SPS_FACE_Z_HI, SPS_WALL_NO_SLIP) == SPS_OK ? added : -1;
     }
-    if (DAMPED(c)) { /* a floor with friction within the support of the lowest particles */
-        const sps_real point[3] = {0, (sps_real)-0.01, 0}, up[3] = {0, 1, 0};
+    if (DAMPED(c)) { /* a floor with friction, flush under the lowest particles (its contact's rest) */
+        const sps_real point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
         if (index == 0 && (sps_world_add_wall(w, point, up, SPS_WALL_FREE_SLIP) != SPS_OK || sps_world_set_wall_friction(w, 0, (sps_real)0.5) != SPS_OK))
             return -1;
         return added;

@@ -291,10 +291,13 @@ static int test_field_by_name(void) {
    (level 1) and return SPS_OK: a box thinner than dp, a constraint box that matches no
    particle, a Poisson ratio within 1e-3 of 0.5 (with what it costs in time step). */
 static int g_warnings;
-static char g_warning_last[1024];
+static char g_warning_last[1024], g_warning_first[1024];
 static void warning_log(int level, const char* message, void* user) {
     (void)user;
-    if (level == 1) { ++g_warnings; snprintf(g_warning_last, sizeof g_warning_last, "%s", message); }
+    if (level == 1) {
+        if (++g_warnings == 1) snprintf(g_warning_first, sizeof g_warning_first, "%s", message);
+        snprintf(g_warning_last, sizeof g_warning_last, "%s", message);
+    }
 }
 static int test_warnings_for_silent_cases(void) {
     sps_world_def wd = sps_default_world_def();
@@ -401,11 +404,10 @@ static int test_energy_watchdog(void) {
 /* The work of the prescribed motions enters the account, so driven scenes do not read as energy
    gains. A bar 0.4 x 0.1 (GNO-A, stress tracked), clamped at x < 0.03, is pulled at its end
    x > 0.37 at 0.002 c0 by a velocity constraint, or pushed there by a rigid block moving at
-   0.002 c0, placed touching it (its contact releases 36 J at the start: the contact energy is
-   in the account). After 0.02 s the work done equals the energy gained within the Riemann
-   dissipation: the energy gained is the work done within 5 % for the slow pull (measured 0.8 %
-   above it, the end's kinetic energy at the start included), and below it for the push, which
-   loses half of the contact's start to dissipation; the watchdog stays quiet. */
+   0.002 c0, placed flush against it (at the contact's rest). After 0.02 s the work done equals
+   the energy gained within the Riemann dissipation: within 5 % for both (measured 0.8 % above
+   it for the pull, the end's kinetic energy at the start included, and 2.0 % for the push, the
+   contact's stiffness entering the sub-step); the watchdog stays quiet. */
 static int driven_bar(int rigid_pusher, double* gained, double* work) {
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -448,7 +450,7 @@ static int test_energy_account_driven(void) {
            gained[1], work[1]);
     ENSURE(work[0] > 0 && work[1] > 0);           /* both drive the bar */
     ENSURE(fabs(gained[0] - work[0]) < 0.05 * work[0]); /* the slow pull is nearly reversible: work -> energy */
-    ENSURE(gained[1] - work[1] < 0);              /* dissipation only takes energy away */
+    ENSURE(fabs(gained[1] - work[1]) < 0.05 * work[1]); /* the pusher starts flush, at the contact's rest: as reversible as the pull */
     return 0;
 }
 
@@ -1990,8 +1992,9 @@ static int test_watchdog_names_rotation(void) {
     sps_world* w = tumbling_body(2, SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 20, 0, SPS_WALL_NO_SLIP, &b);
     g_warnings = 0;
     ENSURE(w != NULL && sps_world_advance(w, 1.0, NULL, NULL) == SPS_OK);
-    printf("    %s\n", g_warning_last);
-    ENSURE(g_warnings == 1 && strstr(g_warning_last, "rotation = mean") && strstr(g_warning_last, "SPS_ROTATION_PAIR"));
+    printf("    %s\n", g_warning_first);
+    /* the first warning; the energy it gains then drives the body past the contact's speed range (a second one) */
+    ENSURE(g_warnings >= 1 && strstr(g_warning_first, "rotation = mean") && strstr(g_warning_first, "SPS_ROTATION_PAIR"));
     sps_world_destroy(w);
     w = tumbling_body(2, SPS_SHEAR_ENO_A, SPS_ROTATION_MEAN, 0, 20, 1, SPS_WALL_NO_SLIP, &b);
     ENSURE(w != NULL && sps_world_advance(w, 1.0, NULL, NULL) == SPS_ERR_UNSTABLE && sps_world_time(w) < 1.0);
@@ -2252,6 +2255,7 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 45: bd->contact_damping = 0.5; break;
     case 46: bd->damage_strain = 0.01; break;
     case 47: bd->penalty_in_pressure_pass = 1; break;
+    case 48: wd->contact_rest = SPS_CONTACT_REST_KERNEL; break;
     }
 }
 
@@ -2292,7 +2296,8 @@ static int test_restart_every_def_field(void) {
         BODY_FIELD("oas_exponent"), BODY_FIELD("track_stress"), BODY_FIELD("solver"), BODY_FIELD("transport"),
         BODY_FIELD("contact"), BODY_FIELD("transport_coefficient"), BODY_FIELD("damping"), BODY_FIELD("hourglass_alpha"),
         BODY_FIELD("hourglass"), TL_FIELD("artificial_viscosity"), BODY_FIELD("stress_diffusion"), BODY_FIELD("friction"),
-        BODY_FIELD("contact_damping"), TL_FIELD("damage_strain"), BODY_FIELD("penalty_in_pressure_pass")};
+        BODY_FIELD("contact_damping"), TL_FIELD("damage_strain"), BODY_FIELD("penalty_in_pressure_pass"),
+        WORLD_FIELD("contact_rest")};
 #undef WORLD_FIELD
 #undef BODY_FIELD
 #undef TL_FIELD

@@ -1154,7 +1154,7 @@ static double slope_slide(double mu, double angle_deg, double t_slide) {
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = friction_test_body(mu, 0);
     const double theta = angle_deg * 3.14159265358979323846 / 180;
-    const sps_real lo[3] = {-0.05, 0.0075, 0}, hi[3] = {0.05, 0.0575, 0}, point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+    const sps_real lo[3] = {-0.05, 0, 0}, hi[3] = {0.05, 0.05, 0}, point[3] = {0, 0, 0}, up[3] = {0, 1, 0}; /* flush on the slope */
     sps_world* w = NULL;
     sps_body b;
     double x0, slid = -1;
@@ -1200,7 +1200,7 @@ static int test_friction_momentum_exact(void) {
     for (with = 0; with < 2; ++with) {
         sps_world* w = new_world(2, 0.01);
         sps_body_def bd = friction_test_body(with ? 0.5 : 0, 0);
-        const sps_real lo1[3] = {0, 0, 0}, hi1[3] = {0.3, 0.1, 0}, lo2[3] = {0.05, 0.12, 0}, hi2[3] = {0.2, 0.2, 0};
+        const sps_real lo1[3] = {0, 0, 0}, hi1[3] = {0.3, 0.1, 0}, lo2[3] = {0.05, 0.1, 0}, hi2[3] = {0.2, 0.18, 0}; /* flush */
         sps_body lower, upper;
         sps_diagnostics d0, d1, du;
         sps_real c0, v[3];
