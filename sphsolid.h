@@ -1181,6 +1181,10 @@ typedef struct sps_diagnostics {
                                      energy_growth_limit (world-wide): 0 for a clean run. A run
                                      that warned (energy_growth_stops = 0) returned SPS_OK, and
                                      this is how the caller knows */
+    int warnings;                 /* warnings issued so far (world-wide), repeats included: a
+                                     warning whose text was printed before is counted here and
+                                     not printed again (the count per warning goes to the log
+                                     when the world is destroyed) */
 } sps_diagnostics;
 
 /* Per-particle output state (sps_world_particle). */
@@ -1617,6 +1621,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
 #define SPS__MAX_BODIES 4096
 #define SPS__OAS_MAX_EXPONENT 12 /* the largest oas_exponent */
 #define SPS__MAX_THREADS 1024
+#define SPS__WARNED 32 /* warning texts remembered per world (sps__warn prints each once) */
 #define SPS__DT_COLLAPSE 1e-3 /* acoustic dt / dt at rest below which a run is unstable */
 #define SPS__MAX_PARTICLES 200000000 /* 2e8: keeps every per-particle array index inside an int */
 
@@ -1842,6 +1847,8 @@ struct sps_world {
     uint32_t tag; /* identifies handles of this world */
     sps_real h, support, kernel_norm, dp_volume, inv_h, dw_scale; /* dw_scale = kernel_norm / h */
     char error[1024];
+    struct { uint64_t hash; int count; char head[96]; } warned[SPS__WARNED]; /* each warning's text, once */
+    int nwarned, warnings_issued;
 
     /* particles (SoA, capacity cap) */
     int n, cap;
@@ -2108,14 +2115,50 @@ static void sps__set_error(sps_world* w, int level, const char* fmt, ...) {
 }
 /* A warning (log level 1): a call that did what it was asked but probably not what was meant.
    It goes to the log only; the world's last error stays as it was. */
+/* Whether a warning with this text was issued before (then counted, not printed again): a cause
+   that recurs in a loop, or at every commit of the contacts, speaks once. The table keeps the
+   first SPS__WARNED texts; beyond it every warning prints. */
+static int sps__warned_before(sps_world* w, const char* msg) {
+    uint64_t hash = 1469598103934665603ull; /* FNV-1a */
+    const char* c;
+    int k;
+    for (c = msg; *c; ++c) hash = (hash ^ (unsigned char)*c) * 1099511628211ull;
+    ++w->warnings_issued;
+    for (k = 0; k < w->nwarned; ++k)
+        if (w->warned[k].hash == hash) return ++w->warned[k].count, 1;
+    if (w->nwarned == SPS__WARNED) return 0;
+    w->warned[w->nwarned].hash = hash;
+    w->warned[w->nwarned].count = 1;
+    for (k = 0; msg[k] && k + 1 < (int)sizeof w->warned[0].head; ++k) w->warned[w->nwarned].head[k] = msg[k];
+    w->warned[w->nwarned].head[k] = 0;
+    ++w->nwarned;
+    return 0;
+}
+
+/* Every world is allocated non-const (sps_world_create): the warning table is written through
+   a const world's pointer, as the error message is (sps__set_error_const). */
 static void sps__warn(const sps_world* w, const char* fmt, ...) {
     char msg[1024];
     va_list ap;
-    if (!w->def.log) return;
+    int repeated;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    SPS__PRAGMA(omp critical(sps__warn_table))
+    repeated = sps__warned_before((sps_world*)w, msg);
+    if (repeated || !w->def.log) return;
     w->def.log(1, msg, w->def.log_user);
+}
+
+/* At destroy: how often each warning that recurred was issued. */
+static void sps__report_repeated_warnings(const sps_world* w) {
+    int k;
+    for (k = 0; k < w->nwarned && w->def.log; ++k)
+        if (w->warned[k].count > 1) {
+            char msg[256];
+            snprintf(msg, sizeof msg, "the warning \"%.80s...\" was issued %d times (printed once)", w->warned[k].head, w->warned[k].count);
+            w->def.log(1, msg, w->def.log_user);
+        }
 }
 
 /* For the calls that take a const world: the error message is the one thing they write. Every
@@ -3478,6 +3521,7 @@ static void sps__free_particle_fields(sps_world* w) {
 
 SPSDEF void sps_world_destroy(sps_world* w) {
     if (!w) return;
+    sps__report_repeated_warnings(w);
     sps__free_particle_fields(w);
     sps__free(w, w->bodies);
     sps__free(w, w->constraints);
@@ -9259,6 +9303,7 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
     out->hourglass = sps__hourglass(w, begin, end, &out->min_spacing, &out->surface_particles, &out->zigzag);
     out->energy_growth = w->watch.worst;
     out->energy_growth_events = w->watch.events;
+    out->warnings = w->warnings_issued;
     return SPS_OK;
 }
 

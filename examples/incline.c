@@ -116,7 +116,7 @@ static sps_real ball_sdf(const sps_real x[3], void* user) {
 
 int main(int argc, char** argv) {
     int dim = 2, shape = 0; /* block|disc|ball (ball: 3D; disc: 2D) */
-    double mu = 0.3, angle = 30, dp = 0.005, settle = 0.2, viscosity = 0, lift = 1.5;
+    double mu = 0.3, angle = 30, dp = 0.005, settle = 0.2, viscosity = 0, lift = 0;
     common_options c = {.shear = SPS_SHEAR_ENO_A, .rotation = SPS_ROTATION_PAIR, .cfl = 0.4, .t_end = 1.2, .vtk_every = 0.1,
                         .csv_every = 0.005, .E = 1e6, .nu = 0.3, .rho0 = 1000, .out = "out/incline", PNG_DEFAULTS};
     opt_spec opts[] = {
@@ -125,7 +125,7 @@ int main(int argc, char** argv) {
         {"mu", OPT_REAL, &mu, "Coulomb friction coefficient of the slope and the body", 0, 10, NULL},
         {"angle", OPT_REAL, &angle, "slope angle theta [degrees]", 0, 89, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.001, 0.025, NULL},
-        {"lift", OPT_REAL, &lift, "gap between the body's surface and the slope at the start [dp] (the contact's rest distance)", 0, 10, NULL},
+        {"lift", OPT_REAL, &lift, "gap between the body's surface and the slope at the start [dp] (0: flush, the contact's rest)", 0, 10, NULL},
         {"settle", OPT_REAL, &settle, "kinetic relaxation before the release [s]: the body comes to rest on the slope", 0, 100, NULL},
         {"viscosity", OPT_REAL, &viscosity, "Kelvin-Voigt viscosity eta of the body [Pa s]", 0, 1e9, NULL},
         COMMON_OPTION_SPECS(c),
