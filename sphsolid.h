@@ -2150,6 +2150,19 @@ static void sps__warn(const sps_world* w, const char* fmt, ...) {
     w->def.log(1, msg, w->def.log_user);
 }
 
+/* A Coulomb coefficient above any pair of materials' (rubber on dry concrete is about 1): most
+   likely an angle typed in degrees, whose coefficient is tan(angle). `field` names the setting. */
+#define SPS__MU_MAX_REAL 2
+static void sps__warn_friction(const sps_world* w, const char* field, sps_real mu) {
+    if (mu > SPS__MU_MAX_REAL && mu < 90)
+        sps__warn(w, "%s = %g: a Coulomb coefficient above %d, more than any pair of materials has (rubber on dry concrete: about 1); "
+                  "if %g is a friction angle in degrees, its coefficient is tan(%g deg) = %.3g", field, (double)mu, SPS__MU_MAX_REAL,
+                  (double)mu, (double)mu, tan((double)mu * 3.14159265358979323846 / 180));
+    else if (mu > SPS__MU_MAX_REAL)
+        sps__warn(w, "%s = %g: a Coulomb coefficient above %d, more than any pair of materials has (rubber on dry concrete: about 1); "
+                  "for a contact that does not slide use a no-slip wall", field, (double)mu, SPS__MU_MAX_REAL);
+}
+
 /* At destroy: how often each warning that recurred was issued. */
 static void sps__report_repeated_warnings(const sps_world* w) {
     int k;
@@ -3485,6 +3498,9 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
     w->dp_volume = d.dim == 2 ? d.dp * d.dp : d.dp * d.dp * d.dp;
     w->viscous_dt = (sps_real)INFINITY;
     sps__contact_rest(w);
+    if (d.dim == 2 && d.gravity[2] != 0)
+        sps__warn(w, "gravity[2] = %g m/s^2 in a 2D world: a 2D world has the axes x and y only, so it acts on nothing; set gravity[1] "
+                  "(y up: -9.81) or dim = 3", (double)d.gravity[2]);
     *out = w;
     return SPS_OK;
 }
@@ -3637,6 +3653,11 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
                   (double)(b->mat.c0 / sps__material_constants_of(&ref).c0));
     }
     sps__warn_unread_fields(w, b);
+    if (def->friction > SPS__MU_MAX_REAL) {
+        char field[96];
+        snprintf(field, sizeof field, "body '%.60s': friction", b->name);
+        sps__warn_friction(w, field, def->friction);
+    }
     w->contact_dirty = 1;
     out->id = ((uint32_t)w->tag << 16) | (uint32_t)(w->nbodies + 1);
     w->nbodies++;
@@ -7530,6 +7551,7 @@ SPSDEF sps_result sps_world_set_wall_friction(sps_world* w, int wall, sps_real m
         }
     for (k = 0; k < w->nwalls; ++k)
         if (wall < 0 || k == wall) w->walls[k].friction = mu;
+    sps__warn_friction(w, "sps_world_set_wall_friction: mu", mu);
     w->contact_dirty = 1;
     sps__rearm_watchdog(w);
     return SPS_OK;
@@ -8772,6 +8794,34 @@ static sps_result sps__check_bodies_outside_walls(sps_world* w) {
     return SPS_OK;
 }
 
+/* At the first step: a fluid or granular body that comes within a kernel radius of a wall but
+   not to dp/2 of it leaves a slot it runs into at the start, a dam break in miniature: the
+   usual cause is a box whose size is not a multiple of dp (sps_body_add_box fills whole
+   spacings from lo and leaves the rest at hi). Warned with the slot's width. */
+static void sps__warn_slots_at_walls(const sps_world* w) {
+    int k, bi, i, a;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        const sps__body* b = &w->bodies[bi];
+        if (!b->model.mirrored) continue;
+        for (k = 0; k < w->nwalls; ++k) {
+            const sps__wall* wall = &w->walls[k];
+            sps_real nearest = (sps_real)INFINITY;
+            for (i = 0; i < w->n; ++i) {
+                sps_real d = 0;
+                if (w->body[i] != bi) continue;
+                for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wall->point[a]) * wall->normal[a];
+                if (d < nearest) nearest = d;
+            }
+            if (nearest > SPS_R(0.75) * w->def.dp && nearest < w->support)
+                sps__warn(w, "body '%s' comes within %g m of wall %d (normal (%g, %g, %g)) but not to dp/2 = %g m: a slot %.2g dp wide that "
+                          "it runs into at the start; a box whose size is not a multiple of dp leaves one (sps_body_add_box fills whole "
+                          "spacings from lo): size the fill to a multiple of dp, flush with the walls", b->name, (double)nearest, k,
+                          (double)wall->normal[0], (double)wall->normal[1], (double)wall->normal[2], SPS_R(0.5) * (double)w->def.dp,
+                          (double)((nearest - SPS_R(0.5) * w->def.dp) / w->def.dp));
+        }
+    }
+}
+
 static sps_result sps__ready_to_step(sps_world* w) {
     sps_result r;
     if ((r = sps__check_bodies_filled(w)) != SPS_OK) return r;
@@ -8929,6 +8979,7 @@ static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
         return SPS_ERR_UNSTABLE;
     }
     if (w->acoustic_steps == 0 && (r = sps__check_bodies_outside_walls(w)) != SPS_OK) return r;
+    if (w->acoustic_steps == 0) sps__warn_slots_at_walls(w);
     r = sps__step_until(w, t_limit);
     if (r == SPS_ERR_UNSTABLE) {
         w->stopped = 1;

@@ -2023,6 +2023,77 @@ static int test_setup_body_behind_wall(void) {
     return 0;
 }
 
+/* The quiet mistakes of a first scene speak: gravity along z in a 2D world, a friction typed in
+   degrees (body and wall), a fluid fill that leaves a slot to the tank's walls (a box not a
+   multiple of dp); each warning names the field and the fix. */
+static int test_setup_quiet_mistakes_warn(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    const sps_real origin[3] = {0, 0, 0}, up[3] = {0, 1, 0}, lo[3] = {0, 0, 0}, hi[3] = {0.0985, 0.05, 0}, tank[3] = {0.1, 0.2, 0};
+    sps_world* w = NULL;
+    sps_body b;
+    wd.log = warning_log;
+    wd.gravity[2] = -9.81;
+    g_warnings = 0;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    ENSURE(g_warnings == 1 && strstr(g_warning_last, "gravity[2] = -9.81") && strstr(g_warning_last, "set gravity[1]"));
+    sps_world_destroy(w);
+    wd.gravity[2] = 0;
+    wd.gravity[1] = -9.81;
+    bd.friction = 30;
+    g_warnings = 0;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK && sps_world_add_body(w, &bd, &b) == SPS_OK);
+    ENSURE(g_warnings == 1 && strstr(g_warning_last, "friction = 30") && strstr(g_warning_last, "tan(30 deg) = 0.577"));
+    ENSURE(sps_world_add_wall(w, origin, up, SPS_WALL_FREE_SLIP) == SPS_OK && sps_world_set_wall_friction(w, 0, 30) == SPS_OK);
+    ENSURE(g_warnings == 2 && strstr(g_warning_last, "mu = 30") && strstr(g_warning_last, "tan(30 deg)"));
+    ENSURE(sps_world_set_wall_friction(w, 0, 2) == SPS_OK && g_warnings == 2); /* 2 is a coefficient some pairs have */
+    sps_world_destroy(w);
+    bd = sps_default_body_def();
+    bd.material.kind = SPS_MATERIAL_FLUID;
+    bd.material.sound_speed = 20;
+    bd.name = "water";
+    wd.h_over_dp = 2;
+    g_warnings = 0;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK && sps_world_add_body(w, &bd, &b) == SPS_OK);
+    ENSURE(sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK); /* 9.85 dp wide: 9 columns, the last 1.5 dp from the wall at 0.1 */
+    ENSURE(sps_world_add_box_walls(w, lo, tank, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK && sps_world_step(w) == SPS_OK);
+    printf("    %s\n", g_warning_last);
+    ENSURE(g_warnings == 1 && strstr(g_warning_last, "body 'water'") && strstr(g_warning_last, "wall 1") && strstr(g_warning_last, "a multiple of dp"));
+    sps_world_destroy(w);
+    return 0;
+}
+
+/* A warning that recurs (a fluid beside a solid with contact off: at every commit of the
+   contacts) prints once; the diagnostics count every issue, and the destroy reports the count. */
+static int test_warnings_print_once(void) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def fluid = sps_default_body_def(), solid = sps_default_body_def();
+    const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0}, lo2[3] = {0.1, 0, 0}, hi2[3] = {0.15, 0.05, 0};
+    sps_world* w = NULL;
+    sps_body f, s1, s2;
+    sps_diagnostics d;
+    wd.log = warning_log;
+    fluid.material.kind = SPS_MATERIAL_FLUID;
+    fluid.material.sound_speed = 20;
+    fluid.name = "water";
+    solid.contact = 0;
+    solid.name = "block";
+    g_warnings = 0;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK && sps_world_add_body(w, &fluid, &f) == SPS_OK && sps_body_add_box(w, f, lo, hi, NULL) == SPS_OK);
+    ENSURE(sps_world_add_body(w, &solid, &s1) == SPS_OK && sps_body_add_box(w, s1, lo2, hi2, NULL) == SPS_OK);
+    ENSURE(sps_world_step(w) == SPS_OK);
+    solid.name = "block 2";
+    ENSURE(sps_world_add_body(w, &solid, &s2) == SPS_OK && sps_body_add_box(w, s2, lo2, hi2, NULL) == SPS_OK);
+    ENSURE(sps_world_step(w) == SPS_OK && sps_world_step(w) == SPS_OK);
+    ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d) == SPS_OK);
+    printf("    %d printed, %d issued\n", g_warnings, d.warnings);
+    ENSURE(g_warnings == 2);   /* 'water' with 'block', 'water' with 'block 2': one line each */
+    ENSURE(d.warnings > 2);    /* the first pair's warning recurred at the second commit */
+    sps_world_destroy(w);
+    ENSURE(g_warnings == 4 && strstr(g_warning_last, "was issued") && strstr(g_warning_last, "printed once")); /* both recurred */
+    return 0;
+}
+
 /* Set-up mistakes that used to pass silently: a velocity set on an empty body, an angle in
    radians, an advance to a past time, a run of years, an unknown field name, a stress asked of
    an ENO-A body. Each names the field, the value and the fix. */

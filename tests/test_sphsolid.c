@@ -318,6 +318,8 @@ int main(int argc, char** argv) {
     RUN(test_user_scene_tumbling_default);
     RUN(test_watchdog_names_rotation);
     RUN(test_setup_body_behind_wall);
+    RUN(test_setup_quiet_mistakes_warn);
+    RUN(test_warnings_print_once);
     RUN(test_setup_mistakes_named);
     RUN(test_rigid_motion_about_current_centre);
     RUN(test_frame_in_seconds);
