@@ -143,7 +143,9 @@ $(BUILD)/fluid_rest: bench/fluid_rest.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
+$(BUILD)/game_tank: bench/game_tank.c $(HEADER) $(EXAMPLE_HEADERS) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh

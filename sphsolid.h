@@ -464,6 +464,21 @@
       (sigma_i += int W dV) and the wall plane (F_i += 2 V_i K sigma_i W_plane(d) n), tabulated
       once; a no-slip wall adds a drag -2 V_i rho0 c0 W_plane(d) v_t on the tangential velocity.
       They cost a distance test per particle and wall.
+      Where bodies rest (sps_world_def.contact_rest): a body's surface lies dp/2 outside its
+      outer particles (a box filled by sps_body_add_box from lo to hi has its surface at lo and
+      hi). SPS_CONTACT_REST_FLUSH, the default: a wall pushes only with the contact density above
+      its value at dp/2, and another body with the density above what a flush lattice of the same
+      spacing gives a row dp away (the sum over its rows, computed once), so bodies filled flush
+      on walls and on each other (their boxes sharing a face) start at rest: three blocks stacked
+      flush on a floor without gravity stay at rest to round-off (in 2D and 3D, and shifted by a
+      quarter or half dp along the face), and a block thrown at 1 m/s with mu 0.3 filled flush stops within 0.1 %
+      of v0^2 / (2 mu g) (bench/VALIDATION.md, "The natural set-up"). Under gravity an elastic
+      body filled stress-free still settles under its own weight (its sag, not the contact).
+      SPS_CONTACT_REST_KERNEL: the papers' law above, every bit of the density pushes: a body
+      rests about 1.5 dp off a wall (its first row 2 dp above it) and filled flush it is thrown
+      off at a tenth of its sound speed; the examples that reproduce a paper's contact figures
+      (ball_plate2d, balls3d, rings2d, impact2d, the Taylor bars, punches, debris_barrier3d) use
+      it (--contact-rest flush|kernel).
       Friction (sps_body_def.friction, sps_world_set_wall_friction): Coulomb's law with a
       velocity-regularised stick. A contact's coefficient is the geometric mean sqrt(mu_a mu_b)
       of its two sides (a body and a wall, or two bodies; Box2D's rule: a frictionless side
@@ -1219,6 +1234,19 @@ SPSDEF const char* sps_result_string(sps_result r);
 SPSDEF sps_world_def sps_default_world_def(void);
 SPSDEF sps_material_def sps_default_material_def(void);
 SPSDEF sps_body_def sps_default_body_def(void);
+
+/* The sound speed c0 [m/s] for a fluid (material.sound_speed) whose density may vary by the
+   fraction density_error, in (0, 0.5]: the larger of sqrt(g depth / e) (the hydrostatic
+   compression g H / c0^2 at the floor of water `depth` deep under gravity of magnitude g) and
+   U / sqrt(e) (the dynamic pressure's rho U^2 / 2 against rho c0^2, U the larger of flow_speed
+   and the free-fall speed sqrt(2 g depth)). SPS_DENSITY_ERROR_ACCURATE gives the papers' 10 U;
+   SPS_DENSITY_ERROR_GAME 4.5 U: 2.2 times fewer sub-steps when the water sets the time step,
+   for a density within 5 % (bench/VALIDATION.md, "The natural set-up"). 0 for an
+   argument out of range (not finite, negative, or e outside (0, 0.5]), which the body's check
+   then refuses as material.sound_speed = 0. */
+#define SPS_DENSITY_ERROR_ACCURATE 0.01
+#define SPS_DENSITY_ERROR_GAME 0.05
+SPSDEF sps_real sps_fluid_sound_speed(sps_real gravity, sps_real depth, sps_real flow_speed, sps_real density_error);
 
 /* Checks a world def; writes every broken rule (field, value, allowed range) into msg.
    Returns SPS_OK or SPS_ERR_INVALID_ARG. No allocation. */
@@ -2295,6 +2323,18 @@ SPSDEF sps_material_def sps_default_material_def(void) {
     m.youngs_modulus = SPS_R(1e6);
     m.poisson_ratio = SPS_R(0.3);
     return m;
+}
+
+SPSDEF sps_real sps_fluid_sound_speed(sps_real gravity, sps_real depth, sps_real flow_speed, sps_real density_error) {
+    sps_real fall, speed, hydrostatic, dynamic;
+    if (!sps__finite(gravity) || !sps__finite(depth) || !sps__finite(flow_speed) || gravity < 0 || depth < 0 || flow_speed < 0 ||
+        !(density_error > 0 && density_error <= SPS_R(0.5)))
+        return 0;
+    fall = SPS__SQRT(2 * gravity * depth);
+    speed = flow_speed > fall ? flow_speed : fall;
+    hydrostatic = SPS__SQRT(gravity * depth / density_error);
+    dynamic = speed / SPS__SQRT(density_error);
+    return hydrostatic > dynamic ? hydrostatic : dynamic;
 }
 
 SPSDEF sps_body_def sps_default_body_def(void) {
@@ -6070,21 +6110,23 @@ static void sps__reflect_image(const sps_world* w, const sps__body* b, const sps
     }
     m->p += b->rho0 * gd;
 }
-/* The corner images of particle i between walls wa and wb at right angles: each neighbour
-   within 2h of both walls reflected across both. Without them a particle in a corner misses
-   the image diagonally across it, and the pressure of the rest pulls it into the corner (the
-   corner particle of a tank at rest: 33 m/s^2 at h = 1.3 dp; bench/VALIDATION.md, "Still water"). Exact for a box; walls at other angles get none (the
-   backstop holds their corners). */
-static void sps__corner_images(sps_world* w, const sps__body* b, int i, const sps__wall* wa, const sps__wall* wb, sps__image_fn visit,
+/* The corner images of particle i between `count` walls at right angles to each other (2: an
+   edge; 3 in 3D: a box's corner): each neighbour within 2h of all of them reflected across
+   all. Without them a particle in a corner misses the images diagonally across it, and the
+   pressure of the rest pulls it into the corner (the corner particle of a 2D tank at rest: 33
+   m/s^2 at h = 1.3 dp; bench/VALIDATION.md, "Still water"). Exact for a box; walls at other
+   angles get none (the backstop holds their corners). */
+static void sps__corner_images(sps_world* w, const sps__body* b, int i, const sps__wall* const* walls, int count, sps__image_fn visit,
                                void* user) {
-    int m;
+    int m, k;
     for (m = -1; m < w->nb_count[i]; ++m) {
         sps__image image;
         image.j = m < 0 ? i : sps__neighbor(w, i, m);
-        if (!(sps__wall_distance(w, wa, image.j) < w->support) || !(sps__wall_distance(w, wb, image.j) < w->support)) continue;
-        image.wall = wa;
-        sps__mirror(w, b, wa, image.j, image.x, image.v, image.vv, &image.p);
-        sps__reflect_image(w, b, wb, &image);
+        for (k = 0; k < count && sps__wall_distance(w, walls[k], image.j) < w->support; ++k) {}
+        if (k < count) continue;
+        image.wall = walls[0];
+        sps__mirror(w, b, walls[0], image.j, image.x, image.v, image.vv, &image.p);
+        for (k = 1; k < count; ++k) sps__reflect_image(w, b, walls[k], &image);
         visit(w, b, i, &image, user);
     }
 }
@@ -6095,16 +6137,33 @@ static int sps__walls_square(const sps_world* w, const sps__wall* a, const sps__
     for (c = 0; c < w->dim; ++c) dot += a->normal[c] * b->normal[c];
     return dot * dot < SPS_R(1e-10);
 }
+/* Whether wall k is within 2h of particle i and square to the walls already in `corner`. */
+static int sps__joins_corner(const sps_world* w, int i, const sps__wall* const* corner, int count, const sps__wall* wall) {
+    int c;
+    if (!(sps__wall_distance(w, wall, i) < w->support)) return 0;
+    for (c = 0; c < count; ++c)
+        if (!sps__walls_square(w, corner[c], wall)) return 0;
+    return 1;
+}
 static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_fn visit, void* user) {
-    int k, k2;
+    int k, k2, k3;
     for (k = 0; k < w->nwalls; ++k) {
         const sps_real d_i = sps__wall_distance(w, &w->walls[k], i);
+        const sps__wall* corner[3];
         if (!(d_i < w->support)) continue;
         sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
         if (b->model.stress) continue; /* a granular body's walls act one by one (sps__grain_wall_force) */
-        for (k2 = k + 1; k2 < w->nwalls; ++k2)
-            if (sps__wall_distance(w, &w->walls[k2], i) < w->support && sps__walls_square(w, &w->walls[k], &w->walls[k2]))
-                sps__corner_images(w, b, i, &w->walls[k], &w->walls[k2], visit, user);
+        corner[0] = &w->walls[k];
+        for (k2 = k + 1; k2 < w->nwalls; ++k2) {
+            if (!sps__joins_corner(w, i, corner, 1, &w->walls[k2])) continue;
+            corner[1] = &w->walls[k2];
+            sps__corner_images(w, b, i, corner, 2, visit, user);
+            for (k3 = k2 + 1; k3 < w->nwalls && w->dim == 3; ++k3) {
+                if (!sps__joins_corner(w, i, corner, 2, &w->walls[k3])) continue;
+                corner[2] = &w->walls[k3];
+                sps__corner_images(w, b, i, corner, 3, visit, user);
+            }
+        }
     }
 }
 

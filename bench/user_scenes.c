@@ -4,6 +4,14 @@
               gravity; --slip noslip|free
      ramp     the 2D disc (or 3D cube) released on a 30-degree no-slip ramp, rolling (or tumbling) down
      collide  two such bodies spinning in opposite senses, thrown at each other at 2 m/s each
+     stack    three blocks (0.1 m high; 0.3, 0.2, 0.1 m wide, a square column in 3D) filled flush on
+              the floor and on each other
+     slide    a block 0.1 x 0.05 m filled flush on a floor, mu 0.3 (body and wall), thrown at 1 m/s
+     tank     water 0.1 m deep in a tank 0.3 m wide (0.2 x 0.2 m in 3D; h = 2 dp, c0 from
+              sps_fluid_sound_speed at 1 %) with jelly blocks (density 500) filled flush on it
+     gravity-z   the drop scene in 2D with gravity along z (a mistake: warned, nothing moves)
+     friction-deg the slide with friction 30 (degrees typed for mu: warned, it sticks)
+     slot     the tank's water filled 1.5 dp short of its far wall (warned: it runs into the slot)
    It prints one RESULT line: watchdog_growth, the energy watchdog's largest finding
    (sps_diagnostics.energy_growth: the account kinetic + volumetric strain + contact + gravity
    potential - prescribed work above its start, as a fraction of the largest mechanical energy
@@ -44,12 +52,12 @@ static const char* const shear_names[] = {"eno", "eno-a", "og", "oas", "gno", "g
 static const char* const rotation_names[] = {"mean", "particle", "pair"};
 
 static void parse(int argc, char** argv, scene_options* o) {
-    static const char* const scenes[] = {"drop", "ramp", "collide"};
+    static const char* const scenes[] = {"drop", "ramp", "collide", "stack", "slide", "tank", "gravity-z", "friction-deg", "slot"};
     static const char* const slips[] = {"free", "noslip"};
     int i;
     for (i = 1; i + 1 < argc; i += 2) {
         const char *key = argv[i], *value = argv[i + 1];
-        if (!strcmp(key, "--scene")) o->scene = scenes[choice(value, scenes, 3, key)];
+        if (!strcmp(key, "--scene")) o->scene = scenes[choice(value, scenes, 9, key)];
         else if (!strcmp(key, "--dim")) o->dim = atoi(value);
         else if (!strcmp(key, "--slip")) o->noslip = choice(value, slips, 2, key);
         else if (!strcmp(key, "--shear")) o->shear = strcmp(value, "default") ? choice(value, shear_names, 6, key) : -1;
@@ -88,9 +96,49 @@ static sps_result add_block(sps_world* w, const sps_body_def* bd, int dim, const
     return dim == 3 ? sps_body_add_box(w, *out, lo, hi, NULL) : sps_body_add_sdf(w, *out, lo, hi, disc_sdf_real, (void*)c, NULL);
 }
 
+static int g_warnings;
 static void quiet_log(int level, const char* message, void* user) {
     (void)user;
     if (level == 0) fprintf(stderr, "%s\n", message);
+    if (level == 1) ++g_warnings; /* the mistakes' scenes must warn */
+}
+
+/* A box body [lo, hi] of def bd (z ignored in 2D), thrown at vx. */
+static sps_result add_box_body(sps_world* w, const sps_body_def* bd, const double lo[3], const double hi[3], double vx, sps_body* out) {
+    const sps_real l[3] = {(sps_real)lo[0], (sps_real)lo[1], (sps_real)lo[2]}, h[3] = {(sps_real)hi[0], (sps_real)hi[1], (sps_real)hi[2]};
+    sps_result r = sps_world_add_body(w, bd, out);
+    if (r == SPS_OK) r = sps_body_add_box(w, *out, l, h, NULL);
+    return r == SPS_OK && vx != 0 ? throw_body(w, *out, vx, 0, 0) : r;
+}
+
+static double g_depth;
+static sps_real hydrostatic(const sps_real x[3], void* user) {
+    (void)user;
+    return (sps_real)(1000 * 9.81 * (g_depth - (double)x[1]));
+}
+
+/* The tank scene (slot: the water 1.5 dp short of the far wall). */
+static sps_result build_tank(sps_world* w, sps_body_def bd, const scene_options* o, int slot) {
+    const double width = o->dim == 3 ? 0.2 : 0.3, depth = 0.1, block = 0.05, short_by = slot ? 1.5 * o->dp : 0;
+    const sps_real lo[3] = {0, 0, 0}, hi[3] = {(sps_real)width, 1, (sps_real)width};
+    const double wlo[3] = {0, 0, 0}, whi[3] = {width - short_by, depth, width};
+    sps_body_def water = sps_default_body_def();
+    sps_body b;
+    sps_result r;
+    int k;
+    g_depth = depth;
+    water.name = "water";
+    water.material.kind = SPS_MATERIAL_FLUID;
+    water.material.sound_speed = sps_fluid_sound_speed((sps_real)9.81, (sps_real)depth, 0, (sps_real)SPS_DENSITY_ERROR_ACCURATE);
+    if ((r = sps_world_add_box_walls(w, lo, hi, o->dim == 3 ? SPS_FACE_Y_HI : SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP)) != SPS_OK) return r;
+    if ((r = add_box_body(w, &water, wlo, whi, 0, &b)) != SPS_OK || (r = sps_body_set_pressure(w, b, hydrostatic, NULL)) != SPS_OK) return r;
+    bd.material.density = 500;
+    bd.name = "raft";
+    for (k = 0; k < (o->dim == 3 ? 1 : 3); ++k) { /* flush on the water */
+        const double x0 = o->dim == 3 ? 0.075 : 0.025 + 0.1 * k, blo[3] = {x0, depth, 0.075}, bhi[3] = {x0 + block, depth + block, 0.125};
+        if ((r = add_box_body(w, &bd, blo, bhi, 0, &b)) != SPS_OK) return r;
+    }
+    return SPS_OK;
 }
 
 static double total_energy(const sps_diagnostics* d) {
@@ -114,7 +162,10 @@ static sps_result build(const scene_options* o, sps_world** out) {
     if (o->shear >= 0) bd.shear = (sps_shear)o->shear;
     if (o->rotation >= 0) bd.rotation = (sps_rotation)o->rotation;
     bd.track_stress = 1; /* the strain energy of the ENO family needs the stress */
+    if (!strcmp(o->scene, "tank") || !strcmp(o->scene, "slot")) wd.h_over_dp = 2; /* water under gravity */
+    if (!strcmp(o->scene, "gravity-z")) { wd.dim = 2; wd.gravity[1] = 0; wd.gravity[2] = -9.81; }
     if ((r = sps_world_create(&wd, out)) != SPS_OK) return r;
+    if (!strcmp(o->scene, "tank") || !strcmp(o->scene, "slot")) return build_tank(*out, bd, o, !strcmp(o->scene, "slot"));
     if (!strcmp(o->scene, "ramp")) { /* a 30-degree ramp through the origin, going down towards +x */
         const sps_real normal[3] = {(sps_real)sin(PI / 6), (sps_real)cos(PI / 6), 0};
         /* the disc's radius, or the axis-aligned cube's deepest corner (half side (sin + cos 30 deg)),
@@ -126,11 +177,27 @@ static sps_result build(const scene_options* o, sps_world** out) {
         if ((r = add_block(*out, &bd, o->dim, centre[0], &a)) != SPS_OK) return r;
         return throw_body(*out, a, 0, 0, 0);
     }
-    if ((r = sps_world_add_wall(*out, origin, up, o->noslip ? SPS_WALL_NO_SLIP : SPS_WALL_FREE_SLIP)) != SPS_OK) return r;
-    if (!strcmp(o->scene, "drop")) {
+    if ((r = sps_world_add_wall(*out, origin, up, o->noslip && strcmp(o->scene, "slide") && strcmp(o->scene, "friction-deg") ? SPS_WALL_NO_SLIP : SPS_WALL_FREE_SLIP)) != SPS_OK)
+        return r; /* the slides: a free-slip floor with Coulomb friction */
+    if (!strcmp(o->scene, "stack")) { /* flush: the first row dp/2 above the floor, the blocks' rows dp apart */
+        const double width[3] = {0.3, 0.2, 0.1};
+        int k;
+        for (k = 0; k < 3; ++k) {
+            const double lo[3] = {-width[k] / 2, 0.1 * k, -0.05}, hi[3] = {width[k] / 2, 0.1 * (k + 1), 0.05};
+            if ((r = add_box_body(*out, &bd, lo, hi, 0, &a)) != SPS_OK) return r;
+        }
+        return SPS_OK;
+    }
+    if (!strcmp(o->scene, "slide") || !strcmp(o->scene, "friction-deg")) {
+        const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.05, 0.05};
+        bd.friction = !strcmp(o->scene, "slide") ? 0.3 : 30;
+        if ((r = sps_world_set_wall_friction(*out, 0, bd.friction)) != SPS_OK) return r;
+        return add_box_body(*out, &bd, lo, hi, 1, &a);
+    }
+    if (!strcmp(o->scene, "drop") || !strcmp(o->scene, "gravity-z")) {
         centre[0][1] = 0.25;
         if ((r = add_block(*out, &bd, o->dim, centre[0], &a)) != SPS_OK) return r;
-        return throw_body(*out, a, 0, 0, o->spin);
+        return throw_body(*out, a, 0, 0, !strcmp(o->scene, "gravity-z") ? 0 : o->spin);
     }
     centre[0][0] = -0.1; centre[0][1] = 0.1; /* collide: resting on the floor, 0.1 m apart */
     centre[1][0] = 0.1; centre[1][1] = 0.1;
@@ -165,10 +232,10 @@ int main(int argc, char** argv) {
     }
     sps_world_diagnostics(w, all, &d);
     printf("RESULT scene=%s dim=%d slip=%s spin=%g shear=%s rotation=%s t=%.4f status=%s energy_start=%.6g mech_start=%.6g "
-           "max_gain=%.5f watchdog_growth=%.5f target=0.02 watchdog_events=%d max_speed=%.4g min_spacing=%.3f particles=%d\n",
+           "max_gain=%.5f watchdog_growth=%.5f target=0.02 watchdog_events=%d warnings=%d max_speed=%.4g min_spacing=%.3f particles=%d\n",
            o.scene, o.dim, o.noslip ? "noslip" : "free", o.spin, o.shear < 0 ? "default" : shear_names[o.shear],
            o.rotation < 0 ? "default" : rotation_names[o.rotation], (double)sps_world_time(w), r == SPS_OK ? "ok" : r == SPS_ERR_UNSTABLE ? "unstable" : "refused", e0,
-           mech0, gain, (double)d.energy_growth, d.energy_growth_events, (double)d.max_speed, (double)d.min_spacing, d.particles);
+           mech0, gain, (double)d.energy_growth, d.energy_growth_events, g_warnings, (double)d.max_speed, (double)d.min_spacing, d.particles);
     if (r != SPS_OK) fprintf(stderr, "user_scenes: %s\n", sps_world_last_error(w));
     sps_world_destroy(w);
     return r == SPS_OK ? 0 : 2;
