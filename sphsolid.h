@@ -1783,6 +1783,14 @@ typedef struct sps__model {
 } sps__model;
 
 
+/* The churn watch of a fluid body (sps__watch_churn). */
+typedef struct sps__churn {
+    sps_real weight_height;          /* m |g| H at its first check [J]; 0 before */
+    sps_real window_end, window_max; /* the current quarter second and its largest kinetic energy */
+    sps_real previous_max;           /* the last whole window's */
+    int rises, warned;               /* windows in a row each SPS__CHURN_RISE times the one before */
+} sps__churn;
+
 typedef struct sps__body {
     sps_body_def def;
     char name[32];
@@ -1813,6 +1821,7 @@ typedef struct sps__body {
                                   work on the others), a moving velocity constraint or an
                                   external acceleration */
     sps_real energy_start;     /* its kinetic + strain + contact energy at the watchdog's start */
+    sps__churn churn;          /* a fluid's kinetic energy, watched for a churn (sps__watch_churn) */
     /* its optional per-particle arrays (the sps__fields rows owned by a body), allocated at commit
        when its model needs them, else NULL: particle begin + k at [components k], with
        SPS__LANES zeroed slots of lane padding after the last */
@@ -8555,12 +8564,63 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
    it: a growth above energy_growth_limit times the largest mechanical energy seen is reported
    once (log level 1), naming the body whose kinetic + strain energy grew most, or stops the run
    (energy_growth_stops). */
+/* A fluid at rest that churns: its kinetic energy grows without anything driving it, while it
+   stays far below what its weight could give (a dam break's or a splash's grows as fast, but
+   from its potential energy, to a good fraction of m g H within the first quarter second). The
+   account of sps__watch_energy cannot see it: the churn's energy comes from the water settling
+   (its potential energy falls more than its kinetic energy rises). Watched per fluid body under
+   gravity at the watchdog's checks: the largest kinetic energy of each quarter second of
+   simulated time; SPS__CHURN_WINDOWS windows in a row each SPS__CHURN_RISE times the one before,
+   below SPS__CHURN_SMALL of m |g| H (H its height at the first check), warn once with the
+   likely causes. Measured: water at h = 1.3 dp grows about 20-fold a second (2.1 a window). */
+#define SPS__CHURN_WINDOW SPS_R(0.25)
+#define SPS__CHURN_WINDOWS 4
+#define SPS__CHURN_RISE SPS_R(1.5)
+#define SPS__CHURN_SMALL SPS_R(1e-3)
+static void sps__watch_churn(sps_world* w, sps__body* b) {
+    sps__churn* c = &b->churn;
+    const sps_real* g = w->def.gravity;
+    const sps_real g_norm = SPS__SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    sps_real kinetic = 0;
+    int i, a;
+    for (i = b->begin; i < b->end; ++i) kinetic += sps__kinetic(w, i);
+    if (c->weight_height == 0) { /* the first check: the scale and the first window */
+        sps_real lo = (sps_real)INFINITY, hi = -(sps_real)INFINITY, mass = 0;
+        for (i = b->begin; i < b->end; ++i) {
+            sps_real up = 0;
+            for (a = 0; a < w->dim; ++a) up -= g[a] / g_norm * w->pos[a][i];
+            if (up < lo) lo = up;
+            if (up > hi) hi = up;
+            mass += w->mass[i];
+        }
+        c->weight_height = mass * g_norm * (hi > lo ? hi - lo : w->def.dp);
+        c->window_end = w->time + SPS__CHURN_WINDOW;
+    }
+    if (kinetic > c->window_max) c->window_max = kinetic;
+    if (w->time < c->window_end) return;
+    c->rises = c->window_max > SPS__CHURN_RISE * c->previous_max && c->previous_max > 0 ? c->rises + 1 : 0;
+    c->previous_max = c->window_max;
+    c->window_max = 0;
+    c->window_end = w->time + SPS__CHURN_WINDOW;
+    if (c->rises < SPS__CHURN_WINDOWS || c->warned || !(c->previous_max < SPS__CHURN_SMALL * c->weight_height)) return;
+    c->warned = 1;
+    sps__warn(w, "body '%s' churns at t = %g: its kinetic energy rose %d quarter-seconds in a row, each at least %g-fold, to %g J (%.2g of its "
+              "weight times its height), with nothing driving it; likely cause: %s", b->name, (double)w->time, c->rises,
+              (double)SPS__CHURN_RISE, (double)c->previous_max, (double)(c->previous_max / c->weight_height),
+              w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6) ? "h_over_dp below 2: set the world's h_over_dp = 2 (bench/VALIDATION.md, \"Still water\")"
+              : "a slot at a wall, a corner of walls not at right angles, or the free surface's density diffusion (a tank at rest bursts after 8-14 s: "
+                "bench/VALIDATION.md, \"Still water\")");
+}
+
 static sps_result sps__watch_energy(sps_world* w) {
     char msg[768];
     sps_real account, mechanical, growth, gain = 0;
     int bi, most = 0;
     if (!sps__watchdog_on(w) || (w->watch.armed && w->acoustic_steps - w->watch.checked_at < 10)) return SPS_OK;
     w->watch.checked_at = w->acoustic_steps;
+    for (bi = 0; bi < w->nbodies && sps__has_gravity(w); ++bi)
+        if (!w->bodies[bi].model.material->shear && !w->bodies[bi].model.material->kinematic) /* a fluid: no shear stress */
+            sps__watch_churn(w, &w->bodies[bi]);
     sps__energy_account(w, &account, &mechanical);
     if (!w->watch.armed) {
         w->watch.armed = 1;
