@@ -236,6 +236,7 @@ int main(int argc, char** argv) {
     RUN(test_still_water);
     RUN(test_fluid_corner_images);
     RUN(test_fluid_smoothing_warning);
+    RUN(test_fluid_churn_warned);
     RUN(test_standing_wave_period);
     RUN(test_drucker_prager_return_on_cone);
     RUN(test_granular_limiter_off_in_expansion);
