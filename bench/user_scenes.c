@@ -36,6 +36,8 @@ typedef struct scene_options {
     const char* scene;
     int dim, noslip, rotation, shear; /* rotation, shear: -1 = sps_default_body_def()'s */
     double spin, t_end, dp, cfl;
+    double gravity, E; /* [m/s^2] along -y (default 9.81); Young's modulus (0: the default body's) */
+    int contact_rest;  /* sps_contact_rest: 0 flush (default), 1 the papers' kernel-edge law */
 } scene_options;
 
 static int choice(const char* value, const char* const* names, int n, const char* option) {
@@ -51,6 +53,7 @@ static int choice(const char* value, const char* const* names, int n, const char
 static const char* const shear_names[] = {"eno", "eno-a", "og", "oas", "gno", "gno-a"};
 static const char* const rotation_names[] = {"mean", "particle", "pair"};
 
+static const char* const contact_rests[] = {"flush", "kernel"};
 static void parse(int argc, char** argv, scene_options* o) {
     static const char* const scenes[] = {"drop", "ramp", "collide", "stack", "slide", "tank", "gravity-z", "friction-deg", "slot"};
     static const char* const slips[] = {"free", "noslip"};
@@ -66,11 +69,14 @@ static void parse(int argc, char** argv, scene_options* o) {
         else if (!strcmp(key, "--tend")) o->t_end = atof(value);
         else if (!strcmp(key, "--dp")) o->dp = atof(value);
         else if (!strcmp(key, "--cfl")) o->cfl = atof(value);
+        else if (!strcmp(key, "--gravity")) o->gravity = atof(value);
+        else if (!strcmp(key, "--contact-rest")) o->contact_rest = choice(value, contact_rests, 2, key);
+        else if (!strcmp(key, "--E")) o->E = atof(value);
         else { fprintf(stderr, "user_scenes: unknown option %s\n", key); exit(2); }
     }
     if (i < argc || (o->dim != 2 && o->dim != 3)) {
         fprintf(stderr, "usage: user_scenes [--scene drop|ramp|collide] [--dim 2|3] [--slip free|noslip] [--shear default|eno|eno-a|og|"
-                        "oas|gno|gno-a] [--rotation default|mean|particle|pair] [--spin rad/s] [--tend s] [--dp m] [--cfl c]\n");
+                        "oas|gno|gno-a] [--rotation default|mean|particle|pair] [--spin rad/s] [--tend s] [--dp m] [--cfl c] [--gravity g] [--E Pa] [--contact-rest flush|kernel]\n");
         exit(2);
     }
 }
@@ -156,7 +162,9 @@ static sps_result build(const scene_options* o, sps_world** out) {
     wd.dp = (sps_real)o->dp;
     wd.threads = 1;
     if (o->cfl > 0) wd.cfl_acoustic = (sps_real)o->cfl;
-    wd.gravity[1] = -9.81;
+    wd.gravity[1] = (sps_real)-o->gravity;
+    wd.contact_rest = (sps_contact_rest)o->contact_rest;
+    if (o->E > 0) bd.material.youngs_modulus = (sps_real)o->E;
     wd.energy_growth_limit = 0.02; /* the watchdog reports the growth above 2 % (sps_diagnostics.energy_growth) */
     wd.log = quiet_log;
     if (o->shear >= 0) bd.shear = (sps_shear)o->shear;
@@ -207,8 +215,19 @@ static sps_result build(const scene_options* o, sps_world** out) {
     return throw_body(*out, b, -2, 0, -o->spin);
 }
 
+/* The mean x of all particles (the slide's distance). */
+static double mean_x(const sps_world* w) {
+    const sps_real* x = sps_world_field(w, SPS_FIELD_POSITION_X);
+    const int n = sps_world_particle_count(w);
+    double sum = 0;
+    int i;
+    for (i = 0; i < n; ++i) sum += x[i];
+    return n > 0 ? sum / n : 0;
+}
+
 int main(int argc, char** argv) {
-    scene_options o = {"drop", 3, 1, -1, -1, 20, 1, 0.01, 0};
+    scene_options o = {"drop", 3, 1, -1, -1, 20, 1, 0.01, 0, 9.81, 0, 0};
+    double speed_10ms = 0, x_start = 0;
     const sps_body all = {0};
     sps_world* w = NULL;
     sps_diagnostics d0, d;
@@ -225,17 +244,22 @@ int main(int argc, char** argv) {
     mech0 = d0.kinetic_energy + d0.strain_energy;
     if (mech0 <= 0) mech0 = -d0.potential_energy; /* a body released at rest: its potential energy [J] sets the scale */
     if (mech0 <= 0) mech0 = 1e-30;
+    x_start = mean_x(w);
     while (sps_world_time(w) < o.t_end - 1e-12) {
-        if ((r = sps_world_step(w)) != SPS_OK) break;
+        /* the first 10 ms sampled every millisecond (an advection step of a scene at rest is longer) */
+        if ((r = sps_world_time(w) < 0.01 ? sps_world_advance(w, sps_world_time(w) + (sps_real)0.001, NULL, NULL) : sps_world_step(w)) != SPS_OK)
+            break;
         sps_world_diagnostics(w, all, &d);
+        if (sps_world_time(w) <= 0.01 + 1e-9 && d.max_speed > speed_10ms) speed_10ms = d.max_speed;
         if ((total_energy(&d) - e0) / mech0 > gain) gain = (total_energy(&d) - e0) / mech0;
     }
     sps_world_diagnostics(w, all, &d);
     printf("RESULT scene=%s dim=%d slip=%s spin=%g shear=%s rotation=%s t=%.4f status=%s energy_start=%.6g mech_start=%.6g "
-           "max_gain=%.5f watchdog_growth=%.5f target=0.02 watchdog_events=%d warnings=%d max_speed=%.4g min_spacing=%.3f particles=%d\n",
+           "max_gain=%.5f watchdog_growth=%.5f target=0.02 watchdog_events=%d warnings=%d max_speed_10ms=%.4g slid=%.5f slide_theory=%.5f max_speed=%.4g min_spacing=%.3f particles=%d\n",
            o.scene, o.dim, o.noslip ? "noslip" : "free", o.spin, o.shear < 0 ? "default" : shear_names[o.shear],
            o.rotation < 0 ? "default" : rotation_names[o.rotation], (double)sps_world_time(w), r == SPS_OK ? "ok" : r == SPS_ERR_UNSTABLE ? "unstable" : "refused", e0,
-           mech0, gain, (double)d.energy_growth, d.energy_growth_events, g_warnings, (double)d.max_speed, (double)d.min_spacing, d.particles);
+           mech0, gain, (double)d.energy_growth, d.energy_growth_events, g_warnings, speed_10ms, mean_x(w) - x_start,
+           o.gravity > 0 ? 1 / (2 * 0.3 * o.gravity) : 0 /* v0^2 / (2 mu g): the slide's 1 m/s at mu 0.3 */, (double)d.max_speed, (double)d.min_spacing, d.particles);
     if (r != SPS_OK) fprintf(stderr, "user_scenes: %s\n", sps_world_last_error(w));
     sps_world_destroy(w);
     return r == SPS_OK ? 0 : 2;
