@@ -4,6 +4,9 @@
 #   drop     2D disc / 3D cube dropped on a no-slip and a free-slip floor, spin 0, 20, 50 rad/s
 #   ramp     rolling (2D) or tumbling (3D) down a 30-degree no-slip ramp
 #   collide  two spinning bodies thrown at each other
+#   stack, slide, tank   blocks filled flush on a floor and on each other; a block thrown along a
+#            floor with friction; water with jelly rafts filled flush on it
+#   gravity-z, friction-deg, slot   the quiet mistakes (warned; the default body)
 # Classes: stable (the watchdog's growth below 2 % of the largest mechanical energy, to the end),
 # unstable (stopped with a clean SPS_ERR_UNSTABLE message), refused (a set-up check at the first
 # step), rejected (a refused combination, e.g. OAS in 3D), GAINED (ran to the end with growth >= 2 %: counted in sps_diagnostics, not silent,
@@ -44,8 +47,11 @@ for dim in $dims; do
             done
             run "$dim" ramp noslip 0 "$shear" "$rotation"
             run "$dim" collide noslip 20 "$shear" "$rotation"
+            for scene in stack slide tank; do run "$dim" "$scene" free 0 "$shear" "$rotation"; done
         done
     done
+    for scene in friction-deg slot; do run "$dim" "$scene" free 0 default default; done
 done
+run 2 gravity-z free 0 default default
 rm -f /tmp/user_scenes_map.$$
 echo "$out:"; cut -d, -f7 "$out" | tail -n +2 | sort | uniq -c
