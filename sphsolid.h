@@ -202,7 +202,9 @@
 
    FLUIDS (material.kind = SPS_MATERIAL_FLUID; UTVF sections 2.1, 3.1.1)
       A weakly compressible fluid: p = c0^2 (rho - rho0) with c0 = material.sound_speed (about
-      10 times the largest flow speed keeps the density within ~1 %), no shear stress (shear,
+      10 times the largest flow speed keeps the density within ~1 %; sps_fluid_sound_speed
+      chooses it from the depth and speeds for a density error: SPS_DENSITY_ERROR_GAME trades
+      5 % of it for half the sub-steps of a water scene), no shear stress (shear,
       rotation and track_stress are not used), and the Riemann solver of UTVF eqs. 16-20: the
       momentum equation's dissipation Z beta (v_ij . e_ij), Z = rho0 c0, with the limiter beta =
       min(3 max(-v_ij . e_ij / c0, 0), 1) (none while particles separate), and the continuity
@@ -652,8 +654,15 @@
       above the measured stable limit of a body's formulation (STABLE CFL), the energy
       watchdog, threads > 1 in a build without OpenMP, a Drucker-Prager friction angle in
       (0, pi/2] (radians given for degrees), an sps_world_advance of more than 1e10 particle
-      sub-steps (the estimated count), and with report_fragments = 1 a particle that broke off
-      its body.
+      sub-steps (the estimated count), with report_fragments = 1 a particle that broke off
+      its body, gravity along z in a 2D world, a friction above 2 (body or wall: the angle in
+      degrees it likely is, with its tangent), a fluid or granular body whose particles come
+      within the kernel of a wall but not to dp/2 (a slot: a fill not a multiple of dp), and a
+      fluid that churns (its kinetic energy rising at least 2-fold three quarter-seconds in a
+      row while below 1e-3 of its weight times its height, which the energy account cannot see:
+      the water settles as it churns). A warning whose text was issued before is counted in
+      sps_diagnostics.warnings, not printed again; sps_world_destroy logs how often each
+      recurring one was issued.
       Run-time guards (SPS_ERR_UNSTABLE; the message names time, body, particle and value):
       - at every configuration update (once per advection step, ~0.25 % of its time): a
         non-finite velocity, position, pressure, shear stress or accumulated shear acceleration,
