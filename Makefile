@@ -144,7 +144,9 @@ $(BUILD)/fluid_rest: bench/fluid_rest.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
+$(BUILD)/geometry_cost: bench/geometry_cost.c tests/mesh_files.h $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh
@@ -322,7 +324,7 @@ fuzz-libfuzzer: $(BUILD)/fuzz_restore_libfuzzer $(BUILD)/fuzz_restore
 # loaded under ASan + UBSan: refused with a message naming the file, or a valid mesh ----
 FUZZ_MESH_CASES ?= 10000
 $(BUILD)/fuzz_mesh_sanitize: tests/fuzz_mesh.c tests/mesh_files.h $(HEADER) | $(BUILD)
-	$(CC) -std=c99 -O1 $(SANITIZE_DEBUG) $(WARN) -Wno-unused-function -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
+	$(CC) -std=c99 -O1 $(SANITIZE_DEBUG) $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
 fuzz-mesh: $(BUILD)/fuzz_mesh_sanitize
 	ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_mesh_sanitize --cases $(FUZZ_MESH_CASES) --dir $(BUILD)
 .PHONY: fuzz-mesh

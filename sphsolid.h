@@ -10570,7 +10570,11 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path) {
 #define SPS__MESH_MAX_COORDINATE 1e12        /* [m]: products of coordinates (volumes, cross products) stay finite */
 
 typedef struct sps__mesh_node {
-    double lo[3], hi[3];
+    double lo[3], hi[3];      /* the axis-aligned box (the rays' test) */
+    double centre[3], axis[3][3], half[3]; /* an oriented box, one axis along the elements' mean
+                                              normal: on a curved surface it is as thick as the
+                                              patch's sagitta, where the axis-aligned box is as
+                                              thick as the patch is wide (the distance's test) */
     int first, count; /* elements order[first .. first + count) of a leaf */
     int left;         /* the children left, left + 1; -1 for a leaf */
 } sps__mesh_node;
@@ -10726,6 +10730,51 @@ static void sps__bvh_bounds(const sps_mesh* m, sps__mesh_node* nd) {
             }
         }
 }
+/* The oriented box of a node: axes the elements' area-weighted mean normal (3D), a direction
+   across it and their cross product; the axis-aligned box's when the normals cancel (a closed
+   patch) or in 2D. */
+static void sps__bvh_oriented(const sps_mesh* m, sps__mesh_node* nd) {
+    double n[3] = {0, 0, 0}, total = 0, len, lo[3], hi[3];
+    int i, k, a, b;
+    memset(nd->axis, 0, sizeof nd->axis);
+    for (a = 0; a < 3; ++a) nd->axis[a][a] = 1;
+    for (i = nd->first; m->dim == 3 && i < nd->first + nd->count; ++i) {
+        const int* e = m->e + 3 * m->order[i];
+        double u[3], w[3], c[3];
+        sps__v3_sub(m->v + 3 * e[1], m->v + 3 * e[0], u);
+        sps__v3_sub(m->v + 3 * e[2], m->v + 3 * e[0], w);
+        sps__v3_cross(u, w, c);
+        for (a = 0; a < 3; ++a) n[a] += c[a];
+        total += sqrt(sps__v3_dot(c, c));
+    }
+    len = sqrt(sps__v3_dot(n, n));
+    if (m->dim == 3 && len > 0.5 * total) { /* the normals agree: a patch, not a closed piece */
+        const int* e = m->e + 3 * m->order[nd->first];
+        double u[3], s;
+        for (a = 0; a < 3; ++a) nd->axis[0][a] = n[a] / len;
+        sps__v3_sub(m->v + 3 * e[1], m->v + 3 * e[0], u);
+        s = sps__v3_dot(u, nd->axis[0]);
+        for (a = 0; a < 3; ++a) u[a] -= s * nd->axis[0][a];
+        s = sqrt(sps__v3_dot(u, u));
+        if (s > 0) {
+            for (a = 0; a < 3; ++a) nd->axis[1][a] = u[a] / s;
+            sps__v3_cross(nd->axis[0], nd->axis[1], nd->axis[2]);
+        } else { memset(nd->axis, 0, sizeof nd->axis); for (a = 0; a < 3; ++a) nd->axis[a][a] = 1; }
+    }
+    for (b = 0; b < 3; ++b) { lo[b] = HUGE_VAL; hi[b] = -HUGE_VAL; }
+    for (i = nd->first; i < nd->first + nd->count; ++i)
+        for (k = 0; k < m->dim; ++k)
+            for (b = 0; b < 3; ++b) {
+                const double x = sps__v3_dot(m->v + 3 * m->e[m->dim * m->order[i] + k], nd->axis[b]);
+                if (x < lo[b]) lo[b] = x;
+                if (x > hi[b]) hi[b] = x;
+            }
+    for (a = 0; a < 3; ++a) nd->centre[a] = 0;
+    for (b = 0; b < 3; ++b) {
+        nd->half[b] = 0.5 * (hi[b] - lo[b]);
+        for (a = 0; a < 3; ++a) nd->centre[a] += 0.5 * (lo[b] + hi[b]) * nd->axis[b][a];
+    }
+}
 /* Splits node n (recursively): its elements sorted along the longest axis of their centroids,
    halved at the median. Nodes are numbered in creation order (the children of n at left, left + 1). */
 static void sps__bvh_split(sps__bvh_build* c, int n) {
@@ -10734,6 +10783,7 @@ static void sps__bvh_split(sps__bvh_build* c, int n) {
     double clo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, chi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     int i, a, half, first = nd->first, count = nd->count, left;
     sps__bvh_bounds(m, nd);
+    sps__bvh_oriented(m, nd);
     nd->left = -1;
     if (count <= SPS__MESH_LEAF) return;
     for (i = first; i < first + count; ++i)
@@ -10778,14 +10828,21 @@ static int sps__bvh_create(sps_mesh* m) {
     sps__mesh_free(&m->a, c.tmp);
     return 0;
 }
+/* A lower bound of the squared distance from p to the node's elements: the larger of the
+   distances to its two boxes (0 inside). */
 static double sps__box_distance2(const sps__mesh_node* nd, const double p[3]) {
-    double d2 = 0;
+    double d[3], d2 = 0, o2 = 0;
     int a;
     for (a = 0; a < 3; ++a) {
         const double e = p[a] < nd->lo[a] ? nd->lo[a] - p[a] : p[a] > nd->hi[a] ? p[a] - nd->hi[a] : 0;
         d2 += e * e;
     }
-    return d2;
+    sps__v3_sub(p, nd->centre, d);
+    for (a = 0; a < 3; ++a) {
+        const double u = fabs(sps__v3_dot(d, nd->axis[a])) - nd->half[a];
+        if (u > 0) o2 += u * u;
+    }
+    return d2 > o2 ? d2 : o2;
 }
 
 /* ---- nearest points ---- */

@@ -5,6 +5,12 @@
    of one mesh hold the same numbers. Include after <stdio.h>, <stdlib.h>, <math.h>. */
 #ifndef SPS_TESTS_MESH_FILES_H
 #define SPS_TESTS_MESH_FILES_H
+/* each program uses some of these */
+#if defined(__GNUC__) || defined(__clang__)
+#define TEST_MESH_FN static __attribute__((unused))
+#else
+#define TEST_MESH_FN static
+#endif
 
 typedef struct test_mesh {
     int nv, nt;
@@ -12,11 +18,11 @@ typedef struct test_mesh {
     int* t;    /* 3 per triangle, counter-clockwise seen from outside */
 } test_mesh;
 
-static void test_mesh_free(test_mesh* m) { free(m->v); free(m->t); m->v = NULL; m->t = NULL; }
+TEST_MESH_FN void test_mesh_free(test_mesh* m) { free(m->v); free(m->t); m->v = NULL; m->t = NULL; }
 
 /* A sphere of radius R about c: nlat rings of latitude between the poles (nlat >= 2), nlon
    points each; 2 nlon (nlat - 1) triangles. The vertices lie on the sphere (to float rounding). */
-static test_mesh test_mesh_sphere(double R, const double c[3], int nlat, int nlon) {
+TEST_MESH_FN test_mesh test_mesh_sphere(double R, const double c[3], int nlat, int nlon) {
     test_mesh m;
     const double pi = 3.14159265358979323846;
     int i, j, k = 0, n;
@@ -51,7 +57,7 @@ static test_mesh test_mesh_sphere(double R, const double c[3], int nlat, int nlo
 }
 
 /* The box [lo, hi]: 8 vertices, 12 triangles. */
-static test_mesh test_mesh_box(const double lo[3], const double hi[3]) {
+TEST_MESH_FN test_mesh test_mesh_box(const double lo[3], const double hi[3]) {
     static const int tri[36] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
     test_mesh m;
     int i;
@@ -67,11 +73,11 @@ static test_mesh test_mesh_box(const double lo[3], const double hi[3]) {
     return m;
 }
 
-static void test_put_le32(unsigned char* p, unsigned u) {
+TEST_MESH_FN void test_put_le32(unsigned char* p, unsigned u) {
     p[0] = (unsigned char)(u & 255); p[1] = (unsigned char)(u >> 8 & 255); p[2] = (unsigned char)(u >> 16 & 255); p[3] = (unsigned char)(u >> 24 & 255);
 }
 /* The binary STL of m in memory (caller frees); *size its length. */
-static unsigned char* test_stl_binary(const test_mesh* m, size_t* size) {
+TEST_MESH_FN unsigned char* test_stl_binary(const test_mesh* m, size_t* size) {
     unsigned char* b;
     int i, k, a;
     *size = 84 + 50 * (size_t)m->nt;
@@ -88,20 +94,20 @@ static unsigned char* test_stl_binary(const test_mesh* m, size_t* size) {
             }
     return b;
 }
-static int test_write_bytes(const char* path, const void* bytes, size_t size) {
+TEST_MESH_FN int test_write_bytes(const char* path, const void* bytes, size_t size) {
     FILE* f = fopen(path, "wb");
     if (!f) return 1;
     if (fwrite(bytes, 1, size, f) != size) { fclose(f); return 1; }
     return fclose(f) != 0;
 }
-static int test_write_stl_binary(const char* path, const test_mesh* m) {
+TEST_MESH_FN int test_write_stl_binary(const char* path, const test_mesh* m) {
     size_t size;
     unsigned char* b = test_stl_binary(m, &size);
     const int bad = test_write_bytes(path, b, size);
     free(b);
     return bad;
 }
-static int test_write_stl_ascii(const char* path, const test_mesh* m) {
+TEST_MESH_FN int test_write_stl_ascii(const char* path, const test_mesh* m) {
     FILE* f = fopen(path, "w");
     int i, k;
     if (!f) return 1;
@@ -117,7 +123,7 @@ static int test_write_stl_ascii(const char* path, const test_mesh* m) {
     fprintf(f, "endsolid test\n");
     return fclose(f) != 0;
 }
-static int test_write_obj(const char* path, const test_mesh* m) {
+TEST_MESH_FN int test_write_obj(const char* path, const test_mesh* m) {
     FILE* f = fopen(path, "w");
     int i;
     if (!f) return 1;
