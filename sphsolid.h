@@ -1612,8 +1612,10 @@ SPSDEF sps_result sps_mesh_load(const char* path, const sps_mesh_def* def, sps_m
 #endif
 SPSDEF void sps_mesh_destroy(sps_mesh* m);
 SPSDEF sps_mesh_info sps_mesh_get_info(const sps_mesh* m);
-/* The signed distance [m] from x to the mesh (negative inside; 2D: x[2] ignored). mesh is an
-   sps_mesh*. O(log n) (a bounding-volume hierarchy); thread-safe; no allocation. */
+/* The signed distance [m] from x to the mesh (negative inside; 2D: x[2] ignored; NaN for an x
+   that is not finite). mesh is an sps_mesh*. O(log n) near the surface (a bounding-volume
+   hierarchy; deep inside a curved mesh more triangles are near-equidistant); thread-safe; no
+   allocation. */
 SPSDEF sps_real sps_mesh_sdf(const sps_real x[3], void* mesh);
 /* Fills body b with the mesh's inside, cut by the box [lo, hi] (both NULL: no cut; e.g. water
    up to a level), on the world's lattice (points (k + 1/2) dp, whatever the box):
@@ -10829,14 +10831,15 @@ static int sps__bvh_create(sps_mesh* m) {
     return 0;
 }
 /* A lower bound of the squared distance from p to the node's elements: the larger of the
-   distances to its two boxes (0 inside). */
-static double sps__box_distance2(const sps__mesh_node* nd, const double p[3]) {
+   distances to its two boxes (0 inside; the oriented one's only when the other is below best). */
+static double sps__box_distance2(const sps__mesh_node* nd, const double p[3], double best) {
     double d[3], d2 = 0, o2 = 0;
     int a;
     for (a = 0; a < 3; ++a) {
         const double e = p[a] < nd->lo[a] ? nd->lo[a] - p[a] : p[a] > nd->hi[a] ? p[a] - nd->hi[a] : 0;
         d2 += e * e;
     }
+    if (d2 >= best) return d2;
     sps__v3_sub(p, nd->centre, d);
     for (a = 0; a < 3; ++a) {
         const double u = fabs(sps__v3_dot(d, nd->axis[a])) - nd->half[a];
@@ -10914,7 +10917,7 @@ static double sps__mesh_nearest(const sps_mesh* m, const double p[3], double bes
     stack[sp++] = 0;
     while (sp > 0) {
         const sps__mesh_node* nd = &m->node[stack[--sp]];
-        if (sps__box_distance2(nd, p) >= best) continue;
+        if (sps__box_distance2(nd, p, best) >= best) continue;
         if (nd->left < 0) {
             for (i = nd->first; i < nd->first + nd->count; ++i) {
                 const int t = m->order[i];
@@ -10924,7 +10927,7 @@ static double sps__mesh_nearest(const sps_mesh* m, const double p[3], double bes
                 if (d2 < best) { best = d2; memcpy(q, qt, sizeof qt); *element = t; *feature = f; }
             }
         } else {
-            const double dl = sps__box_distance2(&m->node[nd->left], p), dr = sps__box_distance2(&m->node[nd->left + 1], p);
+            const double dl = sps__box_distance2(&m->node[nd->left], p, best), dr = sps__box_distance2(&m->node[nd->left + 1], p, best);
             const int nearer = dl <= dr ? nd->left : nd->left + 1, farther = dl <= dr ? nd->left + 1 : nd->left;
             if ((dl <= dr ? dr : dl) < best) stack[sp++] = farther;
             if ((dl <= dr ? dl : dr) < best) stack[sp++] = nearer;
