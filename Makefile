@@ -8,6 +8,7 @@
 #                 readers (tests/test_geometry.c) and damaged mesh files under ASan + UBSan (tests/fuzz_mesh.c)
 #   make fuzz-restore-full  the crafted restart files' 10,000 cases (about 3 min)
 #   make fuzz-libfuzzer FUZZ_SECONDS=600  the restart reader under clang's libFuzzer (one core)
+#   make cad-check  the mesh readers against a part OpenSCAD exports, its volume from admesh (installs both as root)
 #   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
 #   make gallery  one picture per example into bench/gallery/ (about 15 s)
 #   make probes   the bench probes that read the library's private state (torque_probe, rotation_probe)
