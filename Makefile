@@ -4,9 +4,11 @@
 #   make test     the README quick start and every example (brief runs, pictures read back), the demo (headless),
 #                 the pinned results (tests/pinned.c), the randomized API test (10,000 cases), the test
 #                 runner (optimised, OpenMP), and both again under ASan + UBSan (quick tests, 1,000 cases);
-#                 crafted restart files under ASan + UBSan (tests/fuzz_restore.c, 1,000 cases)
+#                 crafted restart files under ASan + UBSan (tests/fuzz_restore.c, 1,000 cases); the geometry
+#                 readers (tests/test_geometry.c) and damaged mesh files under ASan + UBSan (tests/fuzz_mesh.c)
 #   make fuzz-restore-full  the crafted restart files' 10,000 cases (about 3 min)
 #   make fuzz-libfuzzer FUZZ_SECONDS=600  the restart reader under clang's libFuzzer (one core)
+#   make cad-check  the mesh readers against a part OpenSCAD exports, its volume from admesh (installs both as root)
 #   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
 #   make gallery  one picture per example into bench/gallery/ (about 15 s)
 #   make probes   the bench probes that read the library's private state (torque_probe, rotation_probe)
@@ -80,7 +82,7 @@ check: $(CHECK_SRC) $(HEADER) README.md examples/hello.c tests/check_compile_out
 	$(CC) -std=c99 -O1 $(WARN) -Werror -fopenmp -I. $(BUILD)/header_quickstart.c -o $(BUILD)/header_quickstart $(LDLIBS)
 	# the compile-out builds at -O0: they check that each switch compiles cleanly and refuses its kinds;
 	# the warnings only the optimiser finds are checked by the -O1 builds of the whole header above
-	for out in FLUID GRANULAR PLASTICITY TOTAL_LAGRANGIAN "FLUID -DSPHSOLID_NO_GRANULAR -DSPHSOLID_NO_PLASTICITY -DSPHSOLID_NO_TOTAL_LAGRANGIAN"; do \
+	for out in FLUID GRANULAR PLASTICITY TOTAL_LAGRANGIAN GEOMETRY "FLUID -DSPHSOLID_NO_GRANULAR -DSPHSOLID_NO_PLASTICITY -DSPHSOLID_NO_TOTAL_LAGRANGIAN"; do \
 	  $(CC) -std=c99 -O0 $(WARN) -Werror -DSPHSOLID_NO_$$out tests/check_compile_out.c -o $(BUILD)/check_compile_out $(LDLIBS) && \
 	  ./$(BUILD)/check_compile_out || { echo "check: SPHSOLID_NO_$$out failed"; exit 1; }; \
 	done
@@ -145,7 +147,9 @@ $(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/game_tank: bench/game_tank.c $(HEADER) $(EXAMPLE_HEADERS) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
+$(BUILD)/geometry_cost: bench/geometry_cost.c tests/mesh_files.h $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh
@@ -258,6 +262,12 @@ $(BUILD)/test_relax: tests/test_relax.c tests/ensure.h $(HEADER) | $(BUILD)
 test-relax: $(BUILD)/test_relax
 	./$(BUILD)/test_relax
 .PHONY: test-relax
+# geometry from files (chapter >>geometry): the readers, every bad input, the sphere's figures, a container
+$(BUILD)/test_geometry: tests/test_geometry.c tests/mesh_files.h tests/ensure.h $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+test-geometry: $(BUILD)/test_geometry
+	./$(BUILD)/test_geometry $(BUILD)/geometry
+.PHONY: test-geometry
 # a commit that changes results on purpose regenerates the tables and says why
 pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 	OMP_WAIT_POLICY=passive ./$(BUILD)/pinned --print > tests/pinned_double.inc
@@ -266,7 +276,7 @@ pinned-update: $(BUILD)/pinned $(BUILD)/pinned_float
 
 # The parts run two at a time (each prints its output when it is done); the test runner's
 # "N passed, M failed" is repeated last so that it closes make test. About 4 minutes on 2 cores.
-TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned test-relax fuzz fuzz-sanitize fuzz-restore test-sanitize test-fast
+TEST_PARTS = check quickstart-run examples-smoke demo-smoke test-pinned test-relax test-geometry fuzz fuzz-sanitize fuzz-restore fuzz-mesh test-sanitize test-fast
 test:
 	@echo "make test: the header checks, examples, demo, pinned results, randomized API test and the test runner (plain and sanitized), two at a time: about 4 minutes on 2 cores (a fresh build included)"
 	@$(MAKE) --no-print-directory -j2 --output-sync=target $(TEST_PARTS)
@@ -312,6 +322,22 @@ fuzz-libfuzzer: $(BUILD)/fuzz_restore_libfuzzer $(BUILD)/fuzz_restore
 	cd $(BUILD)/libfuzzer && ASAN_OPTIONS=detect_leaks=1 nice ../fuzz_restore_libfuzzer -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
 	  -rss_limit_mb=2048 -print_final_stats=1 corpus ../../tests/restore_corpus seeds
 .PHONY: fuzz-restore fuzz-restore-full fuzz-libfuzzer
+
+# ---- damaged mesh files (tests/fuzz_mesh.c): valid STL, OBJ, outline and SVG files mutated and
+# loaded under ASan + UBSan: refused with a message naming the file, or a valid mesh ----
+FUZZ_MESH_CASES ?= 10000
+$(BUILD)/fuzz_mesh_sanitize: tests/fuzz_mesh.c tests/mesh_files.h $(HEADER) | $(BUILD)
+	$(CC) -std=c99 -O1 $(SANITIZE_DEBUG) $(WARN) -fopenmp $(SANITIZE) $< -o $@ $(LDLIBS)
+fuzz-mesh: $(BUILD)/fuzz_mesh_sanitize
+	ASAN_OPTIONS=detect_leaks=1 ./$(BUILD)/fuzz_mesh_sanitize --cases $(FUZZ_MESH_CASES) --dir $(BUILD)
+.PHONY: fuzz-mesh
+# the readers against a part OpenSCAD exports, its volume from admesh (tests/cad_check.sh: installs
+# Debian's openscad and admesh where it is root, else skips, saying so; .ci/run calls it)
+$(BUILD)/cad_check: tests/cad_check.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+cad-check: $(BUILD)/cad_check
+	sh tests/cad_check.sh $(BUILD)
+.PHONY: cad-check
 
 # ---- valgrind: serial builds (no OpenMP runtime and its thread caches to suppress) ----
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect

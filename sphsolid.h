@@ -48,6 +48,7 @@
                                default allocator (malloc/free); define both or neither.
       SPS_ASSERT(c)            assertion for programmer errors (default: assert.h).
       SPHSOLID_NO_STDIO        drop the file writers and the default stderr logger.
+      SPHSOLID_NO_GEOMETRY     leave out the meshes and outlines (GEOMETRY). Global.
       SPHSOLID_NO_FLUID, SPHSOLID_NO_GRANULAR, SPHSOLID_NO_PLASTICITY,
       SPHSOLID_NO_TOTAL_LAGRANGIAN
                                leave out the pass instances of fluids, Drucker-Prager bodies,
@@ -735,6 +736,34 @@
       in the file, 1 in this world"), before the world is changed. Native byte order and sps_real, both checked; a payload
       checksum refuses truncated or damaged files (SPS_ERR_IO). Size: about the state's own
       size plus one int per neighbour pair (2D plate at H/dp 10: bench/VALIDATION.md).
+
+   GEOMETRY (sps_mesh_load, sps_mesh_from_triangles, sps_mesh_from_rings; chapter >>geometry)
+      A body from a file in three lines:
+         sps_mesh* m; if (sps_mesh_load("part.stl", NULL, &m, msg, sizeof msg) != SPS_OK) puts(msg);
+         sps_body_add_mesh(w, body, m, NULL, NULL, 0, NULL);   // relaxed, body-fitted surface
+         sps_mesh_destroy(m);
+      The format is told by the content, not by the name: a binary STL by its size (84 + 50
+      bytes per triangle: a header that starts with "solid" does not matter), else text: SVG (an
+      <svg element), ASCII STL (first word "solid"), Wavefront OBJ (first statement v, f, o,
+      g, ...: polygons fanned into triangles, negative indices, vt/vn/groups/materials ignored)
+      or an outline (lines "x y" or "x,y", '#' comments, a blank line between rings). SVG: the
+      d attributes of <path> (M L H V C S Q T Z, absolute and relative; curves flattened within
+      chord_error) and the points of <polygon>; y turned upwards; the coordinates are the
+      drawing's units (use scale); arcs, transform attributes and <rect>/<circle>/<ellipse> are
+      refused with a message (convert them to paths in the editor). 3D meshes must be closed
+      and consistently oriented with outward normals (refused otherwise, naming the edge or the
+      signed volume; allow_open and flip accept them); 2D rings must not cross (refused, naming
+      the segments); inside is inside an odd number of rings. Degenerate triangles are skipped
+      and counted; equal vertices are welded. Every refusal leaves *out NULL and writes a
+      message naming the file and the line or triangle; nothing is added to a world.
+      Distance: exact to the nearest triangle (segment), found in a bounding-volume hierarchy;
+      3D sign from the angle-weighted pseudo-normal of the nearest face, edge or vertex, 2D from
+      the crossing parity. The fills need exact distances only within 2h (and the shell) of the
+      surface: beyond it they take the sign from a ray's crossing parity, so deep particles cost
+      O(log n). Containers: sps_body_add_mesh_shell fills a wall body with `layers` lattice
+      layers outside the mesh (a cut at the top keeps a glass open); sps_body_add_mesh fills the
+      fluid inside, cut at its level; both on the lattice (k + 1/2) dp, so the fluid's first
+      layer stands dp from the wall's.
 
    MEMORY
       Allocation happens in sps_world_create, when particles, constraints or observers are added,
@@ -1565,6 +1594,92 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
    O(N neighbours). Compiled out with SPHSOLID_NO_STDIO. */
 SPSDEF sps_result sps_world_save(const sps_world* w, const char* path);
 SPSDEF sps_result sps_world_restore(sps_world* w, const char* path);
+#endif
+
+#ifndef SPHSOLID_NO_GEOMETRY
+/* Geometry from files and arrays (GEOMETRY; chapter >>geometry; compiled out with
+   SPHSOLID_NO_GEOMETRY). A mesh is a closed triangle surface (3D) or a set of closed rings of
+   segments, outer boundaries and holes (2D); sps_mesh_sdf is its exact signed distance (to the
+   triangles or segments, negative inside) and fits the sdf callback of sps_body_add_sdf,
+   sps_body_add_sdf_relaxed and sps_measure_fill. A mesh is read-only once made: one mesh may
+   serve any number of worlds and threads. */
+typedef struct sps_mesh sps_mesh;
+typedef struct sps_mesh_def {
+    sps_real scale;          /* factor on the coordinates (0.001: a file in millimetres), > 0.
+                                Default 1. */
+    int centre;              /* 1: after scaling, the bounding box's centre moved to the origin.
+                                Default 0. */
+    sps_real rotate[3];      /* then rotated [rad] about x, then y, then z (2D: rotate[2] only).
+                                Default 0. */
+    sps_real translate[3];   /* then moved [m]. Default 0. */
+    int flip;                /* 1: every triangle turned over (a mesh whose normals point
+                                inwards, which is refused otherwise). Default 0. */
+    int allow_open;          /* 3D: 1 accepts a mesh with boundary edges or inconsistently
+                                oriented triangles (the sign is then the side of the nearest
+                                triangle, right only near it); 0 refuses it. Default 0. */
+    sps_real chord_error;    /* SVG: the largest distance of the flattened curves from the
+                                Bezier curves, in the drawing's units, >= 0; 0: 1e-3 of the
+                                drawing's size. Default 0. */
+    sps_allocator allocator; /* Default: SPHSOLID_MALLOC / SPHSOLID_FREE. */
+    int internal_cookie;     /* set by sps_default_mesh_def(); do not touch. */
+} sps_mesh_def;
+/* What a mesh holds (after the def's transform). */
+typedef struct sps_mesh_info {
+    int dim;                     /* 3: triangles; 2: segments of closed rings */
+    int elements;                /* triangles (segments) kept */
+    int vertices;                /* distinct vertices */
+    int rings;                   /* 2D: closed rings (outer boundaries and holes) */
+    int degenerate;              /* triangles of zero area (segments of zero length) skipped */
+    int boundary_edges;          /* 3D: edges of one triangle only (0: closed) */
+    int inconsistent_edges;      /* 3D: edges two triangles run along in the same direction */
+    int nonmanifold_edges;       /* 3D: edges of more than two triangles */
+    int closed, oriented;        /* 1: no boundary (or non-manifold) edge; 1: consistently oriented */
+    sps_real lo[3], hi[3];       /* bounding box [m] */
+    sps_real volume, area;       /* enclosed volume [m^3] and surface area [m^2]; 2D: area [m^2]
+                                    and perimeter [m] */
+} sps_mesh_info;
+SPSDEF sps_mesh_def sps_default_mesh_def(void);
+/* A mesh from nv vertices xyz (3 reals each) and nt triangles tri (3 vertex indices each,
+   0-based, counter-clockwise seen from outside). def NULL: the defaults. On error *out is NULL
+   and msg (may be NULL) gets the reason, naming the triangle or vertex: SPS_ERR_INVALID_ARG
+   (NULL arrays, counts < 1, an index out of range, a coordinate not finite, no triangle of
+   non-zero area, an open or inconsistently oriented mesh without allow_open, a mesh that faces
+   inwards: negative signed volume), SPS_ERR_OUT_OF_MEMORY. Allocates O(nt); O(nt log^2 nt). */
+SPSDEF sps_result sps_mesh_from_triangles(int nv, const sps_real* xyz, int nt, const int* tri, const sps_mesh_def* def, sps_mesh** out,
+                                          char* msg, size_t msg_size);
+/* A 2D mesh from nrings closed rings: ring r has ring_points[r] >= 3 points, all of them in xy
+   (2 reals each, ring after ring; a last point equal to the first is dropped). Outer boundaries
+   and holes in any orientation (inside = inside an odd number of rings). Errors as
+   sps_mesh_from_triangles, and a ring that crosses itself or another ring. */
+SPSDEF sps_result sps_mesh_from_rings(int nrings, const int* ring_points, const sps_real* xy, const sps_mesh_def* def, sps_mesh** out,
+                                      char* msg, size_t msg_size);
+#ifndef SPHSOLID_NO_STDIO
+/* A mesh from a file, its format told by its content (GEOMETRY): binary STL (its size is
+   84 + 50 x its triangle count), ASCII STL, Wavefront OBJ, an SVG drawing's paths, or an
+   outline (lines "x y", a blank line between rings). Errors as sps_mesh_from_triangles, and
+   SPS_ERR_IO (missing, empty, unreadable or not a mesh file; a binary STL whose size disagrees
+   with its count; a syntax error), the message naming the file and the line or triangle. */
+SPSDEF sps_result sps_mesh_load(const char* path, const sps_mesh_def* def, sps_mesh** out, char* msg, size_t msg_size);
+#endif
+SPSDEF void sps_mesh_destroy(sps_mesh* m);
+SPSDEF sps_mesh_info sps_mesh_get_info(const sps_mesh* m);
+/* The signed distance [m] from x to the mesh (negative inside; 2D: x[2] ignored; NaN for an x
+   that is not finite). mesh is an sps_mesh*. O(log n) near the surface (a bounding-volume
+   hierarchy; deep inside a curved mesh more triangles are near-equidistant); thread-safe; no
+   allocation. */
+SPSDEF sps_real sps_mesh_sdf(const sps_real x[3], void* mesh);
+/* Fills body b with the mesh's inside, cut by the box [lo, hi] (both NULL: no cut; e.g. water
+   up to a level), on the world's lattice (points (k + 1/2) dp, whatever the box):
+   relax_iterations < 0 a lattice fill (sps_body_add_sdf), else relaxed (sps_body_add_sdf_relaxed,
+   the cut a surface too; 0 selects 300). Errors as those, and a mesh of another dim. */
+SPSDEF sps_result sps_body_add_mesh(sps_world* w, sps_body b, const sps_mesh* m, const sps_real lo[3], const sps_real hi[3],
+                                    int relax_iterations, int* added);
+/* A container: fills body b (a wall body) with the lattice points whose distance outside the
+   mesh is in (0, layers dp), a shell around the mesh's surface (the container's inner surface),
+   cut by [lo, hi] (NULL: no cut; a hi at the mesh's top leaves a glass open). Fill the fluid with
+   sps_body_add_mesh: the same lattice, its first layer dp from the wall's. layers in [1, 20]. */
+SPSDEF sps_result sps_body_add_mesh_shell(sps_world* w, sps_body b, const sps_mesh* m, const sps_real lo[3], const sps_real hi[3],
+                                          int layers, int* added);
 #endif
 
 #ifdef __cplusplus
@@ -10698,6 +10813,1565 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path) {
     return res;
 }
 #endif
+
+/* >>geometry: meshes and outlines from files and arrays (GEOMETRY in the manual)
+
+   Every reader ends in the same place, sps__mesh_finish, with vertices and elements (triangles
+   in 3D, segments of closed rings in 2D) whose coordinates are finite and whose indices are in
+   range; it skips degenerate elements, welds equal vertices (numbered by first use, so a
+   triangle soup and an indexed mesh of the same triangles end up identical), applies the def's
+   transform, checks the topology and builds the hierarchy.
+   Signed distance: the distance is exact, to the nearest triangle (segment), found in a
+   bounding-volume hierarchy (median split of the elements' centroids along the longest axis,
+   leaves of up to SPS__MESH_LEAF; a query descends nearer child first and prunes a box farther
+   than the best so far: O(log n)). 3D sign: the angle-weighted pseudo-normal of the nearest
+   feature (face, edge or vertex; Baerentzen and Aanaes 2005, IEEE TVCG 11(3), 243-253): for a
+   closed, consistently oriented mesh, (x - q) . n > 0 exactly when x is outside, also where the
+   nearest point q is an edge or a vertex, where a face normal alone gives the wrong sign. 2D
+   sign: the parity of the crossings of a ray from x towards +x with the segments (each counted
+   on the half-open rule (y_a > y) != (y_b > y), so a ray through a vertex counts once): inside
+   an odd number of rings is inside, whatever the rings' orientation. */
+#ifndef SPHSOLID_NO_GEOMETRY
+
+#define SPS__MESH_LEAF 4
+#define SPS__MESH_STACK 128                  /* a median split's depth is log2(n / leaf) + 1 < 30 */
+#define SPS__MESH_MAX_ELEMENTS 50000000      /* keeps every index and byte count inside an int / size_t */
+#define SPS__MESH_MAX_BYTES 2000000000L      /* the largest file read */
+#define SPS__MESH_DEGENERATE 1e-12           /* |cross| / longest edge^2 below which a triangle is a line */
+#define SPS__SVG_MAX_PIECES 10000            /* segments of one flattened curve at most */
+#define SPS__MESH_MAX_COORDINATE 1e12        /* [m]: products of coordinates (volumes, cross products) stay finite */
+
+typedef struct sps__mesh_node {
+    double lo[3], hi[3];      /* the axis-aligned box (the rays' test) */
+    double centre[3], axis[3][3], half[3]; /* an oriented box, one axis along the elements' mean
+                                              normal: on a curved surface it is as thick as the
+                                              patch's sagitta, where the axis-aligned box is as
+                                              thick as the patch is wide (the distance's test) */
+    int first, count; /* elements order[first .. first + count) of a leaf */
+    int left;         /* the children left, left + 1; -1 for a leaf */
+} sps__mesh_node;
+
+struct sps_mesh {
+    sps_allocator a;
+    int dim, nv, ne, nnodes;
+    double* v;             /* 3 per vertex */
+    int* e;                /* dim per element: vertex indices */
+    int* ring;             /* 2D: the ring of each segment */
+    double* face;          /* 3D: per triangle its unit normal (3), its edges' pseudo-normals (ab, bc, ca: 9) */
+    double* vnormal;       /* 3D: per vertex its angle-weighted pseudo-normal */
+    sps__mesh_node* node;
+    int* order;
+    sps_mesh_info info;
+};
+
+/* The raw mesh a reader builds: growable arrays, the allocator of the def. */
+typedef struct sps__mesh_raw {
+    sps_allocator a;
+    int dim;
+    double* v; int nv, cap_v;   /* 3 reals per vertex (z = 0 in 2D) */
+    int* e; int ne, cap_e;      /* dim indices per element */
+    int* ring; int cap_ring;    /* 2D: the ring of each segment */
+    int nrings, degenerate;     /* 2D: rings ended; repeated points dropped */
+    char* msg; size_t msg_size;
+    const char* name;           /* the file's path or the function's name, for the messages */
+} sps__mesh_raw;
+
+static void sps__mesh_say(char* msg, size_t size, const char* fmt, ...) {
+    va_list ap;
+    if (!msg || !size) return;
+    va_start(ap, fmt);
+    vsnprintf(msg, size, fmt, ap);
+    va_end(ap);
+}
+static void* sps__mesh_alloc(const sps_allocator* a, size_t size) { return a->alloc(size ? size : 1, a->user); }
+static void sps__mesh_free(const sps_allocator* a, void* p) { if (p) a->free(p, a->user); }
+/* Grows *p (of *cap items of item bytes) to hold need items; 1 when out of memory. */
+static int sps__mesh_grow(const sps_allocator* a, void** p, int* cap, int need, size_t item) {
+    void* q;
+    int c = *cap ? *cap : 64;
+    if (need <= *cap) return 0;
+    if (need > SPS__MESH_MAX_ELEMENTS * 3) return 1;
+    while (c < need) c = c > SPS__MESH_MAX_ELEMENTS * 3 / 2 ? SPS__MESH_MAX_ELEMENTS * 3 : 2 * c;
+    q = sps__mesh_alloc(a, (size_t)c * item);
+    if (!q) return 1;
+    if (*p) memcpy(q, *p, (size_t)*cap * item);
+    sps__mesh_free(a, *p);
+    *p = q; *cap = c;
+    return 0;
+}
+static int sps__raw_vertex(sps__mesh_raw* r, double x, double y, double z) {
+    if (r->nv >= SPS__MESH_MAX_ELEMENTS) return 1;
+    if (sps__mesh_grow(&r->a, (void**)&r->v, &r->cap_v, r->nv + 1, 3 * sizeof(double))) return 1;
+    r->v[3 * r->nv] = x; r->v[3 * r->nv + 1] = y; r->v[3 * r->nv + 2] = z;
+    ++r->nv;
+    return 0;
+}
+static int sps__raw_element(sps__mesh_raw* r, const int* idx) {
+    int k;
+    if (r->ne >= SPS__MESH_MAX_ELEMENTS) return 1;
+    if (sps__mesh_grow(&r->a, (void**)&r->e, &r->cap_e, r->ne + 1, (size_t)r->dim * sizeof(int))) return 1;
+    for (k = 0; k < r->dim; ++k) r->e[r->dim * r->ne + k] = idx[k];
+    if (r->dim == 2) {
+        if (sps__mesh_grow(&r->a, (void**)&r->ring, &r->cap_ring, r->ne + 1, sizeof(int))) return 1;
+        r->ring[r->ne] = r->nrings;
+    }
+    ++r->ne;
+    return 0;
+}
+static void sps__raw_free(sps__mesh_raw* r) {
+    sps__mesh_free(&r->a, r->v); sps__mesh_free(&r->a, r->e); sps__mesh_free(&r->a, r->ring);
+    r->v = NULL; r->e = NULL; r->ring = NULL;
+}
+/* Ends the ring whose points are the vertices first .. nv - 1: a last point equal to the first
+   dropped, consecutive equal points merged (counted as degenerate segments); its segments
+   added. 0, or 1 with the message (fewer than 3 points, out of memory). */
+static int sps__raw_close_ring(sps__mesh_raw* r, int first, int line) {
+    int i, n, k = first;
+    for (i = first; i < r->nv; ++i) { /* merge repeats */
+        if (i > first && r->v[3 * i] == r->v[3 * (k - 1)] && r->v[3 * i + 1] == r->v[3 * (k - 1) + 1]) { ++r->degenerate; continue; }
+        r->v[3 * k] = r->v[3 * i]; r->v[3 * k + 1] = r->v[3 * i + 1]; r->v[3 * k + 2] = 0;
+        ++k;
+    }
+    if (k - first >= 2 && r->v[3 * (k - 1)] == r->v[3 * first] && r->v[3 * (k - 1) + 1] == r->v[3 * first + 1]) { --k; ++r->degenerate; }
+    r->nv = k;
+    n = k - first;
+    if (n < 3) {
+        if (line > 0) sps__mesh_say(r->msg, r->msg_size, "%s: line %d: ring %d has %d distinct point%s: a ring needs 3 at least", r->name, line,
+                                    r->nrings + 1, n, n == 1 ? "" : "s");
+        else sps__mesh_say(r->msg, r->msg_size, "%s: ring %d has %d distinct point%s: a ring needs 3 at least", r->name, r->nrings, n, n == 1 ? "" : "s");
+        return 1;
+    }
+    for (i = 0; i < n; ++i) {
+        int seg[2];
+        seg[0] = first + i; seg[1] = first + (i + 1) % n;
+        if (sps__raw_element(r, seg)) { sps__mesh_say(r->msg, r->msg_size, "%s: out of memory", r->name); return 1; }
+    }
+    ++r->nrings;
+    return 0;
+}
+
+/* ---- small vector helpers ---- */
+static void sps__v3_sub(const double* a, const double* b, double* c) { c[0] = a[0] - b[0]; c[1] = a[1] - b[1]; c[2] = a[2] - b[2]; }
+static double sps__v3_dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void sps__v3_cross(const double* a, const double* b, double* c) {
+    c[0] = a[1] * b[2] - a[2] * b[1]; c[1] = a[2] * b[0] - a[0] * b[2]; c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* ---- stable merge sort of an index array by a comparison (welding, edges, the hierarchy) ---- */
+typedef int (*sps__mesh_less)(int a, int b, const void* ctx);
+static void sps__mesh_sort(int* x, int* tmp, int n, sps__mesh_less less, const void* ctx) {
+    int width, i;
+    for (width = 1; width < n; width *= 2) {
+        for (i = 0; i < n; i += 2 * width) {
+            int lo = i, mid = i + width < n ? i + width : n, hi = i + 2 * width < n ? i + 2 * width : n, a = lo, b = mid, k = lo;
+            while (a < mid && b < hi) tmp[k++] = less(x[b], x[a], ctx) ? x[b++] : x[a++];
+            while (a < mid) tmp[k++] = x[a++];
+            while (b < hi) tmp[k++] = x[b++];
+        }
+        memcpy(x, tmp, (size_t)n * sizeof(int));
+    }
+}
+static int sps__vertex_less(int a, int b, const void* ctx) {
+    const double* v = (const double*)ctx;
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (v[3 * a + k] != v[3 * b + k]) return v[3 * a + k] < v[3 * b + k];
+    return 0;
+}
+
+/* ---- the hierarchy ---- */
+typedef struct sps__bvh_build {
+    sps_mesh* m;
+    double* centroid; /* 3 per element */
+    int* tmp;
+    int axis;
+} sps__bvh_build;
+static int sps__centroid_less(int a, int b, const void* ctx) {
+    const sps__bvh_build* c = (const sps__bvh_build*)ctx;
+    return c->centroid[3 * a + c->axis] < c->centroid[3 * b + c->axis];
+}
+static void sps__bvh_bounds(const sps_mesh* m, sps__mesh_node* nd) {
+    int i, k, a;
+    for (a = 0; a < 3; ++a) { nd->lo[a] = HUGE_VAL; nd->hi[a] = -HUGE_VAL; }
+    for (i = nd->first; i < nd->first + nd->count; ++i)
+        for (k = 0; k < m->dim; ++k) {
+            const double* p = m->v + 3 * m->e[m->dim * m->order[i] + k];
+            for (a = 0; a < 3; ++a) {
+                if (p[a] < nd->lo[a]) nd->lo[a] = p[a];
+                if (p[a] > nd->hi[a]) nd->hi[a] = p[a];
+            }
+        }
+}
+/* The oriented box of a node: axes the elements' area-weighted mean normal (3D), a direction
+   across it and their cross product; the axis-aligned box's when the normals cancel (a closed
+   patch) or in 2D. */
+static void sps__bvh_oriented(const sps_mesh* m, sps__mesh_node* nd) {
+    double n[3] = {0, 0, 0}, total = 0, len, lo[3], hi[3];
+    int i, k, a, b;
+    memset(nd->axis, 0, sizeof nd->axis);
+    for (a = 0; a < 3; ++a) nd->axis[a][a] = 1;
+    for (i = nd->first; m->dim == 3 && i < nd->first + nd->count; ++i) {
+        const int* e = m->e + 3 * m->order[i];
+        double u[3], w[3], c[3];
+        sps__v3_sub(m->v + 3 * e[1], m->v + 3 * e[0], u);
+        sps__v3_sub(m->v + 3 * e[2], m->v + 3 * e[0], w);
+        sps__v3_cross(u, w, c);
+        for (a = 0; a < 3; ++a) n[a] += c[a];
+        total += sqrt(sps__v3_dot(c, c));
+    }
+    len = sqrt(sps__v3_dot(n, n));
+    if (m->dim == 3 && len > 0.5 * total) { /* the normals agree: a patch, not a closed piece */
+        const int* e = m->e + 3 * m->order[nd->first];
+        double u[3], s;
+        for (a = 0; a < 3; ++a) nd->axis[0][a] = n[a] / len;
+        sps__v3_sub(m->v + 3 * e[1], m->v + 3 * e[0], u);
+        s = sps__v3_dot(u, nd->axis[0]);
+        for (a = 0; a < 3; ++a) u[a] -= s * nd->axis[0][a];
+        s = sqrt(sps__v3_dot(u, u));
+        if (s > 0) {
+            for (a = 0; a < 3; ++a) nd->axis[1][a] = u[a] / s;
+            sps__v3_cross(nd->axis[0], nd->axis[1], nd->axis[2]);
+        } else { memset(nd->axis, 0, sizeof nd->axis); for (a = 0; a < 3; ++a) nd->axis[a][a] = 1; }
+    }
+    for (b = 0; b < 3; ++b) { lo[b] = HUGE_VAL; hi[b] = -HUGE_VAL; }
+    for (i = nd->first; i < nd->first + nd->count; ++i)
+        for (k = 0; k < m->dim; ++k)
+            for (b = 0; b < 3; ++b) {
+                const double x = sps__v3_dot(m->v + 3 * m->e[m->dim * m->order[i] + k], nd->axis[b]);
+                if (x < lo[b]) lo[b] = x;
+                if (x > hi[b]) hi[b] = x;
+            }
+    for (a = 0; a < 3; ++a) nd->centre[a] = 0;
+    for (b = 0; b < 3; ++b) {
+        nd->half[b] = 0.5 * (hi[b] - lo[b]);
+        for (a = 0; a < 3; ++a) nd->centre[a] += 0.5 * (lo[b] + hi[b]) * nd->axis[b][a];
+    }
+}
+/* Splits node n (recursively): its elements sorted along the longest axis of their centroids,
+   halved at the median. Nodes are numbered in creation order (the children of n at left, left + 1). */
+static void sps__bvh_split(sps__bvh_build* c, int n) {
+    sps_mesh* m = c->m;
+    sps__mesh_node* nd = &m->node[n];
+    double clo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, chi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    int i, a, half, first = nd->first, count = nd->count, left;
+    sps__bvh_bounds(m, nd);
+    sps__bvh_oriented(m, nd);
+    nd->left = -1;
+    if (count <= SPS__MESH_LEAF) return;
+    for (i = first; i < first + count; ++i)
+        for (a = 0; a < 3; ++a) {
+            const double x = c->centroid[3 * m->order[i] + a];
+            if (x < clo[a]) clo[a] = x;
+            if (x > chi[a]) chi[a] = x;
+        }
+    c->axis = chi[1] - clo[1] > chi[0] - clo[0] ? 1 : 0;
+    if (chi[2] - clo[2] > chi[c->axis] - clo[c->axis]) c->axis = 2;
+    sps__mesh_sort(m->order + first, c->tmp, count, sps__centroid_less, c);
+    half = count / 2;
+    left = m->nnodes;
+    m->nnodes += 2;
+    nd->left = left;
+    m->node[left].first = first; m->node[left].count = half;
+    m->node[left + 1].first = first + half; m->node[left + 1].count = count - half;
+    sps__bvh_split(c, left);
+    sps__bvh_split(c, left + 1);
+}
+static int sps__bvh_create(sps_mesh* m) {
+    sps__bvh_build c;
+    int i, k, a;
+    m->node = (sps__mesh_node*)sps__mesh_alloc(&m->a, (size_t)(2 * m->ne) * sizeof(sps__mesh_node));
+    m->order = (int*)sps__mesh_alloc(&m->a, (size_t)m->ne * sizeof(int));
+    c.centroid = (double*)sps__mesh_alloc(&m->a, (size_t)m->ne * 3 * sizeof(double));
+    c.tmp = (int*)sps__mesh_alloc(&m->a, (size_t)m->ne * sizeof(int));
+    c.m = m; c.axis = 0;
+    if (!m->node || !m->order || !c.centroid || !c.tmp) { sps__mesh_free(&m->a, c.centroid); sps__mesh_free(&m->a, c.tmp); return 1; }
+    for (i = 0; i < m->ne; ++i) {
+        m->order[i] = i;
+        for (a = 0; a < 3; ++a) {
+            double s = 0;
+            for (k = 0; k < m->dim; ++k) s += m->v[3 * m->e[m->dim * i + k] + a];
+            c.centroid[3 * i + a] = s / m->dim;
+        }
+    }
+    m->nnodes = 1;
+    m->node[0].first = 0; m->node[0].count = m->ne;
+    sps__bvh_split(&c, 0);
+    sps__mesh_free(&m->a, c.centroid);
+    sps__mesh_free(&m->a, c.tmp);
+    return 0;
+}
+/* A lower bound of the squared distance from p to the node's elements: the larger of the
+   distances to its two boxes (0 inside; the oriented one's only when the other is below best). */
+static double sps__box_distance2(const sps__mesh_node* nd, const double p[3], double best) {
+    double d[3], d2 = 0, o2 = 0;
+    int a;
+    for (a = 0; a < 3; ++a) {
+        const double e = p[a] < nd->lo[a] ? nd->lo[a] - p[a] : p[a] > nd->hi[a] ? p[a] - nd->hi[a] : 0;
+        d2 += e * e;
+    }
+    if (d2 >= best) return d2;
+    sps__v3_sub(p, nd->centre, d);
+    for (a = 0; a < 3; ++a) {
+        const double u = fabs(sps__v3_dot(d, nd->axis[a])) - nd->half[a];
+        if (u > 0) o2 += u * u;
+    }
+    return d2 > o2 ? d2 : o2;
+}
+
+/* ---- nearest points ---- */
+enum { SPS__FEATURE_FACE, SPS__FEATURE_AB, SPS__FEATURE_BC, SPS__FEATURE_CA, SPS__FEATURE_A, SPS__FEATURE_B, SPS__FEATURE_C };
+/* The point q of triangle abc nearest p, and the feature it lies on (Ericson, Real-Time
+   Collision Detection, 2005, section 5.1.5: the Voronoi regions of the vertices, edges, face).
+   Returns |p - q|^2. */
+static double sps__triangle_nearest(const double p[3], const double a[3], const double b[3], const double c[3], double q[3], int* feature) {
+    double ab[3], ac[3], ap[3], bp[3], cp[3], d[3];
+    double d1, d2, d3, d4, d5, d6, va, vb, vc, s, t;
+    int k;
+    sps__v3_sub(b, a, ab); sps__v3_sub(c, a, ac); sps__v3_sub(p, a, ap);
+    d1 = sps__v3_dot(ab, ap); d2 = sps__v3_dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) { memcpy(q, a, 3 * sizeof(double)); *feature = SPS__FEATURE_A; goto done; }
+    sps__v3_sub(p, b, bp);
+    d3 = sps__v3_dot(ab, bp); d4 = sps__v3_dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) { memcpy(q, b, 3 * sizeof(double)); *feature = SPS__FEATURE_B; goto done; }
+    vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        s = d1 / (d1 - d3);
+        for (k = 0; k < 3; ++k) q[k] = a[k] + s * ab[k];
+        *feature = SPS__FEATURE_AB; goto done;
+    }
+    sps__v3_sub(p, c, cp);
+    d5 = sps__v3_dot(ab, cp); d6 = sps__v3_dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) { memcpy(q, c, 3 * sizeof(double)); *feature = SPS__FEATURE_C; goto done; }
+    vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        t = d2 / (d2 - d6);
+        for (k = 0; k < 3; ++k) q[k] = a[k] + t * ac[k];
+        *feature = SPS__FEATURE_CA; goto done;
+    }
+    va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+        t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        for (k = 0; k < 3; ++k) q[k] = b[k] + t * (c[k] - b[k]);
+        *feature = SPS__FEATURE_BC; goto done;
+    }
+    s = 1 / (va + vb + vc);
+    for (k = 0; k < 3; ++k) q[k] = a[k] + ab[k] * (vb * s) + ac[k] * (vc * s);
+    *feature = SPS__FEATURE_FACE;
+done:
+    sps__v3_sub(p, q, d);
+    return sps__v3_dot(d, d);
+}
+/* The point q of segment ab nearest p; returns |p - q|^2. */
+static double sps__segment_nearest(const double p[3], const double a[3], const double b[3], double q[3]) {
+    double ab[3], ap[3], d[3], t;
+    int k;
+    sps__v3_sub(b, a, ab); sps__v3_sub(p, a, ap);
+    t = sps__v3_dot(ap, ab) / sps__v3_dot(ab, ab);
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    for (k = 0; k < 3; ++k) q[k] = a[k] + t * ab[k];
+    sps__v3_sub(p, q, d);
+    return sps__v3_dot(d, d);
+}
+/* The distance from p to element t squared, the nearest point q and (3D) its feature. */
+static double sps__element_nearest(const sps_mesh* m, int t, const double p[3], double q[3], int* feature) {
+    const int* e = m->e + m->dim * t;
+    *feature = SPS__FEATURE_FACE;
+    return m->dim == 3 ? sps__triangle_nearest(p, m->v + 3 * e[0], m->v + 3 * e[1], m->v + 3 * e[2], q, feature)
+                       : sps__segment_nearest(p, m->v + 3 * e[0], m->v + 3 * e[1], q);
+}
+/* The nearest element to p nearer than sqrt(best) (*element, q, *feature as they come in
+   otherwise: best may be the distance to a known element): its squared distance, the point q,
+   the element and (3D) the feature. */
+static double sps__mesh_nearest(const sps_mesh* m, const double p[3], double best, double q[3], int* element, int* feature) {
+    int stack[SPS__MESH_STACK], sp = 0, i;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const sps__mesh_node* nd = &m->node[stack[--sp]];
+        if (sps__box_distance2(nd, p, best) >= best) continue;
+        if (nd->left < 0) {
+            for (i = nd->first; i < nd->first + nd->count; ++i) {
+                const int t = m->order[i];
+                double qt[3], d2;
+                int f;
+                d2 = sps__element_nearest(m, t, p, qt, &f);
+                if (d2 < best) { best = d2; memcpy(q, qt, sizeof qt); *element = t; *feature = f; }
+            }
+        } else {
+            const double dl = sps__box_distance2(&m->node[nd->left], p, best), dr = sps__box_distance2(&m->node[nd->left + 1], p, best);
+            const int nearer = dl <= dr ? nd->left : nd->left + 1, farther = dl <= dr ? nd->left + 1 : nd->left;
+            if ((dl <= dr ? dr : dl) < best) stack[sp++] = farther;
+            if ((dl <= dr ? dl : dr) < best) stack[sp++] = nearer;
+        }
+    }
+    return best;
+}
+/* 2D: whether p is inside (an odd number of crossings of the ray from p towards +x). */
+static int sps__mesh_inside2(const sps_mesh* m, const double p[3]) {
+    int stack[SPS__MESH_STACK], sp = 0, i, crossings = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const sps__mesh_node* nd = &m->node[stack[--sp]];
+        if (!(nd->lo[1] <= p[1] && p[1] < nd->hi[1]) || nd->hi[0] <= p[0]) continue;
+        if (nd->left >= 0) { stack[sp++] = nd->left; stack[sp++] = nd->left + 1; continue; }
+        for (i = nd->first; i < nd->first + nd->count; ++i) {
+            const int* e = m->e + 2 * m->order[i];
+            const double *a = m->v + 3 * e[0], *b = m->v + 3 * e[1];
+            if ((a[1] > p[1]) != (b[1] > p[1]) && a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) > p[0]) ++crossings;
+        }
+    }
+    return crossings & 1;
+}
+/* 3D: whether p is inside by the parity of the crossings of a ray from p along dir with the
+   triangles (Moeller and Trumbore 1997, J. Graphics Tools 2(1), 21-28): 1 inside, 0 outside, -1
+   undecided (the ray passes within 1e-9 (barycentric) of an edge or runs along a triangle: the
+   crossing could count once, twice or not at all). Only for points away from the surface (a
+   crossing at t ~ 0 is never looked at). */
+static int sps__mesh_ray_parity(const sps_mesh* m, const double p[3], const double dir[3]) {
+    const double eps = 1e-9;
+    double inv[3];
+    int stack[SPS__MESH_STACK], sp = 0, i, a, crossings = 0;
+    for (a = 0; a < 3; ++a) inv[a] = 1 / dir[a];
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const sps__mesh_node* nd = &m->node[stack[--sp]];
+        double tmin = 0, tmax = HUGE_VAL;
+        for (a = 0; a < 3; ++a) { /* the slabs of the box */
+            const double t1 = (nd->lo[a] - p[a]) * inv[a], t2 = (nd->hi[a] - p[a]) * inv[a];
+            if ((t1 < t2 ? t1 : t2) > tmin) tmin = t1 < t2 ? t1 : t2;
+            if ((t1 < t2 ? t2 : t1) < tmax) tmax = t1 < t2 ? t2 : t1;
+        }
+        if (tmin > tmax) continue;
+        if (nd->left >= 0) { stack[sp++] = nd->left; stack[sp++] = nd->left + 1; continue; }
+        for (i = nd->first; i < nd->first + nd->count; ++i) {
+            const int* e = m->e + 3 * m->order[i];
+            const double *v0 = m->v + 3 * e[0];
+            double e1[3], e2[3], pv[3], tv[3], qv[3], det, u, v;
+            sps__v3_sub(m->v + 3 * e[1], v0, e1);
+            sps__v3_sub(m->v + 3 * e[2], v0, e2);
+            sps__v3_cross(dir, e2, pv);
+            det = sps__v3_dot(e1, pv);
+            if (fabs(det) <= 1e-12 * (sps__v3_dot(e1, e1) + sps__v3_dot(e2, e2))) return -1;
+            sps__v3_sub(p, v0, tv);
+            u = sps__v3_dot(tv, pv) / det;
+            if (u < -eps || u > 1 + eps) continue;
+            sps__v3_cross(tv, e1, qv);
+            v = sps__v3_dot(dir, qv) / det;
+            if (v < -eps || u + v > 1 + eps) continue;
+            if (u < eps || v < eps || u + v > 1 - eps) return -1;
+            if (sps__v3_dot(e2, qv) / det > 0) ++crossings;
+        }
+    }
+    return crossings & 1;
+}
+/* The signed distance from p, exact where it is below band; beyond, +-band (the sign from the
+   ray parity: a far point's nearest triangles need not be searched). *hint (may be NULL): an
+   element near the last point asked, whose distance bounds the search from the start (the
+   relaxation asks about nearby points one after the other). */
+static double sps__mesh_distance(const sps_mesh* m, const double p[3], double band, int* hint) {
+    static const double dirs[3][3] = {{0.4636, 0.7291, 0.5033}, {-0.6817, 0.2853, 0.6737}, {0.3019, -0.5932, 0.7466}};
+    double q[3] = {0, 0, 0}, best = band * band, r[3];
+    int t = -1, f = SPS__FEATURE_FACE, k;
+    if (hint && *hint >= 0) {
+        double qh[3];
+        int fh;
+        const double d2 = sps__element_nearest(m, *hint, p, qh, &fh);
+        if (d2 < best) { best = d2; t = *hint; f = fh; memcpy(q, qh, sizeof q); }
+    }
+    best = sps__mesh_nearest(m, p, best, q, &t, &f);
+    if (t >= 0) {
+        const double d = sqrt(best);
+        if (hint) *hint = t;
+        if (m->dim == 2) return sps__mesh_inside2(m, p) ? -d : d;
+        {
+            const double* n = f == SPS__FEATURE_FACE ? m->face + 12 * t
+                            : f <= SPS__FEATURE_CA ? m->face + 12 * t + 3 * f
+                            : m->vnormal + 3 * m->e[3 * t + f - SPS__FEATURE_A];
+            sps__v3_sub(p, q, r);
+            return sps__v3_dot(r, n) < 0 ? -d : d;
+        }
+    }
+    if (m->dim == 2) return sps__mesh_inside2(m, p) ? -band : band;
+    for (k = 0; k < 3; ++k) {
+        const int inside = sps__mesh_ray_parity(m, p, dirs[k]);
+        if (inside >= 0) return inside ? -band : band;
+    }
+    return sps__mesh_distance(m, p, HUGE_VAL, NULL); /* three undecided rays: the whole search */
+}
+SPSDEF sps_real sps_mesh_sdf(const sps_real x[3], void* mesh) {
+    const sps_mesh* m = (const sps_mesh*)mesh;
+    double p[3];
+    SPS_ASSERT(m);
+    p[0] = (double)x[0]; p[1] = (double)x[1]; p[2] = m->dim == 3 ? (double)x[2] : 0;
+    if (!(p[0] - p[0] == 0 && p[1] - p[1] == 0 && p[2] - p[2] == 0)) return (sps_real)NAN; /* not finite */
+    return (sps_real)sps__mesh_distance(m, p, HUGE_VAL, NULL);
+}
+
+/* ---- building a mesh from a raw one ---- */
+/* Skips degenerate triangles (two equal vertices after welding, or |cross| below
+   SPS__MESH_DEGENERATE of the longest edge squared), welds equal vertices (numbered by first
+   use, in triangle order). Returns 1 when out of memory. */
+static int sps__mesh_weld(sps__mesh_raw* r, int* degenerate) {
+    int *order = (int*)sps__mesh_alloc(&r->a, (size_t)r->nv * sizeof(int)), *tmp = (int*)sps__mesh_alloc(&r->a, (size_t)r->nv * sizeof(int));
+    int *rep = (int*)sps__mesh_alloc(&r->a, (size_t)r->nv * sizeof(int)), *num = (int*)sps__mesh_alloc(&r->a, (size_t)r->nv * sizeof(int));
+    double* v = (double*)sps__mesh_alloc(&r->a, (size_t)r->nv * 3 * sizeof(double));
+    int i, k, n = 0, ne = 0;
+    if (!order || !tmp || !rep || !num || !v) {
+        sps__mesh_free(&r->a, order); sps__mesh_free(&r->a, tmp); sps__mesh_free(&r->a, rep); sps__mesh_free(&r->a, num); sps__mesh_free(&r->a, v);
+        return 1;
+    }
+    for (i = 0; i < r->nv; ++i) { order[i] = i; num[i] = -1; }
+    sps__mesh_sort(order, tmp, r->nv, sps__vertex_less, r->v);
+    for (i = 0; i < r->nv; ++i) /* the first of a run of equal vertices (the smallest index: the sort is stable) */
+        rep[order[i]] = i > 0 && !sps__vertex_less(order[i - 1], order[i], r->v) ? rep[order[i - 1]] : order[i];
+    for (i = 0; i < r->ne; ++i) {
+        int t[3];
+        double ab[3], bc[3], ca[3], c[3], longest;
+        for (k = 0; k < 3; ++k) t[k] = rep[r->e[3 * i + k]];
+        sps__v3_sub(r->v + 3 * t[1], r->v + 3 * t[0], ab);
+        sps__v3_sub(r->v + 3 * t[2], r->v + 3 * t[1], bc);
+        sps__v3_sub(r->v + 3 * t[0], r->v + 3 * t[2], ca);
+        sps__v3_cross(ab, bc, c);
+        longest = sps__v3_dot(ab, ab);
+        if (sps__v3_dot(bc, bc) > longest) longest = sps__v3_dot(bc, bc);
+        if (sps__v3_dot(ca, ca) > longest) longest = sps__v3_dot(ca, ca);
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || !(sqrt(sps__v3_dot(c, c)) > SPS__MESH_DEGENERATE * longest)) { ++*degenerate; continue; }
+        for (k = 0; k < 3; ++k) {
+            if (num[t[k]] < 0) { num[t[k]] = n; memcpy(v + 3 * n, r->v + 3 * t[k], 3 * sizeof(double)); ++n; }
+            r->e[3 * ne + k] = num[t[k]];
+        }
+        ++ne;
+    }
+    sps__mesh_free(&r->a, r->v);
+    r->v = v; r->nv = n; r->ne = ne;
+    sps__mesh_free(&r->a, order); sps__mesh_free(&r->a, tmp); sps__mesh_free(&r->a, rep); sps__mesh_free(&r->a, num);
+    return 0;
+}
+/* Scale, centre, rotate (x, then y, then z), translate. */
+static void sps__mesh_transform(sps_mesh* m, const sps_mesh_def* d) {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, R[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    int i, a, b, k;
+    for (i = 0; i < m->nv; ++i)
+        for (a = 0; a < 3; ++a) {
+            double* x = &m->v[3 * i + a];
+            *x *= (double)d->scale;
+            if (*x < lo[a]) lo[a] = *x;
+            if (*x > hi[a]) hi[a] = *x;
+        }
+    for (k = 0; k < 3; ++k) { /* R = Rz Ry Rx */
+        const double angle = m->dim == 2 && k < 2 ? 0 : (double)d->rotate[k], c = cos(angle), s = sin(angle);
+        const int p = (k + 1) % 3, q = (k + 2) % 3;
+        double S[3][3];
+        for (a = 0; a < 3; ++a) {
+            S[k][a] = R[k][a];
+            S[p][a] = c * R[p][a] - s * R[q][a];
+            S[q][a] = s * R[p][a] + c * R[q][a];
+        }
+        memcpy(R, S, sizeof R);
+    }
+    for (i = 0; i < m->nv; ++i) {
+        double x[3], y[3];
+        for (a = 0; a < 3; ++a) x[a] = m->v[3 * i + a] - (d->centre ? 0.5 * (lo[a] + hi[a]) : 0);
+        for (a = 0; a < 3; ++a) {
+            y[a] = (double)d->translate[a] * (m->dim == 3 || a < 2);
+            for (b = 0; b < 3; ++b) y[a] += R[a][b] * x[b];
+        }
+        memcpy(m->v + 3 * i, y, sizeof y);
+    }
+}
+
+/* 3D topology: sorted edges (vertex pair, lower first), each run of equal pairs one edge. */
+typedef struct sps__edge_ctx { const int* key; } sps__edge_ctx; /* 2 per half-edge: lower, higher vertex */
+static int sps__edge_less(int a, int b, const void* ctx) {
+    const int* k = ((const sps__edge_ctx*)ctx)->key;
+    return k[2 * a] != k[2 * b] ? k[2 * a] < k[2 * b] : k[2 * a + 1] < k[2 * b + 1];
+}
+/* Normals and pseudo-normals, volume, area; counts boundary, inconsistent and non-manifold
+   edges (the first of each kind written to where[]: the half-edge). Returns 1 when out of memory. */
+static int sps__mesh_topology(sps_mesh* m, int where[3]) {
+    const int nh = 3 * m->ne;
+    int *key = (int*)sps__mesh_alloc(&m->a, (size_t)nh * 2 * sizeof(int)), *order = (int*)sps__mesh_alloc(&m->a, (size_t)nh * sizeof(int));
+    int* tmp = (int*)sps__mesh_alloc(&m->a, (size_t)nh * sizeof(int));
+    sps__edge_ctx c;
+    double volume = 0, area = 0, centre[3];
+    int i, j, k, a;
+    m->face = (double*)sps__mesh_alloc(&m->a, (size_t)m->ne * 12 * sizeof(double));
+    m->vnormal = (double*)sps__mesh_alloc(&m->a, (size_t)m->nv * 3 * sizeof(double));
+    if (!key || !order || !tmp || !m->face || !m->vnormal) {
+        sps__mesh_free(&m->a, key); sps__mesh_free(&m->a, order); sps__mesh_free(&m->a, tmp);
+        return 1;
+    }
+    for (a = 0; a < 3; ++a) centre[a] = 0.5 * ((double)m->info.lo[a] + (double)m->info.hi[a]);
+    memset(m->vnormal, 0, (size_t)m->nv * 3 * sizeof(double));
+    for (i = 0; i < m->ne; ++i) {
+        const int* e = m->e + 3 * i;
+        double ab[3], ac[3], n[3], len, p[3][3];
+        sps__v3_sub(m->v + 3 * e[1], m->v + 3 * e[0], ab);
+        sps__v3_sub(m->v + 3 * e[2], m->v + 3 * e[0], ac);
+        sps__v3_cross(ab, ac, n);
+        len = sqrt(sps__v3_dot(n, n));
+        area += 0.5 * len;
+        for (a = 0; a < 3; ++a) m->face[12 * i + a] = n[a] / len;
+        for (k = 0; k < 3; ++k) sps__v3_sub(m->v + 3 * e[k], centre, p[k]);
+        sps__v3_cross(p[1], p[2], n);
+        volume += sps__v3_dot(p[0], n) / 6; /* the divergence theorem, about the box's centre */
+        for (k = 0; k < 3; ++k) { /* the angle at corner k weighs the face normal into the vertex's */
+            double u[3], w[3], angle;
+            sps__v3_sub(m->v + 3 * e[(k + 1) % 3], m->v + 3 * e[k], u);
+            sps__v3_sub(m->v + 3 * e[(k + 2) % 3], m->v + 3 * e[k], w);
+            sps__v3_cross(u, w, n);
+            angle = atan2(sqrt(sps__v3_dot(n, n)), sps__v3_dot(u, w));
+            for (a = 0; a < 3; ++a) m->vnormal[3 * e[k] + a] += angle * m->face[12 * i + a];
+            /* half-edge 3 i + k: from corner k to corner k + 1 */
+            key[2 * (3 * i + k)] = e[k] < e[(k + 1) % 3] ? e[k] : e[(k + 1) % 3];
+            key[2 * (3 * i + k) + 1] = e[k] < e[(k + 1) % 3] ? e[(k + 1) % 3] : e[k];
+            order[3 * i + k] = 3 * i + k;
+        }
+    }
+    m->info.volume = (sps_real)volume;
+    m->info.area = (sps_real)area;
+    c.key = key;
+    sps__mesh_sort(order, tmp, nh, sps__edge_less, &c);
+    for (i = 0; i < nh; i = j) {
+        int h0 = order[i], count, t0, t1;
+        for (j = i + 1; j < nh && !sps__edge_less(h0, order[j], &c); ++j) {}
+        count = j - i;
+        t0 = h0 / 3;
+        for (k = i; k < j; ++k) { /* the edge's pseudo-normal: the sum of its faces' normals (each at angle pi) */
+            const int h = order[k];
+            for (a = 0; a < 3; ++a) {
+                double s = 0;
+                int l;
+                for (l = i; l < j && l < i + 2; ++l) s += m->face[12 * (order[l] / 3) + a];
+                m->face[12 * (h / 3) + 3 + 3 * (h % 3) + a] = s;
+            }
+        }
+        if (count == 1) { if (m->info.boundary_edges++ == 0) where[0] = h0; }
+        else if (count > 2) { if (m->info.nonmanifold_edges++ == 0) where[2] = h0; }
+        else {
+            t1 = order[i + 1] / 3;
+            /* consistent: the two triangles run along the edge in opposite directions */
+            if (m->e[3 * t0 + h0 % 3] == m->e[3 * t1 + order[i + 1] % 3]) { if (m->info.inconsistent_edges++ == 0) where[1] = h0; }
+        }
+    }
+    /* the edges ab, bc, ca of the pseudo-normal layout are half-edges 0, 1, 2 */
+    sps__mesh_free(&m->a, key); sps__mesh_free(&m->a, order); sps__mesh_free(&m->a, tmp);
+    m->info.closed = m->info.boundary_edges == 0 && m->info.nonmanifold_edges == 0;
+    m->info.oriented = m->info.inconsistent_edges == 0;
+    return 0;
+}
+
+/* 2D: orientation of c about ab (> 0: counter-clockwise). */
+static double sps__orient2(const double* a, const double* b, const double* c) {
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+/* Whether segments ab and cd cross or touch. */
+static int sps__segments_meet(const double* a, const double* b, const double* c, const double* d) {
+    const double o1 = sps__orient2(a, b, c), o2 = sps__orient2(a, b, d), o3 = sps__orient2(c, d, a), o4 = sps__orient2(c, d, b);
+    int k;
+    if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return 1;
+    for (k = 0; k < 4; ++k) { /* a point on the other segment's line, within its box */
+        const double *p = k == 0 ? c : k == 1 ? d : k == 2 ? a : b, *s = k < 2 ? a : c, *t = k < 2 ? b : d;
+        const double o = k == 0 ? o1 : k == 1 ? o2 : k == 2 ? o3 : o4;
+        if (o == 0 && p[0] >= (s[0] < t[0] ? s[0] : t[0]) && p[0] <= (s[0] < t[0] ? t[0] : s[0]) && p[1] >= (s[1] < t[1] ? s[1] : t[1])
+            && p[1] <= (s[1] < t[1] ? t[1] : s[1]))
+            return 1;
+    }
+    return 0;
+}
+/* 2D: the first pair of segments (not neighbours in a ring) that cross or touch, found in the
+   hierarchy; 1 and the pair in *s, *t if there is one. */
+static int sps__rings_cross(const sps_mesh* m, int* s_out, int* t_out) {
+    int s;
+    for (s = 0; s < m->ne; ++s) {
+        const double *a = m->v + 3 * m->e[2 * s], *b = m->v + 3 * m->e[2 * s + 1];
+        int stack[SPS__MESH_STACK], sp = 0, i;
+        stack[sp++] = 0;
+        while (sp > 0) {
+            const sps__mesh_node* nd = &m->node[stack[--sp]];
+            if ((a[0] < b[0] ? a[0] : b[0]) > nd->hi[0] || (a[0] < b[0] ? b[0] : a[0]) < nd->lo[0] || (a[1] < b[1] ? a[1] : b[1]) > nd->hi[1]
+                || (a[1] < b[1] ? b[1] : a[1]) < nd->lo[1])
+                continue;
+            if (nd->left >= 0) { stack[sp++] = nd->left; stack[sp++] = nd->left + 1; continue; }
+            for (i = nd->first; i < nd->first + nd->count; ++i) {
+                const int t = m->order[i];
+                const int* et = m->e + 2 * t;
+                if (t <= s || et[0] == m->e[2 * s] || et[0] == m->e[2 * s + 1] || et[1] == m->e[2 * s] || et[1] == m->e[2 * s + 1]) continue;
+                if (sps__segments_meet(a, b, m->v + 3 * et[0], m->v + 3 * et[1])) { *s_out = s; *t_out = t; return 1; }
+            }
+        }
+    }
+    return 0;
+}
+/* 2D: area (each ring's |area| added, or taken away when inside an odd number of other rings:
+   a hole) and perimeter. */
+static void sps__rings_measure(sps_mesh* m) {
+    double area = 0, perimeter = 0;
+    int i = 0, r;
+    while (i < m->ne) {
+        int j = i, s, other;
+        double ring_area = 0, p[3];
+        for (; j < m->ne && m->ring[j] == m->ring[i]; ++j) {
+            const double *a = m->v + 3 * m->e[2 * j], *b = m->v + 3 * m->e[2 * j + 1];
+            ring_area += 0.5 * (a[0] * b[1] - b[0] * a[1]);
+            perimeter += sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
+        }
+        memcpy(p, m->v + 3 * m->e[2 * i], sizeof p);
+        for (other = 0, s = 0; s < m->ne; ++s) { /* the rings around this ring's first point */
+            const double *a = m->v + 3 * m->e[2 * s], *b = m->v + 3 * m->e[2 * s + 1];
+            if (m->ring[s] != m->ring[i] && (a[1] > p[1]) != (b[1] > p[1]) && a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) > p[0]) ++other;
+        }
+        r = other & 1;
+        area += (r ? -1 : 1) * fabs(ring_area);
+        i = j;
+    }
+    m->info.volume = (sps_real)area;
+    m->info.area = (sps_real)perimeter;
+}
+
+/* Makes the mesh from the raw one (freed here); 0, or an error with its message. */
+static sps_result sps__mesh_finish(sps__mesh_raw* r, const sps_mesh_def* d, sps_mesh** out) {
+    sps_mesh* m;
+    int degenerate = 0, i, a, where[3] = {0, 0, 0}, s, t;
+    if (r->dim == 3 && r->ne > 0 && sps__mesh_weld(r, &degenerate)) goto oom_raw;
+    if (r->dim == 2) degenerate = r->degenerate;
+    if (r->ne == 0) {
+        sps__mesh_say(r->msg, r->msg_size, "%s: no %s of non-zero %s (%d degenerate skipped)", r->name, r->dim == 3 ? "triangle" : "segment",
+                      r->dim == 3 ? "area" : "length", degenerate);
+        sps__raw_free(r);
+        return SPS_ERR_INVALID_ARG;
+    }
+    m = (sps_mesh*)sps__mesh_alloc(&r->a, sizeof *m);
+    if (!m) goto oom_raw;
+    memset(m, 0, sizeof *m);
+    m->a = r->a; m->dim = r->dim; m->nv = r->nv; m->ne = r->ne;
+    m->v = r->v; m->e = r->e; m->ring = r->ring;
+    r->v = NULL; r->e = NULL; r->ring = NULL;
+    if (d->flip && m->dim == 3)
+        for (i = 0; i < m->ne; ++i) { const int x = m->e[3 * i + 1]; m->e[3 * i + 1] = m->e[3 * i + 2]; m->e[3 * i + 2] = x; }
+    sps__mesh_transform(m, d);
+    m->info.dim = m->dim; m->info.elements = m->ne; m->info.vertices = m->nv; m->info.degenerate = degenerate;
+    m->info.rings = r->nrings;
+    for (a = 0; a < 3; ++a) { m->info.lo[a] = (sps_real)HUGE_VAL; m->info.hi[a] = (sps_real)-HUGE_VAL; }
+    for (i = 0; i < m->nv; ++i)
+        for (a = 0; a < 3; ++a) {
+            if (!(fabs(m->v[3 * i + a]) <= SPS__MESH_MAX_COORDINATE)) {
+                sps__mesh_say(r->msg, r->msg_size, "%s: vertex (%g, %g, %g) (after the def's transform): coordinates must be within %g m of the origin",
+                              r->name, m->v[3 * i], m->v[3 * i + 1], m->v[3 * i + 2], SPS__MESH_MAX_COORDINATE);
+                sps_mesh_destroy(m);
+                return SPS_ERR_INVALID_ARG;
+            }
+            if (m->v[3 * i + a] < m->info.lo[a]) m->info.lo[a] = (sps_real)m->v[3 * i + a];
+            if (m->v[3 * i + a] > m->info.hi[a]) m->info.hi[a] = (sps_real)m->v[3 * i + a];
+        }
+    if (sps__bvh_create(m)) goto oom;
+    if (m->dim == 3) {
+        if (sps__mesh_topology(m, where)) goto oom;
+        if (!d->allow_open && (!m->info.closed || !m->info.oriented)) {
+            const int h = !m->info.closed ? (m->info.boundary_edges ? where[0] : where[2]) : where[1];
+            const double *p = m->v + 3 * m->e[h], *q = m->v + 3 * m->e[3 * (h / 3) + (h % 3 + 1) % 3];
+            sps__mesh_say(r->msg, r->msg_size,
+                          "%s: %s: %d boundary, %d non-manifold and %d inconsistently oriented edges (the first: triangle %d, edge "
+                          "(%g, %g, %g)-(%g, %g, %g)); set allow_open = 1 to accept it (the sign is then right only near the surface)",
+                          r->name, !m->info.closed ? "the mesh is not closed" : "the triangles are not consistently oriented",
+                          m->info.boundary_edges, m->info.nonmanifold_edges, m->info.inconsistent_edges, h / 3 + 1, p[0], p[1], p[2], q[0], q[1],
+                          q[2]);
+            sps_mesh_destroy(m);
+            return SPS_ERR_INVALID_ARG;
+        }
+        if (m->info.closed && m->info.oriented && !(m->info.volume > 0)) {
+            sps__mesh_say(r->msg, r->msg_size,
+                          "%s: the triangles face inwards (signed volume %g m^3 <= 0): the normals must point out of the body; set flip = %d to "
+                          "turn them over",
+                          r->name, (double)m->info.volume, !d->flip);
+            sps_mesh_destroy(m);
+            return SPS_ERR_INVALID_ARG;
+        }
+    } else {
+        m->info.closed = m->info.oriented = 1;
+        if (sps__rings_cross(m, &s, &t)) {
+            const double* p = m->v + 3 * m->e[2 * s];
+            sps__mesh_say(r->msg, r->msg_size, "%s: ring %d %s: its segment %d (from (%g, %g)) and segment %d meet; rings must not cross themselves or "
+                          "each other", r->name, m->ring[s] + 1, m->ring[s] == m->ring[t] ? "crosses itself" : "crosses another ring", s + 1, p[0], p[1], t + 1);
+            sps_mesh_destroy(m);
+            return SPS_ERR_INVALID_ARG;
+        }
+        sps__rings_measure(m);
+    }
+    *out = m;
+    return SPS_OK;
+oom:
+    sps_mesh_destroy(m);
+oom_raw:
+    sps__raw_free(r);
+    sps__mesh_say(r->msg, r->msg_size, "%s: out of memory", r->name);
+    return SPS_ERR_OUT_OF_MEMORY;
+}
+
+SPSDEF sps_mesh_def sps_default_mesh_def(void) {
+    sps_mesh_def d;
+    memset(&d, 0, sizeof d);
+    d.scale = 1;
+    d.allocator.alloc = sps__default_alloc;
+    d.allocator.free = sps__default_free;
+    d.internal_cookie = SPS__COOKIE;
+    return d;
+}
+SPSDEF void sps_mesh_destroy(sps_mesh* m) {
+    sps_allocator a;
+    if (!m) return;
+    a = m->a;
+    sps__mesh_free(&a, m->v); sps__mesh_free(&a, m->e); sps__mesh_free(&a, m->ring); sps__mesh_free(&a, m->face);
+    sps__mesh_free(&a, m->vnormal); sps__mesh_free(&a, m->node); sps__mesh_free(&a, m->order);
+    sps__mesh_free(&a, m);
+}
+SPSDEF sps_mesh_info sps_mesh_get_info(const sps_mesh* m) {
+    sps_mesh_info i;
+    if (m) return m->info;
+    memset(&i, 0, sizeof i);
+    return i;
+}
+/* Checks the def (NULL: the defaults, into *store); 0, or 1 with the message. */
+static int sps__mesh_def_check(const sps_mesh_def** d, sps_mesh_def* store, const char* name, char* msg, size_t msg_size) {
+    int a;
+    if (!*d) { *store = sps_default_mesh_def(); *d = store; }
+    if ((*d)->internal_cookie != SPS__COOKIE) { sps__mesh_say(msg, msg_size, "%s: the def was not made by sps_default_mesh_def()", name); return 1; }
+    if (!((*d)->scale > 0 && (*d)->scale < (sps_real)INFINITY)) {
+        sps__mesh_say(msg, msg_size, "%s: scale = %g: must be finite and > 0", name, (double)(*d)->scale); return 1;
+    }
+    for (a = 0; a < 3; ++a)
+        if (!((*d)->rotate[a] - (*d)->rotate[a] == 0 && (*d)->translate[a] - (*d)->translate[a] == 0)) {
+            sps__mesh_say(msg, msg_size, "%s: rotate[%d] = %g, translate[%d] = %g: must be finite", name, a, (double)(*d)->rotate[a], a,
+                          (double)(*d)->translate[a]);
+            return 1;
+        }
+    if (!((*d)->chord_error >= 0 && (*d)->chord_error < (sps_real)INFINITY)) {
+        sps__mesh_say(msg, msg_size, "%s: chord_error = %g: must be finite and >= 0", name, (double)(*d)->chord_error); return 1;
+    }
+    if (!(*d)->allocator.alloc || !(*d)->allocator.free) { sps__mesh_say(msg, msg_size, "%s: the allocator's alloc and free must be set", name); return 1; }
+    return 0;
+}
+static void sps__raw_start(sps__mesh_raw* r, const sps_mesh_def* d, int dim, const char* name, char* msg, size_t msg_size) {
+    memset(r, 0, sizeof *r);
+    r->a = d->allocator; r->dim = dim; r->name = name; r->msg = msg; r->msg_size = msg_size;
+}
+static int sps__mesh_finite(double x) { return x - x == 0; }
+
+SPSDEF sps_result sps_mesh_from_triangles(int nv, const sps_real* xyz, int nt, const int* tri, const sps_mesh_def* def, sps_mesh** out,
+                                          char* msg, size_t msg_size) {
+    static const char* fn = "sps_mesh_from_triangles";
+    sps_mesh_def store;
+    sps__mesh_raw r;
+    int i, k;
+    if (out) *out = NULL;
+    if (!out || !xyz || !tri) { sps__mesh_say(msg, msg_size, "%s: out, xyz and tri must not be NULL", fn); return SPS_ERR_INVALID_ARG; }
+    if (nv < 3 || nt < 1 || nv > SPS__MESH_MAX_ELEMENTS || nt > SPS__MESH_MAX_ELEMENTS) {
+        sps__mesh_say(msg, msg_size, "%s: nv = %d, nt = %d: need 3 <= nv and 1 <= nt, both <= %d", fn, nv, nt, SPS__MESH_MAX_ELEMENTS);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (sps__mesh_def_check(&def, &store, fn, msg, msg_size)) return SPS_ERR_INVALID_ARG;
+    sps__raw_start(&r, def, 3, fn, msg, msg_size);
+    for (i = 0; i < nv; ++i) {
+        if (!sps__mesh_finite((double)xyz[3 * i]) || !sps__mesh_finite((double)xyz[3 * i + 1]) || !sps__mesh_finite((double)xyz[3 * i + 2])) {
+            sps__mesh_say(msg, msg_size, "%s: vertex %d = (%g, %g, %g): coordinates must be finite", fn, i, (double)xyz[3 * i], (double)xyz[3 * i + 1],
+                          (double)xyz[3 * i + 2]);
+            sps__raw_free(&r);
+            return SPS_ERR_INVALID_ARG;
+        }
+        if (sps__raw_vertex(&r, (double)xyz[3 * i], (double)xyz[3 * i + 1], (double)xyz[3 * i + 2])) goto oom;
+    }
+    for (i = 0; i < nt; ++i) {
+        for (k = 0; k < 3; ++k)
+            if (tri[3 * i + k] < 0 || tri[3 * i + k] >= nv) {
+                sps__mesh_say(msg, msg_size, "%s: triangle %d: vertex index %d out of range [0, %d]", fn, i, tri[3 * i + k], nv - 1);
+                sps__raw_free(&r);
+                return SPS_ERR_INVALID_ARG;
+            }
+        if (sps__raw_element(&r, tri + 3 * i)) goto oom;
+    }
+    return sps__mesh_finish(&r, def, out);
+oom:
+    sps__raw_free(&r);
+    sps__mesh_say(msg, msg_size, "%s: out of memory", fn);
+    return SPS_ERR_OUT_OF_MEMORY;
+}
+
+SPSDEF sps_result sps_mesh_from_rings(int nrings, const int* ring_points, const sps_real* xy, const sps_mesh_def* def, sps_mesh** out,
+                                      char* msg, size_t msg_size) {
+    static const char* fn = "sps_mesh_from_rings";
+    sps_mesh_def store;
+    sps__mesh_raw r;
+    int i, k, p = 0;
+    if (out) *out = NULL;
+    if (!out || !ring_points || !xy) { sps__mesh_say(msg, msg_size, "%s: out, ring_points and xy must not be NULL", fn); return SPS_ERR_INVALID_ARG; }
+    if (nrings < 1 || nrings > SPS__MESH_MAX_ELEMENTS) {
+        sps__mesh_say(msg, msg_size, "%s: nrings = %d: must be in [1, %d]", fn, nrings, SPS__MESH_MAX_ELEMENTS);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (sps__mesh_def_check(&def, &store, fn, msg, msg_size)) return SPS_ERR_INVALID_ARG;
+    sps__raw_start(&r, def, 2, fn, msg, msg_size);
+    for (i = 0; i < nrings; ++i) {
+        const int first = r.nv;
+        if (ring_points[i] < 3 || ring_points[i] > SPS__MESH_MAX_ELEMENTS - p) {
+            sps__mesh_say(msg, msg_size, "%s: ring %d has ring_points = %d: must be >= 3 (and all rings together <= %d)", fn, i, ring_points[i],
+                          SPS__MESH_MAX_ELEMENTS);
+            sps__raw_free(&r);
+            return SPS_ERR_INVALID_ARG;
+        }
+        for (k = 0; k < ring_points[i]; ++k, ++p) {
+            if (!sps__mesh_finite((double)xy[2 * p]) || !sps__mesh_finite((double)xy[2 * p + 1])) {
+                sps__mesh_say(msg, msg_size, "%s: ring %d, point %d = (%g, %g): coordinates must be finite", fn, i, k, (double)xy[2 * p],
+                              (double)xy[2 * p + 1]);
+                sps__raw_free(&r);
+                return SPS_ERR_INVALID_ARG;
+            }
+            if (sps__raw_vertex(&r, (double)xy[2 * p], (double)xy[2 * p + 1], 0)) goto oom;
+        }
+        if (sps__raw_close_ring(&r, first, 0)) { sps__raw_free(&r); return SPS_ERR_INVALID_ARG; }
+    }
+    return sps__mesh_finish(&r, def, out);
+oom:
+    sps__raw_free(&r);
+    sps__mesh_say(msg, msg_size, "%s: out of memory", fn);
+    return SPS_ERR_OUT_OF_MEMORY;
+}
+
+/* ---- filling bodies ---- */
+/* The shape a fill fills: the mesh's inside (thickness 0) or the shell (0, thickness) outside
+   it, cut by the box [lo, hi] when clip is set. */
+typedef struct sps__mesh_fill {
+    const sps_mesh* m;
+    sps_real thickness;
+    int clip;
+    sps_real lo[3], hi[3];
+    double band; /* the distance is exact below it: where the fills look at it (2h and the gradient's step, the shell) */
+    int hint;    /* the element nearest the last point asked (the fills ask one point after another) */
+} sps__mesh_fill;
+static sps_real sps__mesh_fill_sdf(const sps_real x[3], void* user) {
+    sps__mesh_fill* f = (sps__mesh_fill*)user;
+    double p[3];
+    sps_real d;
+    int a;
+    p[0] = (double)x[0]; p[1] = (double)x[1]; p[2] = f->m->dim == 3 ? (double)x[2] : 0;
+    if (!(p[0] - p[0] == 0 && p[1] - p[1] == 0 && p[2] - p[2] == 0)) return (sps_real)NAN;
+    d = (sps_real)sps__mesh_distance(f->m, p, f->band, &f->hint);
+    if (f->thickness > 0) d = -d > d - f->thickness ? -d : d - f->thickness;
+    for (a = 0; f->clip && a < f->m->dim; ++a) {
+        if (f->lo[a] - x[a] > d) d = f->lo[a] - x[a];
+        if (x[a] - f->hi[a] > d) d = x[a] - f->hi[a];
+    }
+    return d;
+}
+/* Checks the arguments and sets up the shape and the fill's box: the mesh's box grown by the
+   shell and a cell, its faces on multiples of dp (so every fill has the same lattice). 0, or 1
+   with the world's error. */
+static int sps__mesh_fill_setup(sps_world* w, const sps_mesh* m, const sps_real lo[3], const sps_real hi[3], sps_real thickness, const char* fn,
+                                sps__mesh_fill* f, sps_real box_lo[3], sps_real box_hi[3]) {
+    const sps_real dp = sps_world_get_def(w)->dp;
+    int a;
+    if (!m) { sps__set_error(w, 0, "%s: mesh must not be NULL", fn); return 1; }
+    if (m->dim != sps_world_get_def(w)->dim) {
+        sps__set_error(w, 0, "%s: the mesh is %dD (%s), the world %dD", fn, m->dim, m->dim == 3 ? "triangles" : "rings", sps_world_get_def(w)->dim);
+        return 1;
+    }
+    if (!lo != !hi) { sps__set_error(w, 0, "%s: lo and hi must both be NULL (no cut) or both set", fn); return 1; }
+    memset(f, 0, sizeof *f);
+    f->m = m; f->thickness = thickness; f->clip = lo != NULL; f->hint = -1;
+    /* an open mesh has no inside for the rays to find: the whole search everywhere */
+    f->band = m->dim == 3 && !(m->info.closed && m->info.oriented) ? HUGE_VAL
+            : (double)(thickness + (2 * sps_world_get_def(w)->h_over_dp + 1) * dp);
+    for (a = 0; a < 3; ++a) {
+        if (f->clip && a < m->dim && !(lo[a] < hi[a] && sps__finite(lo[a]) && sps__finite(hi[a]))) {
+            sps__set_error(w, 0, "%s: the cut [%g, %g] on axis %d: must be finite with lo < hi", fn, (double)lo[a], (double)hi[a], a);
+            return 1;
+        }
+        if (f->clip) { f->lo[a] = lo[a]; f->hi[a] = hi[a]; }
+        box_lo[a] = a < m->dim ? (SPS__FLOOR(m->info.lo[a] / dp) - 1) * dp - thickness : 0;
+        box_hi[a] = a < m->dim ? (-SPS__FLOOR(-m->info.hi[a] / dp) + 1) * dp + thickness : 0;
+    }
+    return 0;
+}
+SPSDEF sps_result sps_body_add_mesh(sps_world* w, sps_body b, const sps_mesh* m, const sps_real lo[3], const sps_real hi[3],
+                                    int relax_iterations, int* added) {
+    sps__mesh_fill f;
+    sps_real box_lo[3], box_hi[3];
+    if (added) *added = 0;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (sps__mesh_fill_setup(w, m, lo, hi, 0, "sps_body_add_mesh", &f, box_lo, box_hi)) return SPS_ERR_INVALID_ARG;
+    if (relax_iterations < 0) return sps_body_add_sdf(w, b, box_lo, box_hi, sps__mesh_fill_sdf, &f, added);
+    return sps_body_add_sdf_relaxed(w, b, box_lo, box_hi, sps__mesh_fill_sdf, &f, relax_iterations, added);
+}
+SPSDEF sps_result sps_body_add_mesh_shell(sps_world* w, sps_body b, const sps_mesh* m, const sps_real lo[3], const sps_real hi[3],
+                                          int layers, int* added) {
+    sps__mesh_fill f;
+    sps_real box_lo[3], box_hi[3];
+    if (added) *added = 0;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (layers < 1 || layers > 20) { sps__set_error(w, 0, "sps_body_add_mesh_shell: layers = %d: must be in [1, 20]", layers); return SPS_ERR_INVALID_ARG; }
+    if (sps__mesh_fill_setup(w, m, lo, hi, (sps_real)layers * sps_world_get_def(w)->dp, "sps_body_add_mesh_shell", &f, box_lo, box_hi))
+        return SPS_ERR_INVALID_ARG;
+    return sps_body_add_sdf(w, b, box_lo, box_hi, sps__mesh_fill_sdf, &f, added);
+}
+
+#ifndef SPHSOLID_NO_STDIO
+/* ---- the readers ---- */
+/* Reads the whole file into a NUL-terminated buffer. */
+static sps_result sps__read_whole(const char* path, const sps_allocator* a, char** out, long* size, char* msg, size_t msg_size) {
+    FILE* f = fopen(path, "rb");
+    char* buf = NULL;
+    long cap = 0, n = 0;
+    *out = NULL; *size = 0;
+    if (!f) { sps__mesh_say(msg, msg_size, "%s: cannot open the file for reading", path); return SPS_ERR_IO; }
+    for (;;) {
+        size_t got;
+        if (n == cap) {
+            char* bigger;
+            long c = cap ? 2 * cap : 65536;
+            if (cap >= SPS__MESH_MAX_BYTES) {
+                sps__mesh_say(msg, msg_size, "%s: larger than %ld bytes", path, SPS__MESH_MAX_BYTES);
+                sps__mesh_free(a, buf); fclose(f); return SPS_ERR_IO;
+            }
+            if (c > SPS__MESH_MAX_BYTES) c = SPS__MESH_MAX_BYTES;
+            bigger = (char*)sps__mesh_alloc(a, (size_t)c + 1);
+            if (!bigger) { sps__mesh_say(msg, msg_size, "%s: out of memory", path); sps__mesh_free(a, buf); fclose(f); return SPS_ERR_OUT_OF_MEMORY; }
+            if (buf) memcpy(bigger, buf, (size_t)n);
+            sps__mesh_free(a, buf);
+            buf = bigger; cap = c;
+        }
+        got = fread(buf + n, 1, (size_t)(cap - n), f);
+        n += (long)got;
+        if (got == 0) break;
+    }
+    if (ferror(f)) { sps__mesh_say(msg, msg_size, "%s: read error", path); sps__mesh_free(a, buf); fclose(f); return SPS_ERR_IO; }
+    fclose(f);
+    buf[n] = 0;
+    *out = buf; *size = n;
+    return SPS_OK;
+}
+static unsigned sps__le32(const unsigned char* p) { return (unsigned)p[0] | (unsigned)p[1] << 8 | (unsigned)p[2] << 16 | (unsigned)p[3] << 24; }
+static double sps__le_float(const unsigned char* p) {
+    const unsigned u = sps__le32(p); /* IEEE 754 single precision, as STL stores it */
+    float f;
+    SPS_ASSERT(sizeof f == sizeof u);
+    memcpy(&f, &u, sizeof f);
+    return (double)f;
+}
+/* Binary STL: an 80-byte header, a 32-bit count n, n records of 50 bytes (normal, 3 vertices,
+   attribute). */
+static sps_result sps__read_stl_binary(sps__mesh_raw* r, const unsigned char* b, unsigned n) {
+    unsigned t;
+    int k, a, idx[3];
+    for (t = 0; t < n; ++t) {
+        const unsigned char* rec = b + 84 + 50 * (size_t)t + 12;
+        for (k = 0; k < 3; ++k) {
+            double x[3];
+            for (a = 0; a < 3; ++a) {
+                x[a] = sps__le_float(rec + 12 * k + 4 * a);
+                if (!sps__mesh_finite(x[a])) {
+                    sps__mesh_say(r->msg, r->msg_size, "%s: triangle %u, vertex %d: coordinate %c is %g (not finite)", r->name, t + 1, k + 1, "xyz"[a], x[a]);
+                    return SPS_ERR_IO;
+                }
+            }
+            if (sps__raw_vertex(r, x[0], x[1], x[2])) return SPS_ERR_OUT_OF_MEMORY;
+            idx[k] = r->nv - 1;
+        }
+        if (sps__raw_element(r, idx)) return SPS_ERR_OUT_OF_MEMORY;
+    }
+    return SPS_OK;
+}
+
+/* A text cursor: the position and its line. */
+typedef struct sps__text { const char* p; int line; } sps__text;
+/* Skips blanks (and newlines, counted) ; returns the next character. */
+static char sps__text_skip(sps__text* t) {
+    while (*t->p == ' ' || *t->p == '\t' || *t->p == '\r' || *t->p == '\n' || *t->p == '\f' || *t->p == '\v') {
+        if (*t->p == '\n') ++t->line;
+        ++t->p;
+    }
+    return *t->p;
+}
+/* The next whitespace-separated word (at most size - 1 characters kept). */
+static int sps__text_word(sps__text* t, char* word, size_t size) {
+    size_t n = 0;
+    sps__text_skip(t);
+    while (*t->p && !(*t->p == ' ' || *t->p == '\t' || *t->p == '\r' || *t->p == '\n' || *t->p == '\f' || *t->p == '\v')) {
+        if (n + 1 < size) word[n++] = *t->p;
+        ++t->p;
+    }
+    word[n] = 0;
+    return n > 0;
+}
+/* A number: the whole word must be one, and finite. */
+static int sps__parse_number(const char* word, double* x) {
+    char* end;
+    if (!*word) return 0;
+    *x = strtod(word, &end);
+    return *end == 0 && sps__mesh_finite(*x);
+}
+static int sps__text_number(sps__text* t, double* x, char* word, size_t size) {
+    return sps__text_word(t, word, size) && sps__parse_number(word, x);
+}
+static sps_result sps__stl_expect(sps__mesh_raw* r, sps__text* t, const char* what) {
+    char word[64];
+    if (sps__text_word(t, word, sizeof word) && strcmp(word, what) == 0) return SPS_OK;
+    sps__mesh_say(r->msg, r->msg_size, "%s: line %d: expected '%s', found '%s'", r->name, t->line, what, *word ? word : "the end of the file");
+    return SPS_ERR_IO;
+}
+/* ASCII STL: solid name / facet normal n n n / outer loop / vertex x y z (3) / endloop / endfacet
+   ... / endsolid (several solids one after the other). */
+static sps_result sps__read_stl_ascii(sps__mesh_raw* r, const char* text) {
+    sps__text t;
+    char word[64];
+    int k, a, idx[3];
+    t.p = text; t.line = 1;
+    while (sps__text_skip(&t)) {
+        if (sps__stl_expect(r, &t, "solid")) return SPS_ERR_IO;
+        while (*t.p && *t.p != '\n') ++t.p; /* the name */
+        for (;;) {
+            const int line = (sps__text_skip(&t), t.line);
+            if (!sps__text_word(&t, word, sizeof word)) { sps__mesh_say(r->msg, r->msg_size, "%s: line %d: the file ends inside a solid (no 'endsolid')", r->name, line); return SPS_ERR_IO; }
+            if (strcmp(word, "endsolid") == 0) { while (*t.p && *t.p != '\n') ++t.p; break; }
+            if (strcmp(word, "facet") != 0) { sps__mesh_say(r->msg, r->msg_size, "%s: line %d: expected 'facet' or 'endsolid', found '%s'", r->name, line, word); return SPS_ERR_IO; }
+            if (sps__stl_expect(r, &t, "normal")) return SPS_ERR_IO;
+            for (a = 0; a < 3; ++a) /* the normal: ignored (the triangles' order gives it) */
+                if (!sps__text_word(&t, word, sizeof word)) {
+                    sps__mesh_say(r->msg, r->msg_size, "%s: line %d: the file ends inside a facet's normal", r->name, t.line);
+                    return SPS_ERR_IO;
+                }
+            if (sps__stl_expect(r, &t, "outer") || sps__stl_expect(r, &t, "loop")) return SPS_ERR_IO;
+            for (k = 0; k < 3; ++k) {
+                double x[3];
+                if (sps__stl_expect(r, &t, "vertex")) return SPS_ERR_IO;
+                for (a = 0; a < 3; ++a)
+                    if (!sps__text_number(&t, &x[a], word, sizeof word)) {
+                        sps__mesh_say(r->msg, r->msg_size, "%s: line %d: triangle %d, vertex %d: coordinate %c '%s' is not a finite number", r->name, t.line,
+                                      r->ne + 1, k + 1, "xyz"[a], word);
+                        return SPS_ERR_IO;
+                    }
+                if (sps__raw_vertex(r, x[0], x[1], x[2])) return SPS_ERR_OUT_OF_MEMORY;
+                idx[k] = r->nv - 1;
+            }
+            if (sps__stl_expect(r, &t, "endloop") || sps__stl_expect(r, &t, "endfacet")) return SPS_ERR_IO;
+            if (sps__raw_element(r, idx)) return SPS_ERR_OUT_OF_MEMORY;
+        }
+    }
+    return SPS_OK;
+}
+
+/* The line starting at p: its end (the '\n' or the NUL). */
+static const char* sps__line_end(const char* p) { while (*p && *p != '\n') ++p; return p; }
+/* The first word of a line (copied, at most size - 1 characters) and where it ends. */
+static const char* sps__line_word(const char* p, const char* end, char* word, size_t size) {
+    size_t n = 0;
+    while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+    while (p < end && !(*p == ' ' || *p == '\t' || *p == '\r')) { if (n + 1 < size) word[n++] = *p; ++p; }
+    word[n] = 0;
+    return p;
+}
+/* Wavefront OBJ: "v x y z", "f a b c ..." (a polygon, triangulated as a fan; an index i, i/t,
+   i//n or i/t/n, 1-based, negative counting back from the last vertex); every other
+   statement (vt, vn, g, o, s, usemtl, mtllib, l, comments) ignored. */
+static sps_result sps__read_obj(sps__mesh_raw* r, const char* text) {
+    const char* p = text;
+    int line = 1;
+    char word[64];
+    for (; *p; ++line) {
+        const char* end = sps__line_end(p);
+        const char* q = sps__line_word(p, end, word, sizeof word);
+        if (strcmp(word, "v") == 0) {
+            double x[3];
+            int a;
+            for (a = 0; a < 3; ++a) {
+                q = sps__line_word(q, end, word, sizeof word);
+                if (!sps__parse_number(word, &x[a])) {
+                    sps__mesh_say(r->msg, r->msg_size, "%s: line %d: vertex %d: coordinate %c '%s' is not a finite number", r->name, line, r->nv + 1,
+                                  "xyz"[a], word);
+                    return SPS_ERR_IO;
+                }
+            }
+            if (sps__raw_vertex(r, x[0], x[1], x[2])) return SPS_ERR_OUT_OF_MEMORY;
+        } else if (strcmp(word, "f") == 0) {
+            int idx[3], corners = 0;
+            for (;;) {
+                char* after;
+                long i;
+                q = sps__line_word(q, end, word, sizeof word);
+                if (!*word) break;
+                i = strtol(word, &after, 10);
+                if (after == word || (*after && *after != '/')) {
+                    sps__mesh_say(r->msg, r->msg_size, "%s: line %d: face corner '%s' is not a vertex index", r->name, line, word);
+                    return SPS_ERR_IO;
+                }
+                if (i < 0) i += r->nv + 1L;
+                if (i < 1 || i > r->nv) {
+                    sps__mesh_say(r->msg, r->msg_size, "%s: line %d: face corner '%s': vertex index out of range (%d vertices so far)", r->name, line, word,
+                                  r->nv);
+                    return SPS_ERR_IO;
+                }
+                if (corners < 2) idx[corners] = (int)i - 1;
+                else {
+                    idx[2] = (int)i - 1;
+                    if (sps__raw_element(r, idx)) return SPS_ERR_OUT_OF_MEMORY;
+                    idx[1] = idx[2]; /* the fan around the first corner */
+                }
+                ++corners;
+            }
+            if (corners < 3) { sps__mesh_say(r->msg, r->msg_size, "%s: line %d: a face needs 3 corners at least, this one has %d", r->name, line, corners); return SPS_ERR_IO; }
+        }
+        p = *end ? end + 1 : end;
+    }
+    return SPS_OK;
+}
+
+/* An outline: lines "x y" (or "x, y"), a blank line between rings, '#' starting a comment. */
+static sps_result sps__read_outline(sps__mesh_raw* r, const char* text) {
+    const char* p = text;
+    int line = 1, first = 0;
+    char word[64];
+    for (; *p; ++line) {
+        const char* end = sps__line_end(p);
+        const char* q = p;
+        double x[2];
+        int a, blank = 1;
+        for (q = p; q < end && *q != '#'; ++q) if (!(*q == ' ' || *q == '\t' || *q == '\r' || *q == ',')) blank = 0;
+        if (blank) {
+            if (q == end && r->nv > first) { /* a blank line (not a comment) ends the ring */
+                if (sps__raw_close_ring(r, first, line)) return SPS_ERR_IO;
+                first = r->nv;
+            }
+            p = *end ? end + 1 : end;
+            continue;
+        }
+        q = p;
+        for (a = 0; a < 2; ++a) {
+            size_t n = 0;
+            while (q < end && (*q == ' ' || *q == '\t' || *q == '\r' || *q == ',')) ++q;
+            while (q < end && !(*q == ' ' || *q == '\t' || *q == '\r' || *q == ',' || *q == '#')) { if (n + 1 < sizeof word) word[n++] = *q; ++q; }
+            word[n] = 0;
+            if (!sps__parse_number(word, &x[a])) {
+                sps__mesh_say(r->msg, r->msg_size, "%s: line %d: %c '%s' is not a finite number (an outline's lines are \"x y\")", r->name, line, "xy"[a], word);
+                return SPS_ERR_IO;
+            }
+        }
+        while (q < end && (*q == ' ' || *q == '\t' || *q == '\r' || *q == ',')) ++q;
+        if (q < end && *q != '#') { sps__mesh_say(r->msg, r->msg_size, "%s: line %d: more than two numbers (an outline's lines are \"x y\")", r->name, line); return SPS_ERR_IO; }
+        if (sps__raw_vertex(r, x[0], x[1], 0)) return SPS_ERR_OUT_OF_MEMORY;
+        p = *end ? end + 1 : end;
+    }
+    if (r->nv > first && sps__raw_close_ring(r, first, line)) return SPS_ERR_IO;
+    return SPS_OK;
+}
+
+/* ---- SVG: the paths' d attributes and polygons' points, curves flattened ---- */
+typedef struct sps__svg {
+    sps__mesh_raw* r;
+    double tol;       /* the chord error; <= 0: measuring (control points into the box, no flattening) */
+    double lo[2], hi[2];
+    int first;        /* the current ring's first vertex */
+    int line;
+} sps__svg;
+static int sps__svg_point(sps__svg* s, double x, double y) {
+    if (s->tol <= 0) {
+        if (x < s->lo[0]) s->lo[0] = x;
+        if (x > s->hi[0]) s->hi[0] = x;
+        if (y < s->lo[1]) s->lo[1] = y;
+        if (y > s->hi[1]) s->hi[1] = y;
+        return 0;
+    }
+    return sps__raw_vertex(s->r, x, -y, 0); /* SVG's y points down */
+}
+static int sps__svg_close(sps__svg* s) {
+    int bad = 0;
+    if (s->tol > 0 && s->r->nv > s->first) bad = sps__raw_close_ring(s->r, s->first, s->line);
+    s->first = s->r->nv;
+    return bad;
+}
+/* A Bezier curve of degree 2 or 3 (c: its control points, 2 reals each, the start first), in
+   n pieces: the chord of a piece of parameter length 1/n lies within |B''|max / (8 n^2) of the
+   curve, |B''| <= 6 max|P0 - 2P1 + P2|, |P1 - 2P2 + P3| (cubic), 2 |P0 - 2P1 + P2| (quadratic). */
+static int sps__svg_curve(sps__svg* s, const double* c, int degree) {
+    double second = 0, u;
+    int n, i, k;
+    if (s->tol <= 0) {
+        for (k = 1; k <= degree; ++k) if (sps__svg_point(s, c[2 * k], c[2 * k + 1])) return 1;
+        return 0;
+    }
+    for (k = 0; k + 2 <= degree; ++k) {
+        const double dx = c[2 * k] - 2 * c[2 * k + 2] + c[2 * k + 4], dy = c[2 * k + 1] - 2 * c[2 * k + 3] + c[2 * k + 5];
+        if (sqrt(dx * dx + dy * dy) > second) second = sqrt(dx * dx + dy * dy);
+    }
+    second *= degree == 3 ? 6 : 2;
+    u = ceil(sqrt(second / (8 * s->tol)));
+    n = !(u <= SPS__SVG_MAX_PIECES) ? SPS__SVG_MAX_PIECES : u < 1 ? 1 : (int)u; /* NaN from overflowing control points: the most */
+    for (i = 1; i <= n; ++i) {
+        const double t = (double)i / n, m = 1 - t;
+        double x, y;
+        if (degree == 3) {
+            x = m * m * m * c[0] + 3 * m * m * t * c[2] + 3 * m * t * t * c[4] + t * t * t * c[6];
+            y = m * m * m * c[1] + 3 * m * m * t * c[3] + 3 * m * t * t * c[5] + t * t * t * c[7];
+        } else {
+            x = m * m * c[0] + 2 * m * t * c[2] + t * t * c[4];
+            y = m * m * c[1] + 2 * m * t * c[3] + t * t * c[5];
+        }
+        if (sps__svg_point(s, x, y)) return 1;
+    }
+    return 0;
+}
+/* The next number of path data (separated by blanks or commas); 0 when there is none. */
+static int sps__svg_number(const char** p, const char* end, double* x) {
+    char buf[64], *e;
+    size_t n = 0;
+    const char* q;
+    while (*p < end && (**p == ' ' || **p == '\t' || **p == '\r' || **p == '\n' || **p == ',')) ++*p;
+    q = *p;
+    if (q < end && (*q == '-' || *q == '+')) buf[n++] = *q++;
+    while (q < end && n + 1 < sizeof buf && ((*q >= '0' && *q <= '9') || *q == '.' || *q == 'e' || *q == 'E' ||
+                                            ((*q == '-' || *q == '+') && (q[-1] == 'e' || q[-1] == 'E')))) {
+        if (*q == '.' && memchr(buf, '.', n)) break; /* "1.5.5" is 1.5 and .5 */
+        buf[n++] = *q++;
+    }
+    buf[n] = 0;
+    *x = strtod(buf, &e);
+    if (e == buf) return 0;
+    *p += e - buf;
+    return sps__mesh_finite(*x);
+}
+/* One path's d attribute (p .. end). */
+static sps_result sps__svg_path(sps__svg* s, const char* p, const char* end) {
+    double cur[2] = {0, 0}, start[2] = {0, 0}, last_control[2] = {0, 0}, a[6];
+    char cmd = 0, previous = 0;
+    static const char* args = "MmLlHhVvCcSsQqTtZzAa";
+    static const int count[] = {2, 2, 2, 2, 1, 1, 1, 1, 6, 6, 4, 4, 4, 4, 2, 2, 0, 0, 7, 7};
+    for (;;) {
+        const char* c;
+        int n, k, rel;
+        while (p < end && (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n' || *p == ',')) ++p;
+        if (p >= end) break;
+        if ((*p >= 'A' && *p <= 'Z') || (*p >= 'a' && *p <= 'z')) {
+            c = strchr(args, *p);
+            if (!c || !*p) { sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: unknown path command '%c'", s->r->name, s->line, *p); return SPS_ERR_IO; }
+            if (*p == 'A' || *p == 'a') {
+                sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: elliptical arcs (path command '%c') are not read: convert them to curves in the editor",
+                              s->r->name, s->line, *p);
+                return SPS_ERR_IO;
+            }
+            cmd = *p++;
+            if (cmd == 'Z' || cmd == 'z') {
+                if (sps__svg_close(s)) return SPS_ERR_IO;
+                cur[0] = start[0]; cur[1] = start[1];
+                previous = cmd;
+                continue;
+            }
+        } else if (!cmd || cmd == 'Z' || cmd == 'z') {
+            sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: path data: a number where a command is expected", s->r->name, s->line);
+            return SPS_ERR_IO;
+        }
+        n = count[strchr(args, cmd) - args];
+        for (k = 0; k < n; ++k)
+            if (!sps__svg_number(&p, end, &a[k])) {
+                sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: path command '%c' needs %d finite numbers", s->r->name, s->line, cmd, n);
+                return SPS_ERR_IO;
+            }
+        rel = cmd >= 'a';
+        if ((previous == 'Z' || previous == 'z') && cmd != 'M' && cmd != 'm') { /* a new subpath from the closed one's start */
+            if (sps__svg_point(s, cur[0], cur[1])) return SPS_ERR_OUT_OF_MEMORY;
+        }
+        switch (cmd) {
+        case 'M': case 'm':
+            if (sps__svg_close(s)) return SPS_ERR_IO;
+            cur[0] = a[0] + rel * cur[0]; cur[1] = a[1] + rel * cur[1];
+            start[0] = cur[0]; start[1] = cur[1];
+            if (sps__svg_point(s, cur[0], cur[1])) return SPS_ERR_OUT_OF_MEMORY;
+            cmd = rel ? 'l' : 'L'; /* further pairs are lines */
+            break;
+        case 'L': case 'l': case 'H': case 'h': case 'V': case 'v':
+            if (cmd == 'H' || cmd == 'h') { a[1] = rel ? 0 : cur[1]; }
+            else if (cmd == 'V' || cmd == 'v') { a[1] = a[0]; a[0] = rel ? 0 : cur[0]; }
+            cur[0] = a[0] + rel * cur[0]; cur[1] = a[1] + rel * cur[1];
+            if (sps__svg_point(s, cur[0], cur[1])) return SPS_ERR_OUT_OF_MEMORY;
+            break;
+        default: { /* curves: C, S (cubic), Q, T (quadratic) */
+            const int cubic = cmd == 'C' || cmd == 'c' || cmd == 'S' || cmd == 's';
+            const int smooth = cmd == 'S' || cmd == 's' || cmd == 'T' || cmd == 't';
+            const int after_curve = cubic ? strchr("CcSs", previous) != NULL : strchr("QqTt", previous) != NULL;
+            double c[8];
+            int j = 2;
+            c[0] = cur[0]; c[1] = cur[1];
+            if (smooth) { /* the reflection of the last control point, or the current point */
+                c[2] = previous && after_curve ? 2 * cur[0] - last_control[0] : cur[0];
+                c[3] = previous && after_curve ? 2 * cur[1] - last_control[1] : cur[1];
+                j = 4;
+            }
+            for (k = 0; k < n; k += 2, j += 2) { c[j] = a[k] + rel * cur[0]; c[j + 1] = a[k + 1] + rel * cur[1]; }
+            last_control[0] = c[j - 4]; last_control[1] = c[j - 3];
+            if (sps__svg_curve(s, c, cubic ? 3 : 2)) return SPS_ERR_OUT_OF_MEMORY;
+            cur[0] = c[j - 2]; cur[1] = c[j - 1];
+        }
+        }
+        previous = cmd;
+    }
+    if (sps__svg_close(s)) return SPS_ERR_IO;
+    return SPS_OK;
+}
+/* The value of attribute name in the element [p, end) (after a blank, name, '=', a quote). */
+static const char* sps__svg_attribute(const char* p, const char* end, const char* name, const char** value_end) {
+    const size_t len = strlen(name);
+    for (; p + len + 2 < end; ++p)
+        if ((p[-1] == ' ' || p[-1] == '\t' || p[-1] == '\n' || p[-1] == '\r') && strncmp(p, name, len) == 0) {
+            const char* q = p + len;
+            while (q < end && (*q == ' ' || *q == '\t')) ++q;
+            if (q < end && *q == '=') {
+                char quote;
+                ++q;
+                while (q < end && (*q == ' ' || *q == '\t')) ++q;
+                if (q >= end || (*q != '"' && *q != '\'')) return NULL;
+                quote = *q++;
+                *value_end = q;
+                while (*value_end < end && **value_end != quote) ++*value_end;
+                return *value_end < end ? q : NULL;
+            }
+        }
+    return NULL;
+}
+/* One pass over the drawing's elements (measuring, or flattening). */
+static sps_result sps__svg_pass(sps__svg* s, const char* text) {
+    const char *p = text, *counted = text; /* the newlines before counted are in s->line */
+    s->line = 1;
+    while ((p = strchr(p, '<')) != NULL) {
+        const char *end = strchr(p, '>'), *q, *value, *value_end;
+        int is_path, is_polygon;
+        sps_result res;
+        for (q = counted; q < p; ++q) if (*q == '\n') ++s->line;
+        counted = p;
+        if (!end) { sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: an element is not closed with '>'", s->r->name, s->line); return SPS_ERR_IO; }
+        is_path = strncmp(p, "<path", 5) == 0 && (p[5] == ' ' || p[5] == '\t' || p[5] == '\n' || p[5] == '\r');
+        is_polygon = (strncmp(p, "<polygon", 8) == 0 || strncmp(p, "<polyline", 9) == 0);
+        if (strncmp(p, "<rect", 5) == 0 || strncmp(p, "<circle", 7) == 0 || strncmp(p, "<ellipse", 8) == 0) {
+            sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: <rect>, <circle> and <ellipse> are not read: convert them to paths in the editor",
+                          s->r->name, s->line);
+            return SPS_ERR_IO;
+        }
+        if ((is_path || is_polygon || strncmp(p, "<g", 2) == 0) && sps__svg_attribute(p + 1, end, "transform", &value_end)) {
+            sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: a transform attribute is not applied: apply it to the paths in the editor", s->r->name,
+                          s->line);
+            return SPS_ERR_IO;
+        }
+        if (is_path || is_polygon) {
+            int line = s->line;
+            value = sps__svg_attribute(p + 1, end, is_path ? "d" : "points", &value_end);
+            if (!value) { sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: a <%s> without its %s attribute", s->r->name, s->line, is_path ? "path" : "polygon", is_path ? "d" : "points"); return SPS_ERR_IO; }
+            if (is_path) res = sps__svg_path(s, value, value_end);
+            else {
+                double xy[2];
+                res = SPS_OK;
+                while (res == SPS_OK && sps__svg_number(&value, value_end, &xy[0])) {
+                    if (!sps__svg_number(&value, value_end, &xy[1])) {
+                        sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: a polygon's points come in pairs", s->r->name, line); res = SPS_ERR_IO;
+                    } else if (sps__svg_point(s, xy[0], xy[1])) res = SPS_ERR_OUT_OF_MEMORY;
+                }
+                if (res == SPS_OK) {
+                    while (value < value_end && (*value == ' ' || *value == '\t' || *value == '\r' || *value == '\n' || *value == ',')) ++value;
+                    if (value < value_end) { sps__mesh_say(s->r->msg, s->r->msg_size, "%s: line %d: a polygon's points must be finite numbers", s->r->name, line); res = SPS_ERR_IO; }
+                    else if (sps__svg_close(s)) res = SPS_ERR_IO;
+                }
+            }
+            if (res == SPS_ERR_OUT_OF_MEMORY) sps__mesh_say(s->r->msg, s->r->msg_size, "%s: out of memory", s->r->name);
+            if (res != SPS_OK) return res;
+        }
+        p = end + 1;
+    }
+    return SPS_OK;
+}
+static sps_result sps__read_svg(sps__mesh_raw* r, const char* text, double chord_error) {
+    sps__svg s;
+    sps_result res;
+    memset(&s, 0, sizeof s);
+    s.r = r;
+    s.lo[0] = s.lo[1] = HUGE_VAL; s.hi[0] = s.hi[1] = -HUGE_VAL;
+    if ((res = sps__svg_pass(&s, text)) != SPS_OK) return res; /* measuring */
+    if (!(s.hi[0] >= s.lo[0])) { sps__mesh_say(r->msg, r->msg_size, "%s: an SVG drawing without paths or polygons", r->name); return SPS_ERR_IO; }
+    s.tol = chord_error > 0 ? chord_error : 1e-3 * (s.hi[0] - s.lo[0] > s.hi[1] - s.lo[1] ? s.hi[0] - s.lo[0] : s.hi[1] - s.lo[1]);
+    if (!(s.tol > 0)) { sps__mesh_say(r->msg, r->msg_size, "%s: the drawing has no extent", r->name); return SPS_ERR_IO; }
+    s.first = 0;
+    return sps__svg_pass(&s, text);
+}
+
+/* Whether the first word of the first line that is not blank or a comment is an OBJ statement. */
+static int sps__looks_obj(const char* text) {
+    static const char* words[] = {"v", "vt", "vn", "vp", "f", "g", "o", "s", "l", "p", "usemtl", "mtllib"};
+    const char* p = text;
+    char word[16];
+    int k;
+    while (*p) {
+        const char* end = sps__line_end(p);
+        sps__line_word(p, end, word, sizeof word);
+        if (*word && *word != '#') {
+            for (k = 0; k < (int)(sizeof words / sizeof *words); ++k) if (strcmp(word, words[k]) == 0) return 1;
+            return 0;
+        }
+        p = *end ? end + 1 : end;
+    }
+    return 0;
+}
+/* Reads the formats by content: a binary STL by its size, else text (no control characters):
+   SVG, ASCII STL, OBJ or an outline. */
+static sps_result sps__mesh_parse(sps__mesh_raw* r, const char* bytes, long size, const sps_mesh_def* d) {
+    const unsigned char* b = (const unsigned char*)bytes;
+    long i;
+    int text = 1;
+    sps__text t;
+    char word[64];
+    if (size == 0) { sps__mesh_say(r->msg, r->msg_size, "%s: the file is empty", r->name); return SPS_ERR_IO; }
+    if (size >= 84 && (long)sps__le32(b + 80) <= (size - 84) / 50 && 84 + 50 * (long)sps__le32(b + 80) == size) {
+        if (sps__le32(b + 80) == 0) { sps__mesh_say(r->msg, r->msg_size, "%s: a binary STL of 0 triangles", r->name); return SPS_ERR_IO; }
+        r->dim = 3;
+        return sps__read_stl_binary(r, b, sps__le32(b + 80));
+    }
+    for (i = 0; i < size && text; ++i) text = b[i] >= 32 || b[i] == '\n' || b[i] == '\r' || b[i] == '\t' || b[i] == '\f' || b[i] == '\v';
+    if (!text) {
+        if (size >= 84)
+            sps__mesh_say(r->msg, r->msg_size, "%s: not a mesh file: binary content, and as a binary STL its count of %u triangles needs %.0f bytes "
+                          "(84 + 50 per triangle), the file has %ld", r->name, sps__le32(b + 80), 84 + 50.0 * sps__le32(b + 80), size);
+        else sps__mesh_say(r->msg, r->msg_size, "%s: not a mesh file: binary content, and %ld bytes are too few for a binary STL (84 at least)", r->name, size);
+        return SPS_ERR_IO;
+    }
+    t.p = bytes; t.line = 1;
+    sps__text_word(&t, word, sizeof word);
+    if (strstr(bytes, "<svg")) { r->dim = 2; return sps__read_svg(r, bytes, (double)d->chord_error); }
+    if (strcmp(word, "solid") == 0) { r->dim = 3; return sps__read_stl_ascii(r, bytes); }
+    if (sps__looks_obj(bytes)) { r->dim = 3; return sps__read_obj(r, bytes); }
+    if (*word == '<') { sps__mesh_say(r->msg, r->msg_size, "%s: not a mesh file: markup without an <svg> element", r->name); return SPS_ERR_IO; }
+    {
+        double x;
+        char* comma = strchr(word, ',');
+        if (comma) *comma = 0; /* "x,y" */
+        if (!(*word == '#' || sps__parse_number(word, &x))) {
+            sps__mesh_say(r->msg, r->msg_size, "%s: not a mesh file: its first word '%s' starts no binary or ASCII STL, OBJ, SVG or outline (\"x y\" lines)",
+                          r->name, word);
+            return SPS_ERR_IO;
+        }
+    }
+    r->dim = 2;
+    return sps__read_outline(r, bytes);
+}
+SPSDEF sps_result sps_mesh_load(const char* path, const sps_mesh_def* def, sps_mesh** out, char* msg, size_t msg_size) {
+    sps_mesh_def store;
+    sps__mesh_raw r;
+    char* bytes;
+    long size;
+    sps_result res;
+    if (out) *out = NULL;
+    if (!path || !out) { sps__mesh_say(msg, msg_size, "sps_mesh_load: path and out must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    if (sps__mesh_def_check(&def, &store, path, msg, msg_size)) return SPS_ERR_INVALID_ARG;
+    if ((res = sps__read_whole(path, &def->allocator, &bytes, &size, msg, msg_size)) != SPS_OK) return res;
+    sps__raw_start(&r, def, 3, path, msg, msg_size);
+    res = sps__mesh_parse(&r, bytes, size, def);
+    sps__mesh_free(&def->allocator, bytes);
+    if (res == SPS_ERR_OUT_OF_MEMORY) sps__mesh_say(msg, msg_size, "%s: out of memory", path);
+    if (res != SPS_OK) { sps__raw_free(&r); return res; }
+    return sps__mesh_finish(&r, def, out);
+}
+#endif /* SPHSOLID_NO_STDIO */
+#endif /* SPHSOLID_NO_GEOMETRY */
 
 /* >>realtime */
 

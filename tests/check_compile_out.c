@@ -1,5 +1,6 @@
 /* check_compile_out.c - the compile-out switches (CONFIG MACROS: SPHSOLID_NO_FLUID,
-   SPHSOLID_NO_GRANULAR, SPHSOLID_NO_PLASTICITY, SPHSOLID_NO_TOTAL_LAGRANGIAN), built by make
+   SPHSOLID_NO_GRANULAR, SPHSOLID_NO_PLASTICITY, SPHSOLID_NO_TOTAL_LAGRANGIAN; SPHSOLID_NO_GEOMETRY
+   refuses no kind), built by make
    check with each one and with all of them: an elastic block still runs, a body of a kind the
    build left out is refused with a message naming the macro, and the kinds kept are accepted.
    Exit status 0 iff all holds. */
