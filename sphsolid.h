@@ -658,7 +658,7 @@
       sub-steps (the estimated count), with report_fragments = 1 a particle that broke off
       its body, gravity along z in a 2D world, a friction above 2 (body or wall: the angle in
       degrees it likely is, with its tangent), a fluid or granular body whose particles come
-      within the kernel of a wall but not to dp/2 (a slot: a fill not a multiple of dp), and a
+      within the kernel of a wall leaving a slot of 3/4 dp or more (a fill not a multiple of dp), and a
       fluid that churns (its kinetic energy rising at least 2-fold three quarter-seconds in a
       row while below 1e-3 of its weight times its height, which the energy account cannot see:
       the water settles as it churns). A warning whose text was issued before is counted in
@@ -9044,9 +9044,11 @@ static sps_result sps__check_bodies_outside_walls(sps_world* w) {
 }
 
 /* At the first step: a fluid or granular body that comes within a kernel radius of a wall but
-   not to dp/2 of it leaves a slot it runs into at the start, a dam break in miniature: the
-   usual cause is a box whose size is not a multiple of dp (sps_body_add_box fills whole
-   spacings from lo and leaves the rest at hi). Warned with the slot's width. */
+   leaves a slot of 3/4 dp or more between its surface (dp/2 beyond its particles) and the wall
+   runs into it at the start, a dam break in miniature: the usual cause is a box whose size is
+   not a multiple of dp (sps_body_add_box fills whole spacings from lo and leaves the rest at
+   hi). Narrower slots close as the particles settle by a fraction of dp. Warned with the
+   slot's width. */
 static void sps__warn_slots_at_walls(const sps_world* w) {
     int k, bi, i, a;
     for (bi = 0; bi < w->nbodies; ++bi) {
@@ -9061,7 +9063,7 @@ static void sps__warn_slots_at_walls(const sps_world* w) {
                 for (a = 0; a < w->dim; ++a) d += (w->pos[a][i] - wall->point[a]) * wall->normal[a];
                 if (d < nearest) nearest = d;
             }
-            if (nearest > SPS_R(0.75) * w->def.dp && nearest < w->support)
+            if (nearest > SPS_R(1.25) * w->def.dp && nearest < w->support)
                 sps__warn(w, "body '%s' comes within %g m of wall %d (normal (%g, %g, %g)) but not to dp/2 = %g m: a slot %.2g dp wide that "
                           "it runs into at the start; a box whose size is not a multiple of dp leaves one (sps_body_add_box fills whole "
                           "spacings from lo): size the fill to a multiple of dp, flush with the walls", b->name, (double)nearest, k,
