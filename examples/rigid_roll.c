@@ -5,7 +5,7 @@
    The slope is the analytic wall y = 0 with friction mu (sps_world_set_wall_friction; the body's
    friction is mu too, so the pair's sqrt(mu mu) = mu) and gravity tilted by the angle theta,
    g = 9.81 (sin theta, -cos theta). The body (material.kind = SPS_MATERIAL_RIGID_DYNAMIC,
-   density 1000, contact stiffness from E 1e6, nu 0.3, contact_damping 0.5) is a disc or ball of
+   density 1000, contact stiffness from E 1e6, nu 0.3, contact_damping --damping, 0) is a disc or ball of
    radius 0.05 filled body-fitted (sps_body_add_sdf_relaxed: a smooth surface to roll on) or a
    box 0.1 x 0.05. For the first --settle seconds its motion is set to rest at every CSV
    interval (a kinetic relaxation onto the contact); from then its centre's position along the
@@ -88,7 +88,7 @@ static sps_real ball_sdf(const sps_real x[3], void* user) {
 
 int main(int argc, char** argv) {
     int shape = 0, dim; /* disc|ball|box */
-    double mu = 0.5, angle = 30, dp = 0.0025, settle = 0.1, lift = 1.0, damping = 0.5;
+    double mu = 0.5, angle = 30, dp = 0.0025, settle = 0.1, lift = 1.0, damping = 0;
     common_options c = {.shear = SPS_SHEAR_ENO_A, .rotation = SPS_ROTATION_PAIR, .cfl = 0.4, .t_end = 0.6, .vtk_every = 0.1,
                         .csv_every = 0.005, .E = 1e6, .nu = 0.3, .rho0 = 1000, .out = "out/rigid_roll", PNG_DEFAULTS};
     opt_spec opts[] = {
