@@ -2528,7 +2528,7 @@ static int sps__rigid_kind(const sps_body_def* def) {
     const sps__material_model* material = sps__material_of(def->material.kind);
     return material && material->kinematic;
 }
-static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && sps__rigid_kind(def); }
+static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
 static int sps__moving_wall_particles(int dim, const sps_body_def* def) {
     (void)dim;
     return def->transport != SPS_TRANSPORT_NONE && sps__rigid_kind(def);
@@ -8144,6 +8144,9 @@ static void sps__rigid_half_drift(sps_world* w, sps__body* b, sps_real dt) {
    and the applied force goes to the energy watchdog's account (driven_work). */
 static void sps__rigid_newton_euler(sps_world* w, sps__body* b, sps_real t, sps_real dt) {
     sps__rigid* r = &b->rigid;
+    /* damping c (DAMPING): dv/dt = F/M - c v and dL/dt = tau - c L integrated exactly over dt */
+    const sps_real decay_minus_1 = b->def.damping > 0 ? SPS__EXPM1(-b->def.damping * dt) : 0;
+    const sps_real decay = 1 + decay_minus_1, kick = b->def.damping > 0 ? -decay_minus_1 / b->def.damping : dt;
     sps_real F[3] = {0, 0, 0}, tau[3] = {0, 0, 0}, omega[3], p[3], f[3], torque[3];
     int i, a;
     r->contacts = 0;
@@ -8182,8 +8185,8 @@ static void sps__rigid_newton_euler(sps_world* w, sps__body* b, sps_real t, sps_
         tau[a] += torque[a];
         if (r->lock_translation & (1u << a)) F[a] = r->v[a] = 0;
         if (w->dim == 2 && a < 2) tau[a] = 0;
-        r->v[a] += dt * F[a] / r->mass;
-        r->L[a] += dt * tau[a];
+        r->v[a] = decay * r->v[a] + kick * F[a] / r->mass;
+        r->L[a] = decay * r->L[a] + kick * tau[a];
         r->x[a] = r->mid_x[a] + SPS_R(0.5) * dt * r->v[a];
         r->force[a] = F[a];
         r->torque[a] = tau[a];

@@ -119,6 +119,8 @@ int main(int argc, char** argv) {
     g_t = G * sin(theta);
     g_n = G * cos(theta);
     apply_common(&c, &wd, &bd);
+    bd.rotation = SPS_ROTATION_AUTO; /* a rigid body has no shear formulation */
+    bd.track_stress = 0;
     wd.dim = dim;
     wd.dp = (sps_real)dp;
     wd.gravity[0] = (sps_real)g_t;
