@@ -507,6 +507,46 @@
       Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
       them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
 
+   FREE RIGID BODIES (material.kind = SPS_MATERIAL_RIGID_DYNAMIC; chapter >>material: free rigid
+   bodies)
+      Box2D's three kinds: static (the analytic walls), kinematic (wall bodies, prescribed motion)
+      and dynamic: a free rigid body, whose particles move as one body by Newton-Euler in the
+      world's sub-steps. Fill it like any body (box, SDF, relaxed, particles). Its mass and
+      inertia come from its particles, each a cell of its volume V_i and mass rho0 V_i (the
+      inertia sum m_i (|r_i|^2 1 - r_i r_i^T) plus each cell's own m_i V_i^(2/d) / 6), or from
+      sps_body_set_mass_properties (mass > 0, a symmetric positive definite tensor). Each
+      sub-step follows the particles' drift-kick-drift: the half drift moves its centre by dt/2
+      v and turns it freely for dt/2; the force and torque on it are the sums of the forces its
+      particles received (contact with bodies and walls, Coulomb friction and the contact
+      dashpot, the fluid's coupling force, external accelerations and the drag, the force of
+      sps_body_set_force) plus M g; the kick updates v and the angular momentum L; the second
+      half drift. The free turn is the implicit midpoint rule for Euler's equations in the
+      principal frame with a Cayley rotation: it keeps |L| and the rotational energy exactly
+      (quadratic invariants) and leaves the world's L untouched, so an isolated body keeps its
+      energy to 1e-13 and its momenta to the last bit over 1e5 sub-steps (tested), and the
+      intermediate axis flips at the closed form's period (examples/rigid_spin: 0.00 %). In 2D the
+      turn is exact. It runs no stress, continuity or shear pass and builds no neighbour list;
+      the time step sees its speed and its contact stiffness c0 = sqrt(K / rho0) (E and nu set K,
+      the stiffness of its contacts; the fluid coupling's added-mass speed is not taken: the
+      body's mass is not one particle's). Friction acts at the contact surface: the slip is the
+      velocity of the contact point (on a wall's plane below the particle, or a pair's midpoint)
+      as a point of the body, v + omega x r, the force acts there (its couple joins the torque),
+      and the stick drag is the body's effective mass at the contact over the contact particles
+      (a rolling disc on the particle layer's slip rolled on R - dp/2 and lost energy). A disc,
+      a ball and a box on a slope roll, slide and stick at their closed forms with the particle
+      set's inertia and the height of the centre above the slope as the radius (bench/VALIDATION.md,
+      "Free rigid bodies"). damping > 0 damps its v and L (dv/dt = F/M - c v, exactly per
+      sub-step). API: sps_body_rigid_state (pose, velocities, L, mass, inertia, the last
+      sub-step's force and torque), sps_body_set_rigid_pose, sps_body_set_rigid_motion and
+      sps_body_set_velocity (the rigid part of the velocities given), sps_body_apply_impulse,
+      sps_body_set_force (at a material point, until set again), sps_body_lock_axes
+      (translation and rotation per world axis: a wheel on an axle, a body that only
+      translates), sps_body_set_acceleration and the drag. Diagnostics take its kinetic energy
+      1/2 M v^2 + 1/2 omega . I omega, its momenta and its potential energy from the body's
+      motion (not its particles'), which the energy watchdog counts; restart files carry its
+      motion; VTK shows its particles. Joints are not modelled (a locked body turns about its
+      centre of mass only).
+
    DAMPING AND EXTERNAL ACCELERATION (sps_body_def.damping, material.viscosity,
    sps_body_set_acceleration)
       Material damping: material.viscosity = eta > 0 on an elastic, J2, Saint Venant-Kirchhoff
@@ -552,7 +592,7 @@
       does not change during the step), results are bit-identical for any thread count.
 
    DIAGNOSTICS (sps_world_diagnostics)
-      kinetic energy     sum 1/2 m |v|^2
+      kinetic energy     sum 1/2 m |v|^2 (a free rigid body: 1/2 M |v|^2 + 1/2 omega . I omega)
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.
                          Total-Lagrangian bodies: sum V0 psi(F) plus the hourglass springs' Phi.
       contact energy     sum V (1/2 K sigma^2 + K sigma_w^2): the potential of the contact forces
@@ -737,7 +777,8 @@
       self-contact, damage of updated-Lagrangian bodies, removing particles; rolling friction;
       a prescribed coefficient of restitution (contact_damping is a damping ratio of the
       contact layer: the restitution it gives is measured, bench/VALIDATION.md); friction on
-      the contact surface's velocity (a thrown disc leaves with omega R / v_t 1.09-1.21).
+      the contact surface's velocity for deformable bodies (a thrown elastic disc leaves with
+      omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
       0.13.0 (2026-12-06) sps_world_restore checks every field of an untrusted file before it
@@ -2190,9 +2231,10 @@ static void sps__rearm_watchdog(sps_world* w) { w->watch.armed = 0; }
 /* A call that sets velocities or adds particles moves the watchdog's start by the kinetic and
    gravity energy it gave (a new start would miss the strain energy the bodies hold then, which
    the account leaves out: a bent beam swinging back would read as a gain). Wall bodies are not
-   in the account. */
+   in the account (free rigid bodies are: their particles' energies are the body's, but for the
+   cells' own rotational inertia). */
 static void sps__watch_adjust(sps_world* w, int body, sps_real kinetic_change, sps_real potential_change) {
-    if (!w->watch.armed || w->bodies[body].model.material->kinematic) return;
+    if (!w->watch.armed || (w->bodies[body].model.material->kinematic && !w->bodies[body].model.free_rigid)) return;
     w->watch.start += kinetic_change + potential_change;
     w->bodies[body].energy_start += kinetic_change;
 }
@@ -8248,8 +8290,7 @@ static void sps__rigid_take_velocities(sps_world* w, sps__body* b) {
     if (w->dim == 2) r->L[0] = r->L[1] = 0;
     for (a = 0; a < 3; ++a)
         if (r->lock_translation & (1u << a)) r->v[a] = 0;
-    sps__rigid_place(w, b, b->begin, b->end, r->x, r->turn, 0, 0);
-    sps__rearm_watchdog(w);
+    sps__rigid_place(w, b, b->begin, b->end, r->x, r->turn, 0, 0); /* the watchdog's start moved with the velocities set */
 }
 
 /* Sets the principal moments and axes from an inertia tensor I about the centre of mass in the
