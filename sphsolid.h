@@ -7864,6 +7864,7 @@ static sps_real sps__contact_energy(const sps_world* w, int i) {
 /* A free rigid body's friction takes the velocity of the contact surface, not of its particle
    (chapter >>material: free rigid bodies (continued): friction at the surface). */
 static void sps__rigid_contact_velocity(const sps_world* w, const sps__body* b, const sps_real offset[3], sps_real v[3]);
+static void sps__rigid_wall_contact_offset(const sps_world* w, const sps_real normal[3], sps_real distance, sps_real offset[3]);
 static void sps__rigid_friction_couple(const sps_world* w, int i, const sps_real offset[3], const sps_real before[3], const sps_real f[3]);
 static sps_real sps__rigid_stick_drag(const sps_world* w, const sps__body* b, int i, sps_real dt);
 
@@ -7933,8 +7934,8 @@ static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, c
     int a;
     if (!(mu > 0)) return;
     for (a = 0; a < w->dim; ++a) v[a] = w->vel[a][i];
-    if (bi->model.free_rigid) { /* at the wall's plane, x_i - d n */
-        for (a = 0; a < w->dim; ++a) offset[a] = -sps__wall_distance(w, wl, i) * wl->normal[a];
+    if (bi->model.free_rigid) { /* at its surface facing the wall (chapter >>material: free rigid bodies) */
+        sps__rigid_wall_contact_offset(w, wl->normal, sps__wall_distance(w, wl, i), offset);
         sps__rigid_contact_velocity(w, bi, offset, v);
     }
     for (a = 0; a < w->dim; ++a) vn += v[a] * wl->normal[a];
@@ -8354,9 +8355,13 @@ static void sps__rigid_setup_bodies(sps_world* w) {
 /* Friction at the surface: a particle of a rigid body sits dp/2 or more inside its surface, and
    friction on the particle's velocity holds the body at that particle layer, so a disc rolls on a
    radius smaller than its own (on the particle layer R - dp/2: 2/3 g sin theta came out 3 % low
-   at R/dp = 20). The contact point p is on the wall's plane below the particle, p = x_i - d n, or
-   the midpoint of a pair, p = x_i - (x_i - x_j) / 2 (both sides then take opposite offsets, so
-   the pair's friction forces stay equal and opposite: linear momentum exact). Its velocity as a
+   at R/dp = 20). The contact point p is the body's surface facing the wall, dp/2 from the
+   particle towards it (p = x_i - min(d, dp/2) n: not beyond the wall's plane), or the midpoint of
+   a pair, p = x_i - (x_i - x_j) / 2 (both sides then take opposite offsets, so the pair's
+   friction forces stay equal and opposite: linear momentum exact). Why the body's surface and not
+   the wall's plane: the contact layer holds a body at rest some way above the plane (1.3 dp for a
+   disc of E 1e6 on a slope), and a body rolling on the plane rolls on a radius that much larger
+   than its own (0.8 dp: 2/3 g sin theta came out 2.6 % high at R/dp = 20). Its velocity as a
    point of the body, v_i + omega x (p - x_i), is the slip friction acts on, and the friction
    force acts at p: moved to the particle, it brings the couple (p - x_i) x F_t, which the kick
    adds to the body's torque (kept per mass in the particle's acc_s, unused by a rigid body;
@@ -8368,6 +8373,12 @@ static void sps__rigid_contact_velocity(const sps_world* w, const sps__body* b, 
     sps__rigid_omega(w, &b->rigid, b->rigid.mid_turn, omega);
     sps__rigid_cross(omega, offset, wo);
     for (a = 0; a < w->dim; ++a) v[a] += wo[a];
+}
+/* The offset p - x_i of the contact point of a particle at distance d from a wall (normal n). */
+static void sps__rigid_wall_contact_offset(const sps_world* w, const sps_real normal[3], sps_real distance, sps_real offset[3]) {
+    const sps_real depth = distance < SPS_R(0.5) * w->def.dp ? distance : SPS_R(0.5) * w->def.dp;
+    int a;
+    for (a = 0; a < 3; ++a) offset[a] = -depth * normal[a];
 }
 /* Adds the couple offset x (f - before) (a friction force per volume) per mass of particle i. */
 static void sps__rigid_friction_couple(const sps_world* w, int i, const sps_real offset[3], const sps_real before[3], const sps_real f[3]) {

@@ -119,12 +119,14 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 6, .vtk_every = 0.2, .csv_every = 0.01, .E = 1e6, .nu = 0.3,
                         .rho0 = 500, .out = "out/rigid_float", .jitter = 0, .seed = 1, PNG_DEFAULTS};
     double dp = 0.02, damping = 10, window = 2.4, width = 0.3, height = 0.16, tilt = 5;
+    int lock = 0;
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (water 0.5 m deep)", 2e-3, 0.05, NULL},
         {"width", OPT_REAL, &width, "box width [m]", 0.02, 0.8, NULL},
         {"height", OPT_REAL, &height, "box height [m]", 0.02, 0.8, NULL},
         {"tilt", OPT_REAL, &tilt, "initial tilt [degrees]", -45, 45, NULL},
         {"damping", OPT_REAL, &damping, "damping of the box's motion [1/s] (0: none)", 0, 1e4, NULL},
+        {"lock", OPT_FLAG, &lock, "lock its rotation (sps_body_lock_axes): it only heaves and sways", 0, 0, NULL},
         {"window", OPT_REAL, &window, "the draft and tilt are averaged over the last window seconds", 1e-3, 1e4, NULL},
         COMMON_OPTION_SPECS(c),
     };
@@ -168,6 +170,7 @@ int main(int argc, char** argv) {
         const sps_real centre[3] = {(sps_real)(0.5 * WIDTH), (sps_real)(DEPTH + 0.5 * dp + half_extent), 0};
         const sps_real rotation[9] = {(sps_real)cos(a), (sps_real)-sin(a), 0, (sps_real)sin(a), (sps_real)cos(a), 0, 0, 0, 1};
         ex_check(w, sps_body_set_rigid_pose(w, s.box, centre, rotation)); /* its lowest corner on the water */
+        if (lock) ex_check(w, sps_body_lock_axes(w, s.box, 0, SPS_AXIS_ALL));
     }
     s.pose.half[0] = 0.5 * width;
     s.pose.half[1] = 0.5 * height;

@@ -15,11 +15,12 @@
      disc, ball: roll with a = g_t / (1 + k) (2/3 g_t, 5/7 g_t) if mu >= tan theta k / (1 + k),
        else slide with a = g_t - mu g_n.
    theory= is that closed form; theory_set= the same with the particle set's own inertia I
-   (sps_body_rigid_state: each particle a cell of its volume) and its rolling radius R (the
-   centre's height above the slope at the release): a = g_t / (1 + I / (m R^2)).
+   (sps_body_rigid_state: each particle a cell of its volume) and its rolling radius R, the
+   centre's height above its lowest particle plus dp/2 (friction acts at the body's surface):
+   a = g_t / (1 + I / (m R^2)).
    RESULT: accel (fitted) next to theory and theory_set, rel_error against theory (or against
    g_t when the theory is 0: sticking), creep = distance slid / frictionless 1/2 g_t t^2,
-   spin_ratio = omega R / v at the end (1: rolling without slip).
+   spin_ratio = omega R / v at the end with that R (1: rolling without slip).
 
    Build: make build/rigid_roll     Run: ./build/rigid_roll --shape disc --mu 0.5 --angle 30
    Smoke: rigid_roll --dp 0.01 --settle 0.01 --tend 0.02 */
@@ -34,8 +35,18 @@ typedef struct {
     sps_body body;
     int quiet;
     double sum[5], sum_x[3]; /* least-squares sums: t^0..t^4, x t^0..2 */
-    double x_start, x_end, height, spin_ratio;
+    double x_start, x_end, radius, spin_ratio, dp;
 } run_state;
+
+/* The centre's height above the body's lowest particle plus dp/2: its radius towards the slope. */
+static double rolling_radius(const sps_world* w, double centre_y, double dp) {
+    const sps_real* y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    double lowest = 1e30;
+    int i;
+    for (i = 0; i < sps_world_particle_count(w); ++i)
+        if (y[i] < lowest) lowest = y[i];
+    return centre_y - lowest + 0.5 * dp;
+}
 
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
@@ -49,14 +60,14 @@ static int on_step(sps_world* w, void* user) {
     x = st.position[0];
     if (t < s->settle - 1e-12) ex_check(w, sps_body_set_rigid_motion(w, s->body, zero, zero)); /* kinetic relaxation */
     else {
-        if (s->sum[0] == 0) { s->x_start = x; s->height = st.position[1]; }
+        if (s->sum[0] == 0) { s->x_start = x; s->radius = rolling_radius(w, st.position[1], s->dp); }
         for (k = 0; k < 5; ++k, tt *= t) {
             s->sum[k] += tt;
             if (k < 3) s->sum_x[k] += tt * x;
         }
     }
     s->x_end = x;
-    s->spin_ratio = fabs(st.velocity[0]) > 0 ? -st.angular_velocity[2] * st.position[1] / st.velocity[0] : 0;
+    s->spin_ratio = fabs(st.velocity[0]) > 0 ? -st.angular_velocity[2] * s->radius / st.velocity[0] : 0;
     {
         char extra[128];
         snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g", x, (double)st.velocity[0], (double)st.angular_velocity[2]);
@@ -152,14 +163,14 @@ int main(int argc, char** argv) {
         rolls = mu >= tan(theta) * k / (1 + k);
         theory = rolls ? g_t / (1 + k) : g_t - mu * g_n;
     }
-    s.t_end = c.t_end; s.settle = settle; s.quiet = c.quiet;
+    s.t_end = c.t_end; s.settle = settle; s.quiet = c.quiet; s.dp = dp;
     output_open(&s.output, &c, "rigid_roll", "velocity", ",centre_x,velocity_x,omega_z");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
     wall = output_close(w, &s.output);
     ex_check(w, sps_body_rigid_state(w, s.body, &st));
     inertia = dim == 2 ? st.inertia[8] : st.inertia[8]; /* about the rolling axis z */
-    theory_set = shape == 2 ? theory : rolls ? g_t / (1 + inertia / (st.mass * s.height * s.height)) : theory;
+    theory_set = shape == 2 ? theory : rolls ? g_t / (1 + inertia / (st.mass * s.radius * s.radius)) : theory;
     accel = fitted_acceleration(s.sum, s.sum_x);
     rel = fabs(accel - theory) / (theory > 0 ? theory : g_t);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
@@ -168,7 +179,7 @@ int main(int argc, char** argv) {
            shape_names[shape], mu, angle, dp, accel, theory, theory_set, 100 * rel,
            100 * fabs(accel - theory_set) / (theory_set > 0 ? theory_set : g_t),
            shape == 2 ? (theory > 0 ? "sliding" : "sticking") : (rolls ? "rolling" : "sliding"), s.spin_ratio,
-           shape == 2 ? 0 : inertia / (st.mass * s.height * s.height),
+           shape == 2 ? 0 : inertia / (st.mass * s.radius * s.radius),
            100 * (s.x_end - s.x_start) / (0.5 * g_t * (c.t_end - settle) * (c.t_end - settle)), sps_world_particle_count(w),
            d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
