@@ -141,11 +141,13 @@ $(BUILD)/granular_cost: bench/granular_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(B
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/rigid_cost: bench/rigid_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/crates_tank: bench/crates_tank.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/fluid_rest: bench/fluid_rest.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost $(BUILD)/rigid_cost
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost $(BUILD)/rigid_cost $(BUILD)/crates_tank
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh

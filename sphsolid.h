@@ -8042,7 +8042,6 @@ static void sps__contact_pass(sps_world* w, sps_real dt) {
    with a free rigid body pays. */
 
 static void sps__thread_share(const sps__body* b, int* i0, int* i1); /* >>step */
-static sps_real sps__frame_speed2(const sps_world* w, int i);
 
 static void sps__rigid_cross(const sps_real a[3], const sps_real b[3], sps_real c[3]) {
     c[0] = a[1] * b[2] - a[2] * b[1];
@@ -8145,21 +8144,30 @@ static void sps__rigid_free_turn(const sps_world* w, const sps__rigid* r, const 
 static sps_real sps__rigid_place(sps_world* w, const sps__body* b, int i0, int i1, const sps_real x[3], const sps_real turn[9],
                                  sps_real vmax2, int clear) {
     const sps__rigid* r = &b->rigid;
-    sps_real A[9], omega[3];
+    const sps_real* frame = b->frame_velocity;
+    const int dim = w->dim;
+    sps_real A[9], omega[3], u[3];
     int i, a;
     sps__mat3_product(turn, r->axes, 1, A); /* reference to current */
     sps__rigid_omega(w, r, turn, omega);
-    for (i = i0; i < i1; ++i) {
-        sps_real d[3] = {0, 0, 0}, rr[3], wr[3], v2;
-        for (a = 0; a < w->dim; ++a) d[a] = w->ref[a][i] - r->reference_centre[a];
-        sps__rigid_apply(A, d, 0, rr);
-        sps__rigid_cross(omega, rr, wr);
-        for (a = 0; a < w->dim; ++a) {
-            w->pos[a][i] = x[a] + rr[a];
-            w->vel[a][i] = r->v[a] + wr[a];
-            if (clear) w->acc_p[a][i] = w->acc_s[a][i] = 0;
+    for (a = 0; a < 3; ++a) u[a] = r->v[a] - frame[a]; /* the time step's speeds are relative to the frame */
+    for (i = i0; i < i1; ++i) { /* x + A d and v + omega x A d, d = X_i - reference centre */
+        const sps_real dx = w->ref[0][i] - r->reference_centre[0], dy = w->ref[1][i] - r->reference_centre[1];
+        const sps_real dz = dim == 3 ? w->ref[2][i] - r->reference_centre[2] : 0;
+        const sps_real rx = A[0] * dx + A[1] * dy + A[2] * dz, ry = A[3] * dx + A[4] * dy + A[5] * dz, rz = A[6] * dx + A[7] * dy + A[8] * dz;
+        const sps_real wx = omega[1] * rz - omega[2] * ry, wy = omega[2] * rx - omega[0] * rz, wz = omega[0] * ry - omega[1] * rx;
+        sps_real v2 = (u[0] + wx) * (u[0] + wx) + (u[1] + wy) * (u[1] + wy);
+        w->pos[0][i] = x[0] + rx;
+        w->pos[1][i] = x[1] + ry;
+        w->vel[0][i] = r->v[0] + wx;
+        w->vel[1][i] = r->v[1] + wy;
+        if (dim == 3) {
+            w->pos[2][i] = x[2] + rz;
+            w->vel[2][i] = r->v[2] + wz;
+            v2 += (u[2] + wz) * (u[2] + wz);
         }
-        v2 = sps__frame_speed2(w, i);
+        if (clear)
+            for (a = 0; a < dim; ++a) w->acc_p[a][i] = w->acc_s[a][i] = 0;
         if (!(v2 <= vmax2)) vmax2 = v2 == v2 ? v2 : (sps_real)INFINITY;
     }
     return vmax2;
@@ -8226,13 +8234,13 @@ static void sps__rigid_newton_euler(sps_world* w, sps__body* b, sps_real t, sps_
     for (a = 0; a < 3; ++a) {
         F[a] += r->applied_force[a] + (a < w->dim ? r->mass * w->def.gravity[a] : 0);
         tau[a] += torque[a];
-        if (r->lock_translation & (1u << a)) F[a] = r->v[a] = 0;
         if (w->dim == 2 && a < 2) tau[a] = 0;
+        r->force[a] = F[a]; /* what a lock holds is reported too */
+        r->torque[a] = tau[a];
+        if (r->lock_translation & (1u << a)) F[a] = r->v[a] = 0;
         r->v[a] = decay * r->v[a] + kick * F[a] / r->mass;
         r->L[a] = decay * r->L[a] + kick * tau[a];
         r->x[a] = r->mid_x[a] + SPS_R(0.5) * dt * r->v[a];
-        r->force[a] = F[a];
-        r->torque[a] = tau[a];
     }
     sps__rigid_free_turn(w, r, r->mid_turn, SPS_R(0.5) * dt, r->turn);
 }
