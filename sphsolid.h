@@ -8448,7 +8448,7 @@ static int sps__free_rigid_body(sps_world* w, sps_body b, const char* fn, sps_re
     if (k < 0) return -1;
     if (!w->bodies[k].model.free_rigid) {
         sps__set_error(w, 0, "%s: body '%s' has material.kind = %d (%s), allowed %d (free rigid: SPS_MATERIAL_RIGID_DYNAMIC)", fn,
-                       w->bodies[k].name, (int)w->bodies[k].def.material.kind, w->bodies[k].model.material->name, (int)SPS_MATERIAL_RIGID_DYNAMIC);
+                       w->bodies[k].name, (int)w->bodies[k].def.material.kind, w->bodies[k].model.material->name, (int)sps__free_rigid_material.kind);
         return -1;
     }
     *result = SPS_ERR_STATE;

@@ -18,6 +18,7 @@
    moments those of the particle set (sps_body_rigid_state). The contact stiffness (E) is low: the
    body touches nothing, and the time step follows it (sqrt(K / rho0) enters it as for any free
    rigid body).
+   Output: rigid_spin.csv (and VTK, picture) for the intermediate axis, rigid_spin_x and _z for the others.
    RESULT: for each axis stable_x/y/z (1 or 0) and, for the intermediate axis, flip_period next
    to theory, and over the whole run (--turns turns of the fastest axis) energy_drift and
    L_drift, the largest relative changes of the kinetic energy and of |L|.
@@ -129,7 +130,8 @@ int main(int argc, char** argv) {
         ex_check(w, sps_body_rigid_state(w, r->body, &st));
         for (a = 0; a < 3; ++a) moments[a] = st.inertia[4 * a]; /* the box's axes are principal */
         r->axis = axis;
-        snprintf(name, sizeof name, "rigid_spin_%c", axis_names[axis]);
+        if (axis == intermediate) snprintf(name, sizeof name, "rigid_spin"); /* the run that flips: the example's own files */
+        else snprintf(name, sizeof name, "rigid_spin_%c", axis_names[axis]);
         c.t_end = turns * 2 * PI / omega0;
         output_open(&output, &c, name, "velocity", ",omega_body_x,omega_body_y,omega_body_z");
         record(w, r);
