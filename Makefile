@@ -45,7 +45,7 @@ VARIANTS = spinning_cube ball_plate3d taylor_round
 EXAMPLES = $(EXAMPLE_SOURCES:examples/%.c=%) $(VARIANTS)
 HEADER   = sphsolid.h
 # the test runner tests/test_sphsolid.c includes its parts, one file per part of the library
-TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c
+TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c tests/test_rigid.c
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
@@ -141,6 +141,10 @@ $(BUILD)/damping_cost: bench/damping_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUI
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/granular_cost: bench/granular_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/rigid_cost: bench/rigid_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/crates_tank: bench/crates_tank.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/fluid_rest: bench/fluid_rest.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
@@ -149,7 +153,7 @@ $(BUILD)/game_tank: bench/game_tank.c $(HEADER) $(EXAMPLE_HEADERS) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/geometry_cost: bench/geometry_cost.c tests/mesh_files.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost $(BUILD)/rigid_cost $(BUILD)/crates_tank
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh
@@ -178,7 +182,8 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "column_collapse2d" "soil_failure2d --transport utvf" "soil_failure3d --res 25 --png-view iso" \
                "flume3d --dp 0.08 --tend 2 --png-view iso" "debris_barrier3d --png-view iso" \
                "tensile3d --res 4 --png-field damage --png-view iso" "floating_block --drop 0.1 --tend 0.45" \
-               "hydrostatic_fsi --res 5 --tend 0.1" "elastic_gate --res 3 --tend 0.15"
+               "hydrostatic_fsi --res 5 --tend 0.1" "elastic_gate --res 3 --tend 0.15" \
+               "rigid_float --width 0.2 --height 0.2 --tend 2.5" "rigid_roll --shape disc --dp 0.005 --tend 0.4"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \

@@ -525,6 +525,47 @@
       Wall bodies: material.kind = SPS_MATERIAL_RIGID. The particles keep the velocity given to
       them (sps_body_set_velocity, constraints) and move with it; they take part in contact only.
 
+   FREE RIGID BODIES (material.kind = SPS_MATERIAL_RIGID_DYNAMIC; chapter >>material: free rigid
+   bodies)
+      Box2D's three kinds: static (the analytic walls), kinematic (wall bodies, prescribed motion)
+      and dynamic: a free rigid body, whose particles move as one body by Newton-Euler in the
+      world's sub-steps. Fill it like any body (box, SDF, relaxed, particles). Its mass and
+      inertia come from its particles, each a cell of its volume V_i and mass rho0 V_i (the
+      inertia sum m_i (|r_i|^2 1 - r_i r_i^T) plus each cell's own m_i V_i^(2/d) / 6), or from
+      sps_body_set_mass_properties (mass > 0, a symmetric positive definite tensor). Each
+      sub-step follows the particles' drift-kick-drift: the half drift moves its centre by dt/2
+      v and turns it freely for dt/2; the force and torque on it are the sums of the forces its
+      particles received (contact with bodies and walls, Coulomb friction and the contact
+      dashpot, the fluid's coupling force, external accelerations and the drag, the force of
+      sps_body_set_force) plus M g; the kick updates v and the angular momentum L; the second
+      half drift. The free turn is the implicit midpoint rule for Euler's equations in the
+      principal frame with a Cayley rotation: it keeps |L| and the rotational energy exactly
+      (quadratic invariants) and leaves the world's L untouched, so an isolated body keeps its
+      energy to 1e-13 and its momenta to the last bit over 1e5 sub-steps (tested), and the
+      intermediate axis flips at the closed form's period (examples/rigid_spin: 0.00 %). In 2D the
+      turn is exact. It runs no stress, continuity or shear pass and builds no neighbour list;
+      the time step sees its speed and its contact stiffness c0 = sqrt(K / rho0) (E and nu set K,
+      the stiffness of its contacts; the fluid coupling's added-mass speed is not taken: the
+      body's mass is not one particle's). Friction acts at the contact surface: the slip is the
+      velocity of the contact point (on a wall's plane below the particle, or a pair's midpoint)
+      as a point of the body, v + omega x r, the force acts there (its couple joins the torque),
+      and the stick drag is the body's effective mass at the contact over the contact particles
+      (a rolling disc on the particle layer's slip rolled on R - dp/2 and lost energy). A disc
+      and a ball on a 30-degree slope roll within 0.2 % and 1 % of 2/3 and 5/7 g sin theta (R/dp
+      20 and 10), a box slides and sticks at Coulomb's law, a thrown disc leaves rolling (omega R
+      / v_t = 1.005); a box floating in water stands 4 % high, the coupling's pressure on a held
+      body being 3.7 % above rho g V at h = 1.3 dp (bench/VALIDATION.md, "Free rigid bodies").
+      damping > 0 damps its v and L (dv/dt = F/M - c v, exactly per sub-step). API: sps_body_rigid_state (pose, velocities, L, mass, inertia, the last
+      sub-step's force and torque), sps_body_set_rigid_pose, sps_body_set_rigid_motion and
+      sps_body_set_velocity (the rigid part of the velocities given), sps_body_apply_impulse,
+      sps_body_set_force (at a material point, until set again), sps_body_lock_axes
+      (translation and rotation per world axis: a wheel on an axle, a body that only
+      translates), sps_body_set_acceleration and the drag. Diagnostics take its kinetic energy
+      1/2 M v^2 + 1/2 omega . I omega, its momenta and its potential energy from the body's
+      motion (not its particles'), which the energy watchdog counts; restart files carry its
+      motion; VTK shows its particles. Joints are not modelled (a locked body turns about its
+      centre of mass only).
+
    DAMPING AND EXTERNAL ACCELERATION (sps_body_def.damping, material.viscosity,
    sps_body_set_acceleration)
       Material damping: material.viscosity = eta > 0 on an elastic, J2, Saint Venant-Kirchhoff
@@ -570,7 +611,7 @@
       does not change during the step), results are bit-identical for any thread count.
 
    DIAGNOSTICS (sps_world_diagnostics)
-      kinetic energy     sum 1/2 m |v|^2
+      kinetic energy     sum 1/2 m |v|^2 (a free rigid body: 1/2 M |v|^2 + 1/2 omega . I omega)
       strain energy      sum V (tau:tau/(4G) + p^2/(2K)); the shear part needs track_stress.
                          Total-Lagrangian bodies: sum V0 psi(F) plus the hourglass springs' Phi.
       contact energy     sum V (1/2 K sigma^2 + K sigma_w^2): the potential of the contact forces
@@ -790,7 +831,8 @@
       self-contact, damage of updated-Lagrangian bodies, removing particles; rolling friction;
       a prescribed coefficient of restitution (contact_damping is a damping ratio of the
       contact layer: the restitution it gives is measured, bench/VALIDATION.md); friction on
-      the contact surface's velocity (a thrown disc leaves with omega R / v_t 1.09-1.21).
+      the contact surface's velocity for deformable bodies (a thrown elastic disc leaves with
+      omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
       0.13.0 (2026-12-06) sps_world_restore checks every field of an untrusted file before it
@@ -1073,12 +1115,16 @@ typedef enum sps_material_kind {
                                  Green-Lagrange strain (TL eq. 19); total-Lagrangian bodies only */
     SPS_MATERIAL_NEO_HOOKEAN = 5, /* compressible Neo-Hookean S = mu (I - C^-1) + lambda ln(J) C^-1
                                  (TL eq. 44); total-Lagrangian bodies only */
-    SPS_MATERIAL_DRUCKER_PRAGER = 6 /* granular: elastic-perfectly plastic Drucker-Prager (cohesion,
+    SPS_MATERIAL_DRUCKER_PRAGER = 6, /* granular: elastic-perfectly plastic Drucker-Prager (cohesion,
                                  friction_angle, dilatancy_angle; UTVF section 2.3; GRANULAR): the
                                  whole stress integrated (Jaumann rate, the pressure is its
                                  trace, not a function of density), returned onto the cone, with
                                  the Riemann solver's limited dissipation and stress diffusion
                                  (stress_diffusion); the shear formulation is not used */
+    SPS_MATERIAL_RIGID_DYNAMIC = 7 /* a free rigid body (Box2D's dynamic body; FREE RIGID BODIES): its
+                                 particles move as one rigid body by Newton-Euler under the sum
+                                 of the forces they receive (contact, walls, fluid, gravity,
+                                 drag); density gives its mass, E and nu its contact stiffness */
 } sps_material_kind;
 
 /* The solver of a body. */
@@ -1357,6 +1403,47 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
    reference positions only). SPS_ERR_INVALID_ARG for NULL or non-finite values, SPS_ERR_STATE
    for a body without particles. No allocation; O(N). */
 SPSDEF sps_result sps_body_set_rigid_motion(sps_world* w, sps_body b, const sps_real velocity[3], const sps_real omega[3]);
+/* Free rigid bodies (material.kind = SPS_MATERIAL_RIGID_DYNAMIC; FREE RIGID BODIES). Each call
+   below returns SPS_ERR_INVALID_ARG for a body of another kind (naming its kind), NULL or
+   non-finite arguments, and SPS_ERR_STATE for a body without particles; the first call on a body
+   prepares the world for stepping as the first step would (sorts the particles, allocates). */
+typedef struct sps_rigid_state {
+    sps_real position[3];         /* centre of mass [m] */
+    sps_real rotation[9];         /* row-major rotation from the configuration its particles were
+                                     added in to the current one */
+    sps_real velocity[3];         /* of the centre of mass [m/s] */
+    sps_real angular_velocity[3]; /* [rad/s]; in 2D only z */
+    sps_real angular_momentum[3]; /* about the centre of mass [kg m^2/s] (per metre in 2D) */
+    sps_real mass;                /* [kg] (kg/m in 2D) */
+    sps_real inertia[9];          /* about the centre of mass in world axes, current orientation
+                                     [kg m^2]; in 2D only inertia[8] (zz) is used */
+    sps_real force[3], torque[3]; /* the resultant of the last sub-step (gravity included; torque
+                                     about the centre of mass) [N], [N m] */
+} sps_rigid_state;
+/* The state of free rigid body b. No allocation after the first call; O(1). */
+SPSDEF sps_result sps_body_rigid_state(sps_world* w, sps_body b, sps_rigid_state* out);
+/* Moves the body: its centre of mass to position and its orientation to rotation (row-major,
+   from the configuration it was added in; NULL keeps the orientation; must be orthonormal
+   with determinant 1 within 1e-6). Velocities are kept. O(its particles). */
+SPSDEF sps_result sps_body_set_rigid_pose(sps_world* w, sps_body b, const sps_real position[3], const sps_real rotation[9]);
+/* Mass [kg] (finite > 0) and inertia tensor about the centre of mass [kg m^2] (row-major, in the
+   world axes of the configuration the body was added in; symmetric positive definite; in 2D
+   only inertia[8] is read, > 0; NULL: the particles' own, scaled by mass / their mass). By
+   default both come from the particles (FREE RIGID BODIES). Keeps the velocity of the centre
+   of mass and the angular velocity. */
+SPSDEF sps_result sps_body_set_mass_properties(sps_world* w, sps_body b, sps_real mass, const sps_real inertia[9]);
+/* Applies the impulse [N s] at the world point (NULL: the centre of mass) now. */
+SPSDEF sps_result sps_body_apply_impulse(sps_world* w, sps_body b, const sps_real impulse[3], const sps_real point[3]);
+/* Applies the force [N] at the material point that is now at the world point (NULL: the
+   centre of mass) in every sub-step from now on, turning with the body, until it is set again
+   (force {0, 0, 0} removes it). Its work enters the energy account. */
+SPSDEF sps_result sps_body_set_force(sps_world* w, sps_body b, const sps_real force[3], const sps_real point[3]);
+/* Locks the body's translation along the world axes in translation (SPS_AXIS_* mask, 0..7) and
+   its rotation about the world axes in rotation (in 2D only SPS_AXIS_Z turns): a locked axis
+   keeps velocity 0 (a wheel on an axle: translation SPS_AXIS_ALL, rotation SPS_AXIS_X |
+   SPS_AXIS_Y in 3D; a body that only translates: rotation SPS_AXIS_ALL). */
+SPSDEF sps_result sps_body_lock_axes(sps_world* w, sps_body b, unsigned translation, unsigned rotation);
+
 /* Sets the pressure of every particle of the body from fn(reference position) [Pa], and its
    density from the body's equation of state, rho = rho0 + p / c0^2 (its mass is kept, so its
    volume becomes m / rho): an initial pressure field such as the hydrostatic one. p must be
@@ -1903,8 +1990,30 @@ typedef struct sps__model {
     sps_transport transport; /* the transport correction after each sub-step (>>transport) */
     int total_lagrangian; /* reference neighbours and gradients (chapter >>solver: total Lagrangian) */
     int damage;   /* total Lagrangian with damage_strain > 0: the damage field (TL eqs. 45-46) */
+    int free_rigid; /* a free rigid body: its particles move as one body by Newton-Euler (chapter
+                       >>material: free rigid bodies); its row is kinematic (no pass of its own) */
     sps__passes pass;
 } sps__model;
+
+/* The motion of a free rigid body (chapter >>material: free rigid bodies). The particles sit at
+   x_i = x + turn axes^T (X_i - reference_centre), X_i their reference positions; turn maps the
+   principal axes to the world. */
+typedef struct sps__rigid {
+    int ready;                   /* set up from its particles (sps__rigid_setup) for count particles */
+    int count;
+    int mass_set;                /* sps_body_set_mass_properties was called */
+    sps_real mass, moment[3];    /* mass and principal moments of inertia about the centre of mass */
+    sps_real axes[9];            /* the principal axes in the reference configuration (columns) */
+    sps_real reference_centre[3];
+    sps_real x[3], turn[9], v[3], L[3]; /* at the ends of sub-steps: centre of mass, rotation
+                                           (principal axes to world), velocity, angular momentum
+                                           about the centre of mass (world axes) */
+    sps_real mid_x[3], mid_turn[9];     /* at the middle of the sub-step (half drift) */
+    sps_real applied_force[3], applied_point[3]; /* sps_body_set_force; the point in principal axes */
+    sps_real force[3], torque[3];       /* the last sub-step's resultant */
+    unsigned lock_translation, lock_rotation;
+    int contacts;                       /* its particles that received a force in the last sub-step */
+} sps__rigid;
 
 
 /* The churn watch of a fluid body (sps__watch_churn). */
@@ -1975,6 +2084,7 @@ typedef struct sps__body {
     sps_real tl_c_ref;   /* total Lagrangian: its signal speed in the reference state (sps__tl_signal_speeds) */
     int coupled;         /* a fluid that touches a solid body: its continuity pass takes the solid's
                             particles as wall images (chapter >>coupling: fluid-structure) */
+    sps__rigid rigid;    /* a free rigid body's motion (model.free_rigid) */
 } sps__body;
 
 /* How two bodies touch (the world's touch table): by the contact law, or a fluid and a solid
@@ -2039,6 +2149,7 @@ struct sps_world {
 
     sps__body* bodies;
     int nbodies, bodies_cap;
+    int free_rigid_bodies; /* bodies with model.free_rigid: the kick sums their forces (>>material: free rigid bodies) */
     sps__constraint* constraints;
     int ncons;
     sps__observer* observers;
@@ -2351,9 +2462,10 @@ static void sps__rearm_watchdog(sps_world* w) { w->watch.armed = 0; }
 /* A call that sets velocities or adds particles moves the watchdog's start by the kinetic and
    gravity energy it gave (a new start would miss the strain energy the bodies hold then, which
    the account leaves out: a bent beam swinging back would read as a gain). Wall bodies are not
-   in the account. */
+   in the account (free rigid bodies are: their particles' energies are the body's, but for the
+   cells' own rotational inertia). */
 static void sps__watch_adjust(sps_world* w, int body, sps_real kinetic_change, sps_real potential_change) {
-    if (!w->watch.armed || w->bodies[body].model.material->kinematic) return;
+    if (!w->watch.armed || (w->bodies[body].model.material->kinematic && !w->bodies[body].model.free_rigid)) return;
     w->watch.start += kinetic_change + potential_change;
     w->bodies[body].energy_start += kinetic_change;
 }
@@ -2699,14 +2811,33 @@ static void sps__rigid_model(sps__model* m) {
     m->turn = SPS__TURN_NONE;
 }
 /* Its combination rules (sps__combination_rules): nothing moves its particles but the user. */
+static int sps__rigid_kind(const sps_body_def* def) {
+    const sps__material_model* material = sps__material_of(def->material.kind);
+    return material && material->kinematic;
+}
 static int sps__damped_wall(int dim, const sps_body_def* def) { (void)dim; return def->damping > 0 && def->material.kind == SPS_MATERIAL_RIGID; }
 static int sps__moving_wall_particles(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->transport != SPS_TRANSPORT_NONE && def->material.kind == SPS_MATERIAL_RIGID;
+    return def->transport != SPS_TRANSPORT_NONE && sps__rigid_kind(def);
 }
 /* Its row (sps__material_model; the columns: >>material: linear elastic). */
 static const sps__material_model sps__rigid_material = {SPS_MATERIAL_RIGID, "rigid", 1, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
                                                         SPS__VISCOUS_NONE, SPS__READS_MODULI};
+
+/* >>material: free rigid bodies (Box2D's dynamic bodies; FREE RIGID BODIES in the manual)
+
+   A free rigid body is a wall body whose motion the step integrates: its row is kinematic (no
+   pass of its own, no neighbour lists, no stress, no waves: the time step sees its contact
+   stiffness c0 = sqrt(K / rho0) and its speed), and the kick sums the forces its particles
+   received into a force and a torque on one body (chapter >>material: free rigid bodies
+   (continued): motion). Its rules and energy are the wall body's. */
+static void sps__free_rigid_model(sps__model* m) {
+    sps__rigid_model(m);
+    m->free_rigid = 1;
+}
+/* Its row (sps__material_model; the columns: >>material: linear elastic). */
+static const sps__material_model sps__free_rigid_material = {SPS_MATERIAL_RIGID_DYNAMIC, "free rigid", 1, SPS__YIELD_NONE, 1, 0, 0,
+                                                             0, 0, 1, SPS__VISCOUS_NONE, SPS__READS_MODULI};
 
 /* >>material: J2 plasticity (von Mises, linear isotropic hardening; ANG section 2.2) */
 
@@ -3056,6 +3187,7 @@ static const sps__material_model* sps__material_of(sps_material_kind kind) {
     switch (kind) {
     case SPS_MATERIAL_ELASTIC: return &sps__elastic_material;
     case SPS_MATERIAL_RIGID: return &sps__rigid_material;
+    case SPS_MATERIAL_RIGID_DYNAMIC: return &sps__free_rigid_material;
     case SPS_MATERIAL_J2: return &sps__j2_material;
     case SPS_MATERIAL_FLUID: return &sps__fluid_material;
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return &sps__saint_venant_kirchhoff_material;
@@ -3083,6 +3215,7 @@ static void sps__material_check(const sps_material_def* m, char* msg, size_t msg
     switch (m->kind) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: sps__elastic_check(m, msg, msg_size, broken); return;
     case SPS_MATERIAL_J2: sps__j2_check(m, msg, msg_size, broken); return;
@@ -3096,6 +3229,7 @@ static sps__material_constants sps__material_constants_of(const sps_material_def
     switch (m->kind) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_J2:
     case SPS_MATERIAL_DRUCKER_PRAGER: break;
     case SPS_MATERIAL_FLUID: return sps__fluid_constants(m);
@@ -3116,7 +3250,8 @@ static sps_real sps__material_energy_density(sps_material_kind kind, const sps__
     case SPS_MATERIAL_DRUCKER_PRAGER:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: break;
-    case SPS_MATERIAL_RIGID: return sps__rigid_energy_density(c, tau_tau, p);
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC: return sps__rigid_energy_density(c, tau_tau, p);
     case SPS_MATERIAL_FLUID: return sps__fluid_energy_density(c, tau_tau, p);
     }
     return sps__elastic_energy_density(c, tau_tau, p);
@@ -3128,6 +3263,7 @@ static void sps__material_setup(const sps_world* w, sps__body* b) {
     switch (b->def.material.kind) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_J2:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: return;
@@ -3141,6 +3277,7 @@ static const sps__stabilisation* sps__kind_stabilisation(const sps_body_def* def
     switch (def->material.kind) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_J2:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: break;
@@ -3159,6 +3296,7 @@ static void sps__kind_model(const sps_world* w, const sps_body_def* def, sps__mo
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: return;
     case SPS_MATERIAL_RIGID: sps__rigid_model(m); return;
+    case SPS_MATERIAL_RIGID_DYNAMIC: sps__free_rigid_model(m); return;
     case SPS_MATERIAL_FLUID: sps__fluid_model(w, m); return;
     case SPS_MATERIAL_DRUCKER_PRAGER: sps__granular_model(def, m); return;
     }
@@ -3171,6 +3309,7 @@ static int sps__updated_lagrangian_law(sps_material_kind kind) {
     switch (kind) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_J2:
     case SPS_MATERIAL_FLUID:
     case SPS_MATERIAL_DRUCKER_PRAGER: return 1;
@@ -3185,6 +3324,7 @@ static void sps__material_warnings(const sps_world* w, const sps__body* b) {
     switch (b->def.material.kind) {
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_J2:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: return;
@@ -3213,6 +3353,7 @@ static const char* sps__left_out_by(const sps_body_def* def) {
         break;
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: break;
     }
@@ -3242,6 +3383,7 @@ static int sps__tl_law_of(sps_material_kind kind) {
     case SPS_MATERIAL_J2: return SPS__LAW_J2;
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_FLUID:
     case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__LAW_NONE;
     }
@@ -3807,9 +3949,10 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->limiter_eta_c0 = (b->model.material->limiter + b->model.material->limiter_per_dim * w->dim) / b->mat.c0;
     sps__material_setup(w, b);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
-    b->driven = b->model.material->kinematic && sps__watchdog_on(w);
-
-    if (!b->model.material->kinematic && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0; /* wall bodies: no waves */
+    b->driven = b->model.material->kinematic && !b->model.free_rigid && sps__watchdog_on(w);
+    w->free_rigid_bodies += b->model.free_rigid;
+    /* wall bodies: no waves; a free rigid body: its contact stiffness sqrt(K / rho0) */
+    if ((!b->model.material->kinematic || b->model.free_rigid) && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
     if (b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT && sps__kelvin_voigt_dt(w, b) < w->viscous_dt) w->viscous_dt = sps__kelvin_voigt_dt(w, b);
     if (b->model.viscous == SPS__VISCOUS_NEWTON && def->material.viscosity / (b->rho0 * w->h) > w->viscous_speed)
         w->viscous_speed = def->material.viscosity / (b->rho0 * w->h);
@@ -3989,6 +4132,7 @@ static int sps__body_is_empty(sps_world* w, int k, const char* fn) {
     return 1;
 }
 
+static void sps__rigid_take_velocities(sps_world* w, sps__body* b); /* >>material: free rigid bodies */
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user) {
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
@@ -4006,6 +4150,7 @@ SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_f
         for (a = 0; a < w->dim; ++a) w->vel[a][i] = v[a];
         sps__watch_adjust(w, k, sps__kinetic(w, i) - before, 0);
     }
+    if (w->bodies[k].model.free_rigid && w->bodies[k].rigid.ready) sps__rigid_take_velocities(w, &w->bodies[k]); /* its rigid part */
     return SPS_OK;
 }
 
@@ -4039,6 +4184,7 @@ SPSDEF sps_result sps_body_set_rigid_motion(sps_world* w, sps_body b, const sps_
         if (w->dim == 3) w->vel[2][i] = velocity[2] + omega[0] * r[1] - omega[1] * r[0];
         sps__watch_adjust(w, k, sps__kinetic(w, i) - before, 0);
     }
+    if (w->bodies[k].model.free_rigid && w->bodies[k].rigid.ready) sps__rigid_take_velocities(w, &w->bodies[k]);
     return SPS_OK;
 }
 
@@ -4121,7 +4267,7 @@ SPSDEF sps_result sps_body_set_acceleration(sps_world* w, sps_body b, sps_accele
     int k;
     if (!w) return SPS_ERR_INVALID_ARG;
     if ((k = sps__check_body(w, b, "sps_body_set_acceleration")) < 0) return SPS_ERR_INVALID_ARG;
-    if (fn && w->bodies[k].model.material->kinematic) {
+    if (fn && w->bodies[k].model.material->kinematic && !w->bodies[k].model.free_rigid) {
         sps__set_error(w, 0, "sps_body_set_acceleration: body '%s' is a wall body (material.kind = rigid): its particles keep the velocity given to them",
                        w->bodies[k].name);
         return SPS_ERR_INVALID_ARG;
@@ -7566,7 +7712,7 @@ static void sps__tl_signal_speeds(sps_world* w) {
     int bi, i, a, c, k;
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
-        if (b->model.material->kinematic) continue;
+        if (b->model.material->kinematic && !b->model.free_rigid) continue; /* a free rigid body: its contact stiffness */
         if (b->model.total_lagrangian && b->reference_built) {
             sps_real s2 = 1; /* the smallest squared principal stretch */
             for (i = b->begin; i < b->end; ++i) {
@@ -8014,6 +8160,13 @@ static sps_real sps__contact_energy(const sps_world* w, int i) {
     return w->vol[i] * (SPS_R(0.5) * k_pair * sigma * sigma + k_wall * sigma_wall * sigma_wall);
 }
 
+/* A free rigid body's friction takes the velocity of the contact surface, not of its particle
+   (chapter >>material: free rigid bodies (continued): friction at the surface). */
+static void sps__rigid_contact_velocity(const sps_world* w, const sps__body* b, const sps_real offset[3], sps_real v[3]);
+static void sps__rigid_wall_contact_offset(const sps_world* w, const sps_real normal[3], sps_real distance, sps_real offset[3]);
+static void sps__rigid_friction_couple(const sps_world* w, int i, const sps_real offset[3], const sps_real before[3], const sps_real f[3]);
+static sps_real sps__rigid_stick_drag(const sps_world* w, const sps__body* b, int i, sps_real dt);
+
 /* The Coulomb friction force per volume of particle i, added to f: -min(drag |v_t|, mu f_n) v_t/|v_t|
    for the tangential velocity v_t, normal force f_n and stick drag `drag` of one contact (the
    chapter's head). */
@@ -8030,12 +8183,18 @@ static void sps__pair_friction(const sps_world* w, const sps__body* bi, int i, i
                                sps_real f_n, sps_real f[3]) {
     const sps__body* bj = &w->bodies[w->body[j]];
     const sps_real mu = w->pair_friction[(size_t)w->body[i] * w->nbodies + w->body[j]];
+    const sps_real half[3] = {-SPS_R(0.5) * d[0], -SPS_R(0.5) * d[1], -SPS_R(0.5) * d[2]}, before[3] = {f[0], f[1], f[2]};
     sps_real v[3] = {0, 0, 0}, v_t[3] = {0, 0, 0}, un = 0;
     int a;
     if (!(mu > 0)) return;
-    for (a = 0; a < w->dim; ++a) { v[a] = w->vel[a][i] - w->vel[a][j]; un += v[a] * d[a] / r; }
+    for (a = 0; a < w->dim; ++a) v[a] = w->vel[a][i] - w->vel[a][j];
+    /* at the pair's midpoint: v_i + omega_i x (-d/2) - (v_j + omega_j x (d/2)) */
+    if (bi->model.free_rigid) sps__rigid_contact_velocity(w, bi, half, v);
+    if (bj->model.free_rigid) sps__rigid_contact_velocity(w, bj, half, v);
+    for (a = 0; a < w->dim; ++a) un += v[a] * d[a] / r;
     for (a = 0; a < w->dim; ++a) v_t[a] = v[a] - un * d[a] / r;
     sps__add_friction(mu, f_n, -2 * sps__contact_stiffness(bi->z_riemann, bj->z_riemann) * dw * w->vol[j], v_t, w->dim, f);
+    if (bi->model.free_rigid) sps__rigid_friction_couple(w, i, half, before, f);
 }
 
 /* The normal contact dashpot of one contact, added to f (force per volume of the particle):
@@ -8070,12 +8229,18 @@ static void sps__pair_dashpot(const sps_world* w, const sps__body* bi, int i, in
    volume bounded by mu times the wall's normal force per volume f_n (chapter's head). */
 static void sps__wall_friction(const sps_world* w, const sps__body* bi, int i, const sps__wall* wl, sps_real f_n, sps_real dt, sps_real f[3]) {
     const sps_real mu = sps__mix_friction(bi->def.friction, wl->friction);
-    sps_real v_t[3] = {0, 0, 0}, vn = 0;
+    sps_real v[3] = {0, 0, 0}, v_t[3] = {0, 0, 0}, vn = 0, offset[3] = {0, 0, 0}, before[3] = {f[0], f[1], f[2]};
     int a;
     if (!(mu > 0)) return;
-    for (a = 0; a < w->dim; ++a) vn += w->vel[a][i] * wl->normal[a];
-    for (a = 0; a < w->dim; ++a) v_t[a] = w->vel[a][i] - vn * wl->normal[a];
-    sps__add_friction(mu, f_n, w->rho[i] / (2 * dt), v_t, w->dim, f);
+    for (a = 0; a < w->dim; ++a) v[a] = w->vel[a][i];
+    if (bi->model.free_rigid) { /* at its surface facing the wall (chapter >>material: free rigid bodies) */
+        sps__rigid_wall_contact_offset(w, wl->normal, sps__wall_distance(w, wl, i), offset);
+        sps__rigid_contact_velocity(w, bi, offset, v);
+    }
+    for (a = 0; a < w->dim; ++a) vn += v[a] * wl->normal[a];
+    for (a = 0; a < w->dim; ++a) v_t[a] = v[a] - vn * wl->normal[a];
+    sps__add_friction(mu, f_n, bi->model.free_rigid ? sps__rigid_stick_drag(w, bi, i, dt) : w->rho[i] / (2 * dt), v_t, w->dim, f);
+    if (bi->model.free_rigid) sps__rigid_friction_couple(w, i, offset, before, f);
 }
 
 /* Adds the dashpot force per volume of particle i to acc_p and its work in a sub-step dt, at
@@ -8148,6 +8313,634 @@ static void sps__contact_pass(sps_world* w, sps_real dt) {
     for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
 }
 
+/* >>material: free rigid bodies (continued): motion
+
+   Newton-Euler in the sub-step's drift-kick-drift (position Verlet, the order every particle
+   follows; STEP BY STEP in the manual):
+   1. half drift: x += dt/2 v, and the body turns freely for dt/2 at its angular momentum L; its
+      particles are placed at that pose, with the velocities v + omega x r;
+   2. the neighbour passes of the other bodies and the contact pass leave in acc_p the force each
+      particle received (contact with bodies and walls with friction and damping, the fluid's
+      coupling force), as for a wall body;
+   3. kick: F = M g + sum_i m_i acc_p,i (plus external accelerations and the applied force),
+      tau = sum_i r_i x m_i acc_p,i (r_i from the centre of mass at mid-step), v += dt F / M,
+      L += dt tau; then x += dt/2 v and the second free turn of dt/2; the particles placed at
+      the end pose, acc_p cleared.
+   The free turn (torque-free rotation over h at fixed world L) is the implicit midpoint rule for
+   Euler's equations in the principal frame, L_b' = cay(-h W) L_b, W the skew matrix of omega_m =
+   I^-1 (L_b + L_b') / 2 (iterated to round-off), and the rotation turn' = turn cay(h W), the
+   Cayley transform cay(A) = (1 - A/2)^-1 (1 + A/2), orthogonal exactly. The implicit midpoint
+   rule keeps every quadratic invariant of an ODE, here |L_b|^2 and the energy 1/2 L_b . I^-1 L_b,
+   and turn' L_b' = turn cay(h W) cay(-h W) L_b = turn L_b: the world angular momentum is not
+   changed by the turn at all. It is energy-consistent and time-reversible (not the symplectic
+   splitting about the principal axes, whose energy oscillates by O((omega dt)^2)). In 2D the turn
+   is the exact rotation by h L_z / I_zz. Locked rotation axes: the body turns exactly about the
+   omega of the free block of its world inertia, omega = 0 on the locked axes.
+   The sums over a body's particles are serial, in particle order, by the team's master thread
+   (a fixed order: bit-identical for any thread count), between two barriers, which only a scene
+   with a free rigid body pays. */
+
+static void sps__thread_share(const sps__body* b, int* i0, int* i1); /* >>step */
+
+static void sps__rigid_cross(const sps_real a[3], const sps_real b[3], sps_real c[3]) {
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+/* y = A x, or A^T x with transposed (3 x 3 row-major). */
+static void sps__rigid_apply(const sps_real A[9], const sps_real x[3], int transposed, sps_real y[3]) {
+    int a;
+    for (a = 0; a < 3; ++a)
+        y[a] = transposed ? A[a] * x[0] + A[3 + a] * x[1] + A[6 + a] * x[2] : A[3 * a] * x[0] + A[3 * a + 1] * x[1] + A[3 * a + 2] * x[2];
+}
+/* The rotation by the angle |theta| about theta (Rodrigues' formula, exact), row-major. */
+static void sps__rigid_rotation(const sps_real theta[3], sps_real R[9]) {
+    const sps_real angle = SPS__SQRT(theta[0] * theta[0] + theta[1] * theta[1] + theta[2] * theta[2]);
+    const sps_real s = angle > 0 ? SPS__SIN(angle) / angle : 1, c = angle > 0 ? (1 - SPS__COS(angle)) / (angle * angle) : 0;
+    const sps_real K[9] = {0, -theta[2], theta[1], theta[2], 0, -theta[0], -theta[1], theta[0], 0};
+    sps_real K2[9];
+    int k;
+    sps__mat3_product(K, K, 0, K2);
+    for (k = 0; k < 9; ++k) R[k] = (sps_real)(k % 4 == 0) + s * K[k] + c * K2[k];
+}
+/* Its inertia tensor about the centre of mass in world axes at rotation turn: turn diag(I) turn^T. */
+static void sps__rigid_world_inertia(const sps__rigid* r, const sps_real turn[9], sps_real Iw[9]) {
+    int a, c, k;
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real s = 0;
+            for (k = 0; k < 3; ++k) s += turn[3 * a + k] * r->moment[k] * turn[3 * c + k];
+            Iw[3 * a + c] = s;
+        }
+}
+
+/* The angular velocity at rotation turn: I^-1 L, or with locked rotation axes the solution of
+   the free block of the world inertia for the free components of L (0 on the locked axes). */
+static void sps__rigid_omega(const sps_world* w, const sps__rigid* r, const sps_real turn[9], sps_real omega[3]) {
+    sps_real Lb[3], Iw[9];
+    int f[3], nfree = 0, a;
+    omega[0] = omega[1] = omega[2] = 0;
+    if (w->dim == 2) {
+        if (!(r->lock_rotation & SPS_AXIS_Z)) omega[2] = r->L[2] / r->moment[2];
+        return;
+    }
+    if (!r->lock_rotation) {
+        sps__rigid_apply(turn, r->L, 1, Lb);
+        for (a = 0; a < 3; ++a) Lb[a] /= r->moment[a];
+        sps__rigid_apply(turn, Lb, 0, omega);
+        return;
+    }
+    sps__rigid_world_inertia(r, turn, Iw);
+    for (a = 0; a < 3; ++a)
+        if (!(r->lock_rotation & (1u << a))) f[nfree++] = a;
+    if (nfree == 1) omega[f[0]] = r->L[f[0]] / Iw[4 * f[0]];
+    if (nfree == 2) { /* Cramer's rule; the block of a positive definite tensor is */
+        const sps_real a00 = Iw[4 * f[0]], a01 = Iw[3 * f[0] + f[1]], a11 = Iw[4 * f[1]], det = a00 * a11 - a01 * a01;
+        omega[f[0]] = (a11 * r->L[f[0]] - a01 * r->L[f[1]]) / det;
+        omega[f[1]] = (a00 * r->L[f[1]] - a01 * r->L[f[0]]) / det;
+    }
+}
+
+/* The rotation after turning freely over h at the body's angular momentum (the chapter's head). */
+static void sps__rigid_free_turn(const sps_world* w, const sps__rigid* r, const sps_real turn[9], sps_real h, sps_real out[9]) {
+    sps_real omega[3], theta[3], R[9], Lb[3], Lb1[3], s[3], s_x_L[3], s_s_L[3], S[9], S2[9], c = 0;
+    int a, k, iteration;
+    if (w->dim == 2 || r->lock_rotation) { /* a fixed axis: the exact rotation by omega h */
+        sps__rigid_omega(w, r, turn, omega);
+        for (a = 0; a < 3; ++a) theta[a] = h * omega[a];
+        sps__rigid_rotation(theta, R);
+        sps__mat3_product(R, turn, 0, out);
+        return;
+    }
+    sps__rigid_apply(turn, r->L, 1, Lb);
+    for (a = 0; a < 3; ++a) Lb1[a] = Lb[a];
+    for (iteration = 0; iteration < 100; ++iteration) { /* contracts by about |omega| h per iteration */
+        sps_real change = 0, size = 0;
+        for (a = 0; a < 3; ++a) s[a] = SPS_R(0.25) * h * (Lb[a] + Lb1[a]) / r->moment[a]; /* h omega_m / 2 */
+        c = 2 / (1 + s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        sps__rigid_cross(s, Lb, s_x_L);
+        sps__rigid_cross(s, s_x_L, s_s_L);
+        for (a = 0; a < 3; ++a) {
+            const sps_real next = Lb[a] + c * (s_s_L[a] - s_x_L[a]); /* cay(-h W) L_b */
+            change += (next - Lb1[a]) * (next - Lb1[a]);
+            size += next * next;
+            Lb1[a] = next;
+        }
+        if (!(change > SPS_R(1e-32) * size)) break;
+    }
+    for (a = 0; a < 3; ++a) s[a] = SPS_R(0.25) * h * (Lb[a] + Lb1[a]) / r->moment[a];
+    c = 2 / (1 + s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    S[0] = S[4] = S[8] = 0;
+    S[1] = -s[2]; S[2] = s[1]; S[3] = s[2]; S[5] = -s[0]; S[6] = -s[1]; S[7] = s[0];
+    sps__mat3_product(S, S, 0, S2);
+    for (k = 0; k < 9; ++k) R[k] = (sps_real)(k % 4 == 0) + c * (S[k] + S2[k]); /* cay(h W) */
+    sps__mat3_product(turn, R, 0, out);
+}
+
+/* Places particles i0 .. i1-1 of body b at the pose (x, turn), with velocities v + omega x r for
+   the body's v and L; clears their acc_p with clear. Returns the range's max |v - frame|^2 above
+   vmax2 (sps__frame_speeds). */
+static sps_real sps__rigid_place(sps_world* w, const sps__body* b, int i0, int i1, const sps_real x[3], const sps_real turn[9],
+                                 sps_real vmax2, int clear) {
+    const sps__rigid* r = &b->rigid;
+    const sps_real* frame = b->frame_velocity;
+    const int dim = w->dim;
+    sps_real A[9], omega[3], u[3];
+    int i, a;
+    sps__mat3_product(turn, r->axes, 1, A); /* reference to current */
+    sps__rigid_omega(w, r, turn, omega);
+    for (a = 0; a < 3; ++a) u[a] = r->v[a] - frame[a]; /* the time step's speeds are relative to the frame */
+    for (i = i0; i < i1; ++i) { /* x + A d and v + omega x A d, d = X_i - reference centre */
+        const sps_real dx = w->ref[0][i] - r->reference_centre[0], dy = w->ref[1][i] - r->reference_centre[1];
+        const sps_real dz = dim == 3 ? w->ref[2][i] - r->reference_centre[2] : 0;
+        const sps_real rx = A[0] * dx + A[1] * dy + A[2] * dz, ry = A[3] * dx + A[4] * dy + A[5] * dz, rz = A[6] * dx + A[7] * dy + A[8] * dz;
+        const sps_real wx = omega[1] * rz - omega[2] * ry, wy = omega[2] * rx - omega[0] * rz, wz = omega[0] * ry - omega[1] * rx;
+        sps_real v2 = (u[0] + wx) * (u[0] + wx) + (u[1] + wy) * (u[1] + wy);
+        w->pos[0][i] = x[0] + rx;
+        w->pos[1][i] = x[1] + ry;
+        w->vel[0][i] = r->v[0] + wx;
+        w->vel[1][i] = r->v[1] + wy;
+        if (dim == 3) {
+            w->pos[2][i] = x[2] + rz;
+            w->vel[2][i] = r->v[2] + wz;
+            v2 += (u[2] + wz) * (u[2] + wz);
+        }
+        if (clear)
+            for (a = 0; a < dim; ++a) w->acc_p[a][i] = w->acc_s[a][i] = 0;
+        if (!(v2 <= vmax2)) vmax2 = v2 == v2 ? v2 : (sps_real)INFINITY;
+    }
+    return vmax2;
+}
+
+/* Step 1 for free rigid body b: the half drift of its pose, its particles placed there (each
+   thread its share; every thread computes the same pose, the master keeps it for the kick). */
+static void sps__rigid_half_drift(sps_world* w, sps__body* b, sps_real dt) {
+    sps__rigid* r = &b->rigid;
+    sps_real x[3], turn[9];
+    int a, i0, i1;
+    for (a = 0; a < 3; ++a) x[a] = r->x[a] + SPS_R(0.5) * dt * r->v[a];
+    sps__rigid_free_turn(w, r, r->turn, SPS_R(0.5) * dt, turn);
+    sps__thread_share(b, &i0, &i1);
+    sps__rigid_place(w, b, i0, i1, x, turn, 0, 0);
+    SPS__PRAGMA(omp master)
+    {
+        memcpy(r->mid_x, x, sizeof x);
+        memcpy(r->mid_turn, turn, sizeof turn);
+    }
+}
+
+/* Step 3 for free rigid body b (serial): the resultant force and torque about the centre of mass
+   at mid-step, Newton-Euler over dt, the second half drift. The work of external accelerations
+   and the applied force goes to the energy watchdog's account (driven_work). */
+static void sps__rigid_newton_euler(sps_world* w, sps__body* b, sps_real t, sps_real dt) {
+    sps__rigid* r = &b->rigid;
+    /* damping c (DAMPING): dv/dt = F/M - c v and dL/dt = tau - c L integrated exactly over dt */
+    const sps_real decay_minus_1 = b->def.damping > 0 ? SPS__EXPM1(-b->def.damping * dt) : 0;
+    const sps_real decay = 1 + decay_minus_1, kick = b->def.damping > 0 ? -decay_minus_1 / b->def.damping : dt;
+    sps_real F[3] = {0, 0, 0}, tau[3] = {0, 0, 0}, omega[3], p[3], f[3], torque[3];
+    int i, a;
+    r->contacts = 0;
+    for (i = b->begin; i < b->end; ++i) {
+        sps_real rr[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+        for (a = 0; a < w->dim; ++a) {
+            rr[a] = w->pos[a][i] - r->mid_x[a];
+            acc[a] = w->acc_p[a][i];
+        }
+        r->contacts += acc[0] != 0 || acc[1] != 0 || acc[2] != 0;
+        if (b->acceleration) { /* external acceleration (the drag): at the particle, at mid-step */
+            sps_real x[3] = {0, 0, 0}, x0[3] = {0, 0, 0}, v[3] = {0, 0, 0}, ext[3] = {0, 0, 0}, power = 0;
+            for (a = 0; a < w->dim; ++a) { x[a] = w->pos[a][i]; x0[a] = w->ref[a][i]; v[a] = w->vel[a][i]; }
+            b->acceleration(x, x0, v, t + SPS_R(0.5) * dt, ext, b->acceleration_user);
+            for (a = 0; a < w->dim; ++a) { acc[a] += ext[a]; power += ext[a] * v[a]; }
+            if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * power * dt;
+        }
+        for (a = 0; a < 3; ++a) f[a] = w->mass[i] * acc[a];
+        sps__rigid_cross(rr, f, torque);
+        if (w->dim == 2) torque[2] += w->mass[i] * w->acc_s[0][i]; /* friction's couples (sps__rigid_friction_couple) */
+        else
+            for (a = 0; a < 3; ++a) torque[a] += w->mass[i] * w->acc_s[a][i];
+        for (a = 0; a < 3; ++a) { F[a] += f[a]; tau[a] += torque[a]; }
+    }
+    sps__rigid_apply(r->mid_turn, r->applied_point, 0, p); /* the applied force's material point */
+    sps__rigid_cross(p, r->applied_force, torque);
+    if (b->driven_work) { /* its power at the point's velocity */
+        sps_real wp[3], power = 0;
+        sps__rigid_omega(w, r, r->mid_turn, omega);
+        sps__rigid_cross(omega, p, wp);
+        for (a = 0; a < w->dim; ++a) power += r->applied_force[a] * (r->v[a] + wp[a]);
+        b->driven_work[0] += power * dt;
+    }
+    for (a = 0; a < 3; ++a) {
+        F[a] += r->applied_force[a] + (a < w->dim ? r->mass * w->def.gravity[a] : 0);
+        tau[a] += torque[a];
+        if (w->dim == 2 && a < 2) tau[a] = 0;
+        r->force[a] = F[a]; /* what a lock holds is reported too */
+        r->torque[a] = tau[a];
+        if (r->lock_translation & (1u << a)) F[a] = r->v[a] = 0;
+        r->v[a] = decay * r->v[a] + kick * F[a] / r->mass;
+        r->L[a] = decay * r->L[a] + kick * tau[a];
+        r->x[a] = r->mid_x[a] + SPS_R(0.5) * dt * r->v[a];
+    }
+    sps__rigid_free_turn(w, r, r->mid_turn, SPS_R(0.5) * dt, r->turn);
+}
+
+/* Step 3 for every free rigid body (after the other bodies' kick): the master integrates each
+   body while the others wait (the sums read every particle's acc_p), then each thread places its
+   share of the particles at the end pose. Returns the max |v - frame|^2 above vmax2. */
+static sps_real sps__rigid_kick(sps_world* w, sps_real t, sps_real dt, sps_real vmax2) {
+    int bi, i0, i1;
+    SPS__PRAGMA(omp barrier) /* every received force is in acc_p */
+    SPS__PRAGMA(omp master)
+    for (bi = 0; bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.free_rigid) sps__rigid_newton_euler(w, &w->bodies[bi], t, dt);
+    SPS__PRAGMA(omp barrier)
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        const sps__body* b = &w->bodies[bi];
+        if (!b->model.free_rigid) continue;
+        sps__thread_share(b, &i0, &i1);
+        vmax2 = sps__rigid_place(w, b, i0, i1, b->rigid.x, b->rigid.turn, vmax2, 1);
+    }
+    return vmax2;
+}
+
+/* Its velocity and angular momentum from its particles' velocities (the rigid motion with their
+   momentum and angular momentum: what sps_body_set_velocity and _set_rigid_motion gave them),
+   about its current centre of mass; the particles are then placed on that motion. */
+static void sps__rigid_take_velocities(sps_world* w, sps__body* b) {
+    sps__rigid* r = &b->rigid;
+    sps_real m = 0, mv[3] = {0, 0, 0}, Lp[3] = {0, 0, 0}, Ip[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, omega[3] = {0, 0, 0}, Iw[9];
+    sps_real d[3], Q[9], y[3];
+    int i, a, c;
+    for (i = b->begin; i < b->end; ++i) {
+        m += w->mass[i];
+        for (a = 0; a < w->dim; ++a) mv[a] += w->mass[i] * w->vel[a][i];
+    }
+    for (a = 0; a < 3; ++a) r->v[a] = a < w->dim ? mv[a] / m : 0;
+    for (i = b->begin; i < b->end; ++i) {
+        sps_real rr[3] = {0, 0, 0}, v[3] = {0, 0, 0}, l[3];
+        for (a = 0; a < w->dim; ++a) { rr[a] = w->pos[a][i] - r->x[a]; v[a] = w->vel[a][i] - r->v[a]; }
+        sps__rigid_cross(rr, v, l);
+        for (a = 0; a < 3; ++a) {
+            Lp[a] += w->mass[i] * l[a];
+            for (c = 0; c < 3; ++c) Ip[3 * a + c] += w->mass[i] * ((a == c) * (rr[0] * rr[0] + rr[1] * rr[1] + rr[2] * rr[2]) - rr[a] * rr[c]);
+        }
+    }
+    if (w->dim == 2) {
+        omega[2] = Ip[8] > 0 ? Lp[2] / Ip[8] : 0;
+    } else { /* Ip omega = Lp on the particles' inertia (a line of particles: its axis left out) */
+        sps__eigen3(Ip, d, Q);
+        sps__rigid_apply(Q, Lp, 1, y);
+        for (a = 0; a < 3; ++a) y[a] = d[a] > SPS_R(1e-12) * (d[0] + d[1] + d[2]) ? y[a] / d[a] : 0;
+        sps__rigid_apply(Q, y, 0, omega);
+    }
+    sps__rigid_world_inertia(r, r->turn, Iw);
+    sps__rigid_apply(Iw, omega, 0, r->L);
+    if (w->dim == 2) r->L[0] = r->L[1] = 0;
+    for (a = 0; a < 3; ++a)
+        if (r->lock_translation & (1u << a)) r->v[a] = 0;
+    sps__rigid_place(w, b, b->begin, b->end, r->x, r->turn, 0, 0); /* the watchdog's start moved with the velocities set */
+}
+
+/* Sets the principal moments and axes from an inertia tensor I about the centre of mass in the
+   reference world axes, keeping the rotation since the reference configuration. */
+static void sps__rigid_set_inertia(sps_world* w, sps__rigid* r, const sps_real I[9]) {
+    sps_real R[9], d[3], Q[9];
+    int a;
+    sps__mat3_product(r->turn, r->axes, 1, R);
+    if (w->dim == 2) {
+        for (a = 0; a < 9; ++a) Q[a] = (sps_real)(a % 4 == 0);
+        d[0] = d[1] = d[2] = I[8];
+    } else {
+        sps__eigen3(I, d, Q);
+        if (Q[0] * (Q[4] * Q[8] - Q[5] * Q[7]) - Q[1] * (Q[3] * Q[8] - Q[5] * Q[6]) + Q[2] * (Q[3] * Q[7] - Q[4] * Q[6]) < 0)
+            for (a = 0; a < 3; ++a) Q[3 * a + 2] = -Q[3 * a + 2]; /* a rotation, not a reflection */
+    }
+    memcpy(r->axes, Q, sizeof Q);
+    memcpy(r->moment, d, sizeof d);
+    sps__mat3_product(R, Q, 0, r->turn);
+}
+
+/* Body b's mass, centre and inertia from its particles (each particle a cell of its volume:
+   m_i (|r_i|^2 1 - r_i r_i^T) plus the cell's own m_i V_i^(2/d) / 6 on the diagonal), its pose
+   from their current positions (no rotation since they were added) and its motion from their
+   velocities. At the first step (or when a call on it needs it), again after particles are added. */
+static void sps__rigid_setup(sps_world* w, sps__body* b) {
+    sps__rigid* r = &b->rigid;
+    sps_real m = 0, I[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    int i, a, c;
+    sps__centre_of_mass(w, b, w->ref, r->reference_centre);
+    sps__centre_of_mass(w, b, w->pos, r->x);
+    for (i = b->begin; i < b->end; ++i) {
+        sps_real d[3] = {0, 0, 0}, d2 = 0;
+        const sps_real cell = w->mass[i] * SPS__EXP(SPS__LOG(w->vol[i]) * 2 / w->dim) / 6;
+        for (a = 0; a < w->dim; ++a) { d[a] = w->ref[a][i] - r->reference_centre[a]; d2 += d[a] * d[a]; }
+        m += w->mass[i];
+        for (a = 0; a < 3; ++a)
+            for (c = 0; c < 3; ++c) I[3 * a + c] += w->mass[i] * ((a == c) * d2 - d[a] * d[c]) + (a == c) * cell;
+    }
+    if (!r->mass_set) { /* else kept (sps_body_set_mass_properties) */
+        for (a = 0; a < 9; ++a) r->turn[a] = r->axes[a] = (sps_real)(a % 4 == 0);
+        r->mass = m;
+        sps__rigid_set_inertia(w, r, I);
+    }
+    memcpy(r->turn, r->axes, sizeof r->turn);
+    memcpy(r->mid_x, r->x, sizeof r->x);
+    memcpy(r->mid_turn, r->turn, sizeof r->turn);
+    r->ready = 1;
+    r->count = b->count;
+    sps__rigid_take_velocities(w, b);
+}
+
+/* Every free rigid body whose particles changed since its setup (after a commit). */
+static void sps__rigid_setup_bodies(sps_world* w) {
+    int bi;
+    for (bi = 0; bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.free_rigid && (!w->bodies[bi].rigid.ready || w->bodies[bi].rigid.count != w->bodies[bi].count))
+            sps__rigid_setup(w, &w->bodies[bi]);
+}
+
+/* Friction at the surface: a particle of a rigid body sits dp/2 or more inside its surface, and
+   friction on the particle's velocity holds the body at that particle layer, so a disc rolls on a
+   radius smaller than its own (on the particle layer R - dp/2: 2/3 g sin theta came out 3 % low
+   at R/dp = 20). The contact point p is the body's surface facing the wall, dp/2 from the
+   particle towards it (p = x_i - min(d, dp/2) n: not beyond the wall's plane), or the midpoint of
+   a pair, p = x_i - (x_i - x_j) / 2 (both sides then take opposite offsets, so the pair's
+   friction forces stay equal and opposite: linear momentum exact). Why the body's surface and not
+   the wall's plane: the contact layer holds a body at rest some way above the plane (1.3 dp for a
+   disc of E 1e6 on a slope), and a body rolling on the plane rolls on a radius that much larger
+   than its own (0.8 dp: 2/3 g sin theta came out 2.6 % high at R/dp = 20). Its velocity as a
+   point of the body, v_i + omega x (p - x_i), is the slip friction acts on, and the friction
+   force acts at p: moved to the particle, it brings the couple (p - x_i) x F_t, which the kick
+   adds to the body's torque (kept per mass in the particle's acc_s, unused by a rigid body;
+   without it the rolling disc lost 2 % of its energy in 0.4 s, friction working on the particle
+   layer's slip). */
+static void sps__rigid_contact_velocity(const sps_world* w, const sps__body* b, const sps_real offset[3], sps_real v[3]) {
+    sps_real omega[3], wo[3];
+    int a;
+    sps__rigid_omega(w, &b->rigid, b->rigid.mid_turn, omega);
+    sps__rigid_cross(omega, offset, wo);
+    for (a = 0; a < w->dim; ++a) v[a] += wo[a];
+}
+/* The offset p - x_i of the contact point of a particle at distance d from a wall (normal n). */
+static void sps__rigid_wall_contact_offset(const sps_world* w, const sps_real normal[3], sps_real distance, sps_real offset[3]) {
+    const sps_real depth = distance < SPS_R(0.5) * w->def.dp ? distance : SPS_R(0.5) * w->def.dp;
+    int a;
+    for (a = 0; a < 3; ++a) offset[a] = -depth * normal[a];
+}
+/* Adds the couple offset x (f - before) (a friction force per volume) per mass of particle i. */
+static void sps__rigid_friction_couple(const sps_world* w, int i, const sps_real offset[3], const sps_real before[3], const sps_real f[3]) {
+    const sps_real ft[3] = {f[0] - before[0], f[1] - before[1], f[2] - before[2]};
+    sps_real couple[3];
+    int a;
+    sps__rigid_cross(offset, ft, couple);
+    for (a = 0; a < 3; ++a) couple[a] *= w->vol[i] / w->mass[i];
+    if (w->dim == 2) w->acc_s[0][i] += couple[2]; /* the z couple (acc_s has dim arrays) */
+    else
+        for (a = 0; a < 3; ++a) w->acc_s[a][i] += couple[a];
+}
+
+/* The stick drag per volume of particle i of free rigid body b at a wall in a sub-step dt: the
+   particle's share of the body's effective mass at it, m_eff = 1 / (1/M + r^2 / I_min) (r its
+   distance from the centre of mass, I_min the smallest principal moment), over the particles in
+   contact in the last sub-step, over 2 dt: the contacts together halve the slip in a sub-step,
+   as a deformable particle's drag rho_i / (2 dt) halves its own. That particle's drag alone
+   would leave a rigid body, whose mass is not the contact layer's, creeping: a disc of 1264
+   particles rolling on 30 degrees slipped 4 % of its speed. */
+static sps_real sps__rigid_stick_drag(const sps_world* w, const sps__body* b, int i, sps_real dt) {
+    const sps__rigid* r = &b->rigid;
+    sps_real r2 = 0, I = r->moment[2];
+    int a;
+    for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - r->mid_x[a]) * (w->pos[a][i] - r->mid_x[a]);
+    for (a = 0; a < 2 && w->dim == 3; ++a)
+        if (r->moment[a] < I) I = r->moment[a];
+    return 1 / (1 / r->mass + r2 / I) / ((r->contacts > 0 ? r->contacts : 1) * 2 * dt * w->vol[i]);
+}
+
+/* Its kinetic energy 1/2 M |v|^2 + 1/2 omega . I omega, gravity potential -M g . x, linear
+   momentum M v and angular momentum about the origin M x X v + I omega: what its particles
+   would carry as a continuum of their cells (DIAGNOSTICS reads these, not the particle sums). */
+static void sps__rigid_energies(const sps_world* w, const sps__body* b, sps_real* kinetic, sps_real* potential, sps_real p[3],
+                                sps_real l[3]) {
+    const sps__rigid* r = &b->rigid;
+    sps_real omega[3], Iw[9], Iomega[3], xv[3], v2 = 0;
+    int a;
+    sps__rigid_omega(w, r, r->turn, omega);
+    sps__rigid_world_inertia(r, r->turn, Iw);
+    sps__rigid_apply(Iw, omega, 0, Iomega);
+    sps__rigid_cross(r->x, r->v, xv);
+    *kinetic = *potential = 0;
+    for (a = 0; a < 3; ++a) {
+        v2 += r->v[a] * r->v[a];
+        *kinetic += SPS_R(0.5) * omega[a] * Iomega[a];
+        *potential -= a < w->dim ? r->mass * w->def.gravity[a] * r->x[a] : 0;
+        p[a] = r->mass * r->v[a];
+        l[a] = r->mass * xv[a] + Iomega[a];
+    }
+    *kinetic += SPS_R(0.5) * r->mass * v2;
+}
+
+/* The free rigid body of handle b, set up (sorting the world's particles as a first step would),
+   or -1 with the error set in *result. */
+static int sps__free_rigid_body(sps_world* w, sps_body b, const char* fn, sps_result* result) {
+    int k = sps__check_body(w, b, fn);
+    *result = SPS_ERR_INVALID_ARG;
+    if (k < 0) return -1;
+    if (!w->bodies[k].model.free_rigid) {
+        sps__set_error(w, 0, "%s: body '%s' has material.kind = %d (%s), allowed %d (free rigid: SPS_MATERIAL_RIGID_DYNAMIC)", fn,
+                       w->bodies[k].name, (int)w->bodies[k].def.material.kind, w->bodies[k].model.material->name, (int)sps__free_rigid_material.kind);
+        return -1;
+    }
+    *result = SPS_ERR_STATE;
+    if (w->bodies[k].count == 0) {
+        sps__set_error(w, 0, "%s: body '%s' has no particles: fill it first (a rigid body's mass and inertia come from them)", fn,
+                       w->bodies[k].name);
+        return -1;
+    }
+    if ((*result = sps__ready_to_step(w)) != SPS_OK) return -1;
+    sps__rigid_setup_bodies(w);
+    return k;
+}
+
+/* Whether the n values of x are all finite (and x not NULL). */
+static int sps__finite_values(const sps_real* x, int n) {
+    int a;
+    for (a = 0; x && a < n; ++a)
+        if (!sps__finite(x[a])) return 0;
+    return x != NULL;
+}
+
+SPSDEF sps_result sps_body_rigid_state(sps_world* w, sps_body b, sps_rigid_state* out) {
+    sps_result res;
+    const sps__rigid* r;
+    int k, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!out) { sps__set_error(w, 0, "sps_body_rigid_state: out must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    memset(out, 0, sizeof *out);
+    if ((k = sps__free_rigid_body(w, b, "sps_body_rigid_state", &res)) < 0) return res;
+    r = &w->bodies[k].rigid;
+    sps__rigid_omega(w, r, r->turn, out->angular_velocity);
+    sps__mat3_product(r->turn, r->axes, 1, out->rotation);
+    sps__rigid_world_inertia(r, r->turn, out->inertia);
+    if (w->dim == 2)
+        for (a = 0; a < 8; ++a) out->inertia[a] = 0;
+    for (a = 0; a < 3; ++a) {
+        out->position[a] = r->x[a];
+        out->velocity[a] = r->v[a];
+        out->angular_momentum[a] = r->L[a];
+        out->force[a] = r->force[a];
+        out->torque[a] = r->torque[a];
+    }
+    out->mass = r->mass;
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_set_rigid_pose(sps_world* w, sps_body b, const sps_real position[3], const sps_real rotation[9]) {
+    sps_result res;
+    sps__rigid* r;
+    sps_real RtR[9], det = 1, error = 0;
+    int k, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!sps__finite_values(position, 3) || (rotation && !sps__finite_values(rotation, 9))) {
+        sps__set_error(w, 0, "sps_body_set_rigid_pose: position %s, rotation %s: allowed finite values (rotation may be NULL)",
+                       position ? "given" : "NULL", rotation ? "given" : "NULL");
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (rotation) {
+        sps__mat3_product(rotation, rotation, 1, RtR);
+        for (a = 0; a < 9; ++a) error += SPS__FABS(RtR[a] - (sps_real)(a % 4 == 0));
+        det = rotation[0] * (rotation[4] * rotation[8] - rotation[5] * rotation[7]) - rotation[1] * (rotation[3] * rotation[8] - rotation[5] * rotation[6]) +
+              rotation[2] * (rotation[3] * rotation[7] - rotation[4] * rotation[6]);
+        if (w->dim == 2) error += SPS__FABS(rotation[2]) + SPS__FABS(rotation[5]) + SPS__FABS(rotation[6]) + SPS__FABS(rotation[7]);
+        if (!(error < SPS_R(1e-6)) || !(SPS__FABS(det - 1) < SPS_R(1e-6))) {
+            sps__set_error(w, 0, "sps_body_set_rigid_pose: rotation has |R R^T - 1| = %g and det = %g, allowed a rotation (orthonormal, det 1, "
+                           "within 1e-6; in 2D about z only)", (double)error, (double)det);
+            return SPS_ERR_INVALID_ARG;
+        }
+    }
+    if ((k = sps__free_rigid_body(w, b, "sps_body_set_rigid_pose", &res)) < 0) return res;
+    r = &w->bodies[k].rigid;
+    for (a = 0; a < 3; ++a) r->x[a] = a < w->dim ? position[a] : 0;
+    if (rotation) sps__mat3_product(rotation, r->axes, 0, r->turn);
+    sps__rigid_place(w, &w->bodies[k], w->bodies[k].begin, w->bodies[k].end, r->x, r->turn, 0, 0);
+    w->lists_valid = 0; /* the next step rebuilds the lists */
+    sps__rearm_watchdog(w);
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_set_mass_properties(sps_world* w, sps_body b, sps_real mass, const sps_real inertia[9]) {
+    sps_result res;
+    sps__rigid* r;
+    sps_real I[9], d[3], Q[9], omega[3], Iw[9], scale;
+    int k, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!(mass > 0) || !sps__finite(mass)) {
+        sps__set_error(w, 0, "sps_body_set_mass_properties: mass = %g, allowed finite > 0 kg", (double)mass);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (inertia) {
+        int symmetric = sps__finite_values(inertia, 9);
+        if (w->dim == 3)
+            symmetric = symmetric && inertia[1] == inertia[3] && inertia[2] == inertia[6] && inertia[5] == inertia[7];
+        if (symmetric && w->dim == 3) sps__eigen3(inertia, d, Q);
+        else d[0] = d[1] = d[2] = inertia[8];
+        if (!symmetric || !(d[0] > 0 && d[1] > 0 && d[2] > 0) || (w->dim == 3 && !(d[0] + d[1] >= d[2] && d[1] + d[2] >= d[0] && d[0] + d[2] >= d[1]))) {
+            sps__set_error(w, 0, "sps_body_set_mass_properties: inertia with principal moments (%g, %g, %g)%s, allowed a symmetric positive "
+                           "definite tensor [kg m^2] (in 3D each moment at most the sum of the other two; in 2D inertia[8] > 0)",
+                           (double)d[0], (double)d[1], (double)d[2], symmetric ? "" : " is not symmetric or not finite");
+            return SPS_ERR_INVALID_ARG;
+        }
+    }
+    if ((k = sps__free_rigid_body(w, b, "sps_body_set_mass_properties", &res)) < 0) return res;
+    r = &w->bodies[k].rigid;
+    sps__rigid_omega(w, r, r->turn, omega); /* kept */
+    scale = mass / r->mass;
+    if (inertia) memcpy(I, inertia, sizeof I);
+    else { /* the current principal tensor in the reference axes, scaled */
+        sps_real D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, AD[9];
+        for (a = 0; a < 3; ++a) D[4 * a] = scale * r->moment[a];
+        sps__mat3_product(r->axes, D, 0, AD);
+        sps__mat3_product(AD, r->axes, 1, I);
+    }
+    r->mass = mass;
+    r->mass_set = 1;
+    sps__rigid_set_inertia(w, r, I);
+    sps__rigid_world_inertia(r, r->turn, Iw);
+    sps__rigid_apply(Iw, omega, 0, r->L);
+    sps__rearm_watchdog(w);
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_apply_impulse(sps_world* w, sps_body b, const sps_real impulse[3], const sps_real point[3]) {
+    sps_result res;
+    sps__rigid* r;
+    sps_real d[3] = {0, 0, 0}, J[3] = {0, 0, 0}, dL[3];
+    int k, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!sps__finite_values(impulse, 3) || (point && !sps__finite_values(point, 3))) {
+        sps__set_error(w, 0, "sps_body_apply_impulse: impulse %s, point %s: allowed finite values (point may be NULL)", impulse ? "given" : "NULL",
+                       point ? "given" : "NULL");
+        return SPS_ERR_INVALID_ARG;
+    }
+    if ((k = sps__free_rigid_body(w, b, "sps_body_apply_impulse", &res)) < 0) return res;
+    r = &w->bodies[k].rigid;
+    for (a = 0; a < w->dim; ++a) {
+        J[a] = r->lock_translation & (1u << a) ? 0 : impulse[a];
+        d[a] = point ? point[a] - r->x[a] : 0;
+        r->v[a] += J[a] / r->mass;
+    }
+    for (a = 0; a < w->dim; ++a) J[a] = impulse[a]; /* a locked axis takes the force, not its torque */
+    sps__rigid_cross(d, J, dL);
+    for (a = 0; a < 3; ++a) r->L[a] += w->dim == 2 && a < 2 ? 0 : dL[a];
+    sps__rigid_place(w, &w->bodies[k], w->bodies[k].begin, w->bodies[k].end, r->x, r->turn, 0, 0);
+    sps__rearm_watchdog(w);
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_set_force(sps_world* w, sps_body b, const sps_real force[3], const sps_real point[3]) {
+    sps_result res;
+    sps__rigid* r;
+    sps_real d[3] = {0, 0, 0};
+    int k, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!sps__finite_values(force, 3) || (point && !sps__finite_values(point, 3))) {
+        sps__set_error(w, 0, "sps_body_set_force: force %s, point %s: allowed finite values (point may be NULL)", force ? "given" : "NULL",
+                       point ? "given" : "NULL");
+        return SPS_ERR_INVALID_ARG;
+    }
+    if ((k = sps__free_rigid_body(w, b, "sps_body_set_force", &res)) < 0) return res;
+    r = &w->bodies[k].rigid;
+    for (a = 0; a < 3; ++a) {
+        r->applied_force[a] = a < w->dim ? force[a] : 0;
+        d[a] = point && a < w->dim ? point[a] - r->x[a] : 0;
+    }
+    sps__rigid_apply(r->turn, d, 1, r->applied_point); /* in the principal axes: it turns with the body */
+    if (sps__watchdog_on(w) && !w->bodies[k].driven) { /* its work enters the energy account */
+        w->bodies[k].driven = 1;
+        w->needs_sort_by_body = 1; /* the next step's commit allocates its prescribed_work */
+    }
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_body_lock_axes(sps_world* w, sps_body b, unsigned translation, unsigned rotation) {
+    sps_result res;
+    sps__rigid* r;
+    int k, a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (translation > SPS_AXIS_ALL || rotation > SPS_AXIS_ALL) {
+        sps__set_error(w, 0, "sps_body_lock_axes: translation = %u, rotation = %u, allowed masks of SPS_AXIS_X|Y|Z (0..7)", translation, rotation);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if ((k = sps__free_rigid_body(w, b, "sps_body_lock_axes", &res)) < 0) return res;
+    r = &w->bodies[k].rigid;
+    r->lock_translation = translation;
+    r->lock_rotation = w->dim == 2 ? rotation & SPS_AXIS_Z : rotation;
+    for (a = 0; a < 3; ++a)
+        if (translation & (1u << a)) r->v[a] = 0;
+    sps__rigid_place(w, &w->bodies[k], w->bodies[k].begin, w->bodies[k].end, r->x, r->turn, 0, 0);
+    sps__rearm_watchdog(w);
+    return SPS_OK;
+}
+
 /* >>step: the per-particle updates of a sub-step */
 
 /* The contiguous share [i0, i1) of body b that the calling thread updates in the per-particle
@@ -8189,6 +8982,10 @@ static void sps__half_drift(sps_world* w, sps_real dt) {
         const sps__body* b = &w->bodies[bi];
         const sps_real c2 = b->mat.c0 * b->mat.c0, rho0 = b->rho0, h = SPS_R(0.5) * dt;
         int i, i0, i1;
+        if (b->model.free_rigid) { /* its pose drifts (>>material: free rigid bodies) */
+            sps__rigid_half_drift(w, &w->bodies[bi], dt);
+            continue;
+        }
         sps__thread_share(b, &i0, &i1);
         if (!b->model.pressure_of_density) { /* Drucker-Prager: p comes from the stress update */
             if (w->dim == 2) sps__drift_range(w, i0, i1, h, c2, rho0, 2, 0);
@@ -8346,6 +9143,7 @@ static sps_real sps__kick(sps_world* w, sps_real t, sps_real dt) {
         int i0, i1;
         sps__thread_share(b, &i0, &i1);
         sps__rodrigues(b->mean_spin, SPS_R(0.5) * dt, dim, Hmean); /* half of this kick's turn */
+        if (b->model.free_rigid) continue; /* below, as one body */
         if (b->model.material->kinematic) {
             vmax2 = sps__move_range(w, b, i0, i1, dt, vmax2);
             continue;
@@ -8353,6 +9151,7 @@ static sps_real sps__kick(sps_world* w, sps_real t, sps_real dt) {
         if (b->acceleration) sps__add_external_acceleration(w, b, i0, i1, t + SPS_R(0.5) * dt, dt);
         vmax2 = sps__kick_body(w, b, i0, i1, dt, Hmean, vmax2);
     }
+    if (w->free_rigid_bodies) vmax2 = sps__rigid_kick(w, t, dt, vmax2);
     w->thread_max[me] = vmax2;
     SPS__PRAGMA(omp barrier)
     for (thread = 0; thread < nt; ++thread)
@@ -8613,6 +9412,10 @@ static sps__energies sps__body_energies(const sps_world* w, const sps__body* b) 
         if (contacts) e.contact += sps__contact_energy(w, i);
         for (a = 0; a < w->dim; ++a) e.potential -= w->mass[i] * g[a] * w->pos[a][i];
     }
+    if (b->model.free_rigid) { /* its motion is the body's, not its particles' */
+        sps_real p[3], l[3];
+        sps__rigid_energies(w, b, &e.motion, &e.potential, p, l);
+    }
     for (i = 0; b->driven_work && i < b->end - b->begin; ++i) e.work += b->driven_work[i];
     for (i = 0; b->plastic_work && i < b->end - b->begin && i < b->field_count; ++i) e.plastic += b->plastic_work[i];
     for (i = 0; b->viscous_work && i < b->end - b->begin && i < b->field_count; ++i) e.plastic += b->viscous_work[i]; /* dissipated too */
@@ -8624,8 +9427,9 @@ static sps__energies sps__body_energies(const sps_world* w, const sps__body* b) 
    simulation's, but its side of the contacts and its work on the others are. */
 static void sps__body_account(const sps_world* w, const sps__body* b, sps_real* account, sps_real* mechanical) {
     const sps__energies e = sps__body_energies(w, b);
-    *mechanical = b->model.material->kinematic ? e.contact : e.motion + e.contact;
-    *account = *mechanical + (b->model.material->kinematic ? 0 : e.potential) + e.plastic - e.work;
+    const int prescribed = b->model.material->kinematic && !b->model.free_rigid;
+    *mechanical = prescribed ? e.contact : e.motion + e.contact;
+    *account = *mechanical + (prescribed ? 0 : e.potential) + e.plastic - e.work;
 }
 
 /* The world's account E (kinetic + strain + contact + gravity potential + plastic work - work
@@ -9031,7 +9835,7 @@ static sps_result sps__check_bodies_outside_walls(sps_world* w) {
     for (k = 0; k < w->nwalls; ++k)
         for (bi = 0; bi < w->nbodies; ++bi) {
             const sps__wall* wall = &w->walls[k];
-            const int behind = w->bodies[bi].model.material->kinematic ? 0 : sps__particles_behind_wall(w, bi, k);
+            const int behind = w->bodies[bi].model.material->kinematic && !w->bodies[bi].model.free_rigid ? 0 : sps__particles_behind_wall(w, bi, k);
             if (behind == 0) continue;
             sps__set_error(w, 0, "wall %d (point (%g, %g, %g), normal (%g, %g, %g)): %d of the %d particles of body '%s' start on its "
                            "solid side ((x - point) . normal < 0); the normal points from the solid into the free side: flip it or "
@@ -9080,6 +9884,7 @@ static sps_result sps__ready_to_step(sps_world* w) {
         w->lists_valid = 0; /* the sort by body reorders the particles */
         if ((r = sps__commit(w)) != SPS_OK) return r == SPS_ERR_OUT_OF_MEMORY ? sps__oom(w, "the neighbour lists and step fields") : r;
         sps__set_escape_limits(w);
+        if (w->free_rigid_bodies) sps__rigid_setup_bodies(w);
     }
     return sps__ensure_good_state(w);
 }
@@ -9577,12 +10382,23 @@ SPSDEF sps_result sps_world_diagnostics(sps_world* w, sps_body body, sps_diagnos
             x[a] = w->pos[a][i];
             v[a] = a < w->dim ? w->vel[a][i] : 0;
             v2 += v[a] * v[a];
-            out->linear_momentum[a] += m * v[a];
         }
-        out->angular_momentum[0] += m * (x[1] * v[2] - x[2] * v[1]);
-        out->angular_momentum[1] += m * (x[2] * v[0] - x[0] * v[2]);
-        out->angular_momentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
         sps__particle_energies(w, b, i, 1, &kinetic, &strain);
+        if (b->model.free_rigid) { /* the body's motion, once (sps__rigid_energies) */
+            sps_real potential = 0, p[3] = {0, 0, 0}, l[3] = {0, 0, 0};
+            kinetic = 0;
+            if (i == b->begin) sps__rigid_energies(w, b, &kinetic, &potential, p, l);
+            out->potential_energy += potential;
+            for (a = 0; a < 3; ++a) {
+                out->linear_momentum[a] += p[a];
+                out->angular_momentum[a] += l[a];
+            }
+        } else {
+            for (a = 0; a < 3; ++a) out->linear_momentum[a] += m * v[a];
+            out->angular_momentum[0] += m * (x[1] * v[2] - x[2] * v[1]);
+            out->angular_momentum[1] += m * (x[2] * v[0] - x[0] * v[2]);
+            out->angular_momentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
+        }
         out->kinetic_energy += kinetic;
         out->strain_energy += strain;
         if (!b->model.material->kinematic)
@@ -10513,6 +11329,20 @@ static void sps__transfer_good(sps_world* w, int good_n, sps__stream* s) {
    world cast from const (nothing is written into it); restoring runs it three times (the
    passes of sps__reader), into a world whose storage is committed (sps__ready_to_step).
    Returns whether the payload holds the neighbour lists. */
+/* A free rigid body's motion (its mass properties and locks are the scene's calls, made again
+   by the program). The rotation's entries are those of a rotation, within [-1, 1]. */
+static void sps__rigid_transfer(sps__stream* s, sps_world* w, int bi, sps__rigid* r) {
+    static const sps__range rotation_range = {-1 - 1e-9, 1 + 1e-9, 0};
+    sps__real_item(s, w, bi, r->x, 3, &sps__finite_range, "rigid centre of mass");
+    sps__real_item(s, w, bi, r->turn, 9, &rotation_range, "rigid rotation");
+    sps__real_item(s, w, bi, r->v, 3, &sps__finite_range, "rigid velocity");
+    sps__real_item(s, w, bi, r->L, 3, &sps__finite_range, "rigid angular momentum");
+    sps__real_item(s, w, bi, r->applied_force, 3, &sps__finite_range, "rigid applied force");
+    sps__real_item(s, w, bi, r->applied_point, 3, &sps__finite_range, "rigid applied point");
+    sps__real_item(s, w, bi, r->force, 3, &sps__finite_range, "rigid force");
+    sps__real_item(s, w, bi, r->torque, 3, &sps__finite_range, "rigid torque");
+}
+
 static int sps__transfer_state(sps_world* w, sps__stream* s) {
     int64_t steps[2];
     int k, bi, kept, good_n, lists, stopped;
@@ -10541,6 +11371,7 @@ static int sps__transfer_state(sps_world* w, sps__stream* s) {
         sps__real_item(s, w, bi, b->mean_spin, 9, &sps__finite_range, "mean spin");
         sps__real_item(s, w, bi, &b->energy_start, 1, &sps__any_range, "energy watchdog start");
         sps__count_item(s, &b->fragment_reported, 1, "fragment warning flag");
+        if (b->model.free_rigid) sps__rigid_transfer(s, w, bi, &b->rigid); /* a scene without one: the file as before */
     }
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];

@@ -12,6 +12,12 @@
      gravity-z   the drop scene in 2D with gravity along z (a mistake: warned, nothing moves)
      friction-deg the slide with friction 30 (degrees typed for mu: warned, it sticks)
      slot     the tank's water filled 1.5 dp short of its far wall (warned: it runs into the slot)
+     drop-stack  two such bodies, one on the other, dropped 0.05 m onto the floor (a free-slip
+              floor, friction 0.5 between the bodies and with the floor)
+     float    the body, half as dense as water, dropped from 0.05 m into water 0.2 m deep in a
+              tank 0.6 m wide (analytic walls, h_over_dp 2)
+   --kind rigid makes the bodies free rigid bodies (SPS_MATERIAL_RIGID_DYNAMIC; shear and
+   rotation are not read); they get contact_damping 0.5 in drop-stack.
    It prints one RESULT line: watchdog_growth, the energy watchdog's largest finding
    (sps_diagnostics.energy_growth: the account kinetic + volumetric strain + contact + gravity
    potential - prescribed work above its start, as a fraction of the largest mechanical energy
@@ -35,6 +41,7 @@
 typedef struct scene_options {
     const char* scene;
     int dim, noslip, rotation, shear; /* rotation, shear: -1 = sps_default_body_def()'s */
+    int rigid;                        /* --kind rigid: free rigid bodies */
     double spin, t_end, dp, cfl;
     double gravity, E; /* [m/s^2] along -y (default 9.81); Young's modulus (0: the default body's) */
     int contact_rest;  /* sps_contact_rest: 0 flush (default), 1 the papers' kernel-edge law */
@@ -55,12 +62,15 @@ static const char* const rotation_names[] = {"mean", "particle", "pair"};
 
 static const char* const contact_rests[] = {"flush", "kernel"};
 static void parse(int argc, char** argv, scene_options* o) {
-    static const char* const scenes[] = {"drop", "ramp", "collide", "stack", "slide", "tank", "gravity-z", "friction-deg", "slot"};
+    static const char* const scenes[] = {"drop", "ramp", "collide", "stack", "slide", "tank", "gravity-z", "friction-deg", "slot",
+                                         "drop-stack", "float"};
     static const char* const slips[] = {"free", "noslip"};
+    static const char* const kinds[] = {"elastic", "rigid"};
     int i;
     for (i = 1; i + 1 < argc; i += 2) {
         const char *key = argv[i], *value = argv[i + 1];
-        if (!strcmp(key, "--scene")) o->scene = scenes[choice(value, scenes, 9, key)];
+        if (!strcmp(key, "--scene")) o->scene = scenes[choice(value, scenes, 11, key)];
+        else if (!strcmp(key, "--kind")) o->rigid = choice(value, kinds, 2, key);
         else if (!strcmp(key, "--dim")) o->dim = atoi(value);
         else if (!strcmp(key, "--slip")) o->noslip = choice(value, slips, 2, key);
         else if (!strcmp(key, "--shear")) o->shear = strcmp(value, "default") ? choice(value, shear_names, 6, key) : -1;
@@ -75,8 +85,10 @@ static void parse(int argc, char** argv, scene_options* o) {
         else { fprintf(stderr, "user_scenes: unknown option %s\n", key); exit(2); }
     }
     if (i < argc || (o->dim != 2 && o->dim != 3)) {
-        fprintf(stderr, "usage: user_scenes [--scene drop|ramp|collide] [--dim 2|3] [--slip free|noslip] [--shear default|eno|eno-a|og|"
-                        "oas|gno|gno-a] [--rotation default|mean|particle|pair] [--spin rad/s] [--tend s] [--dp m] [--cfl c] [--gravity g] [--E Pa] [--contact-rest flush|kernel]\n");
+        fprintf(stderr, "usage: user_scenes [--scene drop|ramp|collide|stack|slide|tank|gravity-z|friction-deg|slot|drop-stack|float] "
+                        "[--kind elastic|rigid] [--dim 2|3] [--slip free|noslip] [--shear default|eno|eno-a|og|oas|gno|gno-a] "
+                        "[--rotation default|mean|particle|pair] [--spin rad/s] [--tend s] [--dp m] [--cfl c] [--gravity g] [--E Pa] "
+                        "[--contact-rest flush|kernel]\n");
         exit(2);
     }
 }
@@ -151,6 +163,27 @@ static double total_energy(const sps_diagnostics* d) {
     return d->kinetic_energy + d->strain_energy + d->contact_energy + d->potential_energy - d->prescribed_work;
 }
 
+/* The float scene: water 0.2 m deep in a tank 0.6 m wide, the body (density 500) dropped in. */
+static sps_result build_float(const scene_options* o, sps_world* w, sps_body_def* bd, double centre[3]) {
+    sps_body_def water = sps_default_body_def();
+    const sps_real tank_lo[3] = {-0.3, 0, -0.15}, tank_hi[3] = {0.3, 1, 0.15};
+    const sps_real lo[3] = {-0.3, 0, -0.15}, hi[3] = {0.3, 0.2, 0.15};
+    sps_body body;
+    sps_result r;
+    water.material.kind = SPS_MATERIAL_FLUID;
+    water.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.2));
+    water.name = "water";
+    g_depth = 0.2;
+    if ((r = sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP)) != SPS_OK) return r;
+    if ((r = sps_world_add_body(w, &water, &body)) != SPS_OK || (r = sps_body_add_box(w, body, lo, hi, NULL)) != SPS_OK ||
+        (r = sps_body_set_pressure(w, body, hydrostatic, NULL)) != SPS_OK)
+        return r;
+    bd->material.density = 500;
+    centre[1] = 0.2 + 0.05 + 0.05 + o->dp;
+    if ((r = add_block(w, bd, o->dim, centre, &body)) != SPS_OK) return r;
+    return throw_body(w, body, 0, 0, o->spin);
+}
+
 static sps_result build(const scene_options* o, sps_world** out) {
     static double centre[2][3];
     sps_world_def wd = sps_default_world_def();
@@ -170,10 +203,15 @@ static sps_result build(const scene_options* o, sps_world** out) {
     if (o->shear >= 0) bd.shear = (sps_shear)o->shear;
     if (o->rotation >= 0) bd.rotation = (sps_rotation)o->rotation;
     bd.track_stress = 1; /* the strain energy of the ENO family needs the stress */
-    if (!strcmp(o->scene, "tank") || !strcmp(o->scene, "slot")) wd.h_over_dp = 2; /* water under gravity */
+    if (o->rigid) { /* the defaults of what a rigid body does not read */
+        bd = sps_default_body_def();
+        bd.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
+    }
+    if (!strcmp(o->scene, "tank") || !strcmp(o->scene, "slot") || !strcmp(o->scene, "float")) wd.h_over_dp = 2; /* water under gravity */
     if (!strcmp(o->scene, "gravity-z")) { wd.dim = 2; wd.gravity[1] = 0; wd.gravity[2] = -9.81; }
     if ((r = sps_world_create(&wd, out)) != SPS_OK) return r;
     if (!strcmp(o->scene, "tank") || !strcmp(o->scene, "slot")) return build_tank(*out, bd, o, !strcmp(o->scene, "slot"));
+    if (!strcmp(o->scene, "float")) return build_float(o, *out, &bd, centre[0]);
     if (!strcmp(o->scene, "ramp")) { /* a 30-degree ramp through the origin, going down towards +x */
         const sps_real normal[3] = {(sps_real)sin(PI / 6), (sps_real)cos(PI / 6), 0};
         /* the disc's radius, or the axis-aligned cube's deepest corner (half side (sin + cos 30 deg)),
@@ -207,6 +245,16 @@ static sps_result build(const scene_options* o, sps_world** out) {
         if ((r = add_block(*out, &bd, o->dim, centre[0], &a)) != SPS_OK) return r;
         return throw_body(*out, a, 0, 0, !strcmp(o->scene, "gravity-z") ? 0 : o->spin);
     }
+    if (!strcmp(o->scene, "drop-stack")) { /* one on the other, dropped 0.05 m */
+        const sps_real mu = (sps_real)0.5;
+        bd.friction = mu;
+        if (o->rigid) bd.contact_damping = (sps_real)0.5;
+        if ((r = sps_world_set_wall_friction(*out, 0, o->noslip ? 0 : mu)) != SPS_OK) return r;
+        centre[0][1] = 0.1 + o->dp;
+        centre[1][1] = 0.2 + 2 * o->dp;
+        if ((r = add_block(*out, &bd, o->dim, centre[0], &a)) != SPS_OK) return r;
+        return add_block(*out, &bd, o->dim, centre[1], &b);
+    }
     centre[0][0] = -0.1; centre[0][1] = 0.1; /* collide: resting on the floor, 0.1 m apart */
     centre[1][0] = 0.1; centre[1][1] = 0.1;
     if ((r = add_block(*out, &bd, o->dim, centre[0], &a)) != SPS_OK) return r;
@@ -226,7 +274,7 @@ static double mean_x(const sps_world* w) {
 }
 
 int main(int argc, char** argv) {
-    scene_options o = {"drop", 3, 1, -1, -1, 20, 1, 0.01, 0, 9.81, 0, 0};
+    scene_options o = {"drop", 3, 1, -1, -1, 0, 20, 1, 0.01, 0, 9.81, 0, 0};
     double speed_10ms = 0, x_start = 0;
     const sps_body all = {0};
     sps_world* w = NULL;
@@ -254,9 +302,9 @@ int main(int argc, char** argv) {
         if ((total_energy(&d) - e0) / mech0 > gain) gain = (total_energy(&d) - e0) / mech0;
     }
     sps_world_diagnostics(w, all, &d);
-    printf("RESULT scene=%s dim=%d slip=%s spin=%g shear=%s rotation=%s t=%.4f status=%s energy_start=%.6g mech_start=%.6g "
+    printf("RESULT scene=%s kind=%s dim=%d slip=%s spin=%g shear=%s rotation=%s t=%.4f status=%s energy_start=%.6g mech_start=%.6g "
            "max_gain=%.5f watchdog_growth=%.5f target=0.02 watchdog_events=%d warnings=%d max_speed_10ms=%.4g slid=%.5f slide_theory=%.5f max_speed=%.4g min_spacing=%.3f particles=%d\n",
-           o.scene, o.dim, o.noslip ? "noslip" : "free", o.spin, o.shear < 0 ? "default" : shear_names[o.shear],
+           o.scene, o.rigid ? "rigid" : "elastic", o.dim, o.noslip ? "noslip" : "free", o.spin, o.shear < 0 ? "default" : shear_names[o.shear],
            o.rotation < 0 ? "default" : rotation_names[o.rotation], (double)sps_world_time(w), r == SPS_OK ? "ok" : r == SPS_ERR_UNSTABLE ? "unstable" : "refused", e0,
            mech0, gain, (double)d.energy_growth, d.energy_growth_events, g_warnings, speed_10ms, mean_x(w) - x_start,
            o.gravity > 0 ? 1 / (2 * 0.3 * o.gravity) : 0 /* v0^2 / (2 mu g): the slide's 1 m/s at mu 0.3 */, (double)d.max_speed, (double)d.min_spacing, d.particles);

@@ -22,7 +22,9 @@
    horizontal. A rigid disc (I = m R^2 / 2) that reaches rolling during the impact leaves with
    v_t = omega R = 2/3 of its tangential speed (ball: 5/7), which takes a friction impulse of
    1/3 (2/7) of m v_t; we report v_t and omega R (about the centre of mass) at the end of the
-   first flight (both stay constant in the air), and their ratio next to 1.
+   first flight (both stay constant in the air), and their ratio next to 1. --rigid makes the
+   body a free rigid body (SPS_MATERIAL_RIGID_DYNAMIC: friction at its contact surface's velocity;
+   no Kelvin-Voigt viscosity).
 
    Build: make build/bounce      Run: ./build/bounce --contact-damping 1
    Expect (bench/VALIDATION.md, "Friction and material damping"): with --contact-damping 1 it
@@ -125,7 +127,7 @@ static int on_step(sps_world* w, void* user) {
 static double spring_dashpot_restitution(double zeta) { return zeta < 1 ? exp(-PI * zeta / sqrt(1 - zeta * zeta)) : 0; }
 
 int main(int argc, char** argv) {
-    int dim = 2;
+    int dim = 2, rigid = 0;
     double height = 0.2, viscosity = 20, mu = 0, speed = 0, angle = 20, dp = 0.005, contact_damping = 0;
     common_options c = {.shear = SPS_SHEAR_ENO_A, .rotation = SPS_ROTATION_PAIR, .cfl = 0.4, .t_end = 3, .vtk_every = 0.05,
                         .csv_every = 0.002, .E = 1e6, .nu = 0.3, .rho0 = 1000, .out = "out/bounce", .contact_rest = 1 /* the figures of bench/VALIDATION.md were measured with the papers' contact law */, PNG_DEFAULTS};
@@ -138,6 +140,7 @@ int main(int argc, char** argv) {
         {"speed", OPT_REAL, &speed, "throw speed [m/s] (0: dropped)", 0, 100, NULL},
         {"angle", OPT_REAL, &angle, "throw angle below the horizontal [degrees]", 0, 90, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.001, 0.025, NULL},
+        {"rigid", OPT_FLAG, &rigid, "a free rigid body (no viscosity)", 0, 0, NULL},
         COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
@@ -160,6 +163,14 @@ int main(int argc, char** argv) {
     bd.friction = (sps_real)mu;
     bd.material.viscosity = (sps_real)viscosity;
     bd.contact_damping = (sps_real)contact_damping;
+    if (rigid) { /* what a rigid body does not read, at the defaults */
+        const sps_body_def defaults = sps_default_body_def();
+        bd.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
+        bd.material.viscosity = 0;
+        bd.track_stress = 0;
+        bd.shear = defaults.shear;
+        bd.rotation = defaults.rotation;
+    }
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
     memset(&s, 0, sizeof s);
@@ -194,9 +205,9 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_diagnostics(w, s.body, &d));
     if (s.thrown) {
         const double ideal = dim == 2 ? 2.0 / 3 : 5.0 / 7;
-        printf("RESULT case=bounce dim=%d thrown speed=%g angle=%g mu=%g viscosity=%g dp=%g v_t_out=%.5g omega_R_out=%.5g rolling_ratio=%.4f "
+        printf("RESULT case=bounce dim=%d kind=%s thrown speed=%g angle=%g mu=%g viscosity=%g dp=%g v_t_out=%.5g omega_R_out=%.5g rolling_ratio=%.4f "
                "theory=1 rel_error=%.2f%% v_t_over_v_t0=%.4f rigid_rolling=%.4f shear=%s %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
-               dim, speed, angle, mu, viscosity, dp, s.v_t, s.omega_r, s.v_t != 0 ? s.omega_r / s.v_t : 0,
+               dim, rigid ? "rigid" : "elastic", speed, angle, mu, viscosity, dp, s.v_t, s.omega_r, s.v_t != 0 ? s.omega_r / s.v_t : 0,
                100 * fabs(s.v_t != 0 ? s.omega_r / s.v_t - 1 : 1), s.v_t / (speed * cos(angle * PI / 180)), ideal, shear_name(c.shear),
                common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
     } else {

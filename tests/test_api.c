@@ -2640,6 +2640,7 @@ static int test_generic_dispatch_per_kind(void) {
         {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", 0, 1, 0, 1},
         {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, 1, 0, 1},
         {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", 1, 0, 1, 0},
+        {SPS_MATERIAL_RIGID_DYNAMIC, "free rigid", 0, 0, 1, 0},
     };
     char msg[2048];
     int k;
@@ -2663,11 +2664,11 @@ static int test_generic_dispatch_per_kind(void) {
         ENSURE(generic_refused(&changed, "solver = total Lagrangian with material.kind other than") == !kinds[k].total);
         ENSURE((sps__tl_law_of(kinds[k].kind) != SPS__LAW_NONE) == kinds[k].total);
     }
-    ENSURE(sps__material_of((sps_material_kind)7) == NULL); /* a value outside the enum: no row */
+    ENSURE(sps__material_of((sps_material_kind)8) == NULL); /* a value outside the enum: no row */
     {
         sps_body_def bd = generic_kind_def(SPS_MATERIAL_ELASTIC);
-        bd.material.kind = (sps_material_kind)7;
-        ENSURE(generic_refused(&bd, "material.kind = 7, allowed"));
+        bd.material.kind = (sps_material_kind)8;
+        ENSURE(generic_refused(&bd, "material.kind = 8, allowed"));
     }
     return 0;
 }

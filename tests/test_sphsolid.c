@@ -1,6 +1,6 @@
 /* test_sphsolid.c - unit, invariant and regression tests of sphsolid.h: the runner, its helpers
    and the RUN list; the tests are in one file per part of the library, included below
-   (test_numerics.c, test_api.c, test_solids.c, test_fluids.c).
+   (test_numerics.c, test_api.c, test_solids.c, test_fluids.c, test_rigid.c).
 
    Build and run:    make build/test_sphsolid && ./build/test_sphsolid
    Under sanitizers: make build/test_sanitize && ./build/test_sanitize --quick
@@ -184,6 +184,7 @@ static double von_mises(const double s[6], int dim) {
 #include "test_api.c"
 #include "test_solids.c"
 #include "test_fluids.c"
+#include "test_rigid.c"
 
 int main(int argc, char** argv) {
     int i;
@@ -345,6 +346,10 @@ int main(int argc, char** argv) {
     RUN(test_penalty_in_pressure_pass_matches_paper);
     RUN(test_penalty_in_pressure_pass_holds_plate);
     RUN(test_penalty_in_pressure_pass_def);
+    RUN(test_rigid_free_invariants);
+    RUN(test_rigid_rests_on_floor);
+    RUN(test_rigid_bad_input);
+    RUN(test_rigid_restart_and_threads);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);

@@ -27,10 +27,13 @@
 #define JELLY_RAFT_W 0.40   /* a raft of the tank scene [m]: wider than twice its height, so that it */
 #define JELLY_RAFT_H 0.20   /* floats flat (metacentre above the centre of mass: W/H > 1.22 at half density) */
 #define JELLY_RAFT_RHO0 500 /* half as dense as water: it floats half immersed */
+#define JELLY_CRATE 0.16    /* side of a crate (a free rigid body, every third drop) [m] */
+#define JELLY_CRATE_RHO0 600 /* floats in the tank scene, 0.6 immersed (a square floats upright above 0.79) */
 
 typedef struct {
     sps_body body;
     int centre_id;          /* stable id of its centre particle, to see where it is */
+    int crate;              /* a free rigid crate (every third drop), not jelly */
 } jelly_drop;
 
 typedef struct {
@@ -145,8 +148,9 @@ SCENE_UNUSED static sps_result jelly_create(int threads, sps_log_fn log, int tan
 /* Drops block number s->n_drops (shear formulation `shear`) from above the view, at an
    x that cycles over the view's width: a spinning block, or in the tank scene a raft (at rest,
    density JELLY_RAFT_RHO0, its heave damped at 2/s so that it comes to float) from 0.28 m above
-   the water (it hits it at 2.3 m/s, a tenth of the water's c0). SPS_ERR_STATE when
-   JELLY_MAX_DROPS are out. */
+   the water (it hits it at 2.3 m/s, a tenth of the water's c0); every third drop is a crate, a
+   free rigid body (SPS_MATERIAL_RIGID_DYNAMIC, density JELLY_CRATE_RHO0, friction and contact
+   damping) that tumbles onto the others or floats. SPS_ERR_STATE when JELLY_MAX_DROPS are out. */
 SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear) {
     static const double x_of[5] = {-0.7, 0.3, -0.2, 0.75, -0.45};
     jelly_drop* d = &s->drops[s->n_drops];
@@ -161,7 +165,23 @@ SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear)
     sps_real centre[3] = {cx, cy, 0};
     sps_result r;
     if (s->n_drops == JELLY_MAX_DROPS) return SPS_ERR_STATE;
-    if (s->tank) {
+    d->crate = s->n_drops % 3 == 2;
+    if (d->crate) { /* its E sets only its contact stiffness: the jelly's sound speed, so the sub-steps stay */
+        const double y0 = s->tank ? JELLY_WATER_DEPTH + 0.28 : cy - JELLY_CRATE / 2;
+        const sps_real lo[3] = {cx - JELLY_CRATE / 2, y0, 0}, hi[3] = {cx + JELLY_CRATE / 2, y0 + JELLY_CRATE, 0}, v[3] = {0, -1.5, 0};
+        const sps_real omega[3] = {0, 0, 3}; /* thrown down, spinning like a jelly block */
+        bd.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
+        bd.material.density = JELLY_CRATE_RHO0;
+        bd.material.youngs_modulus = (sps_real)(JELLY_E * JELLY_CRATE_RHO0 / JELLY_RHO0);
+        bd.material.viscosity = 0;
+        bd.shear = SPS_SHEAR_ENO_A; /* not read: the defaults */
+        bd.rotation = SPS_ROTATION_AUTO;
+        bd.contact_damping = (sps_real)0.5;
+        bd.damping = s->tank ? 1 : 0; /* it comes to float */
+        if ((r = sps_world_add_body(s->w, &bd, &d->body)) != SPS_OK || (r = sps_body_add_box(s->w, d->body, lo, hi, NULL)) != SPS_OK ||
+            (r = sps_body_set_rigid_motion(s->w, d->body, v, omega)) != SPS_OK)
+            return r;
+    } else if (s->tank) {
         const sps_real lo[3] = {cx - JELLY_RAFT_W / 2, JELLY_WATER_DEPTH + 0.28, 0}, hi[3] = {cx + JELLY_RAFT_W / 2, lo[1] + JELLY_RAFT_H, 0};
         bd.material.density = JELLY_RAFT_RHO0;
         bd.friction = 0; /* rafts meet only water, and each other now and then */
@@ -180,26 +200,28 @@ SCENE_UNUSED static sps_result jelly_drop_block(jelly_scene* s, sps_shear shear)
    level), which a raft of density rho floats at: rho / 1000. *fraction is 0 without rafts. */
 SCENE_UNUSED static void jelly_float_report(const jelly_scene* s, double* level_out, double* fraction) {
     const sps_real *y = sps_world_field(s->w, SPS_FIELD_POSITION_Y), *m = sps_world_field(s->w, SPS_FIELD_MASS);
-    double water_area = 0, level = JELLY_WATER_DEPTH, below = 0;
+    double water_area = 0, level = JELLY_WATER_DEPTH, below = 0, raft_below = 0;
     int i, k, it, first, count, components, rafts = 0;
     *fraction = 0;
     if (!s->tank || !sps_body_field(s->w, s->water, "density", &components, &first, &count)) return;
     for (i = first; i < first + count; ++i) water_area += m[i] / 1000;
     for (it = 0; it < 20; ++it) {
-        below = 0;
+        below = raft_below = 0;
         rafts = 0;
         for (k = 0; k < s->n_drops; ++k) {
+            double part_below = 0;
             if (!sps_body_field(s->w, s->drops[k].body, "density", &components, &first, &count)) continue;
-            ++rafts;
             for (i = first; i < first + count; ++i) {
                 const double part = (level - y[i]) / JELLY_DP + 0.5;
-                below += JELLY_DP * JELLY_DP * (part < 0 ? 0 : part > 1 ? 1 : part);
+                part_below += JELLY_DP * JELLY_DP * (part < 0 ? 0 : part > 1 ? 1 : part);
             }
+            below += part_below; /* crates displace water too */
+            if (!s->drops[k].crate) { raft_below += part_below; ++rafts; }
         }
         level = (water_area + below) / JELLY_VIEW_W;
     }
     *level_out = level;
-    if (rafts) *fraction = below / (rafts * JELLY_RAFT_W * JELLY_RAFT_H);
+    if (rafts) *fraction = raft_below / (rafts * JELLY_RAFT_W * JELLY_RAFT_H);
 }
 
 #endif
