@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.13.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.14.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -835,6 +835,14 @@
       omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
+      0.14.0 (2026-12-06) free rigid bodies (SPS_MATERIAL_RIGID_DYNAMIC: Newton-Euler with the
+                         implicit midpoint rule, friction at the contact point's velocity);
+                         geometry from files (chapter >>geometry: STL, OBJ, outlines, SVG; exact
+                         signed distance with a tree; mesh fills and container shells); contact
+                         at rest where bodies are filled flush (contact_rest; the papers' law
+                         kept as SPS_CONTACT_REST_KERNEL); set-up warnings (gravity along z in
+                         2D, friction in degrees, a slot at a wall), each printed once; the
+                         churn watch; triple corner images in 3D; sps_fluid_sound_speed.
       0.13.0 (2026-12-06) sps_world_restore checks every field of an untrusted file before it
                          changes the world (fuzzed past its checksum); water under gravity: the
                          corner images of perpendicular walls, the pressure force and divergence
@@ -943,9 +951,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 13
+#define SPHSOLID_VERSION_MINOR 14
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.13.0"
+#define SPHSOLID_VERSION_STRING "0.14.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
