@@ -2093,6 +2093,7 @@ typedef struct sps__body {
     int coupled;         /* a fluid that touches a solid body: its continuity pass takes the solid's
                             particles as wall images (chapter >>coupling: fluid-structure) */
     sps__rigid rigid;    /* a free rigid body's motion (model.free_rigid) */
+    sps__rigid rigid_good; /* its copy with the last good state (keep_last_good_state) */
 } sps__body;
 
 /* How two bodies touch (the world's touch table): by the contact law, or a fluid and a solid
@@ -9374,6 +9375,8 @@ static void sps__save_good_state(sps_world* w) {
             }
     }
     memcpy(w->good_id, w->id, sizeof(int) * n);
+    for (bi = 0; bi < w->nbodies; ++bi) /* a free rigid body's motion goes back with its particles */
+        if (w->bodies[bi].model.free_rigid) w->bodies[bi].rigid_good = w->bodies[bi].rigid;
     w->good_n = w->n;
     w->good_time = w->time;
 }
@@ -10029,6 +10032,8 @@ static void sps__restore_good_state(sps_world* w) {
         const int i = w->slot_of_id[w->good_id[j]];
         w->vol[i] = w->mass[i] / w->rho[i];
     }
+    for (k = 0; k < w->nbodies; ++k)
+        if (w->bodies[k].model.free_rigid && w->bodies[k].rigid_good.ready) w->bodies[k].rigid = w->bodies[k].rigid_good;
     w->time = w->good_time;
     if (!w->needs_sort_by_body) w->lists_valid = sps__build_neighbors(w) == SPS_OK;
 }
