@@ -480,8 +480,8 @@
       SPS_CONTACT_REST_KERNEL: the papers' law above, every bit of the density pushes: a body
       rests about 1.5 dp off a wall (its first row 2 dp above it) and filled flush it is thrown
       off at a tenth of its sound speed; the examples that reproduce a paper's contact figures
-      (ball_plate2d, balls3d, rings2d, impact2d, the Taylor bars, punches, debris_barrier3d) use
-      it (--contact-rest flush|kernel).
+      (ball_plate2d, balls3d, rings2d, impact2d, the Taylor bars, punches, debris_barrier3d)
+      and bounce (its recorded figures) use it (--contact-rest flush|kernel).
       Friction (sps_body_def.friction, sps_world_set_wall_friction): Coulomb's law with a
       velocity-regularised stick. A contact's coefficient is the geometric mean sqrt(mu_a mu_b)
       of its two sides (a body and a wall, or two bodies; Box2D's rule: a frictionless side
@@ -541,7 +541,8 @@
       half drift. The free turn is the implicit midpoint rule for Euler's equations in the
       principal frame with a Cayley rotation: it keeps |L| and the rotational energy exactly
       (quadratic invariants) and leaves the world's L untouched, so an isolated body keeps its
-      energy to 1e-13 and its momenta to the last bit over 1e5 sub-steps (tested), and the
+      energy to 1e-13, its linear momentum and its angular momentum about its centre of mass to
+      the last bit over 1e5 sub-steps (tested), and the
       intermediate axis flips at the closed form's period (examples/rigid_spin: 0.00 %). In 2D the
       turn is exact. It runs no stress, continuity or shear pass and builds no neighbour list;
       the time step sees its speed and its contact stiffness c0 = sqrt(K / rho0) (E and nu set K,
@@ -1328,14 +1329,15 @@ SPSDEF sps_material_def sps_default_material_def(void);
 SPSDEF sps_body_def sps_default_body_def(void);
 
 /* The sound speed c0 [m/s] for a fluid (material.sound_speed) whose density may vary by the
-   fraction density_error, in (0, 0.5]: the larger of sqrt(g depth / e) (the hydrostatic
-   compression g H / c0^2 at the floor of water `depth` deep under gravity of magnitude g) and
-   U / sqrt(e) (the dynamic pressure's rho U^2 / 2 against rho c0^2, U the larger of flow_speed
-   and the free-fall speed sqrt(2 g depth)). SPS_DENSITY_ERROR_ACCURATE gives the papers' 10 U;
+   fraction density_error e, in (0, 0.5]: U / sqrt(e), U the larger of flow_speed and the
+   free-fall speed sqrt(2 g depth) of water `depth` deep under gravity of magnitude g (the
+   dynamic pressure rho U^2 against rho c0^2; it also bounds the hydrostatic compression at the
+   floor, g H / c0^2 = e / 2 at most). SPS_DENSITY_ERROR_ACCURATE gives the papers' 10 U;
    SPS_DENSITY_ERROR_GAME 4.5 U: 2.2 times fewer sub-steps when the water sets the time step,
    for a density within 5 % (bench/VALIDATION.md, "The natural set-up"). 0 for an
-   argument out of range (not finite, negative, or e outside (0, 0.5]), which the body's check
-   then refuses as material.sound_speed = 0. */
+   argument out of range (not finite, negative, or e outside (0, 0.5]) and when g depth and
+   flow_speed are all 0 (no speed to scale by), which the body's check then refuses as
+   material.sound_speed = 0. */
 #define SPS_DENSITY_ERROR_ACCURATE 0.01
 #define SPS_DENSITY_ERROR_GAME 0.05
 SPSDEF sps_real sps_fluid_sound_speed(sps_real gravity, sps_real depth, sps_real flow_speed, sps_real density_error);
@@ -2394,8 +2396,6 @@ static void sps__set_error(sps_world* w, int level, const char* fmt, ...) {
     sps__vset_error(w, level, fmt, ap);
     va_end(ap);
 }
-/* A warning (log level 1): a call that did what it was asked but probably not what was meant.
-   It goes to the log only; the world's last error stays as it was. */
 /* Whether a warning with this text was issued before (then counted, not printed again): a cause
    that recurs in a loop, or at every commit of the contacts, speaks once. The table keeps the
    first SPS__WARNED texts; beyond it every warning prints. */
@@ -2416,8 +2416,10 @@ static int sps__warned_before(sps_world* w, const char* msg) {
     return 0;
 }
 
-/* Every world is allocated non-const (sps_world_create): the warning table is written through
-   a const world's pointer, as the error message is (sps__set_error_const). */
+/* A warning (log level 1): a call that did what it was asked but probably not what was meant.
+   It goes to the log only; the world's last error stays as it was. Every world is allocated
+   non-const (sps_world_create): the warning table is written through a const world's pointer,
+   as the error message is (sps__set_error_const). */
 static void sps__warn(const sps_world* w, const char* fmt, ...) {
     char msg[1024];
     va_list ap;
@@ -2450,7 +2452,8 @@ static void sps__report_repeated_warnings(const sps_world* w) {
     for (k = 0; k < w->nwarned && w->def.log; ++k)
         if (w->warned[k].count > 1) {
             char msg[256];
-            snprintf(msg, sizeof msg, "the warning \"%.80s...\" was issued %d times (printed once)", w->warned[k].head, w->warned[k].count);
+            snprintf(msg, sizeof msg, "the warning \"%.80s%s\" was issued %d times (printed once)", w->warned[k].head,
+                     strlen(w->warned[k].head) > 80 ? "..." : "", w->warned[k].count);
             w->def.log(1, msg, w->def.log_user);
         }
 }
@@ -2580,15 +2583,13 @@ SPSDEF sps_material_def sps_default_material_def(void) {
 }
 
 SPSDEF sps_real sps_fluid_sound_speed(sps_real gravity, sps_real depth, sps_real flow_speed, sps_real density_error) {
-    sps_real fall, speed, hydrostatic, dynamic;
+    sps_real fall, speed;
     if (!sps__finite(gravity) || !sps__finite(depth) || !sps__finite(flow_speed) || gravity < 0 || depth < 0 || flow_speed < 0 ||
         !(density_error > 0 && density_error <= SPS_R(0.5)))
         return 0;
     fall = SPS__SQRT(2 * gravity * depth);
     speed = flow_speed > fall ? flow_speed : fall;
-    hydrostatic = SPS__SQRT(gravity * depth / density_error);
-    dynamic = speed / SPS__SQRT(density_error);
-    return hydrostatic > dynamic ? hydrostatic : dynamic;
+    return speed / SPS__SQRT(density_error);
 }
 
 SPSDEF sps_body_def sps_default_body_def(void) {
@@ -4058,6 +4059,15 @@ static void sps__warn_empty_fill(const sps_world* w, const char* fn, sps_body b,
               with_sdf ? " where sdf < 0" : "", w->bodies[sps__body_slot(w, b)].name);
 }
 
+/* A free rigid body takes its particles' reference frame at its first step (sps__rigid_setup):
+   particles added after it would reset its turn, so the fills refuse them. */
+static int sps__rigid_fill_closed(sps_world* w, int k, const char* fn) {
+    if (!w->bodies[k].model.free_rigid || !w->bodies[k].rigid.ready) return 0;
+    sps__set_error(w, 0, "%s: body '%s' is a free rigid body that has stepped (its particles set its mass, inertia and frame at the "
+                   "first step); add all of its particles before the first step, or add another body", fn, w->bodies[k].name);
+    return 1;
+}
+
 static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_real lo[3], const sps_real hi[3],
                             sps_real (*sdf)(const sps_real x[3], void* user), void* user, int* added) {
     int k, cnt[3] = {1, 1, 1}, a, i, j, l, total = 0;
@@ -4065,7 +4075,7 @@ static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_
     sps_real dp;
     if (added) *added = 0;
     if (!w) return SPS_ERR_INVALID_ARG;
-    if ((k = sps__check_body(w, b, fn)) < 0 || !sps__check_box(w, fn, lo, hi)) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, fn)) < 0 || !sps__check_box(w, fn, lo, hi) || sps__rigid_fill_closed(w, k, fn)) return SPS_ERR_INVALID_ARG;
     dp = w->def.dp;
     for (a = 0; a < w->dim; ++a) {
         /* count lattice points inside [lo, hi); the slack absorbs the rounding of lo, hi and dp,
@@ -4112,7 +4122,7 @@ SPSDEF sps_result sps_body_add_sdf(sps_world* w, sps_body b, const sps_real lo[3
 SPSDEF sps_result sps_body_add_particles(sps_world* w, sps_body b, int n, const sps_real* xyz, const sps_real* vol) {
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
-    if ((k = sps__check_body(w, b, "sps_body_add_particles")) < 0) return SPS_ERR_INVALID_ARG;
+    if ((k = sps__check_body(w, b, "sps_body_add_particles")) < 0 || sps__rigid_fill_closed(w, k, "sps_body_add_particles")) return SPS_ERR_INVALID_ARG;
     if (n < 0 || n > SPS__MAX_PARTICLES - w->n || (n > 0 && !xyz)) {
         sps__set_error(w, 0, "sps_body_add_particles: n = %d with xyz %s, allowed 0 <= n <= %d (the world has %d) and xyz != NULL",
                        n, xyz ? "set" : "NULL", SPS__MAX_PARTICLES - w->n, w->n);
@@ -4298,6 +4308,12 @@ SPSDEF sps_result sps_body_constrain_box(sps_world* w, sps_body b, const sps_rea
     if (!w) return SPS_ERR_INVALID_ARG;
     if ((k = sps__check_body(w, b, "sps_body_constrain_box")) < 0 || !sps__check_box(w, "sps_body_constrain_box", lo, hi)) return SPS_ERR_INVALID_ARG;
     if (mask == 0 || mask > SPS_AXIS_ALL) { sps__set_error(w, 0, "sps_body_constrain_box: mask = %u, allowed 1..7 (SPS_AXIS_X|Y|Z)", mask); return SPS_ERR_INVALID_ARG; }
+    if (w->bodies[k].model.free_rigid) { /* its particles move with the body: a held particle would be ignored */
+        sps__set_error(w, 0, "sps_body_constrain_box: body '%s' is a free rigid body (material.kind = %d), whose particles move as one; "
+                       "hold it with sps_body_lock_axes, or make it a wall body (SPS_MATERIAL_RIGID) for a prescribed motion",
+                       w->bodies[k].name, (int)w->bodies[k].def.material.kind);
+        return SPS_ERR_INVALID_ARG;
+    }
     con.mask = mask;
     for (a = 0; a < 3; ++a) {
         con.velocity[a] = velocity ? velocity[a] : 0;
@@ -9513,7 +9529,8 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
    SPS__CHURN_RISE times the one before, ending between SPS__CHURN_FLOOR (the round-off of water
    at rest) and SPS__CHURN_SMALL of m |g| H (H its height at the first check): warn once with the
    likely causes. Measured (2D tank at rest, h = 1.3 dp, depth/dp 15): the kinetic energy rose
-   31-, 300- and 13-fold in three windows of 0.3 s, to 8e-5 m g H; a dam break's kinetic energy
+   31-, 300- and 13-fold in three windows (0.3 s each: a window ends with the advection step
+   that passes its quarter second), to 8e-5 m g H; a dam break's kinetic energy
    passes 1e-3 m g H within its first window. */
 #define SPS__CHURN_WINDOW SPS_R(0.25)
 #define SPS__CHURN_WINDOWS 3
@@ -10032,8 +10049,17 @@ static void sps__restore_good_state(sps_world* w) {
         const int i = w->slot_of_id[w->good_id[j]];
         w->vol[i] = w->mass[i] / w->rho[i];
     }
-    for (k = 0; k < w->nbodies; ++k)
-        if (w->bodies[k].model.free_rigid && w->bodies[k].rigid_good.ready) w->bodies[k].rigid = w->bodies[k].rigid_good;
+    for (k = 0; k < w->nbodies; ++k) /* a free rigid body's motion (what the restart file holds of it too) */
+        if (w->bodies[k].model.free_rigid) {
+            sps__rigid* r = &w->bodies[k].rigid;
+            const sps__rigid* g = &w->bodies[k].rigid_good;
+            memcpy(r->x, g->x, sizeof r->x); memcpy(r->turn, g->turn, sizeof r->turn);
+            memcpy(r->v, g->v, sizeof r->v); memcpy(r->L, g->L, sizeof r->L);
+            memcpy(r->applied_force, g->applied_force, sizeof r->applied_force);
+            memcpy(r->applied_point, g->applied_point, sizeof r->applied_point);
+            memcpy(r->force, g->force, sizeof r->force); memcpy(r->torque, g->torque, sizeof r->torque);
+            r->contacts = g->contacts;
+        }
     w->time = w->good_time;
     if (!w->needs_sort_by_body) w->lists_valid = sps__build_neighbors(w) == SPS_OK;
 }
@@ -10891,7 +10917,7 @@ SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) { return s
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 2u /* 2: the fingerprint holds every def item (sps__world_def_items) */
+#define SPS__RESTART_VERSION 3u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */
@@ -11300,6 +11326,7 @@ static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
 /* keep_last_good_state: the copy of the last configuration update of good_n particles: its
    time, its ids (distinct, in range), its blocks (sps__good_block), each value in its field's
    range. */
+static void sps__rigid_transfer(sps__stream* s, sps_world* w, int bi, sps__rigid* r);
 static void sps__transfer_good(sps_world* w, int good_n, sps__stream* s) {
     const unsigned char *ids = NULL, *p;
     const sps__field_info* f;
@@ -11336,12 +11363,10 @@ static void sps__transfer_good(sps_world* w, int good_n, sps__stream* s) {
                 }
         }
     }
+    for (m = 0; m < w->nbodies && !sps__stream_bad(s); ++m) /* a free rigid body's motion with it */
+        if (w->bodies[m].model.free_rigid) sps__rigid_transfer(s, w, m, &w->bodies[m].rigid_good);
 }
 
-/* The payload, both ways: every item of the state once, in file order. Saving passes the
-   world cast from const (nothing is written into it); restoring runs it three times (the
-   passes of sps__reader), into a world whose storage is committed (sps__ready_to_step).
-   Returns whether the payload holds the neighbour lists. */
 /* A free rigid body's motion (its mass properties and locks are the scene's calls, made again
    by the program). The rotation's entries are those of a rotation, within [-1, 1]. */
 static void sps__rigid_transfer(sps__stream* s, sps_world* w, int bi, sps__rigid* r) {
@@ -11354,8 +11379,13 @@ static void sps__rigid_transfer(sps__stream* s, sps_world* w, int bi, sps__rigid
     sps__real_item(s, w, bi, r->applied_point, 3, &sps__finite_range, "rigid applied point");
     sps__real_item(s, w, bi, r->force, 3, &sps__finite_range, "rigid force");
     sps__real_item(s, w, bi, r->torque, 3, &sps__finite_range, "rigid torque");
+    sps__count_item(s, &r->contacts, w->bodies[bi].count, "rigid contact count"); /* it scales the stick drag */
 }
 
+/* The payload, both ways: every item of the state once, in file order. Saving passes the
+   world cast from const (nothing is written into it); restoring runs it three times (the
+   passes of sps__reader), into a world whose storage is committed (sps__ready_to_step).
+   Returns whether the payload holds the neighbour lists. */
 static int sps__transfer_state(sps_world* w, sps__stream* s) {
     int64_t steps[2];
     int k, bi, kept, good_n, lists, stopped;
@@ -12141,6 +12171,7 @@ static double sps__mesh_distance(const sps_mesh* m, const double p[3], double ba
         const int inside = sps__mesh_ray_parity(m, p, dirs[k]);
         if (inside >= 0) return inside ? -band : band;
     }
+    if (band == HUGE_VAL) return HUGE_VAL; /* the whole search found no triangle: p so far away that d^2 overflows */
     return sps__mesh_distance(m, p, HUGE_VAL, NULL); /* three undecided rays: the whole search */
 }
 SPSDEF sps_real sps_mesh_sdf(const sps_real x[3], void* mesh) {

@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
     int fill = 0; /* relaxed|lattice */
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.015, .vtk_every = 0.001, .csv_every = 5e-5,
                         .E = BALL_PLATE_E, .nu = BALL_PLATE_NU, .rho0 = BALL_PLATE_RHO0, .out = "out/" BP_NAME, .jitter = 0, .seed = 1,
-                        .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     damping_options k = {0, 0};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 0.0025)", 5e-4, 0.02, NULL},

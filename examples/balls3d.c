@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
     int fill = 0; /* choice index: relaxed|lattice */
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.007, .vtk_every = 0.001, .csv_every = 0.00005,
                         .E = BALLS3D_E, .nu = BALLS3D_NU, .rho0 = BALLS3D_RHO0, .out = "out/" CASE, .jitter = 0, .seed = 1,
-                        .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 0.001)", 2e-4, 0.01, NULL},
         {"v0", OPT_REAL, &v0_c0, "speed of each ball / c0", 0, 1, NULL},

@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
     int dim = 2, rigid = 0;
     double height = 0.2, viscosity = 20, mu = 0, speed = 0, angle = 20, dp = 0.005, contact_damping = 0;
     common_options c = {.shear = SPS_SHEAR_ENO_A, .rotation = SPS_ROTATION_PAIR, .cfl = 0.4, .t_end = 3, .vtk_every = 0.05,
-                        .csv_every = 0.002, .E = 1e6, .nu = 0.3, .rho0 = 1000, .out = "out/bounce", .contact_rest = 1 /* the figures of bench/VALIDATION.md were measured with the papers' contact law */, PNG_DEFAULTS};
+                        .csv_every = 0.002, .E = 1e6, .nu = 0.3, .rho0 = 1000, .out = "out/bounce", .contact_rest = SPS_CONTACT_REST_KERNEL /* the figures of bench/VALIDATION.md were measured with the papers' contact law */, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"dim", OPT_INT, &dim, "space dimension (2: disc, 3: ball)", 2, 3, NULL},
         {"height", OPT_REAL, &height, "drop height of the lowest point above the floor [m]", 0.001, 100, NULL},

@@ -104,7 +104,7 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 4, .vtk_every = 0.1, .csv_every = 0.005, .E = 1e10, .nu = 0.2,
-                        .rho0 = 2500, .out = "out/debris_barrier3d", .jitter = 0, .seed = 1, .transport = 0, .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .rho0 = 2500, .out = "out/debris_barrier3d", .jitter = 0, .seed = 1, .transport = 0, .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     static const double radius[NBOULDERS] = {0.75, 0.6, 0.6, 0.45, 0.45};
     static const double place[NBOULDERS][2] = {{-1.0, 0}, {-2.6, -1.2}, {-2.6, 1.2}, {-3.9, -0.6}, {-3.9, 0.6}}; /* along the slope, across */
     double dp = 0.15, distance = 10.5;

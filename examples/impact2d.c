@@ -108,7 +108,7 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     double dp = 2e-4, yield = 3e8;
     common_options c = {.shear = SPS_SHEAR_GNO_A, .cfl = 0.4, .t_end = 8e-6, .vtk_every = 1e-6, .csv_every = 1e-7,
-                        .E = 7.417e10, .nu = 0.344, .rho0 = 2785, .out = "out/impact2d", .jitter = 0, .seed = 1, .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .E = 7.417e10, .nu = 0.344, .rho0 = 2785, .out = "out/impact2d", .jitter = 0, .seed = 1, .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 2e-4)", 2e-5, 1e-3, NULL},
         {"yield", OPT_REAL, &yield, "yield stress sigma_Y [Pa]", 1, 1e12, NULL},

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     double shape_every = 0.001;
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.004, .vtk_every = 0.001, .csv_every = 0.0001,
                         .E = PUNCH2D_E, .nu = PUNCH2D_NU, .rho0 = PUNCH2D_RHO0, .out = "out/" CASE, .jitter = 0, .seed = 1,
-                        .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 0.1 and 0.05)", 0.005, 0.25, NULL},
         {"vpunch", OPT_REAL, &v_punch, "punch speed [m/s], downwards", 0, 1e4, NULL},

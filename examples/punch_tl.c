@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
     int hourglass_form = SPS_HOURGLASS_VARIATIONAL;
     common_options c = {.cfl = 0.4, .t_end = 0, .vtk_every = 0, .csv_every = 0, .E = 1e9, .nu = 0.45, .rho0 = 1000,
-                        .out = "out/punch_tl", .seed = 1, .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .out = "out/punch_tl", .seed = 1, .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     opt_spec opts[] = {
         {"alpha", OPT_REAL, &alpha, "hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
         EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),

@@ -67,7 +67,7 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     rings2d_params p = {.dp = 0.001, .v0_c0 = 0.06, .relaxed = 1, .iterations = 0};
     common_options c = {.shear = SPS_SHEAR_ENO_A, .cfl = 0.4, .t_end = 0.012, .vtk_every = 0.001, .csv_every = 0.0001,
-                        .E = RINGS2D_E, .nu = RINGS2D_NU, .rho0 = RINGS2D_RHO0, .out = "out/rings2d", .seed = 1, .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .E = RINGS2D_E, .nu = RINGS2D_NU, .rho0 = RINGS2D_RHO0, .out = "out/rings2d", .seed = 1, .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     int fill = 0;
     damping_options k = {0, 0};
     opt_spec opts[] = {

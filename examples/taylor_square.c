@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
     int res = TB_RES, material = 0; /* j2|elastic */
     double yield = TB_YIELD, hardening = TB_HARDENING;
     common_options c = {.shear = SPS_SHEAR_GNO_A, .cfl = 0.4, .t_end = 6e-5, .vtk_every = 1e-5, .csv_every = 5e-7,
-                        .E = TB_E, .nu = TB_NU, .rho0 = TB_RHO0, .out = "out/" TB_NAME, .jitter = 0, .seed = 1, .contact_rest = 1 /* the papers' contact law */, PNG_DEFAULTS};
+                        .E = TB_E, .nu = TB_NU, .rho0 = TB_RHO0, .out = "out/" TB_NAME, .jitter = 0, .seed = 1, .contact_rest = SPS_CONTACT_REST_KERNEL /* the papers' contact law */, PNG_DEFAULTS};
     opt_spec opts[] = {
 #ifdef TAYLOR_ROUND
         {"res", OPT_INT, &res, "resolution R/dp (paper: 12; also 6 and 9)", 2, 60, NULL},

@@ -92,6 +92,10 @@ static int test_rigid_rests_on_floor(void) {
            (double)SPS__SQRT(s1.velocity[0] * s1.velocity[0] + s1.velocity[1] * s1.velocity[1]), (double)d.max_speed);
     ENSURE(fabs(s1.position[0] - s0.position[0]) < 1e-6 && fabs(s1.position[1] - s0.position[1]) < 1e-6); /* 2e-4 dp: no creep */
     ENSURE(d.max_speed < 1e-4); /* no jitter: 1e-4 m/s is 1e-4 of the speed of a 5 cm fall */
+    { /* its frame was taken at the first step: more particles are refused, not snapped into a reset frame */
+        const sps_real more_lo[3] = {0.2, 0.2, 0}, more_hi[3] = {0.25, 0.25, 0};
+        ENSURE(sps_body_add_box(w, b, more_lo, more_hi, NULL) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "before the first step"));
+    }
     sps_world_destroy(w);
     return 0;
 }
@@ -116,6 +120,11 @@ static int test_rigid_bad_input(void) {
     ENSURE(sps_body_lock_axes(w, b, 8, 0) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "translation = 8"));
     ENSURE(sps_body_set_rigid_pose(w, b, position, stretch) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "rotation"));
     ENSURE(sps_body_apply_impulse(w, b, NULL, NULL) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "impulse"));
+    { /* a constraint box would hold particles the body moves as one: refused, pointing to the locks */
+        const sps_real clo[3] = {-1, -1, -1}, chi[3] = {1, 1, 1};
+        ENSURE(sps_body_constrain_box(w, b, clo, chi, SPS_AXIS_ALL, NULL, NULL) == SPS_ERR_INVALID_ARG &&
+               strstr(sps_world_last_error(w), "sps_body_lock_axes"));
+    }
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.sound_speed = 20;
     ENSURE(sps_world_add_body(w, &bd, &fluid) == SPS_OK);
