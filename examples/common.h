@@ -219,6 +219,29 @@ EX_UNUSED static const char* rotation_name(int r) {
     return r >= 0 && r < 3 ? names[r] : "?";
 }
 
+/* The a of the least-squares fit y = c0 + c1 t + a t^2 / 2 from the sums S[k] = sum t^k
+   (k = 0..4) and Y[k] = sum y t^k (k = 0..2): Cramer's rule for the t^2 coefficient. */
+EX_UNUSED static double ex_fitted_acceleration(const double* S, const double* Y) {
+    const double A[3][3] = {{S[0], S[1], S[2]}, {S[1], S[2], S[3]}, {S[2], S[3], S[4]}};
+    const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                       A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    const double det2 = A[0][0] * (A[1][1] * Y[2] - Y[1] * A[2][1]) - A[0][1] * (A[1][0] * Y[2] - Y[1] * A[2][0]) +
+                        Y[0] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    return 2 * det2 / det;
+}
+
+/* A disc (2D) or ball (3D) of `radius` centred at (0, centre_y, 0): the signed distance for
+   sps_body_add_sdf(_relaxed). */
+typedef struct {
+    int dim;
+    double centre_y, radius;
+} ex_ball;
+EX_UNUSED static sps_real ex_ball_sdf(const sps_real x[3], void* user) {
+    const ex_ball* b = (const ex_ball*)user;
+    const double dy = x[1] - b->centre_y, dz = b->dim == 3 ? x[2] : 0;
+    return (sps_real)(sqrt(x[0] * x[0] + dy * dy + dz * dz) - b->radius);
+}
+
 /* ---- the options every example shares ---- */
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, stress, threads, quiet; /* choice indices and flags */

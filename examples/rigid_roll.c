@@ -77,26 +77,6 @@ static int on_step(sps_world* w, void* user) {
     return 0;
 }
 
-/* The a of the least-squares fit y = c0 + c1 t + a t^2 / 2 from the sums. */
-static double fitted_acceleration(const double* S, const double* Y) {
-    const double A[3][3] = {{S[0], S[1], S[2]}, {S[1], S[2], S[3]}, {S[2], S[3], S[4]}};
-    const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) - A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
-                       A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-    const double det2 = A[0][0] * (A[1][1] * Y[2] - Y[1] * A[2][1]) - A[0][1] * (A[1][0] * Y[2] - Y[1] * A[2][0]) +
-                        Y[0] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
-    return 2 * det2 / det; /* Cramer's rule for the t^2 coefficient */
-}
-
-typedef struct {
-    int dim;
-    double centre_y;
-} ball_shape;
-static sps_real ball_sdf(const sps_real x[3], void* user) {
-    const ball_shape* b = (const ball_shape*)user;
-    const double dy = x[1] - b->centre_y, dz = b->dim == 3 ? x[2] : 0;
-    return (sps_real)(sqrt(x[0] * x[0] + dy * dy + dz * dz) - SIZE);
-}
-
 int main(int argc, char** argv) {
     int shape = 0, dim; /* disc|ball|box */
     double mu = 0.5, angle = 30, dp = 0.0025, settle = 0.1, lift = 0, damping = 0;
@@ -148,9 +128,9 @@ int main(int argc, char** argv) {
         const sps_real lo[3] = {-SIZE, (sps_real)(lift * dp), (sps_real)(-SIZE / 2)}, hi[3] = {SIZE, (sps_real)(SIZE + lift * dp), (sps_real)(SIZE / 2)};
         ex_check(w, sps_body_add_box(w, s.body, lo, hi, NULL));
     } else {
-        ball_shape ball = {dim, SIZE + lift * dp};
+        ex_ball ball = {dim, SIZE + lift * dp, SIZE};
         const sps_real lo[3] = {-SIZE, (sps_real)(lift * dp), -SIZE}, hi[3] = {SIZE, (sps_real)(2 * SIZE + lift * dp), SIZE};
-        ex_check(w, sps_body_add_sdf_relaxed(w, s.body, lo, hi, ball_sdf, &ball, 0, NULL));
+        ex_check(w, sps_body_add_sdf_relaxed(w, s.body, lo, hi, ex_ball_sdf, &ball, 0, NULL));
         k = shape == 0 ? 0.5 : 0.4; /* I / (m R^2) */
     }
     {
@@ -171,7 +151,7 @@ int main(int argc, char** argv) {
     ex_check(w, sps_body_rigid_state(w, s.body, &st));
     inertia = dim == 2 ? st.inertia[8] : st.inertia[8]; /* about the rolling axis z */
     theory_set = shape == 2 ? theory : rolls ? g_t / (1 + inertia / (st.mass * s.radius * s.radius)) : theory;
-    accel = fitted_acceleration(s.sum, s.sum_x);
+    accel = ex_fitted_acceleration(s.sum, s.sum_x);
     rel = fabs(accel - theory) / (theory > 0 ? theory : g_t);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     printf("RESULT case=rigid_roll shape=%s mu=%g angle=%g dp=%g accel=%.5g theory=%.5g theory_set=%.5g rel_error=%.2f%% "
