@@ -242,6 +242,26 @@ EX_UNUSED static sps_real ex_ball_sdf(const sps_real x[3], void* user) {
     return (sps_real)(sqrt(x[0] * x[0] + dy * dy + dz * dz) - b->radius);
 }
 
+/* The body of a slope scene (examples/incline.c, rigid_roll.c; gravity tilted, the slope the
+   floor y = 0): a block 2 size x size (x size deep in 3D), or a disc / ball of radius size
+   filled body-fitted, its surface `lift` [m] above the floor, on a free-slip floor with Coulomb
+   coefficient mu. */
+EX_UNUSED static sps_result ex_add_slope_body(sps_world* w, sps_body b, int block, int dim, double size, double lift, double mu) {
+    const sps_real floor_point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+    sps_result r;
+    if (block) {
+        const sps_real lo[3] = {(sps_real)-size, (sps_real)lift, (sps_real)(-size / 2)}, hi[3] = {(sps_real)size, (sps_real)(size + lift), (sps_real)(size / 2)};
+        r = sps_body_add_box(w, b, lo, hi, NULL);
+    } else {
+        ex_ball ball;
+        const sps_real lo[3] = {(sps_real)-size, (sps_real)lift, (sps_real)-size}, hi[3] = {(sps_real)size, (sps_real)(2 * size + lift), (sps_real)size};
+        ball.dim = dim; ball.centre_y = size + lift; ball.radius = size;
+        r = sps_body_add_sdf_relaxed(w, b, lo, hi, ex_ball_sdf, &ball, 0, NULL);
+    }
+    if (r == SPS_OK) r = sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP);
+    return r == SPS_OK ? sps_world_set_wall_friction(w, 0, (sps_real)mu) : r;
+}
+
 /* ---- the options every example shares ---- */
 typedef struct {
     int shear, rotation, stepping, geometry, kernel, stress, threads, quiet; /* choice indices and flags */

@@ -124,20 +124,8 @@ int main(int argc, char** argv) {
     ex_check(NULL, sps_world_create(&wd, &w));
     memset(&s, 0, sizeof s);
     ex_check(w, sps_world_add_body(w, &bd, &s.body));
-    if (shape == 2) {
-        const sps_real lo[3] = {-SIZE, (sps_real)(lift * dp), (sps_real)(-SIZE / 2)}, hi[3] = {SIZE, (sps_real)(SIZE + lift * dp), (sps_real)(SIZE / 2)};
-        ex_check(w, sps_body_add_box(w, s.body, lo, hi, NULL));
-    } else {
-        ex_ball ball = {dim, SIZE + lift * dp, SIZE};
-        const sps_real lo[3] = {-SIZE, (sps_real)(lift * dp), -SIZE}, hi[3] = {SIZE, (sps_real)(2 * SIZE + lift * dp), SIZE};
-        ex_check(w, sps_body_add_sdf_relaxed(w, s.body, lo, hi, ex_ball_sdf, &ball, 0, NULL));
-        k = shape == 0 ? 0.5 : 0.4; /* I / (m R^2) */
-    }
-    {
-        const sps_real point[3] = {0, 0, 0}, normal[3] = {0, 1, 0};
-        ex_check(w, sps_world_add_wall(w, point, normal, SPS_WALL_FREE_SLIP));
-        ex_check(w, sps_world_set_wall_friction(w, 0, (sps_real)mu));
-    }
+    ex_check(w, ex_add_slope_body(w, s.body, shape == 2, dim, SIZE, lift * dp, mu));
+    if (shape != 2) k = shape == 0 ? 0.5 : 0.4; /* I / (m R^2) */
     if (shape == 2) theory = tan(theta) > mu ? g_t - mu * g_n : 0;
     else {
         rolls = mu >= tan(theta) * k / (1 + k);
