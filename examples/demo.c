@@ -25,15 +25,13 @@
    Build: make demo        Run: ./build/demo      Measure: OMP_NUM_THREADS=1 ./build/demo --headless
    Expect: >= 30 frames per second on one core of a 2020s machine at 80 x 24. */
 #include "common.h"
-#include "scenes/jelly.h"
+#include "scenes/demo_play.h"
 #include <signal.h>
 #include <stdarg.h>
 #include <sys/ioctl.h>
 #include <termios.h>
 
 #define STATUS_LINES 2
-static const sps_shear formulations[] = {SPS_SHEAR_ENO_A, SPS_SHEAR_GNO_A, SPS_SHEAR_ENO, SPS_SHEAR_GNO, SPS_SHEAR_OG};
-#define FORMULATIONS ((int)(sizeof formulations / sizeof *formulations))
 
 /* ---- terminal: raw mode, restored however the program ends ---- */
 static struct termios g_saved_termios;
@@ -139,40 +137,6 @@ static void screen_draw(screen* s, const sps_world* w, const char* status, const
                   s->img.width, hint);
 }
 
-/* FNV-1a of the positions in stable-id order: the state a run ends in, as one number. */
-static uint64_t position_checksum(const sps_world* w) {
-    uint64_t h = 1469598103934665603ULL;
-    int id, n = sps_world_particle_count(w);
-    for (id = 0; id < n; ++id) {
-        sps_particle_state p;
-        double x[3];
-        size_t k;
-        sps_world_particle(w, id, &p);
-        x[0] = p.position[0]; x[1] = p.position[1]; x[2] = p.position[2];
-        for (k = 0; k < sizeof x; ++k) h = (h ^ ((const unsigned char*)x)[k]) * 1099511628211ULL;
-    }
-    return h;
-}
-
-/* The drag: a block (0.24 m square, 57.6 kg/m) hangs 0.03 m below its target under gravity at
-   this stiffness, and the damping is about a fifth of critical (2 sqrt(k m) = 2100 N s/m). */
-#define DRAG_STIFFNESS 2e4
-#define DRAG_DAMPING 400
-#define DRAG_STEP 0.08 /* [m] per key press */
-
-/* g: grabs the last dropped block at its centre, or lets go. */
-static void toggle_drag(jelly_scene* scene, sps_drag* drag, int* dragging) {
-    sps_particle_state centre;
-    const jelly_drop* d;
-    if (*dragging) { ex_check(scene->w, sps_body_drag_end(scene->w, drag)); *dragging = 0; return; }
-    if (scene->n_drops == 0) return;
-    d = &scene->drops[scene->n_drops - 1];
-    ex_check(scene->w, sps_world_particle(scene->w, d->centre_id, &centre));
-    ex_check(scene->w, sps_body_drag_begin(scene->w, d->body, centre.position, DRAG_STIFFNESS, DRAG_DAMPING, 2 * JELLY_DP * 2.5, drag));
-    *dragging = 1;
-}
-
-
 /* The library's warnings (an impact faster than 0.2 c0, the energy watchdog): printed when
    headless, shown in the hint line in the terminal, where a printed line would scroll the
    picture away. */
@@ -185,8 +149,7 @@ static void demo_log(int level, const char* message, void* user) {
 }
 
 int main(int argc, char** argv) {
-    int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, frame, shear = 0, paused = 0, resets = 0, dragging = 0, tank = 0;
-    sps_drag drag;
+    int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, frame, paused = 0, tank = 0;
     double fps = 30, start, physics = 0, drawing = 0, slowest = 0, next, shown_fps = 0, fps_clock;
     const char* png = "";
     opt_spec opts[] = {
@@ -198,7 +161,7 @@ int main(int argc, char** argv) {
         {"png", OPT_STRING, &png, "write the last frame as a PNG picture (600 x 400) to this file; empty = none", 0, 0, NULL},
         {"scene", OPT_CHOICE, &tank, "the scene at the start (key t switches)", 0, 0, "playground|tank"},
     };
-    jelly_scene scene;
+    demo_play play;
     screen scr;
     char status[256], hint[256] = "space drop  f formulation  g grab  hjkl move  t tank/playground  p pause  q quit";
     double level = 0, submerged = 0; /* the tank scene's water level and the rafts' summed submerged fraction */
@@ -209,56 +172,25 @@ int main(int argc, char** argv) {
     opt_parse(argc, argv, "jelly in the terminal, in real time (scenes/jelly.h)", opts, (int)(sizeof opts / sizeof *opts));
     if (!headless) terminal_size(size);
     g_in_terminal = !headless;
-    ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
+    ex_check(NULL, demo_play_start(&play, threads, demo_log, tank, headless));
     screen_open(&scr, size[0], size[1]);
     if (!headless) terminal_raw();
     start = next = fps_clock = wall_seconds();
     for (frame = 0; headless ? frame < frames : !g_stop; ++frame) {
         double t0 = wall_seconds(), t1;
-        int key = !headless ? read_key()
-                  : tank    ? (frame == 10 ? ' ' : -1)
-                            : (frame % 20 == 10 ? ' ' : frame % 20 == 0 && frame ? 'f' : frame == 15 ? 'g' : frame > 15 && frame % 3 == 0 ? 'l' : -1);
+        const int key = headless ? demo_play_scripted_key(frame, play.scene.tank) : read_key();
         if (key == 'q') break;
         if (key == 'p') paused = !paused;
-        /* headless cycles the -A variants only (the first two): ENO and GNO do not turn the stored
-           shear of a spinning block and OG breaks down, so a block of theirs may fly apart on impact
-           (interactive: the scene resets with the message) */
-        if (key == 'f') shear = (shear + 1) % (headless ? 2 : FORMULATIONS);
-        if (key == 'g') toggle_drag(&scene, &drag, &dragging);
-        if (key == 't') { /* the other scene, afresh */
-            tank = !tank;
-            dragging = 0;
-            sps_world_destroy(scene.w);
-            ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
-        }
-        if (dragging && (key == 'h' || key == 'l')) drag.target[0] += key == 'l' ? DRAG_STEP : -DRAG_STEP;
-        if (dragging && (key == 'j' || key == 'k')) drag.target[1] += key == 'k' ? DRAG_STEP : -DRAG_STEP;
-        if (key == ' ') {
-            if (scene.n_drops == JELLY_MAX_DROPS) { /* particles cannot be removed: start afresh */
-                dragging = 0;
-                sps_world_destroy(scene.w);
-                ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
-                snprintf(hint, sizeof hint, "scene reset after %d blocks: particles cannot be removed yet", JELLY_MAX_DROPS);
-            }
-            ex_check(scene.w, jelly_drop_block(&scene, formulations[shear]));
-        }
-        if (!paused) {
-            sps_real covered;
-            sps_result r = sps_world_advance_frame(scene.w, (sps_real)(1 / fps), headless ? 0 : 0.8 / fps, &covered);
-            if (r == SPS_ERR_UNSTABLE && !headless) { /* an OG block may break down: show it and start afresh */
-                snprintf(hint, sizeof hint, "%.*s: scene reset", (int)sizeof hint - 16, sps_world_last_error(scene.w));
-                dragging = 0;
-                sps_world_destroy(scene.w);
-                ex_check(NULL, jelly_create(threads, demo_log, tank, &scene));
-                ++resets;
-            } else {
-                ex_check(scene.w, r);
-            }
+        ex_check(play.scene.w, demo_play_key(&play, key));
+        if (!paused) ex_check(play.scene.w, demo_play_frame(&play, fps, headless ? 0 : 0.8 / fps));
+        if (*play.note) { /* the scene started afresh: why */
+            snprintf(hint, sizeof hint, "%s", play.note);
+            *play.note = 0;
         }
         t1 = wall_seconds();
-        if (tank && frame >= 2 * fps && frame < 5 * fps) { /* the mean float depth over 2-5 s */
+        if (play.scene.tank && frame >= 2 * fps && frame < 5 * fps) { /* the mean float depth over 2-5 s */
             double fraction;
-            jelly_float_report(&scene, &level, &fraction);
+            jelly_float_report(&play.scene, &level, &fraction);
             submerged += fraction;
             ++float_frames;
         }
@@ -266,9 +198,9 @@ int main(int argc, char** argv) {
             snprintf(hint, sizeof hint, "%s", g_warning);
             *g_warning = 0;
         }
-        snprintf(status, sizeof status, "t = %6.2f s  %5d particles  %5.1f fps  new blocks: %s%s", (double)sps_world_time(scene.w),
-                 sps_world_particle_count(scene.w), shown_fps, shear_name(formulations[shear]), paused ? "  (paused)" : "");
-        screen_draw(&scr, scene.w, status, hint);
+        snprintf(status, sizeof status, "t = %6.2f s  %5d particles  %5.1f fps  new blocks: %s%s", (double)sps_world_time(play.scene.w),
+                 sps_world_particle_count(play.scene.w), shown_fps, shear_name(demo_formulations[play.shear]), paused ? "  (paused)" : "");
+        screen_draw(&scr, play.scene.w, status, hint);
         physics += t1 - t0;
         drawing += wall_seconds() - t1;
         slowest = fmax(slowest, wall_seconds() - t0);
@@ -286,26 +218,26 @@ int main(int argc, char** argv) {
         picture.width = 600;
         picture.height = 400;
         picture.decorations = 1;
-        if (render_world(scene.w, &picture, RENDER_PNG, png) != 0) { fprintf(stderr, "%s: cannot write %s\n", g_prog, png); exit(1); }
+        if (render_world(play.scene.w, &picture, RENDER_PNG, png) != 0) { fprintf(stderr, "%s: cannot write %s\n", g_prog, png); exit(1); }
     }
     {
         const double wall = wall_seconds() - start;
         sps_diagnostics d;
         sps_body all = {0};
         char floating[160] = "";
-        ex_check(scene.w, sps_world_diagnostics(scene.w, all, &d));
+        ex_check(play.scene.w, sps_world_diagnostics(play.scene.w, all, &d));
         if (float_frames) submerged /= float_frames;
         if (submerged > 0)
             snprintf(floating, sizeof floating, " water_level=%.4f submerged=%.4f archimedes=%.4f rel_error=%+.2f%%", level, submerged,
                      JELLY_RAFT_RHO0 / 1000.0, 100 * (submerged / (JELLY_RAFT_RHO0 / 1000.0) - 1));
         printf("RESULT case=demo frames=%d substeps_per_frame=%.1f sim_s=%.4f particles=%d blocks=%d resets=%d checksum=%016llx "
                "size=%dx%d ms_per_frame=%.2f physics_ms=%.2f drawing_ms=%.2f slowest_frame_ms=%.2f fps=%.1f threads=%d steps=%ld wall_s=%.2f scene=%s%s\n",
-               frame, (double)d.acoustic_steps / frame, (double)sps_world_time(scene.w), sps_world_particle_count(scene.w),
-               scene.n_drops, resets, (unsigned long long)position_checksum(scene.w), size[0], size[1], 1e3 * (physics + drawing) / frame,
+               frame, (double)d.acoustic_steps / frame, (double)sps_world_time(play.scene.w), sps_world_particle_count(play.scene.w),
+               play.scene.n_drops, play.resets, (unsigned long long)demo_play_checksum(play.scene.w), size[0], size[1], 1e3 * (physics + drawing) / frame,
                1e3 * physics / frame, 1e3 * drawing / frame, 1e3 * slowest, frame / (physics + drawing), threads, d.acoustic_steps, wall,
-               scene_names[tank], floating);
+               scene_names[play.scene.tank], floating);
     }
-    sps_world_destroy(scene.w);
+    sps_world_destroy(play.scene.w);
     free(scr.img.pixels);
     free(scr.text);
     return 0;
