@@ -10,6 +10,8 @@
 #   make fuzz-libfuzzer FUZZ_SECONDS=600  the restart reader under clang's libFuzzer (one core)
 #   make cad-check  the mesh readers against a part OpenSCAD exports, its volume from admesh (installs both as root)
 #   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
+#   make web      build/web/: the demo in a web browser (WebAssembly: clang, lld, wasi-libc)
+#   make test-web the web demo in headless Chromium against the native demo (installs its tools as root)
 #   make gallery  one picture per example into bench/gallery/ (about 15 s)
 #   make probes   the bench probes that read the library's private state (torque_probe, rotation_probe)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~8 min)
@@ -343,6 +345,29 @@ $(BUILD)/cad_check: tests/cad_check.c $(HEADER) | $(BUILD)
 cad-check: $(BUILD)/cad_check
 	sh tests/cad_check.sh $(BUILD)
 .PHONY: cad-check
+
+# ---- the demo in a web browser (examples/web/): clang's wasm32 target and Debian's wasi-libc
+# (no JavaScript glue to generate: the page's script, demo.js, gives the module the three WASI
+# calls wasi-libc makes), one thread (no OpenMP), SIMD128, no FMA contraction (WebAssembly has
+# none either): the same checksum as the native headless demo. make test-web opens it in headless
+# Chromium (tests/web_check.sh: installs clang, lld, wasi-libc and chromium as root when missing,
+# else skips, saying so; .ci/run calls it). WEB_EXTRA adds compiler flags (web_check.sh shows a
+# broken build failing with WEB_EXTRA=-ffast-math). ----
+WEB_CC    ?= clang
+WEB_EXTRA ?=
+WEB_FLAGS  = --target=wasm32-wasi -std=c99 -O2 -msimd128 -ffp-contract=off -fno-math-errno $(WARN) -mexec-model=reactor -Wl,--strip-all
+WEB       = $(BUILD)/web
+$(WEB)/demo.wasm: examples/web/demo_web.c examples/scenes/demo_play.h $(EXAMPLE_HEADERS) $(HEADER)
+	@mkdir -p $(WEB)
+	$(WEB_CC) $(WEB_FLAGS) $(WEB_EXTRA) $< -o $@ -lm
+$(WEB)/%: examples/web/%
+	@mkdir -p $(WEB)
+	cp $< $@
+web: $(WEB)/demo.wasm $(WEB)/demo.html $(WEB)/demo.js
+	@echo "web: $(WEB)/demo.html, demo.js and demo.wasm ($$(cat $^ | wc -c) bytes); serve the folder (python3 -m http.server -d $(WEB)) and open demo.html"
+test-web: $(BUILD)/demo
+	sh tests/web_check.sh $(BUILD) "$(WEB_EXTRA)"
+.PHONY: web test-web
 
 # ---- valgrind: serial builds (no OpenMP runtime and its thread caches to suppress) ----
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect

@@ -149,7 +149,7 @@ static void demo_log(int level, const char* message, void* user) {
 }
 
 int main(int argc, char** argv) {
-    int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, frame, paused = 0, tank = 0;
+    int headless = 0, frames = 300, threads = 0, size[2] = {80, 24}, frame, paused = 0, tank = 0, plain = 0;
     double fps = 30, start, physics = 0, drawing = 0, slowest = 0, next, shown_fps = 0, fps_clock;
     const char* png = "";
     opt_spec opts[] = {
@@ -159,6 +159,7 @@ int main(int argc, char** argv) {
         {"threads", OPT_INT, &threads, "OpenMP threads, 0 = all", 0, 1024, NULL},
         {"size", OPT_PAIR, size, "headless: screen columns,rows (interactive: the terminal's)", 20, 1000, NULL},
         {"png", OPT_STRING, &png, "write the last frame as a PNG picture (600 x 400) to this file; empty = none", 0, 0, NULL},
+        {"png-plain", OPT_FLAG, &plain, "the PNG is the view alone (600 x 330), as the browser's canvas draws it", 0, 0, NULL},
         {"scene", OPT_CHOICE, &tank, "the scene at the start (key t switches)", 0, 0, "playground|tank"},
     };
     demo_play play;
@@ -199,7 +200,7 @@ int main(int argc, char** argv) {
             *g_warning = 0;
         }
         snprintf(status, sizeof status, "t = %6.2f s  %5d particles  %5.1f fps  new blocks: %s%s", (double)sps_world_time(play.scene.w),
-                 sps_world_particle_count(play.scene.w), shown_fps, shear_name(demo_formulations[play.shear]), paused ? "  (paused)" : "");
+                 sps_world_particle_count(play.scene.w), shown_fps, demo_formulation_names[play.shear], paused ? "  (paused)" : "");
         screen_draw(&scr, play.scene.w, status, hint);
         physics += t1 - t0;
         drawing += wall_seconds() - t1;
@@ -215,9 +216,9 @@ int main(int argc, char** argv) {
     terminal_restore();
     if (*png) {
         render_options picture = scr.view;
-        picture.width = 600;
-        picture.height = 400;
-        picture.decorations = 1;
+        picture.width = DEMO_CANVAS_W;
+        picture.height = plain ? DEMO_CANVAS_H : 400;
+        picture.decorations = !plain;
         if (render_world(play.scene.w, &picture, RENDER_PNG, png) != 0) { fprintf(stderr, "%s: cannot write %s\n", g_prog, png); exit(1); }
     }
     {

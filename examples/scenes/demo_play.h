@@ -8,6 +8,7 @@
 #include "jelly.h"
 
 static const sps_shear demo_formulations[] = {SPS_SHEAR_ENO_A, SPS_SHEAR_GNO_A, SPS_SHEAR_ENO, SPS_SHEAR_GNO, SPS_SHEAR_OG};
+static const char* const demo_formulation_names[] = {"eno-a", "gno-a", "eno", "gno", "og"}; /* shown on screen */
 #define DEMO_FORMULATIONS ((int)(sizeof demo_formulations / sizeof *demo_formulations))
 
 /* The drag: a block (0.24 m square, 57.6 kg/m) hangs 0.03 m below its target under gravity at
@@ -16,6 +17,11 @@ static const sps_shear demo_formulations[] = {SPS_SHEAR_ENO_A, SPS_SHEAR_GNO_A, 
 #define DEMO_DRAG_DAMPING 400
 #define DEMO_DRAG_STEP 0.08 /* [m] per key press */
 #define DEMO_DRAG_RADIUS (2 * JELLY_DP * 2.5) /* the pull spread over this neighbourhood [m] */
+
+/* The browser's canvas [px]: the view (JELLY_VIEW_W x JELLY_VIEW_H) at 300 pixels per metre; the
+   terminal demo's --png-plain draws the same picture. */
+#define DEMO_CANVAS_W 600
+#define DEMO_CANVAS_H 330
 
 typedef struct {
     jelly_scene scene;
