@@ -744,7 +744,7 @@
       empty bodies, every particle's state, constraints, observers and the stopped flag, and
       lists every broken rule.
 
-   OUTPUT (sps_world_write_vtk, sps_world_write_vtk_ex)
+   OUTPUT (sps_world_write_vtk, sps_world_write_vtk_ex, sps_world_write_vtk_series)
       Legacy VTK POLYDATA, a vertex per particle, its point data in one FIELD block (VTK's
       legacy reader shows every array of it with its default settings; of SCALARS and VECTORS
       blocks it shows only the first of each). The arrays are the rows of sps__vtk_arrays: a row
@@ -753,6 +753,10 @@
       by default (9 significant digits); binary (big-endian, as the format requires) writes the
       values exactly, 8-15x faster, at 0.85-0.9x the ASCII size in double and 0.5x in single
       precision (bench/VALIDATION.md). Checked with VTK 9.1's vtkPolyDataReader.
+      A time series (sps_world_write_vtk_series) numbers the files name_0000.vtk, ... and lists
+      them with their physical times in name.vtk.series, ParaView's file-series JSON (ParaView
+      5.5 and later; its .pvd collections take XML data sets only): opening it gives one data
+      set with the times on its time slider (checked with ParaView 5.11's pvpython).
 
    RESTART (sps_world_save, sps_world_restore)
       Callbacks, the allocator and the log cannot be written to a file, so a restart is done by
@@ -1668,6 +1672,18 @@ SPSDEF sps_vtk_options sps_default_vtk_options(void);
 SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const sps_vtk_options* options);
 /* sps_world_write_vtk_ex with the default options (ASCII). */
 SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path);
+/* Snapshot `index` of a time series: writes the VTK file dir/name_NNNN.vtk (NNNN the index, 4
+   digits or more) as sps_world_write_vtk_ex does, and adds it, at the world's time, to the
+   series file dir/name.vtk.series (ParaView's file-series JSON, version 1.0: File > Open
+   name.vtk.series gives one data set whose time slider shows the physical times; ParaView's
+   .pvd collections take only XML data sets, not legacy .vtk files). index 0 starts the series
+   afresh; index k > 0 appends to it (only the closing lines are rewritten, so it is complete
+   after every call). dir "" is the current folder; name letters, digits, '_', '-' and '.' only
+   (it is written into the JSON). SPS_ERR_INVALID_ARG (NULL, index < 0, another character in
+   name, a path longer than 4095), SPS_ERR_IO (a file cannot be opened or written, or the
+   series file does not end as this function writes it: the message names it). No allocation;
+   O(N). */
+SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, const char* name, int index, const sps_vtk_options* options);
 
 /* Restart files (RESTART): sps_world_save writes the world's state between steps to path;
    sps_world_restore reads it into a world the program has built the same way (same defs,
@@ -10893,6 +10909,56 @@ SPSDEF sps_result sps_world_write_vtk_ex(sps_world* w, const char* path, const s
 }
 
 SPSDEF sps_result sps_world_write_vtk(sps_world* w, const char* path) { return sps_world_write_vtk_ex(w, path, NULL); }
+
+/* The series file's closing lines: an entry is added by overwriting them with a comma, the
+   entry and them again, so the file is valid JSON after every snapshot. */
+static const char sps__series_tail[] = "\n  ]\n}\n";
+
+/* Adds file `file` at time t to the series file `path`; first: a new series. */
+static sps_result sps__series_add(sps_world* w, const char* path, const char* file, double t, int first) {
+    const long tail = (long)(sizeof sps__series_tail - 1);
+    char seen[sizeof sps__series_tail];
+    FILE* f = fopen(path, first ? "wb" : "r+b");
+    if (!f) {
+        sps__set_error(w, 0, "sps_world_write_vtk_series: cannot open '%s'%s", path, first ? " for writing" : " (index > 0 appends to the series that index 0 started)");
+        return SPS_ERR_IO;
+    }
+    if (first) {
+        fputs("{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n", f);
+    } else if (fseek(f, -tail, SEEK_END) != 0 || fread(seen, 1, (size_t)tail, f) != (size_t)tail || memcmp(seen, sps__series_tail, (size_t)tail) != 0 ||
+               fseek(f, -tail, SEEK_END) != 0) {
+        fclose(f);
+        sps__set_error(w, 0, "sps_world_write_vtk_series: '%s' does not end as a series file this function writes: start the series with index 0", path);
+        return SPS_ERR_IO;
+    }
+    fprintf(f, "%s    { \"name\" : \"%s\", \"time\" : %.17g }%s", first ? "" : ",\n", file, t, sps__series_tail);
+    if (ferror(f) | (fclose(f) != 0)) { sps__set_error(w, 0, "sps_world_write_vtk_series: error writing '%s'", path); return SPS_ERR_IO; }
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, const char* name, int index, const sps_vtk_options* options) {
+    char vtk_path[4096], series_path[4096], file[4096];
+    const char* sep;
+    const char* c;
+    sps_result r;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!dir || !name || !*name) { sps__set_error(w, 0, "sps_world_write_vtk_series: dir and name must not be NULL, name not empty"); return SPS_ERR_INVALID_ARG; }
+    if (index < 0) { sps__set_error(w, 0, "sps_world_write_vtk_series: index = %d, allowed >= 0", index); return SPS_ERR_INVALID_ARG; }
+    for (c = name; *c; ++c)
+        if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '_' || *c == '-' || *c == '.')) {
+            sps__set_error(w, 0, "sps_world_write_vtk_series: name '%s' has the character '%c': allowed letters, digits, '_', '-' and '.'", name, *c);
+            return SPS_ERR_INVALID_ARG;
+        }
+    sep = *dir && dir[strlen(dir) - 1] != '/' ? "/" : "";
+    if (snprintf(file, sizeof file, "%s_%04d.vtk", name, index) >= (int)sizeof file ||
+        snprintf(vtk_path, sizeof vtk_path, "%s%s%s", dir, sep, file) >= (int)sizeof vtk_path ||
+        snprintf(series_path, sizeof series_path, "%s%s%s.vtk.series", dir, sep, name) >= (int)sizeof series_path) {
+        sps__set_error(w, 0, "sps_world_write_vtk_series: the path in '%s' of '%s' is longer than %d characters", dir, name, (int)sizeof vtk_path - 1);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if ((r = sps_world_write_vtk_ex(w, vtk_path, options)) != SPS_OK) return r;
+    return sps__series_add(w, series_path, file, (double)w->time, index == 0);
+}
 #endif
 
 /* >>restart: sps_world_save and sps_world_restore (RESTART in the manual)

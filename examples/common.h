@@ -532,10 +532,8 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
         o->next_csv += o->csv_every;
         wrote = 1;
     }
-    if (o->vtk_every > 0 && t >= o->next_vtk - 1e-12) {
-        char path[1200];
-        snprintf(path, sizeof path, "%s/%s_%04d.vtk", o->dir, o->name, o->frames++);
-        ex_check(w, sps_world_write_vtk_ex(w, path, &o->vtk));
+    if (o->vtk_every > 0 && t >= o->next_vtk - 1e-12) { /* name_NNNN.vtk and name.vtk.series: their times for ParaView */
+        ex_check(w, sps_world_write_vtk_series(w, o->dir, o->name, o->frames++, &o->vtk));
         o->next_vtk += o->vtk_every;
     }
     if (o->png_every > 0 && t >= o->next_png - 1e-12) {

@@ -1154,6 +1154,61 @@ static int test_vtk_writer(void) {
     return 0;
 }
 
+/* The time series (sps_world_write_vtk_series): the numbered VTK files, each the world at its
+   write, and the series file for ParaView, exactly the JSON of the entries with the times to
+   17 digits (read back with strtod, they are the world's times); index 0 starts it afresh; bad
+   names and indices, a missing or damaged series file refused with messages naming them. */
+static int test_vtk_series(void) {
+    sps_world* w = new_world(2, 0.01);
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.04, 0};
+    char dir[] = "/tmp/test_sphsolid_series_XXXXXX", path[256], expected[1024] = "", entry[256], text[1024];
+    double times[3];
+    vtk_file v;
+    size_t length;
+    FILE* f;
+    int n, k;
+    ENSURE(w && mkdtemp(dir));
+    ENSURE(add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n).id != 0);
+    for (k = 0; k < 3; ++k) {
+        if (k) ENSURE(sps_world_step(w) == SPS_OK);
+        times[k] = (double)sps_world_time(w);
+        ENSURE(sps_world_write_vtk_series(w, dir, "plate", k, NULL) == SPS_OK);
+        snprintf(path, sizeof path, "%s/plate_%04d.vtk", dir, k);
+        ENSURE(vtk_read(path, &v) == 0 && vtk_matches_world(&v, w, 0, 0) == 0);
+        vtk_free(&v);
+        snprintf(entry, sizeof entry, "%s    { \"name\" : \"plate_%04d.vtk\", \"time\" : %.17g }", k ? ",\n" : "", k, times[k]);
+        strcat(expected, entry);
+    }
+    ENSURE(times[2] > times[1] && times[1] > times[0]);
+    snprintf(text, sizeof text, "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n%s\n  ]\n}\n", expected);
+    snprintf(path, sizeof path, "%s/plate.vtk.series", dir);
+    ENSURE((f = fopen(path, "rb")) != NULL);
+    length = fread(expected, 1, sizeof expected - 1, f);
+    fclose(f);
+    expected[length] = 0;
+    ENSURE(strcmp(expected, text) == 0);
+    ENSURE(strtod(strstr(expected, "plate_0002.vtk\", \"time\" : ") + 26, NULL) == times[2]);
+    ENSURE(sps_world_write_vtk_series(w, dir, "plate", 0, NULL) == SPS_OK && file_contains(path, "plate_0001") == 0); /* afresh */
+    ENSURE(sps_world_write_vtk_series(w, dir, "plate", -1, NULL) == SPS_ERR_INVALID_ARG && error_names(w, "index = -1") == 0);
+    ENSURE(sps_world_write_vtk_series(w, dir, "a/b", 0, NULL) == SPS_ERR_INVALID_ARG && error_names(w, "'/'") == 0);
+    ENSURE(sps_world_write_vtk_series(w, dir, "", 0, NULL) == SPS_ERR_INVALID_ARG);
+    ENSURE(sps_world_write_vtk_series(w, NULL, "plate", 0, NULL) == SPS_ERR_INVALID_ARG);
+    ENSURE(sps_world_write_vtk_series(w, dir, "other", 1, NULL) == SPS_ERR_IO && error_names(w, "other.vtk.series") == 0);
+    ENSURE((f = fopen(path, "ab")) != NULL && fputs("x", f) >= 0 && fclose(f) == 0); /* damaged: refused, not appended to */
+    ENSURE(sps_world_write_vtk_series(w, dir, "plate", 1, NULL) == SPS_ERR_IO && error_names(w, "does not end as a series file") == 0);
+    for (k = 0; k < 3; ++k) {
+        snprintf(path, sizeof path, "%s/plate_%04d.vtk", dir, k);
+        remove(path);
+    }
+    snprintf(path, sizeof path, "%s/other_0001.vtk", dir);
+    remove(path);
+    snprintf(path, sizeof path, "%s/plate.vtk.series", dir);
+    remove(path);
+    ENSURE(rmdir(dir) == 0);
+    sps_world_destroy(w);
+    return 0;
+}
+
 static int count_char(const char* s, char c) {
     int k = 0;
     for (; *s; ++s) k += *s == c;

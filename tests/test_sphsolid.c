@@ -291,6 +291,7 @@ int main(int argc, char** argv) {
     RUN(test_memory_out_of_memory_everywhere);
     RUN(test_determinism_repeated_runs);
     RUN(test_vtk_writer);
+    RUN(test_vtk_series);
     RUN(test_restart_round_trip);
     RUN(test_restart_last_good_state);
     RUN(test_restart_refused);
