@@ -12,6 +12,7 @@
 #   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
 #   make web      build/web/: the demo in a web browser (WebAssembly: clang, lld, wasi-libc)
 #   make test-web the web demo in headless Chromium against the native demo (installs its tools as root)
+#   make gallery-web  bench/gallery/demo_web.png, the page in headless Chromium
 #   make gallery  one picture per example into bench/gallery/ (about 15 s)
 #   make probes   the bench probes that read the library's private state (torque_probe, rotation_probe)
 #   make memcheck the quick tests and 300 random cases under valgrind (serial build; ~8 min)
@@ -367,7 +368,11 @@ web: $(WEB)/demo.wasm $(WEB)/demo.html $(WEB)/demo.js
 	@echo "web: $(WEB)/demo.html, demo.js and demo.wasm ($$(cat $^ | wc -c) bytes); serve the folder (python3 -m http.server -d $(WEB)) and open demo.html"
 test-web: $(BUILD)/demo
 	sh tests/web_check.sh $(BUILD) "$(WEB_EXTRA)"
-.PHONY: web test-web
+# the README's picture of the page: headless Chromium, 140 scripted frames (as the gallery's demo.png)
+gallery-web: web
+	@mkdir -p $(BUILD)/web_check
+	node tests/web_run.js $(WEB) 140 $(BUILD)/web_check/gallery_canvas.png bench/gallery/demo_web.png
+.PHONY: web test-web gallery-web
 
 # ---- valgrind: serial builds (no OpenMP runtime and its thread caches to suppress) ----
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect

@@ -73,19 +73,19 @@ SCENE_UNUSED static sps_result demo_play_let_go(demo_play* p) {
     return sps_body_drag_end(p->scene.w, &p->drag);
 }
 
-/* A pointer press at point [m]: grabs the dropped block with a particle nearest to it, if that
-   particle is within a block's half side (else nothing). */
+/* A pointer press at point [m]: grabs the dropped block whose particle (current position) is
+   nearest to it, if that is within a particle spacing (the pointer is on the block), else nothing. */
 SCENE_UNUSED static sps_result demo_play_grab_at(demo_play* p, const sps_real point[3]) {
-    double best = JELLY_BLOCK / 2;
-    int k, chosen = -1;
+    const sps_real* x = sps_world_field(p->scene.w, SPS_FIELD_POSITION_X);
+    const sps_real* y = sps_world_field(p->scene.w, SPS_FIELD_POSITION_Y);
+    double best = JELLY_DP;
+    int k, i, first, count, chosen = -1;
     sps_result r = demo_play_let_go(p);
     for (k = 0; r == SPS_OK && k < p->scene.n_drops; ++k) {
-        sps_particle_state s;
-        const int id = sps_world_nearest_particle(p->scene.w, p->scene.drops[k].body, point);
-        if (id < 0 || sps_world_particle(p->scene.w, id, &s) != SPS_OK) continue;
-        if (hypot((double)(s.position[0] - point[0]), (double)(s.position[1] - point[1])) < best) {
-            best = hypot((double)(s.position[0] - point[0]), (double)(s.position[1] - point[1]));
-            chosen = k;
+        if (!sps_body_field(p->scene.w, p->scene.drops[k].body, "density", NULL, &first, &count)) continue; /* dropped, not stepped yet */
+        for (i = first; i < first + count; ++i) {
+            const double d = hypot((double)(x[i] - point[0]), (double)(y[i] - point[1]));
+            if (d < best) { best = d; chosen = k; }
         }
     }
     return r != SPS_OK || chosen < 0 ? r : demo_play_grab_body(p, p->scene.drops[chosen].body, point);
