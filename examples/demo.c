@@ -22,6 +22,9 @@
    surface: bench/VALIDATION.md, fluid-structure), next to Archimedes' (its density over the
    water's, 0.5), and the water level.
 
+   The play (keys, the headless script, the drag, the checksum) is scenes/demo_play.h, which the
+   browser's version (examples/web/, make web) shares: the same checksum there (make test-web).
+
    Build: make demo        Run: ./build/demo      Measure: OMP_NUM_THREADS=1 ./build/demo --headless
    Expect: >= 30 frames per second on one core of a 2020s machine at 80 x 24. */
 #include "common.h"

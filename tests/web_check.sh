@@ -41,7 +41,8 @@ browser=$(node tests/web_run.js "$build/web" "$frames" "$dir/browser.png") || { 
 want=$(echo "$native" | sed -n 's/.*checksum=\([0-9a-f]*\).*/\1/p')
 got=$(echo "$browser" | sed -n 's/.*"checksum":"\([0-9a-f]*\)".*/\1/p')
 figure() { echo "$browser" | sed -n "s/.*\"$1\":\([0-9.]*\).*/\1/p"; }
-echo "test-web: $frames frames in headless Chromium: frame median $(figure median_ms) ms, worst $(figure worst_ms) ms (physics and picture);" \
+echo "test-web: $frames frames in headless Chromium: frame median $(figure median_ms) ms, worst $(figure worst_ms) ms at frame $(figure worst_frame)" \
+    "($(figure worst_after_first_30_ms) ms after the first 30; physics and picture);" \
     "start-up $(figure startup_ms) ms to the first frame; page + script + wasm $bytes bytes; load: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 status=0
 if [ "$got" = "$want" ]; then

@@ -30,7 +30,7 @@ function fail(message) { console.error('web_run: ' + message); process.exit(1); 
 server.listen(0, '127.0.0.1', () => {
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'web_run_'));
   const browser = spawn(process.env.CHROMIUM || 'chromium', ['--headless=new', '--no-sandbox', '--disable-gpu', '--no-first-run',
-    '--disable-extensions', '--disable-background-networking', '--remote-debugging-pipe', '--user-data-dir=' + profile, 'about:blank'],
+    '--disable-extensions', '--disable-background-networking', '--disable-dev-shm-usage', '--remote-debugging-pipe', '--user-data-dir=' + profile, 'about:blank'],
   { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] });
   let stderr = '';
   browser.stderr.on('data', (d) => { stderr += d; });

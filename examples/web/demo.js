@@ -74,6 +74,7 @@
     const result = {
       checksum: BigInt.asUintN(64, wasm.web_checksum()).toString(16).padStart(16, '0'), frames: frame, failed,
       median_ms: +median(times).toFixed(2), worst_ms: +(sorted[sorted.length - 1] || 0).toFixed(2),
+      worst_frame: times.indexOf(sorted[sorted.length - 1]), worst_after_first_30_ms: +Math.max(0, ...times.slice(30)).toFixed(2),
       startup_ms: +startup.toFixed(1), status: text(wasm.web_status()),
     };
     $('result').textContent = JSON.stringify(result);

@@ -2,7 +2,8 @@
    WebAssembly module for the browser page demo.html and its script demo.js. The module keeps
    the play and an RGBA picture of it; the script calls web_frame once per animation frame,
    copies web_pixels() into the canvas and passes keys and the pointer on. Built by `make web`
-   with clang's wasm32 target and Debian's wasi-libc (no OpenMP: one thread), SIMD128 on. */
+   with clang's wasm32 target and Debian's wasi-libc (no OpenMP: one thread), SIMD128 on, the
+   kinds the scene has no body of compiled out (SPHSOLID_NO_*; see the Makefile). */
 /* the frame budget's clock is the page's (performance.now), imported: WASI's clocks are not in a page */
 __attribute__((import_module("env"), import_name("now_seconds"))) double web_now_seconds(void);
 #define SPHSOLID_WALL_SECONDS() web_now_seconds()
