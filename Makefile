@@ -45,7 +45,7 @@ VARIANTS = spinning_cube ball_plate3d taylor_round
 EXAMPLES = $(EXAMPLE_SOURCES:examples/%.c=%) $(VARIANTS)
 HEADER   = sphsolid.h
 # the test runner tests/test_sphsolid.c includes its parts, one file per part of the library
-TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c tests/test_rigid.c
+TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c tests/test_rigid.c tests/test_periodic.c
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
