@@ -1654,6 +1654,15 @@ SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], co
    refused: it holds the tangential velocity with no Coulomb bound already (mu = infinity).
    SPS_ERR_INVALID_ARG naming the value and the range. No allocation. */
 SPSDEF sps_result sps_world_set_wall_friction(sps_world* w, int wall, sps_real mu);
+/* Sets the tangential velocity [m/s] of the surface of wall number `wall` (numbered as for
+   sps_world_set_wall_friction): a belt or a cavity's lid. The wall stays where it is; a
+   fluid's no-slip images take the velocity 2 v_wall - v_j in its viscous force (FLUIDS), so the
+   fluid at the wall moves with it. Solids' contact and free-slip walls do not read it. The
+   energy account leaves out the work the moving surface does (a cavity's fluid gains its
+   energy from it): set energy_growth_limit = INFINITY, or the watchdog warns.
+   SPS_ERR_INVALID_ARG for a wall index out of range, a velocity not finite or with a component
+   along the wall's normal. No allocation. */
+SPSDEF sps_result sps_world_set_wall_velocity(sps_world* w, int wall, const sps_real velocity[3]);
 /* Whether bodies a and b touch (CONTACT; default: every pair of bodies whose defs have
    contact = 1). a == b is refused: a body does not contact itself. */
 SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, int touch);
@@ -2140,6 +2149,7 @@ typedef struct sps__wall {
     sps_real point[3], normal[3]; /* normal of unit length */
     sps_wall_slip slip;
     sps_real friction; /* its Coulomb coefficient (sps_world_set_wall_friction) */
+    sps_real velocity[3]; /* its surface's tangential velocity (sps_world_set_wall_velocity) */
 } sps__wall;
 #define SPS__WALL_TABLE 64 /* intervals of the wall tables over [0, 2h] */
 
@@ -3048,7 +3058,9 @@ static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
    a tank at rest churns by 3 s, at 2 dp it is quiet until its free surface bursts at 8-14 s). */
 #define SPS__FLUID_STILL_H_OVER_DP SPS_R(2)
 static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
-    if (sps__has_gravity(w) && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
+    int a, column = 0; /* a hydrostatic column: gravity along an axis that is not periodic */
+    for (a = 0; a < w->dim; ++a) column |= w->def.gravity[a] != 0 && !(w->period[a] > 0);
+    if (column && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
         sps__warn(w, "body '%s': a fluid under gravity with h_over_dp = %g: water at rest does not stay at rest below %g (it churns "
                   "within seconds); set the world's h_over_dp = %g (about twice the neighbours of 1.3 in 2D; the solids of the same "
                   "world take it too, and their figures change: bench/VALIDATION.md, \"Still water\")",
@@ -6563,8 +6575,8 @@ static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int 
     return sps__wall_distance_of(w, wl, x);
 }
 
-/* The image of particle j across wall wl: position x, velocity v, viscous velocity vv and
-   pressure *p. */
+/* The image of particle j across wall wl: position x, velocity v, viscous velocity vv (no slip:
+   2 v_wall - v_j, the wall's surface velocity, 0 unless set) and pressure *p. */
 static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall* wl, int j, sps_real x[3], sps_real v[3], sps_real vv[3],
                         sps_real* p) {
     const sps_real d = sps__wall_distance(w, wl, j);
@@ -6574,7 +6586,7 @@ static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall*
     for (a = 0; a < 3; ++a) {
         x[a] = a < w->dim ? w->pos[a][j] - 2 * d * wl->normal[a] : 0;
         v[a] = a < w->dim ? w->vel[a][j] - 2 * vn * wl->normal[a] : 0;
-        vv[a] = a < w->dim && wl->slip == SPS_WALL_NO_SLIP ? -w->vel[a][j] : v[a];
+        vv[a] = a < w->dim && wl->slip == SPS_WALL_NO_SLIP ? 2 * wl->velocity[a] - w->vel[a][j] : v[a];
         gd += a < w->dim ? w->def.gravity[a] * (x[a] - w->pos[a][j]) : 0;
     }
     *p = w->p[j] + b->rho0 * gd;
@@ -8133,6 +8145,30 @@ SPSDEF sps_result sps_world_set_wall_friction(sps_world* w, int wall, sps_real m
         if (wall < 0 || k == wall) w->walls[k].friction = mu;
     sps__warn_friction(w, "sps_world_set_wall_friction: mu", mu);
     w->contact_dirty = 1;
+    sps__rearm_watchdog(w);
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_set_wall_velocity(sps_world* w, int wall, const sps_real velocity[3]) {
+    sps_real vn = 0;
+    int a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (wall < 0 || wall >= w->nwalls) {
+        sps__set_error(w, 0, "sps_world_set_wall_velocity: wall = %d, allowed 0..%d (the walls added so far, %d)", wall, w->nwalls - 1, w->nwalls);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (!sps__finite_point(w, velocity)) {
+        sps__set_error(w, 0, "sps_world_set_wall_velocity: velocity %s, allowed finite", velocity ? "not finite" : "NULL");
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (a = 0; a < w->dim; ++a) vn += velocity[a] * w->walls[wall].normal[a];
+    if (SPS__FABS(vn) > SPS_R(1e-9) * (SPS__FABS(velocity[0]) + SPS__FABS(velocity[1]) + SPS__FABS(velocity[2]))) {
+        sps__set_error(w, 0, "sps_world_set_wall_velocity: velocity = (%g, %g, %g) has %g m/s along wall %d's normal, allowed 0 (a wall "
+                       "does not move: the velocity is its surface's, along it)", (double)velocity[0], (double)velocity[1],
+                       w->dim == 3 ? (double)velocity[2] : 0.0, (double)vn, wall);
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (a = 0; a < 3; ++a) w->walls[wall].velocity[a] = a < w->dim ? velocity[a] : 0;
     sps__rearm_watchdog(w);
     return SPS_OK;
 }

@@ -121,7 +121,8 @@ static int test_periodic_body_across_boundary(void) {
 
 /* Bad input names the field, its value and the allowed range: a negative, a too short and a NaN
    period, z periodic in 2D, frozen geometry with a periodic axis, a wall across a periodic
-   axis, a total-Lagrangian and a free rigid body in a periodic world. */
+   axis, a total-Lagrangian and a free rigid body in a periodic world; a wall surface velocity
+   along the wall's normal or for a wall that does not exist. */
 static int test_periodic_bad_input(void) {
     sps_world_def wd = sps_default_world_def();
     char msg[512];
@@ -150,6 +151,12 @@ static int test_periodic_bad_input(void) {
     ENSURE(sps_world_create(&wd, &w) == SPS_OK);
     ENSURE(sps_world_add_wall(w, point, along, SPS_WALL_NO_SLIP) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "periodic axis 1"));
     ENSURE(sps_world_add_wall(w, point, across, SPS_WALL_NO_SLIP) == SPS_OK); /* parallel to y: allowed */
+    { /* a moving surface: along the wall only, on a wall that exists */
+        const sps_real normal_speed[3] = {1, 0.5, 0}, belt[3] = {0, 0.5, 0};
+        ENSURE(sps_world_set_wall_velocity(w, 0, normal_speed) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "along wall 0's normal"));
+        ENSURE(sps_world_set_wall_velocity(w, 1, belt) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "wall = 1, allowed 0..0"));
+        ENSURE(sps_world_set_wall_velocity(w, 0, belt) == SPS_OK);
+    }
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "total-Lagrangian"));
