@@ -48,7 +48,7 @@ VARIANTS = spinning_cube ball_plate3d taylor_round
 EXAMPLES = $(EXAMPLE_SOURCES:examples/%.c=%) $(VARIANTS)
 HEADER   = sphsolid.h
 # the test runner tests/test_sphsolid.c includes its parts, one file per part of the library
-TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c tests/test_rigid.c
+TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c tests/test_rigid.c tests/test_periodic.c
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
@@ -186,7 +186,8 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "flume3d --dp 0.08 --tend 2 --png-view iso" "debris_barrier3d --png-view iso" \
                "tensile3d --res 4 --png-field damage --png-view iso" "floating_block --drop 0.1 --tend 0.45" \
                "hydrostatic_fsi --res 5 --tend 0.1" "elastic_gate --res 3 --tend 0.15" \
-               "rigid_float --width 0.2 --height 0.2 --tend 2.5" "rigid_roll --shape disc --dp 0.005 --tend 0.4"
+               "rigid_float --width 0.2 --height 0.2 --tend 2.5" "rigid_roll --shape disc --dp 0.005 --tend 0.4" \
+               "poiseuille --res 20 --tend 0.3" "taylor_green --res 30 --tend 0.5" "cavity --res 20 --tend 2"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \

@@ -230,8 +230,11 @@
       sqrt(g H) for 8-14 s, after which its free surface bursts to about 1e-3 sqrt(g H) (the
       density diffusion where the surface cuts the kernel: not yet fixed), and standing waves
       run within 1 % of linear theory; the cost is about twice the neighbours of 1.3 dp in 2D. With
-      material.viscosity = mu > 0 the viscous force (2 mu/rho_i) sum_j v_ij dW/(r_ij + 0.01 h)
-      V_j (Morris et al. 1997) joins, and the advection step keeps nu/h below its speed.
+      material.viscosity = mu > 0 the viscous force (2 mu/rho_i) sum_j v_ij dW/r_ij V_j
+      (Morris et al. 1997), divided by the lattice moment above (else it is 2.7 % weak at h =
+      1.3 dp), joins; the acoustic step stays below h^2 / (14 nu) (its stability) and the
+      advection step keeps nu/h below its speed. No-slip walls give it the images' velocity
+      2 v_wall - v_j (analytic walls, wall bodies): plane Poiseuille flow (example poiseuille).
       Free surfaces need nothing (particles carry their density). Walls: analytic walls
       (CONTACT) act on a fluid through mirror particles, the images of its particles across each
       wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), and
@@ -273,6 +276,22 @@
       B_i g_i / |B_i g_i|); none with a divergence below 0.6 d. For fluids and solids alike (not
       wall bodies, nor total-Lagrangian ones, whose neighbours are those of the reference). Costs two neighbour passes per sub-step; the diagnostics'
       surface_particles counts the particles below 0.75 d, which voids and cracks raise.
+
+   PERIODIC (sps_world_def.periodic[3], periodic_origin[3]; chapter >>periodic)
+      periodic[a] = L > 0 [m] makes axis a repeat with period L from periodic_origin[a]: a
+      particle that leaves the box [origin, origin + L) comes back at the other side (positions
+      are moved back at each configuration update and after each step, so outputs, VTK and
+      diagnostics read positions in the box), and every pair sees its nearest image (the
+      neighbour search, every pass, walls' images, fluid-structure, contact and diagnostics).
+      Fluid, elastic, J2, granular and wall bodies work across the boundary and may straddle it
+      (tested: a body across it moves as the same body in the middle, to round-off; a fluid
+      crossing it keeps its momentum). L is at least 3 supports (6 h); a 2D world has no
+      periodic z; walls may only be parallel to the periodic axes (a channel: periodic x, walls
+      of normal +-y). Refused in a periodic world: total-Lagrangian bodies (their reference
+      configuration has no images), free rigid bodies, frozen_geometry. A body's displacement
+      (x - X) includes the periods it crossed; gravity's potential -m g.x jumps by m g L at a
+      wrap (the energy watchdog accounts for it). A world without periodic axes runs none of it
+      (its neighbour loops are compiled without the image). Examples: poiseuille, taylor_green.
 
    GRANULAR (material.kind = SPS_MATERIAL_DRUCKER_PRAGER; UTVF sections 2.3, 3.1.3; chapter
    >>material: Drucker-Prager)
@@ -1064,6 +1083,14 @@ typedef struct sps_world_def {
     sps_real cfl_advection;           /* CFL_ad in (0, 1]. Default 0.2. */
     int max_substeps;                 /* acoustic sub-steps per advection step, [1, 10000]. Default 100. */
     sps_real gravity[3];              /* uniform body force [m/s^2]. Default 0. */
+    sps_real periodic[3];             /* [m] the period of each axis (PERIODIC): 0: not periodic;
+                                         > 0: the world repeats along the axis with this length,
+                                         at least 3 supports (6 h, the cell grid's 3 cells). z
+                                         only in 3D. Not with a wall across the axis, a total-
+                                         Lagrangian or a free rigid body, or frozen_geometry.
+                                         Default 0. */
+    sps_real periodic_origin[3];      /* [m] where each periodic axis's box starts: positions are
+                                         kept in [origin, origin + periodic). Default 0. */
     int frozen_geometry;              /* 0: pair geometry (e_ij, dW, B_i) from the current positions
                                          in every sub-step. 1: dW and 1/r_0 stored at each
                                          configuration update; e_ij, 1/r_ij (one Newton step
@@ -1631,6 +1658,15 @@ SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], co
    refused: it holds the tangential velocity with no Coulomb bound already (mu = infinity).
    SPS_ERR_INVALID_ARG naming the value and the range. No allocation. */
 SPSDEF sps_result sps_world_set_wall_friction(sps_world* w, int wall, sps_real mu);
+/* Sets the tangential velocity [m/s] of the surface of wall number `wall` (numbered as for
+   sps_world_set_wall_friction): a belt or a cavity's lid. The wall stays where it is; a
+   fluid's no-slip images take the velocity 2 v_wall - v_j in its viscous force (FLUIDS), so the
+   fluid at the wall moves with it. Solids' contact and free-slip walls do not read it. The
+   energy account leaves out the work the moving surface does (a cavity's fluid gains its
+   energy from it): set energy_growth_limit = INFINITY, or the watchdog warns.
+   SPS_ERR_INVALID_ARG for a wall index out of range, a velocity not finite or with a component
+   along the wall's normal. No allocation. */
+SPSDEF sps_result sps_world_set_wall_velocity(sps_world* w, int wall, const sps_real velocity[3]);
 /* Whether bodies a and b touch (CONTACT; default: every pair of bodies whose defs have
    contact = 1). a == b is refused: a body does not contact itself. */
 SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, int touch);
@@ -2093,6 +2129,8 @@ typedef struct sps__body {
     sps__yield_cone cone;  /* Drucker-Prager: the yield cone */
     sps_real limiter_eta_c0; /* eta / c0 of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
     sps_real diffusion_rate; /* 2 zeta h c0 of the stress diffusion */
+    sps_real viscous_coefficient; /* a viscous fluid: 2 mu / the lattice's kernel-gradient moment
+                                     (sps__fluid_rest_gradient; the Newtonian force's factor) */
     sps_real divergence_scale; /* fluid, Drucker-Prager: 1 / the lattice's kernel-gradient moment
                                   (sps__lattice_gradient_moment), the pressure force's and
                                   stress divergence's scale */
@@ -2127,6 +2165,7 @@ typedef struct sps__wall {
     sps_real point[3], normal[3]; /* normal of unit length */
     sps_wall_slip slip;
     sps_real friction; /* its Coulomb coefficient (sps_world_set_wall_friction) */
+    sps_real velocity[3]; /* its surface's tangential velocity (sps_world_set_wall_velocity) */
 } sps__wall;
 #define SPS__WALL_TABLE 64 /* intervals of the wall tables over [0, 2h] */
 
@@ -2209,7 +2248,10 @@ struct sps_world {
                                velocity gradient */
     int diag_cap;
     int grid_wrap[3], grid_n[3];
-    sps_real grid_lo[3];
+    sps_real grid_lo[3], grid_cell[3]; /* grid_cell: the cell size per axis (the support, or a
+                                          periodic axis's period over its cell count) */
+    int periodic;                             /* any axis periodic (chapter >>periodic) */
+    sps_real period[3], inv_period[3];        /* per axis: L and 1/L, both 0 if not periodic */
 
     /* contact (chapter >>contact): walls, which bodies touch, contact pairs (CSR, rebuilt at every
        configuration update), contact densities */
@@ -2238,8 +2280,8 @@ struct sps_world {
     sps_real time, dt, c0_max;
     sps_real viscous_speed; /* the largest nu / h of the viscous fluids: the advection step's
                                speed when the flow is slower (sps__step_until) */
-    sps_real viscous_dt;    /* the longest acoustic step the Kelvin-Voigt bodies allow (INFINITY:
-                               none; sps__kelvin_voigt_dt) */
+    sps_real viscous_dt;    /* the longest acoustic step the Kelvin-Voigt bodies and the viscous
+                               fluids allow (INFINITY: none; sps__kelvin_voigt_dt, sps__newton_dt) */
     sps_real vmax;     /* the time-step speed: the largest particle speed in its body's frame, or
                           approach if larger (sps__frame_speeds) */
     int impact_warned; /* sps__warn_impact has spoken */
@@ -2639,6 +2681,9 @@ static void sps__rule(char* msg, size_t size, int* broken, const char* fmt, ...)
 }
 
 /* A range check "lo < x < hi" (strict) or "lo <= x <= hi" that also rejects NaN. */
+static void sps__periodic_check(const sps_world_def* def, char* msg, size_t msg_size, int* broken);
+static void sps__periodic_setup(sps_world* w);
+static int sps__periodic_allows_body(sps_world* w, const sps_body_def* def);
 #define SPS__CHECK(cond, ...) do { if (!(cond)) sps__rule(msg, msg_size, &broken, __VA_ARGS__); } while (0)
 
 SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_t msg_size) {
@@ -2668,6 +2713,7 @@ SPSDEF sps_result sps_world_def_check(const sps_world_def* def, char* msg, size_
     SPS__CHECK(def->energy_growth_limit > 0, "energy_growth_limit = %g, allowed > 0 (INFINITY: off)", (double)def->energy_growth_limit);
     SPS__CHECK(def->energy_growth_stops == 0 || def->energy_growth_stops == 1, "energy_growth_stops = %d, allowed 0 or 1", def->energy_growth_stops);
     SPS__CHECK((def->allocator.alloc == NULL) == (def->allocator.free == NULL), "allocator: set both alloc and free, or neither");
+    sps__periodic_check(def, msg, msg_size, &broken);
     return broken ? SPS_ERR_INVALID_ARG : SPS_OK;
 }
 
@@ -2732,7 +2778,10 @@ static const sps__def_item sps__world_def_items[] = {
     SPS__WORLD_ITEM(frozen_geometry, SPS__DEF_INT), SPS__WORLD_ITEM(neighbor_capacity, SPS__DEF_REAL),
     SPS__WORLD_ITEM(escape_distance, SPS__DEF_REAL), SPS__WORLD_ITEM(energy_growth_limit, SPS__DEF_REAL),
     SPS__WORLD_ITEM(energy_growth_stops, SPS__DEF_INT), SPS__WORLD_ITEM(keep_last_good_state, SPS__DEF_INT),
-    SPS__WORLD_ITEM(contact_rest, SPS__DEF_INT)};
+    SPS__WORLD_ITEM(contact_rest, SPS__DEF_INT),
+    SPS__WORLD_ITEM(periodic[0], SPS__DEF_REAL), SPS__WORLD_ITEM(periodic[1], SPS__DEF_REAL), SPS__WORLD_ITEM(periodic[2], SPS__DEF_REAL),
+    SPS__WORLD_ITEM(periodic_origin[0], SPS__DEF_REAL), SPS__WORLD_ITEM(periodic_origin[1], SPS__DEF_REAL),
+    SPS__WORLD_ITEM(periodic_origin[2], SPS__DEF_REAL)};
 static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM(solver, SPS__DEF_INT),
     SPS__BODY_ITEM(material.kind, SPS__DEF_INT),
@@ -2921,16 +2970,28 @@ static const sps__material_model sps__j2_material = {SPS_MATERIAL_J2, "J2", 0, S
 /* The coefficient 2 (d + 2) eta of the viscous pair force of body b. */
 static sps_real sps__kelvin_voigt_coefficient(int dim, const sps__body* b) { return 2 * (dim + 2) * b->def.material.viscosity; }
 
-/* The longest acoustic step body b's viscosity allows: dt = d / (4 (d + 2) nu S), S the continuum
-   value of sum_j |dW_ij| / r_ij V_j: 2 pi W(0) in 2D, 4 pi int_0^2h W dr in 3D (by parts). */
-static sps_real sps__kelvin_voigt_dt(const sps_world* w, const sps__body* b) {
-    const sps_real nu = b->def.material.viscosity / b->rho0;
+/* S, the continuum value of sum_j |dW_ij| / r_ij V_j: 2 pi W(0) in 2D, 4 pi int_0^2h W dr in 3D
+   (by parts). The longest acoustic step body b's Kelvin-Voigt viscosity allows: dt = d / (4
+   (d + 2) nu S). */
+static sps_real sps__viscous_rate_sum(const sps_world* w) {
     sps_real S = 0;
     int k;
     if (w->dim == 2) S = 2 * SPS__PI * sps_world_kernel(w, 0);
     else
         for (k = 0; k < 256; ++k) S += 4 * SPS__PI * sps_world_kernel(w, (k + SPS_R(0.5)) * w->support / 256) * w->support / 256;
-    return w->dim / (4 * (w->dim + 2) * nu * S);
+    return S;
+}
+static sps_real sps__kelvin_voigt_dt(const sps_world* w, const sps__body* b) {
+    const sps_real nu = b->def.material.viscosity / b->rho0;
+    return w->dim / (4 * (w->dim + 2) * nu * sps__viscous_rate_sum(w));
+}
+/* The longest acoustic step a viscous fluid body b allows: the Newtonian force (2 mu / rho_i)
+   sum_j v_ij dW / r_ij V_j (Morris et al. 1997) damps a zigzag (v_ij = 2 v_i) at the rate
+   4 nu S, kept below 1 / dt as the Kelvin-Voigt one: dt = 1 / (4 nu S) = h^2 / (14 nu) in 2D
+   (Wendland C2), inside Morris et al.'s bound 0.125 h^2 / nu. Without it a channel at h^2 / nu
+   below 5 advection steps (0.2 h^2 / nu each) blew up. */
+static sps_real sps__newton_dt(const sps_world* w, const sps__body* b) {
+    return 1 / (4 * b->def.material.viscosity / b->rho0 * sps__viscous_rate_sum(w));
 }
 
 /* >>material: weakly compressible fluid (UTVF sections 2.1, 3.1.1) */
@@ -3003,13 +3064,19 @@ static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
     int a;
     for (a = 0; a < 3; ++a) b->rest_pressure_gradient[a] = a < w->dim ? b->rho0 * w->def.gravity[a] : 0;
     b->divergence_scale = b->model.gradient ? 1 : 1 / sps__lattice_gradient_moment(w); /* tr L: no scale */
+    /* Morris et al.'s Laplacian sum_j 2 v_ij dW/r V_j gives a quadratic flow's Laplacian times the
+       same moment -sum_j x_ij,x^2 dW/r V_j (0.974 at h = 1.3 dp in 2D): Poiseuille flow ran 2.7 %
+       fast at every resolution until it was divided out */
+    b->viscous_coefficient = 2 * b->def.material.viscosity / sps__lattice_gradient_moment(w);
 }
 /* Its warnings (sps__material_warnings): water under gravity with a smoothing length at which
    water at rest does not stay at rest (FLUIDS; bench/VALIDATION.md, "Still water": at h = 1.8 dp
    a tank at rest churns by 3 s, at 2 dp it is quiet until its free surface bursts at 8-14 s). */
 #define SPS__FLUID_STILL_H_OVER_DP SPS_R(2)
 static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
-    if (sps__has_gravity(w) && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
+    int a, column = 0; /* a hydrostatic column: gravity along an axis that is not periodic */
+    for (a = 0; a < w->dim; ++a) column |= w->def.gravity[a] != 0 && !(w->period[a] > 0);
+    if (column && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
         sps__warn(w, "body '%s': a fluid under gravity with h_over_dp = %g: water at rest does not stay at rest below %g (it churns "
                   "within seconds); set the world's h_over_dp = %g (about twice the neighbours of 1.3 in 2D; the solids of the same "
                   "world take it too, and their figures change: bench/VALIDATION.md, \"Still water\")",
@@ -3838,6 +3905,7 @@ SPSDEF sps_result sps_world_create(const sps_world_def* def, sps_world** out) {
     w->dw_scale = w->kernel_norm / w->h;
     w->dp_volume = d.dim == 2 ? d.dp * d.dp : d.dp * d.dp * d.dp;
     w->viscous_dt = (sps_real)INFINITY;
+    sps__periodic_setup(w);
     sps__contact_rest(w);
     if (d.dim == 2 && d.gravity[2] != 0)
         sps__warn(w, "gravity[2] = %g m/s^2 in a 2D world: a 2D world has the axes x and y only, so it acts on nothing; set gravity[1] "
@@ -3946,6 +4014,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
         sps__set_error(w, 0, "sps_world_add_body: %s", msg);
         return SPS_ERR_INVALID_ARG;
     }
+    if (!sps__periodic_allows_body(w, def)) return SPS_ERR_INVALID_ARG;
     if (w->nbodies >= SPS__MAX_BODIES) { sps__set_error(w, 0, "sps_world_add_body: at most %d bodies", SPS__MAX_BODIES); return SPS_ERR_INVALID_ARG; }
     if (w->nbodies == w->bodies_cap) {
         int nc = w->bodies_cap ? 2 * w->bodies_cap : 4;
@@ -3980,6 +4049,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     /* wall bodies: no waves; a free rigid body: its contact stiffness sqrt(K / rho0) */
     if ((!b->model.material->kinematic || b->model.free_rigid) && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
     if (b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT && sps__kelvin_voigt_dt(w, b) < w->viscous_dt) w->viscous_dt = sps__kelvin_voigt_dt(w, b);
+    if (b->model.viscous == SPS__VISCOUS_NEWTON && sps__newton_dt(w, b) < w->viscous_dt) w->viscous_dt = sps__newton_dt(w, b);
     if (b->model.viscous == SPS__VISCOUS_NEWTON && def->material.viscosity / (b->rho0 * w->h) > w->viscous_speed)
         w->viscous_speed = def->material.viscosity / (b->rho0 * w->h);
     if (!b->model.material->kinematic && w->def.cfl_acoustic > b->model.stabilisation->stable_cfl[w->dim - 2])
@@ -4762,6 +4832,136 @@ SPSDEF sps_result sps_body_add_sdf_relaxed(sps_world* w, sps_body b, const sps_r
     return r;
 }
 
+/* >>periodic: periodic axes (PERIODIC in the manual)
+
+   An axis with world def periodic[a] = L > 0 repeats with period L from periodic_origin[a].
+   Every pair offset x_i - x_j along it is the nearest image's, x_ij - L round(x_ij / L) (the
+   minimum-image convention: right for every pair within the support, since L >= 3 supports);
+   the cell grid along it has a whole number of cells, each at least the support, and wraps
+   (sps__setup_grid), so a cell's 3^d neighbours include those across the boundary; and at
+   each configuration update and after each step a particle that has left [origin, origin + L)
+   is moved back by a whole number of periods (sps__wrap_positions), so outputs and
+   diagnostics report positions in the box. Between two wraps a particle may stand a fraction
+   of dp outside: nothing reads its absolute position along the axis but gravity's potential,
+   which the wrap accounts for. The neighbour loops of a world without periodic axes are
+   compiled without any of it (sps__mode: the periodic pair geometry is a mode of its own). */
+
+/* The periodic rules of a world def (sps_world_def_check). */
+static void sps__periodic_check(const sps_world_def* def, char* msg, size_t msg_size, int* broken) {
+    /* the grid needs 3 cells of at least the support along the axis so the 3 cells around a
+       cell are distinct; 3 supports also keep every pair within the support at its nearest image */
+    const double least = 3 * 2 * (double)def->h_over_dp * (double)def->dp;
+    int a, any = 0;
+    for (a = 0; a < 3; ++a) {
+        const double L = (double)def->periodic[a];
+        if (!sps__finite(def->periodic[a]) || L < 0 || (L > 0 && L < least))
+            sps__rule(msg, msg_size, broken, "periodic[%d] = %g m, allowed 0 (not periodic) or a period >= 3 supports = 6 h = %g m", a, L, least);
+        if (!sps__finite(def->periodic_origin[a]))
+            sps__rule(msg, msg_size, broken, "periodic_origin[%d] = %g, allowed finite", a, (double)def->periodic_origin[a]);
+        any |= L > 0;
+    }
+    if (def->dim == 2 && def->periodic[2] != 0)
+        sps__rule(msg, msg_size, broken, "periodic[2] = %g m in a 2D world, allowed 0 (a 2D world has the axes x and y only)", (double)def->periodic[2]);
+    if (any && def->frozen_geometry)
+        sps__rule(msg, msg_size, broken, "frozen_geometry = %d with a periodic axis, allowed 0 (the stored pair geometry has no periodic images)",
+                  def->frozen_geometry);
+}
+
+/* Sets the world's periods from its def (sps_world_create). */
+static void sps__periodic_setup(sps_world* w) {
+    int a;
+    for (a = 0; a < w->dim; ++a)
+        if (w->def.periodic[a] > 0) {
+            w->period[a] = w->def.periodic[a];
+            w->inv_period[a] = 1 / w->def.periodic[a];
+            w->periodic = 1;
+        }
+}
+
+/* The nearest image of the offset d along axis a: d itself on an axis that is not periodic
+   (L = 1/L = 0 there, so the loops that call it need no branch). */
+SPS__INLINE sps_real sps__nearest_image(const sps_world* w, int a, sps_real d) {
+    return d - w->period[a] * SPS__FLOOR(d * w->inv_period[a] + SPS_R(0.5));
+}
+
+/* The offset x_i - x_j of particles i and j (the nearest image) into d; returns |d|^2. */
+static sps_real sps__offset(const sps_world* w, int i, int j, sps_real d[3]) {
+    sps_real r2 = 0;
+    int a;
+    for (a = 0; a < 3; ++a) {
+        d[a] = a < w->dim ? sps__nearest_image(w, a, w->pos[a][i] - w->pos[a][j]) : 0;
+        r2 += d[a] * d[a];
+    }
+    return r2;
+}
+
+/* The offset x_i - x_j into d (zero past dim) and its |d|^2: the nearest image in a periodic
+   world, the plain difference otherwise (bit for bit as before periodic axes existed). */
+static sps_real sps__pair_offset(const sps_world* w, int i, int j, sps_real d[3]) {
+    sps_real r2 = 0;
+    int a;
+    if (w->periodic) return sps__offset(w, i, j, d);
+    for (a = 0; a < 3; ++a) {
+        d[a] = a < w->dim ? w->pos[a][i] - w->pos[a][j] : 0;
+        r2 += d[a] * d[a];
+    }
+    return r2;
+}
+/* The displacement of i relative to j along axis a, u_i - u_j (u = x - X), given their offset
+   d_a (sps__pair_offset): in a periodic world d_a less the nearest image of X_i - X_j (a wrap
+   moves x, not X). */
+static sps_real sps__relative_displacement(const sps_world* w, int i, int j, int a, sps_real d_a) {
+    if (w->periodic) return d_a - sps__nearest_image(w, a, w->ref[a][i] - w->ref[a][j]);
+    return (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
+}
+
+/* Moves every particle that has left a periodic axis's box [origin, origin + L) back by whole
+   periods. Gravity's potential -m g.x jumps by m g_a k L for a shift of -k L: the energy
+   watchdog's start moves with it (a flow down a periodic channel is not a gain). */
+static void sps__wrap_positions(sps_world* w) {
+    int a, i;
+    for (a = 0; a < w->dim; ++a) {
+        const sps_real L = w->period[a], inv = w->inv_period[a], origin = w->def.periodic_origin[a], g = w->def.gravity[a];
+        if (!(L > 0)) continue;
+        for (i = 0; i < w->n; ++i) {
+            const sps_real k = SPS__FLOOR((w->pos[a][i] - origin) * inv);
+            if (k == 0) continue;
+            w->pos[a][i] -= k * L;
+            if (w->pos[a][i] < origin) w->pos[a][i] = origin; /* rounding at the box's ends */
+            if (w->pos[a][i] >= origin + L) w->pos[a][i] = origin;
+            if (g != 0) sps__watch_adjust(w, w->body[i], 0, w->mass[i] * g * k * L);
+        }
+    }
+}
+
+/* What a periodic world cannot hold: a total-Lagrangian body (its reference configuration, the
+   source of its neighbours and of F, has no periodic images) and a free rigid body (its pose is
+   the centre of mass of its particles, which a body across the boundary does not have).
+   Returns 0 with the world's error set for those. */
+static int sps__periodic_allows_body(sps_world* w, const sps_body_def* def) {
+    const char* what = def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN ? "a total-Lagrangian body (its reference configuration has no periodic images)"
+                       : def->material.kind == SPS_MATERIAL_RIGID_DYNAMIC ? "a free rigid body (its pose has no periodic image)" : NULL;
+    if (!w->periodic || !what) return 1;
+    sps__set_error(w, 0, "sps_world_add_body: body '%s' is %s, and the world has periodic axes (periodic = (%g, %g, %g) m); allowed in a "
+                   "periodic world: updated-Lagrangian bodies and wall bodies", def->name ? def->name : "body", what,
+                   (double)w->period[0], (double)w->period[1], (double)w->period[2]);
+    return 0;
+}
+
+/* A wall whose normal has a component along a periodic axis would cut the period: refused.
+   Returns 0 with the world's error set. */
+static int sps__periodic_allows_wall(sps_world* w, const sps_real normal[3], sps_real length) {
+    int a;
+    for (a = 0; a < w->dim; ++a)
+        if (w->period[a] > 0 && SPS__FABS(normal[a]) > SPS_R(1e-9) * length) {
+            sps__set_error(w, 0, "sps_world_add_wall: normal = (%g, %g, %g) has a component along periodic axis %d (periodic[%d] = %g m), "
+                           "allowed walls parallel to the periodic axes (normal[%d] = 0)", (double)normal[0], (double)normal[1],
+                           w->dim == 3 ? (double)normal[2] : 0.0, a, a, (double)w->period[a], a);
+            return 0;
+        }
+    return 1;
+}
+
 /* >>neighbours */
 
 /* Sorts the particles of [begin, end) by key (stable counting sort; keys < nkeys) and applies
@@ -4833,8 +5033,9 @@ static void sps__sort_body(sps_world* w, const sps__body* b, const int* key, int
 }
 
 /* Cell grid of particles [begin, end) at positions x (the current ones, or a total-Lagrangian
-   body's reference ones): cell size = support; dims capped near 4 cells per particle, each at
-   least 3 so the 3^d neighbour cells of a cell are distinct even when the grid wraps. */
+   body's reference ones): cell size = support (along a periodic axis its period over a whole
+   number of cells, chapter >>periodic); dims capped near 4 cells per particle, each at least 3
+   so the 3^d neighbour cells of a cell are distinct even when the grid wraps. */
 static int sps__setup_grid(sps_world* w, sps_real* const x[3], int begin, int end) {
     int a, i;
     double total = 1, cap = 4.0 * (end - begin) + 64;
@@ -4850,11 +5051,13 @@ static int sps__setup_grid(sps_world* w, sps_real* const x[3], int begin, int en
     for (a = 0; a < 3; ++a) {
         double span = a < w->dim ? ((double)hi[a] - (double)lo[a]) / (double)w->support : 0;
         double n = floor(span) + 1;
+        if (w->period[a] > 0) n = floor((double)w->period[a] / (double)w->support); /* >= 3 (sps__periodic_check) */
         if (n < 3) n = 3;
         if (n > 1e6) n = 1e6;
         w->grid_n[a] = a < w->dim ? (int)n : 1;
-        w->grid_lo[a] = lo[a];
-        w->grid_wrap[a] = 0;
+        w->grid_lo[a] = w->period[a] > 0 ? w->def.periodic_origin[a] : lo[a];
+        w->grid_cell[a] = w->period[a] > 0 ? w->period[a] / (sps_real)n : w->support;
+        w->grid_wrap[a] = w->period[a] > 0;
         total *= w->grid_n[a];
     }
     while (total > cap) { /* halve the longest axis: the grid wraps (periodic hashing) */
@@ -4864,6 +5067,8 @@ static int sps__setup_grid(sps_world* w, sps_real* const x[3], int begin, int en
         if (w->grid_n[m] <= 3) break;
         total /= w->grid_n[m];
         w->grid_n[m] = w->grid_n[m] / 2 < 3 ? 3 : w->grid_n[m] / 2;
+        /* a periodic axis keeps a whole number of cells in its period: larger cells, not hashing */
+        if (w->period[m] > 0) w->grid_cell[m] = w->period[m] / (sps_real)w->grid_n[m];
         w->grid_wrap[m] = 1;
         total *= w->grid_n[m];
     }
@@ -4873,7 +5078,7 @@ static int sps__setup_grid(sps_world* w, sps_real* const x[3], int begin, int en
 /* Integer cell coordinate of x along axis a (wrapped). fmod keeps huge coordinates exact and
    finite so a runaway particle cannot overflow an integer conversion. */
 SPS__INLINE int sps__cell_coord(const sps_world* w, int a, sps_real x) {
-    double c = floor(((double)x - (double)w->grid_lo[a]) / (double)w->support);
+    double c = floor(((double)x - (double)w->grid_lo[a]) / (double)w->grid_cell[a]);
     c = fmod(c, (double)w->grid_n[a]);
     if (c < 0) c += w->grid_n[a];
     return (int)c;
@@ -4891,9 +5096,10 @@ SPS__INLINE int sps__neighbor(const sps_world* w, int i, int k) { return w->nb_j
 /* The neighbours of particle gi of the body starting at begin, in cell c of the body's grid,
    into list (at most width; returns the count): the particles of the 3^d cells around c within
    the support at positions x. Where an axis does not wrap, the three cells of a row are adjacent
-   in the sorted order, so each row is one contiguous run of candidates. */
+   in the sorted order, so each row is one contiguous run of candidates. periodic (a literal):
+   offsets to the nearest image (chapter >>periodic). */
 SPS__INLINE int sps__collect_neighbors(const sps_world* w, sps_real* const x[3], int begin, int gi, int c, int* list, int width,
-                                       const int dim) {
+                                       const int dim, const int periodic) {
     const int gx = w->grid_n[0], gy = w->grid_n[1], gz = w->grid_n[2];
     const int cx = c % gx, cy = c / gx % gy, cz = c / (gx * gy);
     const sps_real cut2 = w->support * w->support, xi = x[0][gi], yi = x[1][gi];
@@ -4926,8 +5132,13 @@ SPS__INLINE int sps__collect_neighbors(const sps_world* w, sps_real* const x[3],
                 int s;
                 for (s = s0; s < s1; ++s) {
                     const int gj = begin + s;
-                    const sps_real dx = xi - x[0][gj], dyy = yi - x[1][gj], dzz = dim == 3 ? zi - x[2][gj] : 0;
-                    const sps_real r2 = dx * dx + dyy * dyy + dzz * dzz;
+                    sps_real dx = xi - x[0][gj], dyy = yi - x[1][gj], dzz = dim == 3 ? zi - x[2][gj] : 0, r2;
+                    if (periodic) {
+                        dx = sps__nearest_image(w, 0, dx);
+                        dyy = sps__nearest_image(w, 1, dyy);
+                        dzz = sps__nearest_image(w, 2, dzz);
+                    }
+                    r2 = dx * dx + dyy * dyy + dzz * dzz;
                     /* itself and coincident particles (r = 0, no direction) do not interact. Branch-free:
                        about half the candidates pass, a branch on it would miss half the time
                        (measured: the search took 16% of a fast run, now 8%). Slot m is free, so a
@@ -4976,8 +5187,10 @@ static sps_result sps__build_neighbors(sps_world* w) {
         for (i = 0; i < count; ++i) {
             const int gi = begin + i;
             int* list = w->nb_ell + (size_t)gi * width;
-            const int m = dim == 2 ? sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 2)
-                                   : sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 3);
+            const int m = w->periodic ? (dim == 2 ? sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 2, 1)
+                                                  : sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 3, 1))
+                                      : (dim == 2 ? sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 2, 0)
+                                                  : sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 3, 0));
             w->nb_count[gi] = m;
             if (m > width && gi > overflow) overflow = gi;
         }
@@ -5358,16 +5571,22 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
 /* >>pairs: the geometry of a neighbour pair */
 
 /* Pair geometry modes, a literal in the neighbour loops so they carry no branch on it: the
-   stored geometry, or recomputed with the Wendland C2 or the cubic-spline kernel. */
-enum { SPS__GEO_WENDLAND, SPS__GEO_SPLINE, SPS__GEO_FROZEN };
+   stored geometry, or recomputed with the Wendland C2 or the cubic-spline kernel, or
+   recomputed from the nearest periodic image with the world's kernel (a world with a periodic
+   axis, chapter >>periodic: the other modes carry none of its arithmetic). */
+enum { SPS__GEO_WENDLAND, SPS__GEO_SPLINE, SPS__GEO_FROZEN, SPS__GEO_PERIODIC, SPS__GEO_MODES };
 /* The kernel of pair geometry geo: a literal for the recomputed modes (the loops carry no
-   branch on it), the world's for the frozen one. */
+   branch on it), the world's for the frozen and periodic ones. */
 SPS__INLINE int sps__geo_kernel(const sps_world* w, const int geo) {
     return geo == SPS__GEO_SPLINE ? SPS_KERNEL_CUBIC_SPLINE : geo == SPS__GEO_WENDLAND ? SPS_KERNEL_WENDLAND_C2 : w->def.kernel;
 }
+/* The pair geometry recomputed from the current positions (not the stored one). */
+static int sps__plain_geo(const sps_world* w) {
+    return w->periodic ? SPS__GEO_PERIODIC : w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
+}
 static int sps__mode(const sps_world* w) {
-    int geo = w->def.frozen_geometry ? SPS__GEO_FROZEN : w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
-    return (w->dim == 3) * 3 + geo;
+    const int geo = w->def.frozen_geometry ? SPS__GEO_FROZEN : sps__plain_geo(w); /* frozen is not periodic (sps__periodic_check) */
+    return (w->dim == 3) * SPS__GEO_MODES + geo;
 }
 
 /* Pair geometry of slot s = (i, j) from the offset x_i - x_j = (dx, dy, dz): e_ij, dW/dr,
@@ -5401,6 +5620,11 @@ SPS__INLINE sps__pair_geometry sps__pair_of_offset(const sps_world* w, int s, sp
     } else {
         /* pad: a padding slot (j = i) or two particles at the same point, which have no
            direction between them and no force (dW(0) = 0): both take e = 0, dW = 0 */
+        if (geo == SPS__GEO_PERIODIC) { /* the nearest image (chapter >>periodic) */
+            dx = sps__nearest_image(w, 0, dx);
+            dy = sps__nearest_image(w, 1, dy);
+            dz = sps__nearest_image(w, 2, dz);
+        }
         const sps_real r2 = dx * dx + dy * dy + dz * dz;
         const sps_real pad = (sps_real)(r2 == 0), r = SPS__SQRT(r2 == 0 ? 1 : r2), inv = 1 / r; /* a select, not r2 + pad: GCC
                                                     would branch round the add, and AVX2 (no masked add) could not vectorise it */
@@ -5434,7 +5658,7 @@ SPS__INLINE sps__pair_geometry sps__pair_before_drift(const sps_world* w, int i,
    row-major), summed and inverted as in the continuity pass (sps__add_moment), and the trace of
    B_i^-1, the position divergence (UTVF eq. 31), into divr. */
 static void sps__correction_matrices(sps_world* w, int begin, int end, sps_real* out, sps_real* divr) {
-    const int geo = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
+    const int geo = sps__plain_geo(w);
     int i;
     SPS__PARALLEL_FOR(w, end - begin)
     for (i = begin; i < end; ++i) {
@@ -5582,7 +5806,7 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
         for (l = 0; l < SPS__LANES; ++l) sums->row[t][l] = 0;
 }
 
-/* The six instances of a pair loop, one per world mode (sps__mode: dimension x pair geometry),
+/* The eight instances of a pair loop, one per world mode (sps__mode: dimension x pair geometry),
    as named functions (they show up in a profiler), each calling the loop's generic body with the
    dimension, the pair geometry and the pair terms (an SPS__TERM_ bit set) literals, so that its
    loop carries no branch; and the mode table sps__<loop>_<variant>[mode]. Only the pair loops
@@ -5599,23 +5823,26 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
 #define SPS__INSTANCES_2D(loop, variant, terms)                                                                 \
     SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
     SPS__INSTANCE(loop, variant, 2d_spline, 2, SPS__GEO_SPLINE, terms)                                          \
-    SPS__INSTANCE(loop, variant, 2d_frozen, 2, SPS__GEO_FROZEN, terms)
+    SPS__INSTANCE(loop, variant, 2d_frozen, 2, SPS__GEO_FROZEN, terms)                                          \
+    SPS__INSTANCE(loop, variant, 2d_periodic, 2, SPS__GEO_PERIODIC, terms)
 #define SPS__INSTANCES(loop, variant, terms)                                                                    \
     SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
     SPS__INSTANCE(loop, variant, 3d_wendland, 3, SPS__GEO_WENDLAND, terms)                                      \
     SPS__INSTANCE(loop, variant, 3d_spline, 3, SPS__GEO_SPLINE, terms)                                          \
     SPS__INSTANCE(loop, variant, 3d_frozen, 3, SPS__GEO_FROZEN, terms)                                          \
-    static const sps__pair_loop sps__##loop##_##variant[6] = {                                                  \
+    SPS__INSTANCE(loop, variant, 3d_periodic, 3, SPS__GEO_PERIODIC, terms)                                      \
+    static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
         sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
-        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_3d_wendland,                             \
-        sps__##loop##_##variant##_3d_spline, sps__##loop##_##variant##_3d_frozen};
+        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_2d_periodic,                             \
+        sps__##loop##_##variant##_3d_wendland, sps__##loop##_##variant##_3d_spline,                             \
+        sps__##loop##_##variant##_3d_frozen, sps__##loop##_##variant##_3d_periodic};
 /* The instances of a 2D-only term (OAS's: a combination rule refuses it in 3D): none in 3D, where
    the mode table holds NULL (sps__missing_pass would name the combination). */
 #define SPS__INSTANCES_2D_ONLY(loop, variant, terms)                                                            \
     SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
-    static const sps__pair_loop sps__##loop##_##variant[6] = {                                                  \
+    static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
         sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
-        sps__##loop##_##variant##_2d_frozen, NULL, NULL, NULL};
+        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_2d_periodic, NULL, NULL, NULL, NULL};
 
 /* The dissipation limiter of a pair approaching at -u (u = v_ij . e_ij), eta_c0 = eta / c0:
    beta = min(eta max(-u / c0, 0), 1) (UTVF eq. 20). Branch-free for the lane loops. */
@@ -5685,8 +5912,8 @@ SPS__INLINE void sps__add_penalty_term(sps_real (*sum)[SPS__LANES], int l, sps__
    e_ij along the current e_ij. For fluids, with limited, the dissipation Z beta with the limiter
    beta = min(eta max(-v_ij . e_ij / c0, 0), 1) (UTVF eq. 20: only approaching pairs, fully from
    a 1/eta of c0 on), and with newton the Newtonian viscous force
-   (2 mu / rho_i) sum_j v_ij dW / (r_ij + 0.01 h) V_j (Morris et al. 1997; 0.01 h keeps it finite
-   for coinciding particles). A fluid's pressure force and a granular body's divergence (limited)
+   (2 mu / rho_i) sum_j v_ij dW / r_ij V_j (Morris et al. 1997) divided by the lattice moment
+   (sps__fluid_rest_gradient; dW/r stays finite as r -> 0 for both kernels). A fluid's pressure force and a granular body's divergence (limited)
    are scaled (sps__lattice_gradient_moment); a granular body has its stress diffusion summed (stored when its def has it).
    The rare terms, which add to sums of their own, have a pair loop of their own
    (sps__rare_pressure_pairs); a Kelvin-Voigt body's Riemann dissipation is among them (kept
@@ -5706,7 +5933,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT ? 0 : b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
     const sps_real scale = limited ? b->divergence_scale : 1; /* fluid, granular: sps__lattice_gradient_moment */
-    const sps_real two_mu = 2 * b->def.material.viscosity, soft = SPS_R(0.01) * w->h, soft2 = SPS_R(0.01) * w->h * w->h;
+    const sps_real two_mu = b->viscous_coefficient, soft2 = SPS_R(0.01) * w->h * w->h;
     const sps_real *gravity = w->def.gravity, *geostatic = b->geostatic;
     const int begin = b->begin; /* the body's own arrays (tau) hold particle begin + k at k */
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
@@ -5731,7 +5958,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
             acc[1][l] -= f2 * ey;
             if (dim == 3) acc[2][l] -= f2 * ez;
             if (newton) {
-                const sps_real fv = two_mu * dw * vol[j] / (rij + soft);
+                const sps_real fv = two_mu * e.dw_r * vol[j]; /* dW/r: finite as r -> 0, 0 in padding */
                 acc[0][l] += fv * (vx[i] - vx[j]);
                 acc[1][l] += fv * (vy[i] - vy[j]);
                 if (dim == 3) acc[2][l] += fv * (vz[i] - vz[j]);
@@ -6364,8 +6591,8 @@ static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int 
     return sps__wall_distance_of(w, wl, x);
 }
 
-/* The image of particle j across wall wl: position x, velocity v, viscous velocity vv and
-   pressure *p. */
+/* The image of particle j across wall wl: position x, velocity v, viscous velocity vv (no slip:
+   2 v_wall - v_j, the wall's surface velocity, 0 unless set) and pressure *p. */
 static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall* wl, int j, sps_real x[3], sps_real v[3], sps_real vv[3],
                         sps_real* p) {
     const sps_real d = sps__wall_distance(w, wl, j);
@@ -6375,7 +6602,7 @@ static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall*
     for (a = 0; a < 3; ++a) {
         x[a] = a < w->dim ? w->pos[a][j] - 2 * d * wl->normal[a] : 0;
         v[a] = a < w->dim ? w->vel[a][j] - 2 * vn * wl->normal[a] : 0;
-        vv[a] = a < w->dim && wl->slip == SPS_WALL_NO_SLIP ? -w->vel[a][j] : v[a];
+        vv[a] = a < w->dim && wl->slip == SPS_WALL_NO_SLIP ? 2 * wl->velocity[a] - w->vel[a][j] : v[a];
         gd += a < w->dim ? w->def.gravity[a] * (x[a] - w->pos[a][j]) : 0;
     }
     *p = w->p[j] + b->rho0 * gd;
@@ -6493,6 +6720,7 @@ static sps_real sps__image_geometry(const sps_world* w, int i, const sps_real x[
     int a;
     for (a = 0; a < 3; ++a) {
         e[a] = a < w->dim ? w->pos[a][i] - x[a] : 0;
+        if (w->periodic) e[a] = sps__nearest_image(w, a, e[a]); /* the image of a neighbour across the period */
         r2 += e[a] * e[a];
     }
     r = SPS__SQRT(r2);
@@ -6532,7 +6760,7 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
     f2 = ((w->p[i] + m->p) * b->divergence_scale - b->z_riemann * beta * u) * dw * vol; /* scaled as in sps__pressure */
     for (a = 0; a < w->dim; ++a) {
         acc[a] -= f2 * e[a];
-        if (b->model.viscous == SPS__VISCOUS_NEWTON) acc[a] += 2 * b->def.material.viscosity * dw * vol / (r + SPS_R(0.01) * w->h) * (w->vel[a][i] - m->vv[a]);
+        if (b->model.viscous == SPS__VISCOUS_NEWTON) acc[a] += b->viscous_coefficient * dw * vol / r * (w->vel[a][i] - m->vv[a]);
     }
     if (b->model.stress) { /* (tau_i + tau_j') . e dW V_j */
         const sps_real* ti = b->tau + (size_t)6 * (i - b->begin);
@@ -6719,7 +6947,7 @@ static void sps__solid_image(const sps_world* w, int f, int s, sps__image* image
     for (a = 0; a < 3; ++a) {
         image->x[a] = a < w->dim ? w->pos[a][s] : 0;
         image->v[a] = image->vv[a] = a < w->dim ? 2 * w->vel[a][s] - w->vel[a][f] : 0;
-        gd += a < w->dim ? w->def.gravity[a] * (w->pos[a][s] - w->pos[a][f]) : 0;
+        gd += a < w->dim ? w->def.gravity[a] * (w->periodic ? sps__nearest_image(w, a, w->pos[a][s] - w->pos[a][f]) : w->pos[a][s] - w->pos[a][f]) : 0;
     }
     image->p = w->p[f] + w->rho[f] * gd;
 }
@@ -7872,6 +8100,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
         sps__set_error(w, 0, "sps_world_add_wall: slip = %d, allowed 0 (free slip) or 1 (no slip)", (int)slip);
         return SPS_ERR_INVALID_ARG;
     }
+    if (!sps__periodic_allows_wall(w, normal, SPS__SQRT(len2))) return SPS_ERR_INVALID_ARG;
     memset(&wall, 0, sizeof wall);
     for (a = 0; a < w->dim; ++a) {
         wall.point[a] = point[a];
@@ -7932,6 +8161,30 @@ SPSDEF sps_result sps_world_set_wall_friction(sps_world* w, int wall, sps_real m
         if (wall < 0 || k == wall) w->walls[k].friction = mu;
     sps__warn_friction(w, "sps_world_set_wall_friction: mu", mu);
     w->contact_dirty = 1;
+    sps__rearm_watchdog(w);
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_set_wall_velocity(sps_world* w, int wall, const sps_real velocity[3]) {
+    sps_real vn = 0;
+    int a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (wall < 0 || wall >= w->nwalls) {
+        sps__set_error(w, 0, "sps_world_set_wall_velocity: wall = %d, allowed 0..%d (the walls added so far, %d)", wall, w->nwalls - 1, w->nwalls);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (!sps__finite_point(w, velocity)) {
+        sps__set_error(w, 0, "sps_world_set_wall_velocity: velocity %s, allowed finite", velocity ? "not finite" : "NULL");
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (a = 0; a < w->dim; ++a) vn += velocity[a] * w->walls[wall].normal[a];
+    if (SPS__FABS(vn) > SPS_R(1e-9) * (SPS__FABS(velocity[0]) + SPS__FABS(velocity[1]) + SPS__FABS(velocity[2]))) {
+        sps__set_error(w, 0, "sps_world_set_wall_velocity: velocity = (%g, %g, %g) has %g m/s along wall %d's normal, allowed 0 (a wall "
+                       "does not move: the velocity is its surface's, along it)", (double)velocity[0], (double)velocity[1],
+                       w->dim == 3 ? (double)velocity[2] : 0.0, (double)vn, wall);
+        return SPS_ERR_INVALID_ARG;
+    }
+    for (a = 0; a < 3; ++a) w->walls[wall].velocity[a] = a < w->dim ? velocity[a] : 0;
     sps__rearm_watchdog(w);
     return SPS_OK;
 }
@@ -8006,7 +8259,11 @@ static int sps__contact_partners(const sps_world* w, int i, int* out) {
                     sps_real r2 = 0;
                     int a;
                     if (w->body[j] == bi || !w->touch[(size_t)bi * w->nbodies + w->body[j]]) continue;
-                    for (a = 0; a < dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+                    if (w->periodic) {
+                        sps_real d[3];
+                        r2 = sps__offset(w, i, j, d);
+                    } else
+                        for (a = 0; a < dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
                     if (!(r2 < cut2)) continue;
                     if (out) out[m] = j;
                     ++m;
@@ -8159,13 +8416,14 @@ static sps_real sps__wall_sigma(const sps_world* w, sps_real d) {
    its rest value. */
 static sps_real sps__pair_contact_density(const sps_world* w, int i) {
     sps_real sigma = 0;
-    int k, a;
+    int k;
     if (!w->contact_bodies) return 0; /* no contact lists */
     for (k = w->ct_first[i]; k < w->ct_first[i + 1]; ++k) {
         const int j = w->ct_j[k];
         sps_real r2 = 0;
+        sps_real d[3];
         if (sps__coupled_pair(w, i, j)) continue; /* a fluid-solid pair: no contact density (>>coupling) */
-        for (a = 0; a < w->dim; ++a) r2 += (w->pos[a][i] - w->pos[a][j]) * (w->pos[a][i] - w->pos[a][j]);
+        r2 = sps__pair_offset(w, i, j, d);
         sigma += sps_world_kernel(w, SPS__SQRT(r2)) * w->vol[j];
     }
     return sigma > w->rest_pair_sigma ? sigma - w->rest_pair_sigma : 0;
@@ -8308,7 +8566,7 @@ static void sps__contact_force(sps_world* w, int i, sps_real dt) {
                 sps__coupling_force(w, i, j, coupling);
                 continue;
             }
-            for (a = 0; a < w->dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+            r2 = sps__pair_offset(w, i, j, d);
             r = SPS__SQRT(r2);
             if (!(r > 0)) continue; /* coincident particles: no direction */
             dw = sps_world_kernel_derivative(w, r);
@@ -9292,7 +9550,8 @@ static sps_result sps__check_escape(sps_world* w) {
         sps__centre_of_mass(w, b, w->pos, c);
         for (i = b->begin; i < b->end; ++i) {
             sps_real d2 = 0;
-            for (a = 0; a < w->dim; ++a) d2 += (w->pos[a][i] - c[a]) * (w->pos[a][i] - c[a]);
+            for (a = 0; a < w->dim; ++a) /* along a periodic axis nothing escapes (and a body across it has no centre there) */
+                if (!(w->period[a] > 0)) d2 += (w->pos[a][i] - c[a]) * (w->pos[a][i] - c[a]);
             if (!(d2 > limit2)) continue;
             sps__set_error(w, 0, "unstable at t = %g: particle %d of body '%s' escaped to (%g, %g, %g), %g m from the body's centre "
                            "of mass (%g, %g, %g), beyond its size (%g m from the centre) plus escape_distance (%g m)", (double)w->time,
@@ -9939,6 +10198,7 @@ static sps_result sps__update_configuration(sps_world* w) {
     if ((r = sps__ready_to_step(w)) != SPS_OK) return r;
     if ((r = sps__check_finite(w, "configuration update")) != SPS_OK) return r;
     if ((r = sps__check_escape(w)) != SPS_OK) return r;
+    if (w->periodic) sps__wrap_positions(w);
     w->lists_valid = 0;
     if ((r = sps__build_neighbors(w)) != SPS_OK) return r; /* also B_i when a body needs the velocity gradient */
     sps__tl_signal_speeds(w); /* total-Lagrangian bodies: the time step follows their deformation */
@@ -10092,6 +10352,7 @@ static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
     if (w->acoustic_steps == 0 && (r = sps__check_bodies_outside_walls(w)) != SPS_OK) return r;
     if (w->acoustic_steps == 0) sps__warn_slots_at_walls(w);
     r = sps__step_until(w, t_limit);
+    if (r == SPS_OK && w->periodic) sps__wrap_positions(w); /* outputs read positions in the box */
     if (r == SPS_ERR_UNSTABLE) {
         w->stopped = 1;
         memcpy(w->failure, w->error, sizeof w->failure);
@@ -10321,11 +10582,11 @@ SPS__INLINE void sps__diagnostic_gradients(const sps_world* w, int i, const sps_
     for (k = 0; k < w->nb_count[i]; ++k) {
         int j = sps__neighbor(w, i, k);
         sps_real d[3] = {0, 0, 0}, r2 = 0, r, f;
-        for (a = 0; a < dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+        r2 = sps__pair_offset(w, i, j, d);
         r = SPS__SQRT(r2);
         f = r > 0 ? sps__dwdr(w, r) / r * w->vol[j] : 0; /* particles at one point: no direction (sps__pair) */
         for (a = 0; a < dim; ++a) {
-            sps_real uij = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
+            sps_real uij = sps__relative_displacement(w, i, j, a, d[a]);
             const sps_real vij = w->vel[a][i] - w->vel[a][j];
             for (c = 0; c < dim; ++c) M[3 * a + c] -= uij * d[c] * f;
             for (c = 0; c < dim; ++c) Mv[3 * a + c] -= vij * d[c] * f;
@@ -10354,9 +10615,9 @@ SPS__INLINE sps_real sps__hourglass_sums(const sps_world* w, int begin, int end,
         for (k = 0; k < w->nb_count[i]; ++k) {
             int j = sps__neighbor(w, i, k);
             sps_real d[3] = {0, 0, 0}, r2 = 0, e2 = 0, ev2 = 0, smooth2 = 0;
-            for (a = 0; a < dim; ++a) { d[a] = w->pos[a][i] - w->pos[a][j]; r2 += d[a] * d[a]; }
+            r2 = sps__pair_offset(w, i, j, d);
             for (a = 0; a < dim; ++a) {
-                sps_real err = (w->pos[a][i] - w->ref[a][i]) - (w->pos[a][j] - w->ref[a][j]);
+                sps_real err = sps__relative_displacement(w, i, j, a, d[a]);
                 sps_real smooth = 0; /* the relative velocity the velocity gradient gives the pair */
                 for (c = 0; c < dim; ++c) err -= SPS_R(0.5) * (Gu[(size_t)9 * i + 3 * a + c] + Gu[(size_t)9 * j + 3 * a + c]) * d[c];
                 for (c = 0; c < dim; ++c) smooth += SPS_R(0.5) * (Gv[(size_t)9 * i + 3 * a + c] + Gv[(size_t)9 * j + 3 * a + c]) * d[c];
@@ -10983,7 +11244,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 3u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies */
+#define SPS__RESTART_VERSION 4u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */

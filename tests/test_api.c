@@ -2382,6 +2382,12 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 46: bd->damage_strain = 0.01; break;
     case 47: bd->penalty_in_pressure_pass = 1; break;
     case 48: wd->contact_rest = SPS_CONTACT_REST_KERNEL; break;
+    case 49: wd->periodic[0] = 0.1; break;
+    case 50: wd->periodic[1] = 0.1; break;
+    case 51: wd->dim = 3; wd->periodic[2] = 0.1; break; /* z periodic only in 3D: dim named first */
+    case 52: wd->periodic_origin[0] = 1; break;
+    case 53: wd->periodic_origin[1] = 1; break;
+    case 54: wd->periodic_origin[2] = 1; break;
     }
 }
 
@@ -2423,7 +2429,8 @@ static int test_restart_every_def_field(void) {
         BODY_FIELD("contact"), BODY_FIELD("transport_coefficient"), BODY_FIELD("damping"), BODY_FIELD("hourglass_alpha"),
         BODY_FIELD("hourglass"), TL_FIELD("artificial_viscosity"), BODY_FIELD("stress_diffusion"), BODY_FIELD("friction"),
         BODY_FIELD("contact_damping"), TL_FIELD("damage_strain"), BODY_FIELD("penalty_in_pressure_pass"),
-        WORLD_FIELD("contact_rest")};
+        WORLD_FIELD("contact_rest"), WORLD_FIELD("periodic[0]"), WORLD_FIELD("periodic[1]"), WORLD_FIELD("dim"),
+        WORLD_FIELD("periodic_origin[0]"), WORLD_FIELD("periodic_origin[1]"), WORLD_FIELD("periodic_origin[2]")};
 #undef WORLD_FIELD
 #undef BODY_FIELD
 #undef TL_FIELD

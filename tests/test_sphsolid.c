@@ -1,6 +1,7 @@
 /* test_sphsolid.c - unit, invariant and regression tests of sphsolid.h: the runner, its helpers
    and the RUN list; the tests are in one file per part of the library, included below
-   (test_numerics.c, test_api.c, test_solids.c, test_fluids.c, test_rigid.c).
+   (test_numerics.c, test_api.c, test_solids.c, test_fluids.c, test_rigid.c,
+   test_periodic.c).
 
    Build and run:    make build/test_sphsolid && ./build/test_sphsolid
    Under sanitizers: make build/test_sanitize && ./build/test_sanitize --quick
@@ -185,6 +186,7 @@ static double von_mises(const double s[6], int dim) {
 #include "test_solids.c"
 #include "test_fluids.c"
 #include "test_rigid.c"
+#include "test_periodic.c"
 
 int main(int argc, char** argv) {
     int i;
@@ -351,6 +353,10 @@ int main(int argc, char** argv) {
     RUN(test_rigid_rests_on_floor);
     RUN(test_rigid_bad_input);
     RUN(test_rigid_restart_and_threads);
+    RUN(test_periodic_crossing_keeps_momentum);
+    RUN(test_periodic_body_across_boundary);
+    RUN(test_periodic_bad_input);
+    RUN(test_periodic_threads_and_restart);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
