@@ -10,7 +10,7 @@
 #   make fuzz-libfuzzer FUZZ_SECONDS=600  the restart reader under clang's libFuzzer (one core)
 #   make cad-check  the mesh readers against a part OpenSCAD exports, its volume from admesh (installs both as root)
 #   make demo     build/demo: jelly in the terminal, in real time (space, f, p, q)
-#   make web      build/web/: the demo in a web browser (WebAssembly: clang, lld, wasi-libc)
+#   make web      build/web/: the demo in a web browser (WebAssembly: clang, lld, wasi-libc, libclang-rt-14-dev-wasm32)
 #   make test-web the web demo in headless Chromium against the native demo (installs its tools as root)
 #   make gallery-web  bench/gallery/demo_web.png, the page in headless Chromium
 #   make gallery  one picture per example into bench/gallery/ (about 15 s)
@@ -352,7 +352,7 @@ cad-check: $(BUILD)/cad_check
 # (no JavaScript glue to generate: the page's script, demo.js, gives the module the three WASI
 # calls wasi-libc makes), one thread (no OpenMP), SIMD128, no FMA contraction (WebAssembly has
 # none either): the same checksum as the native headless demo. make test-web opens it in headless
-# Chromium (tests/web_check.sh: installs clang, lld, wasi-libc and chromium as root when missing,
+# Chromium (tests/web_check.sh: installs clang, lld, wasi-libc, its wasm32 builtins and chromium as root when missing,
 # else skips, saying so; .ci/run calls it). WEB_EXTRA adds compiler flags (web_check.sh shows a
 # broken build failing with WEB_EXTRA=-ffast-math). ----
 WEB_CC    ?= clang

@@ -18,17 +18,22 @@ frames=${FRAMES:-600}
 dir=$build/web_check
 tools_missing() {
     ! command -v clang >/dev/null 2>&1 || ! command -v wasm-ld >/dev/null 2>&1 || ! command -v chromium >/dev/null 2>&1 ||
-        ! command -v node >/dev/null 2>&1 || [ ! -d /usr/include/wasm32-wasi ]
+        ! command -v node >/dev/null 2>&1 || [ ! -d /usr/include/wasm32-wasi ] || ! wasm_builtins_present
+}
+# clang links wasm32 programs against compiler-rt's builtins (libclang_rt.builtins-wasm32.a), a
+# package of its own in Debian (libclang-rt-14-dev-wasm32)
+wasm_builtins_present() {
+    command -v clang >/dev/null 2>&1 && [ -f "$(clang --target=wasm32-wasi -print-libgcc-file-name 2>/dev/null)" ]
 }
 if tools_missing && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-    packages="clang lld wasi-libc chromium"
+    packages="clang lld wasi-libc libclang-rt-14-dev-wasm32 chromium"
     command -v node >/dev/null 2>&1 || packages="$packages nodejs"
     # shellcheck disable=SC2086 # the package names are words
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $packages >/dev/null 2>&1 ||
         { apt-get update -qq >/dev/null 2>&1 && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $packages >/dev/null 2>&1; }
 fi
 if tools_missing; then
-    echo "test-web: clang with lld and wasi-libc, chromium or node not available (and not installable here): the browser check is skipped"
+    echo "test-web: clang with lld, wasi-libc and its wasm32 builtins, chromium or node not available (and not installable here): the browser check is skipped"
     exit 0
 fi
 mkdir -p "$dir"
