@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.14.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.15.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -859,6 +859,11 @@
       omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
+      0.15.0 (2026-12-06) periodic axes (world def periodic[3], periodic_origin[3]; chapter
+                         >>periodic; restart format 4); the fluid's viscous force divided by the
+                         lattice moment, its acoustic step capped by the viscosity; moving wall
+                         surfaces (sps_world_set_wall_velocity); sps_world_write_vtk_series (a
+                         .vtk.series index with the times, for ParaView); the demo as WebAssembly.
       0.14.0 (2026-12-06) free rigid bodies (SPS_MATERIAL_RIGID_DYNAMIC: Newton-Euler with the
                          implicit midpoint rule, friction at the contact point's velocity);
                          geometry from files (chapter >>geometry: STL, OBJ, outlines, SVG; exact
@@ -975,9 +980,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 14
+#define SPHSOLID_VERSION_MINOR 15
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.14.0"
+#define SPHSOLID_VERSION_STRING "0.15.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
