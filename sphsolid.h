@@ -296,9 +296,16 @@
    GRANULAR (material.kind = SPS_MATERIAL_DRUCKER_PRAGER; UTVF sections 2.3, 3.1.3; chapter
    >>material: Drucker-Prager)
       Elastic-perfectly plastic soil: the linear elastic law (c0 = sqrt(K/rho0)), the cone
-      f = alpha_phi I1 + sqrt(J2) - k_c and the potential g = alpha_psi I1 + sqrt(J2) with
-      alpha_phi = tan(phi)/sqrt(9 + 12 tan^2 phi), k_c = 3c/sqrt(9 + 12 tan^2 phi) (UTVF eqs.
-      11-14; material.cohesion c [Pa], friction_angle phi and dilatancy_angle psi [degrees]).
+      f = alpha_phi I1 + sqrt(J2) - k_c and the potential g = alpha_psi I1 + sqrt(J2) (UTVF eqs.
+      11-13; material.cohesion c [Pa], friction_angle phi and dilatancy_angle psi [degrees]),
+      the constants fitted to Mohr-Coulomb as material.yield_cone says (sps_yield_cone). The
+      default, SPS_CONE_PLANE_STRAIN, is Mohr-Coulomb's strength in plane strain with the
+      body's dilatancy (alpha_phi = sin phi / 3, k_c = c cos phi for psi = 0), so a slope stands
+      at phi; the papers' cone (UTVF eq. 14, SPS_CONE_PAPERS: alpha_phi = tan phi / sqrt(9 +
+      12 tan^2 phi), k_c = 3c / sqrt(9 + 12 tan^2 phi)) is exact in plane strain only for
+      associated flow (psi = phi) and acts as 19.6 / 28.7 / 37.1 degrees for phi 20 / 30 / 40
+      with psi = 0. The 3D cones through Mohr-Coulomb's compression and extension meridians
+      and their mean are there too (bench/VALIDATION.md, "The yield cone").
       The whole stress sigma = tau - p I is integrated, 3 x 3 also in 2D (plane strain keeps
       sigma_zz): each sub-step the Jaumann rate 2G dev(D) + K tr(D) I + W sigma - sigma W less
       the plastic flow gamma' (3K alpha_psi I + G s/sqrt(J2)) on the cone (eq. 13, gamma' >= 0),
@@ -1197,6 +1204,23 @@ typedef enum sps_transport {
                                (UTVF eqs. 31-37) */
 } sps_transport;
 
+/* The Drucker-Prager cone of a granular body (material.yield_cone; GRANULAR): which Mohr-Coulomb
+   stress state the cone f = alpha_phi I1 + sqrt(J2) - k_c is fitted to, given phi, psi and c. */
+typedef enum sps_yield_cone {
+    SPS_CONE_PLANE_STRAIN = 0, /* Mohr-Coulomb's strength in plane strain with the body's dilatancy
+                                  (sigma_zz from zero plastic strain out of the plane): a slope or
+                                  a heap stands at phi, in 2D and on a 3D slope */
+    SPS_CONE_PAPERS = 1,       /* UTVF eq. 14, alpha_phi = tan phi / sqrt(9 + 12 tan^2 phi): the cone
+                                  inscribed in Mohr-Coulomb's pyramid, exact in plane strain only
+                                  for psi = phi; with psi = 0 it acts as phi_eff = asin(3 alpha_phi)
+                                  (28.7 degrees for 30). The papers' C4-C7 */
+    SPS_CONE_COMPRESSION = 2,  /* through Mohr-Coulomb's compression meridian (the outer cone):
+                                  triaxial compression */
+    SPS_CONE_EXTENSION = 3,    /* through the extension meridian: triaxial extension */
+    SPS_CONE_COMPROMISE = 4    /* alpha_phi and k_c the means of the compression and extension
+                                  cones' */
+} sps_yield_cone;
+
 /* Material: its kind and constants. */
 typedef struct sps_material_def {
     sps_real density;        /* reference density rho0 [kg/m^3], > 0. Default 1000. */
@@ -1220,6 +1244,9 @@ typedef struct sps_material_def {
     sps_real friction_angle; /* Drucker-Prager: friction angle phi [degrees], in [0, 90). Default 0. */
     sps_real dilatancy_angle; /* Drucker-Prager: dilatancy angle psi [degrees], in [0, friction_angle]
                                 (0: no volume change in plastic flow). Default 0. */
+    sps_yield_cone yield_cone; /* Drucker-Prager: the cone fitted to Mohr-Coulomb's phi, psi and c
+                                (sps_yield_cone). Default SPS_CONE_PLANE_STRAIN (a heap stands at
+                                phi); SPS_CONE_PAPERS reproduces UTVF's figures. */
 } sps_material_def;
 
 /* Body definition: a material, a shear formulation and which outputs the body needs. */
@@ -2800,6 +2827,7 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM_READ_BY(material.cohesion, SPS__DEF_REAL, sps__reads_drucker_prager),
     SPS__BODY_ITEM_READ_BY(material.friction_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
     SPS__BODY_ITEM_READ_BY(material.dilatancy_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.yield_cone, SPS__DEF_INT, sps__reads_drucker_prager),
     SPS__BODY_ITEM_READ_BY(shear, SPS__DEF_INT, sps__reads_shear),
     SPS__BODY_ITEM_READ_BY(rotation, SPS__DEF_INT, sps__reads_rotation),
     SPS__BODY_ITEM_READ_BY(zeta, SPS__DEF_REAL, sps__reads_zeta),
@@ -3098,16 +3126,59 @@ static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
    lane loop that calls it is sps__granular_stress_lanes (chapter >>solver), and the stress
    diffusion's pair sums are in the pressure pass (sps__pressure). */
 
-/* The cone of a def: alpha_phi, k_c, alpha_psi (UTVF eq. 14) and K0 = 1 - sin(phi), the
-   at-rest ratio of horizontal to vertical stress (Jaky) of the geostatic stress. */
+/* The cones through Mohr-Coulomb's compression (sign -1) and extension (+1) meridians, for the
+   angle theta (phi or psi): alpha = 2 sin / (sqrt3 (3 -+ sin)), k_c = 6 c cos / (sqrt3 (3 -+ sin)). */
+static sps_real sps__meridian_alpha(sps_real theta, sps_real meridian) {
+    return 2 * SPS__SIN(theta) / (SPS__SQRT(SPS_R(3.0)) * (3 + meridian * SPS__SIN(theta)));
+}
+static sps_real sps__meridian_k(sps_real phi, sps_real cohesion, sps_real meridian) {
+    return 6 * cohesion * SPS__COS(phi) / (SPS__SQRT(SPS_R(3.0)) * (3 + meridian * SPS__SIN(phi)));
+}
+/* UTVF eq. 14's alpha for the angle theta: tan / sqrt(9 + 12 tan^2), the inscribed cone. */
+static sps_real sps__inscribed_alpha(sps_real theta) {
+    const sps_real tan_theta = SPS__SIN(theta) / SPS__COS(theta);
+    return tan_theta / SPS__SQRT(9 + 12 * tan_theta * tan_theta);
+}
+/* The cone of a def (its yield_cone): alpha_phi, k_c, alpha_psi and K0 = 1 - sin(phi), the
+   at-rest ratio of horizontal to vertical stress (Jaky) of the geostatic stress.
+   Plane strain: with the potential's alpha_psi = a (the inscribed form, which gives the plane-
+   strain dilatancy sin psi), zero plastic strain out of the plane sets s_zz = -2 a sqrt(J2), so
+   sqrt(J2) = t / sqrt(1 - 3a^2) and I1 = 3 p_m - 3 a t / sqrt(1 - 3a^2) for the in-plane mean p_m
+   and radius t of Mohr's circle; the cone is then Mohr-Coulomb's t = c cos phi - p_m sin phi when
+   alpha_phi = sin phi / (3 (sqrt(1 - 3a^2) + a sin phi)) and k_c = c cos phi (1 - 3 alpha_phi a) /
+   sqrt(1 - 3a^2) (for a = alpha_phi: UTVF eq. 14; for psi = 0: sin phi / 3 and c cos phi). */
 static sps__yield_cone sps__yield_cone_of(const sps_material_def* m) {
     const sps_real deg = SPS_R(3.14159265358979323846) / 180, phi = m->friction_angle * deg, psi = m->dilatancy_angle * deg;
-    const sps_real tan_phi = SPS__SIN(phi) / SPS__COS(phi), tan_psi = SPS__SIN(psi) / SPS__COS(psi);
-    const sps_real root_phi = SPS__SQRT(9 + 12 * tan_phi * tan_phi);
     sps__yield_cone c;
-    c.alpha_phi = tan_phi / root_phi;
-    c.k_c = 3 * m->cohesion / root_phi;
-    c.alpha_psi = tan_psi / SPS__SQRT(9 + 12 * tan_psi * tan_psi);
+    switch (m->yield_cone) {
+    case SPS_CONE_PLANE_STRAIN: {
+        const sps_real a = sps__inscribed_alpha(psi), root = SPS__SQRT(1 - 3 * a * a);
+        c.alpha_phi = SPS__SIN(phi) / (3 * (root + a * SPS__SIN(phi)));
+        c.k_c = m->cohesion * SPS__COS(phi) * (1 - 3 * c.alpha_phi * a) / root;
+        c.alpha_psi = a;
+        break;
+    }
+    case SPS_CONE_PAPERS: {
+        const sps_real tan_phi = SPS__SIN(phi) / SPS__COS(phi), root_phi = SPS__SQRT(9 + 12 * tan_phi * tan_phi);
+        c.alpha_phi = tan_phi / root_phi;
+        c.k_c = 3 * m->cohesion / root_phi;
+        c.alpha_psi = sps__inscribed_alpha(psi);
+        break;
+    }
+    case SPS_CONE_COMPRESSION:
+    case SPS_CONE_EXTENSION: {
+        const sps_real meridian = m->yield_cone == SPS_CONE_COMPRESSION ? -1 : 1;
+        c.alpha_phi = sps__meridian_alpha(phi, meridian);
+        c.k_c = sps__meridian_k(phi, m->cohesion, meridian);
+        c.alpha_psi = sps__meridian_alpha(psi, meridian);
+        break;
+    }
+    case SPS_CONE_COMPROMISE:
+        c.alpha_phi = (sps__meridian_alpha(phi, -1) + sps__meridian_alpha(phi, 1)) / 2;
+        c.k_c = (sps__meridian_k(phi, m->cohesion, -1) + sps__meridian_k(phi, m->cohesion, 1)) / 2;
+        c.alpha_psi = (sps__meridian_alpha(psi, -1) + sps__meridian_alpha(psi, 1)) / 2;
+        break;
+    }
     c.k0 = 1 - SPS__SIN(phi);
     return c;
 }
@@ -3121,6 +3192,9 @@ static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size
     SPS__CHECK(m->dilatancy_angle >= 0 && m->dilatancy_angle <= m->friction_angle,
                "material.dilatancy_angle = %g, allowed [0, friction_angle = %g] degrees for Drucker-Prager", (double)m->dilatancy_angle,
                (double)m->friction_angle);
+    SPS__CHECK(m->yield_cone >= SPS_CONE_PLANE_STRAIN && m->yield_cone <= SPS_CONE_COMPROMISE,
+               "material.yield_cone = %d, allowed %d (SPS_CONE_PLANE_STRAIN) to %d (SPS_CONE_COMPROMISE) for Drucker-Prager",
+               (int)m->yield_cone, (int)SPS_CONE_PLANE_STRAIN, (int)SPS_CONE_COMPROMISE);
     *broken_out += broken;
 }
 /* A Drucker-Prager body's stabilisation: the divergence of its stress (UTVF eq. 25) and the
@@ -11249,7 +11323,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 4u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes */
+#define SPS__RESTART_VERSION 5u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */

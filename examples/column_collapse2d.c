@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 0.8, .vtk_every = 0.05, .csv_every = 0.005, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/column_collapse2d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
     double dp = 0.002, length = 0.2;
-    granular_options g = {0, 21.9, 0.1};
+    granular_options g = {0, 21.9, 0.1, SPS_CONE_PAPERS};
     opt_spec opts[] = {
         {"length", OPT_REAL, &length, "column length L [m] (0.2 and 0.1 in the paper; height 0.1 m)", 0.02, 0.45, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 5e-4, 0.02, NULL},

@@ -584,15 +584,19 @@ EX_UNUSED static double ex_centre_pressure(const sps_world* w, double dp) {
 /* ---- the soil of the granular examples (GRANULAR in the header's manual) ---- */
 typedef struct {
     double cohesion, phi, diffusion; /* [Pa], [degrees], zeta */
+    int cone;                        /* sps_yield_cone: the paper examples SPS_CONE_PAPERS */
 } granular_options;
 #define GRANULAR_OPTION_SPECS(g)                                                                     \
     {"cohesion", OPT_REAL, &(g).cohesion, "cohesion c [Pa]", 0, 1e9, NULL},                          \
     {"phi", OPT_REAL, &(g).phi, "friction angle [degrees]", 0, 89, NULL},                            \
-    {"diffusion", OPT_REAL, &(g).diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL}
+    {"diffusion", OPT_REAL, &(g).diffusion, "stress diffusion coefficient zeta (0: off)", 0, 1, NULL}, \
+    {"cone", OPT_CHOICE, &(g).cone, "the Drucker-Prager cone fitted to phi (sps_yield_cone)", 0, 0,   \
+     "plane-strain|papers|compression|extension|compromise"}
 /* Copies them into a Drucker-Prager body's def (its density, E and nu are the common options). */
 EX_UNUSED static void apply_granular(const granular_options* g, sps_body_def* bd) {
     bd->material.cohesion = (sps_real)g->cohesion;
     bd->material.friction_angle = (sps_real)g->phi;
+    bd->material.yield_cone = (sps_yield_cone)g->cone;
     bd->stress_diffusion = (sps_real)g->diffusion;
 }
 /* The UTVF paper's gravity [m/s^2] (down y) in the granular examples' worlds. */

@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 3, .vtk_every = 0.1, .csv_every = 0.01, .E = 1.8e6, .nu = 0.3,
                         .rho0 = 1850, .out = "out/flume3d", .jitter = 0, .seed = 1, .transport = 2, PNG_DEFAULTS};
     double dp = 0.04;
-    granular_options g = {5e3, 25, 0.1};
+    granular_options g = {5e3, 25, 0.1, SPS_CONE_PAPERS};
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.005, 0.25, NULL},
         GRANULAR_OPTION_SPECS(g),

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 2, .vtk_every = 0.1, .csv_every = 0.01, .E = 1.8e6, .nu = 0.3,
                         .rho0 = 1850, .out = "out/soil_failure2d", .jitter = 0, .seed = 1, .transport = 2, PNG_DEFAULTS};
     double res = 100;
-    granular_options g = {5e3, 25, 0.1};
+    granular_options g = {5e3, 25, 0.1, SPS_CONE_PAPERS};
     opt_spec opts[] = {
         {"res", OPT_REAL, &res, "resolution L/dp (the paper: 100 and 200)", 10, 800, NULL},
         GRANULAR_OPTION_SPECS(g),

@@ -195,6 +195,7 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
         bd.material.cohesion = (sps_real)2e3;
         bd.material.friction_angle = 30;
         bd.material.dilatancy_angle = 5;
+        bd.material.yield_cone = SPS_CONE_PAPERS; /* the cone these hashes were pinned with */
     } else if (c->plastic) { /* a yield stress a quarter of the shear stress the motion builds in the run: it yields */
         bd.material.kind = SPS_MATERIAL_J2;
         bd.material.yield_stress = (sps_real)5e3;

@@ -2388,6 +2388,7 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 52: wd->periodic_origin[0] = 1; break;
     case 53: wd->periodic_origin[1] = 1; break;
     case 54: wd->periodic_origin[2] = 1; break;
+    case 55: m->yield_cone = SPS_CONE_PAPERS; break;
     }
 }
 
@@ -2430,7 +2431,8 @@ static int test_restart_every_def_field(void) {
         BODY_FIELD("hourglass"), TL_FIELD("artificial_viscosity"), BODY_FIELD("stress_diffusion"), BODY_FIELD("friction"),
         BODY_FIELD("contact_damping"), TL_FIELD("damage_strain"), BODY_FIELD("penalty_in_pressure_pass"),
         WORLD_FIELD("contact_rest"), WORLD_FIELD("periodic[0]"), WORLD_FIELD("periodic[1]"), WORLD_FIELD("dim"),
-        WORLD_FIELD("periodic_origin[0]"), WORLD_FIELD("periodic_origin[1]"), WORLD_FIELD("periodic_origin[2]")};
+        WORLD_FIELD("periodic_origin[0]"), WORLD_FIELD("periodic_origin[1]"), WORLD_FIELD("periodic_origin[2]"),
+        BODY_FIELD("material.yield_cone")};
 #undef WORLD_FIELD
 #undef BODY_FIELD
 #undef TL_FIELD

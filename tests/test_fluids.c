@@ -1,5 +1,6 @@
 /* test_fluids.c - fluids, granular media and the fluid-structure coupling.
    Included by tests/test_sphsolid.c (the runner, its helpers and the RUN list). */
+#include "../examples/scenes/infinite_slope.h"
 
 /* ============================================================================================ */
 
@@ -286,6 +287,108 @@ static int test_drucker_prager_return_on_cone(void) {
         ++outside;
     }
     ENSURE(outside > 20 && inside > 20 && apex > 20); /* the random trials reached all three cases */
+    return 0;
+}
+
+/* A principal stress state (s1, s2, s3 on the diagonal) as the stress vector xx xy xz yy yz zz. */
+static void principal_stress(double s1, double s2, double s3, sps_real s[6]) {
+    s[0] = (sps_real)s1; s[1] = 0; s[2] = 0; s[3] = (sps_real)s2; s[4] = 0; s[5] = (sps_real)s3;
+}
+
+/* Each cone of material.yield_cone meets Mohr-Coulomb where it says it does (tension positive,
+   Mohr's circle of centre p_m and radius t = c cos phi - p_m sin phi on the Coulomb line):
+   plane strain, with the out-of-plane stress that the potential's flow leaves at zero strain
+   (d g / d sigma_zz = 0); the compression cone at triaxial compression (the axial stress the
+   most compressive, the two lateral equal), the extension cone at triaxial extension, the
+   compromise cone between the two; the papers' cone is UTVF eq. 14 (tan phi / sqrt(9 + 12 tan^2
+   phi), which with psi = 0 acts in plane strain as asin(3 alpha_phi): 28.7 degrees for 30). */
+static int test_drucker_prager_cones_match_mohr_coulomb(void) {
+    const double deg = 3.14159265358979323846 / 180, phis[3] = {20, 30, 40}, cohesions[2] = {0, 5e3};
+    int i, j, k;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 2; ++j)
+            for (k = 0; k < 3; ++k) {
+                sps_material_def m = c5_soil();
+                const double phi = phis[i] * deg, sin_phi = sin(phi), p_m = -2e4 * (k + 1), t = cohesions[j] * cos(phi) - p_m * sin_phi;
+                const double scale = fabs(p_m) + t; /* the stresses' size: the tolerances are roundings of it */
+                sps_real s[6];
+                sps__yield_cone c;
+                double a, d, sqrt_j2;
+                m.friction_angle = (sps_real)phis[i];
+                m.cohesion = (sps_real)cohesions[j];
+                m.dilatancy_angle = (sps_real)(k == 2 ? phis[i] : k * 10); /* psi 0, 10 and phi (associated) */
+                m.yield_cone = SPS_CONE_PLANE_STRAIN;
+                c = sps__yield_cone_of(&m);
+                a = (double)c.alpha_psi;
+                d = -3 * a * t / sqrt(1 - 3 * a * a); /* sigma_zz - p_m at zero out-of-plane plastic strain */
+                principal_stress(p_m + t, p_m - t, p_m + d, s);
+                sqrt_j2 = sqrt(d * d / 3 + t * t);
+                ENSURE_NEAR(a + (2 * d / 3) / (2 * sqrt_j2), 0, 1e-12); /* no flow out of the plane */
+                ENSURE(fabs(yield_function(s, &m)) < 1e-12 * scale);
+                m.yield_cone = SPS_CONE_COMPRESSION; /* s3 axial; the lateral p_m + t twice */
+                principal_stress(p_m + t, p_m + t, p_m - t, s);
+                ENSURE(fabs(yield_function(s, &m)) < 1e-12 * scale);
+                m.yield_cone = SPS_CONE_COMPROMISE; /* outside it at compression ... */
+                ENSURE(yield_function(s, &m) > 1e-3 * scale);
+                m.yield_cone = SPS_CONE_EXTENSION; /* s1 axial; the lateral p_m - t twice */
+                principal_stress(p_m + t, p_m - t, p_m - t, s);
+                ENSURE(fabs(yield_function(s, &m)) < 1e-12 * scale);
+                m.yield_cone = SPS_CONE_COMPROMISE; /* ... inside it at extension */
+                ENSURE(yield_function(s, &m) < -1e-3 * scale);
+            }
+    {
+        sps_material_def m = c5_soil();
+        sps__yield_cone c;
+        m.friction_angle = 30;
+        m.yield_cone = SPS_CONE_PAPERS;
+        c = sps__yield_cone_of(&m);
+        ENSURE_NEAR(c.alpha_phi, tan(30 * deg) / sqrt(9 + 12 * tan(30 * deg) * tan(30 * deg)), 1e-15);
+        ENSURE_NEAR(c.k_c, 3 * 5e3 / sqrt(9 + 12 * tan(30 * deg) * tan(30 * deg)), 1e-9);
+        printf("    the papers' cone with psi = 0 acts in plane strain as phi = %.2f degrees for 30 (plane-strain cone: 30)\n",
+               asin(3 * (double)c.alpha_phi) / deg);
+        ENSURE_NEAR(asin(3 * (double)c.alpha_phi) / deg, 28.71, 0.01); /* the record's 28.7 */
+    }
+    return 0;
+}
+
+/* The infinite slope of examples/scenes/infinite_slope.h (phi 30, psi 0, the plane-strain cone,
+   D/dp 20) to t = 1.5 s, 1 s after its ramp: the top rows' displacement along the slope [dp]. */
+static double slope_displacement(double angle) {
+    slope_params p = {0, 30, 0, SPS_CONE_PLANE_STRAIN, 20, 0};
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w = NULL;
+    sps_body soil;
+    double t_prev = 0, displacement = 0, speed = 0;
+    p.angle = angle;
+    wd.threads = 1;
+    wd.log = quiet_log;
+    wd.energy_growth_limit = (sps_real)INFINITY; /* the account holds no deviatoric strain energy (examples/infinite_slope.c) */
+    bd.shear = SPS_SHEAR_OG;
+    bd.material.density = SLOPE_RHO0;
+    bd.material.youngs_modulus = (sps_real)SLOPE_E;
+    bd.material.poisson_ratio = (sps_real)SLOPE_NU;
+    bd.stress_diffusion = (sps_real)0.1;
+    if (slope_create(&p, &wd, &bd, &w, &soil) != SPS_OK) { sps_world_destroy(w); return NAN; }
+    while (sps_world_time(w) < 1.5 - 1e-9) {
+        if (sps_world_step(w) != SPS_OK) { sps_world_destroy(w); return NAN; }
+        slope_track(w, &t_prev, &displacement, &speed);
+    }
+    sps_world_destroy(w);
+    return displacement / (SLOPE_DEPTH / p.res);
+}
+
+/* An infinite slope of cohesionless soil with psi = 0 fails in simple shear at tan(theta) =
+   sin(phi) (Davis 1968; 26.6 degrees for phi 30), which the plane-strain cone reproduces: at 0.8
+   phi (24 degrees) the layer stands (its top moves less than 1 dp in the second after the ramp;
+   measured 0.27 dp: the contained yielding of the K0 start, then creep), at 1.2 phi (36) it flows
+   (measured hundreds of dp). */
+static int test_granular_infinite_slope_stands_and_flows(void) {
+    const double stands = slope_displacement(24), flows = slope_displacement(36);
+    printf("    top displacement after the ramp: %.3g dp at 24 degrees, %.3g dp at 36 (limit %.2f degrees)\n", stands, flows,
+           slope_limit_angle(30, 0));
+    ENSURE(stands < 1);  /* the criterion: below 1 dp */
+    ENSURE(flows > 10);  /* flowing: an accelerating layer, far past the creep of a standing one */
     return 0;
 }
 

@@ -242,6 +242,7 @@ int main(int argc, char** argv) {
     RUN(test_fluid_churn_warned);
     RUN(test_standing_wave_period);
     RUN(test_drucker_prager_return_on_cone);
+    RUN(test_drucker_prager_cones_match_mohr_coulomb);
     RUN(test_granular_limiter_off_in_expansion);
     RUN(test_granular_block_at_rest);
     RUN(test_coincident_particles_stay_finite);
@@ -337,6 +338,7 @@ int main(int argc, char** argv) {
     RUN(test_granular_block_holds_shape);
     RUN(test_granular_lattice_moment);
     RUN(test_granular_free_grain_stops);
+    RUN_LONG(test_granular_infinite_slope_stands_and_flows);
     RUN(test_restart_every_def_field);
     RUN(test_restart_ul_j2_into_tl_j2);
     RUN(test_unread_parameter_warned);
