@@ -16,7 +16,7 @@ static sps_world* build(int controlled, int threads) {
     sps_world* w;
     sps_body soil;
     const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.2, 0.1, 0}, tank_hi[3] = {0.5, 0.15, 0};
-    granular_options g = {0, 21.9, 0.1};
+    granular_options g = {0, 21.9, 0.1, SPS_CONE_PAPERS}; /* C4, as column_collapse2d */
     wd.threads = threads;
     wd.log = ex_log;
     wd.cfl_acoustic = (sps_real)0.4;
@@ -25,9 +25,7 @@ static sps_world* build(int controlled, int threads) {
     bd.material.poisson_ratio = (sps_real)0.3;
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.cohesion = (sps_real)g.cohesion;
-    bd.material.friction_angle = (sps_real)g.phi;
-    bd.stress_diffusion = (sps_real)g.diffusion;
+    apply_granular(&g, &bd);
     bd.shear = controlled ? SPS_SHEAR_GNO_A : SPS_SHEAR_OG;
     wd.dim = 2;
     wd.dp = (sps_real)0.004;
