@@ -357,7 +357,7 @@ cad-check: $(BUILD)/cad_check
 # broken build failing with WEB_EXTRA=-ffast-math). ----
 WEB_CC    ?= clang
 WEB_EXTRA ?=
-# the kinds the demo's scene has no body of are left out (SPHSOLID_NO_*): a 414 KB module instead of 514 KB
+# the kinds the demo's scene has no body of are left out (SPHSOLID_NO_*): a 487 KB module instead of 612 KB
 WEB_FLAGS  = --target=wasm32-wasi -std=c99 -O2 -msimd128 -ffp-contract=off -fno-math-errno $(WARN) -mexec-model=reactor -Wl,--strip-all \
              -DSPHSOLID_NO_GEOMETRY -DSPHSOLID_NO_TOTAL_LAGRANGIAN -DSPHSOLID_NO_PLASTICITY -DSPHSOLID_NO_GRANULAR
 WEB       = $(BUILD)/web
