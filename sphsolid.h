@@ -870,7 +870,10 @@
                          >>periodic; restart format 4); the fluid's viscous force divided by the
                          lattice moment, its acoustic step capped by the viscosity; moving wall
                          surfaces (sps_world_set_wall_velocity); sps_world_write_vtk_series (a
-                         .vtk.series index with the times, for ParaView); the demo as WebAssembly.
+                         .vtk.series index with the times, for ParaView); the demo as WebAssembly;
+                         the Drucker-Prager cone fitted to Mohr-Coulomb (material.yield_cone: plane
+                         strain with the body's dilatancy by default, the papers' eq. 14 and the
+                         3D cones kept; restart format 5).
       0.14.0 (2026-12-06) free rigid bodies (SPS_MATERIAL_RIGID_DYNAMIC: Newton-Euler with the
                          implicit midpoint rule, friction at the contact point's velocity);
                          geometry from files (chapter >>geometry: STL, OBJ, outlines, SVG; exact

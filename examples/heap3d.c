@@ -1,0 +1,144 @@
+/* heap3d.c - the angle of repose of a cohesionless cone: a cylinder of grains lifted slowly (3D).
+
+   A cylinder D = 0.05 m across and H = 0.1 m high of cohesionless Drucker-Prager soil (the C4
+   material: rho0 = 2040, E = 5.84 MPa, nu = 0.3, c = 0, psi = 0; friction angle phi = --phi)
+   stands in the middle of a rough (no-slip) floor 0.3 m x 0.3 m, is released from zero stress
+   under g = 9.8 (along -y) and slumps into a cone. As in heap2d, the body's velocity damping
+   (--damping c [1/s]) keeps the collapse quasi-static, like a cylinder lifted slowly. At the end
+   the cone's surface is read in rings dp wide about the axis (the highest particle + dp/2 in
+   each ring, rings of fewer than 3 particles left out) and its flank fitted by a straight line
+   between 20 % and 80 % of its height: the angle of repose. The yield cone is --cone (default
+   the plane-strain fit: a slope stands at phi; a conical heap's flank is not in plane strain,
+   so the 3D cones, --cone compression / extension / compromise, bracket it).
+
+   Build: make examples     Run: ./build/heap3d --phi 30 --threads 2
+   Expect: see bench/VALIDATION.md, "Angle of repose"; CSV, VTK snapshots, a picture.
+   Smoke: heap3d --dp 0.01 --tend 0.01 */
+#include "common.h"
+
+#define FLOOR_LENGTH 0.3
+#define COLUMN_RADIUS 0.025
+#define COLUMN_HEIGHT 0.1
+
+typedef struct {
+    output_plan output;
+    double t_end;
+} run_state;
+
+static int on_step(sps_world* w, void* user) {
+    run_state* s = (run_state*)user;
+    sps_diagnostics d;
+    output_tick(w, &s->output, "", &d);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
+    return 0;
+}
+
+/* The cylinder about the vertical axis through the floor's middle. */
+static sps_real cylinder_sdf(const sps_real x[3], void* user) {
+    const double dx = x[0] - 0.5 * FLOOR_LENGTH, dz = x[2] - 0.5 * FLOOR_LENGTH;
+    (void)user;
+    return (sps_real)(sqrt(dx * dx + dz * dz) - COLUMN_RADIUS);
+}
+
+/* The surface of the deposit in rings dp wide about the axis: the highest particle + dp/2 of
+   each ring (0 where a ring holds fewer than 3 particles: loose grains are not the heap). */
+static void ring_surface(const sps_world* w, double dp, int rings, double* top) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    const sps_real* z = sps_world_field(w, SPS_FIELD_POSITION_Z);
+    int* count = (int*)calloc((size_t)rings, sizeof(int));
+    int i, k, n = sps_world_particle_count(w);
+    for (k = 0; k < rings; ++k) top[k] = 0;
+    if (!count) return;
+    for (i = 0; i < n; ++i) {
+        const double dx = x[i] - 0.5 * FLOOR_LENGTH, dz = z[i] - 0.5 * FLOOR_LENGTH;
+        k = (int)(sqrt(dx * dx + dz * dz) / dp);
+        if (k >= rings) continue;
+        if (y[i] + 0.5 * dp > top[k]) top[k] = y[i] + 0.5 * dp;
+        ++count[k];
+    }
+    for (k = 0; k < rings; ++k)
+        if (count[k] < 3) top[k] = 0;
+    free(count);
+}
+
+/* The slope [m/m] of the least-squares line through the rings whose top is between 20 % and
+   80 % of the heap's height; 0 if fewer than 3 rings. */
+static double flank_slope(const double* top, double dp, int rings, double height) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int k, m = 0;
+    for (k = 0; k < rings; ++k) {
+        const double r = (k + 0.5) * dp, y = top[k];
+        if (y < 0.2 * height || y > 0.8 * height) continue;
+        sx += r; sy += y; sxx += r * r; sxy += r * y; ++m;
+    }
+    if (m < 3) return 0;
+    return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+}
+
+int main(int argc, char** argv) {
+    common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 2, .vtk_every = 0.25, .csv_every = 0.01, .E = 5.84e6, .nu = 0.3,
+                        .rho0 = 2040, .out = "out/heap3d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
+    double dp = 0.005, damping = 100, height = 0, slope, angle, wall, *top;
+    granular_options g = {0, 30, 0.1, SPS_CONE_PLANE_STRAIN};
+    opt_spec opts[] = {
+        {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.02, NULL},
+        {"damping", OPT_REAL, &damping, "velocity damping c [1/s] that keeps the collapse quasi-static (0: the fast collapse)", 0, 1e3, NULL},
+        GRANULAR_OPTION_SPECS(g),
+        COMMON_OPTION_SPECS(c),
+    };
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_body soil, all = {0};
+    sps_diagnostics d;
+    const sps_real lo[3] = {0.5 * FLOOR_LENGTH - COLUMN_RADIUS, 0, 0.5 * FLOOR_LENGTH - COLUMN_RADIUS},
+                   hi[3] = {0.5 * FLOOR_LENGTH + COLUMN_RADIUS, COLUMN_HEIGHT, 0.5 * FLOOR_LENGTH + COLUMN_RADIUS};
+    const sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3] = {FLOOR_LENGTH, 2 * COLUMN_HEIGHT, FLOOR_LENGTH};
+    run_state s;
+    int rings, k;
+
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, "3D angle of repose: a cohesionless cylinder lifted slowly slumps into a cone", opts, (int)(sizeof opts / sizeof *opts));
+    apply_common(&c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    memset(&s, 0, sizeof s);
+    bd.name = "soil";
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
+    apply_granular(&g, &bd);
+    bd.damping = (sps_real)damping;
+    wd.dim = 3;
+    wd.dp = (sps_real)dp;
+    wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
+    wd.log = ex_log;
+    ex_check(NULL, sps_world_create(&wd, &w));
+    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    ex_unset_unread(&bd);
+    ex_check(w, sps_world_add_body(w, &bd, &soil));
+    ex_check(w, sps_body_add_sdf(w, soil, lo, hi, cylinder_sdf, NULL, NULL));
+
+    s.t_end = c.t_end;
+    output_open(&s.output, &c, "heap3d", "velocity", "");
+    on_step(w, &s); /* t = 0: the first CSV row and snapshot */
+    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    wall = output_close(w, &s.output);
+    ex_check(w, sps_world_diagnostics(w, all, &d));
+
+    rings = (int)(0.5 * FLOOR_LENGTH / dp);
+    top = (double*)calloc((size_t)rings, sizeof(double));
+    if (!top) return 1;
+    ring_surface(w, dp, rings, top);
+    for (k = 0; k < rings; ++k)
+        if (top[k] > height) height = top[k];
+    slope = flank_slope(top, dp, rings, height);
+    angle = atan(fabs(slope)) * 180 / PI;
+    printf("heap3d: cylinder %g m across, %g m high, dp = %g, %d particles, phi = %g deg, cone %d, damping %g 1/s, t = %.3g s\n",
+           2 * COLUMN_RADIUS, COLUMN_HEIGHT, dp, sps_world_particle_count(w), g.phi, g.cone, damping, (double)d.time);
+    printf("  height %.4f m; flank %.1f degrees against phi = %g deg (%+.1f deg); largest speed %.3g m/s\n", height, angle, g.phi,
+           angle - g.phi, (double)d.max_speed);
+    printf("RESULT case=heap3d angle=%.2f phi=%g cone=%d height=%.4f damping=%g dp=%g t=%.4g max_speed=%.3g %s particles=%d steps=%ld "
+           "wall_s=%.2f out=%s\n", angle, g.phi, g.cone, height, damping, dp, (double)d.time, (double)d.max_speed, common_result_fields(&c),
+           sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
+    free(top);
+    sps_world_destroy(w);
+    return 0;
+}
