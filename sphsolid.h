@@ -293,6 +293,49 @@
       wrap (the energy watchdog accounts for it). A world without periodic axes runs none of it
       (its neighbour loops are compiled without the image). Examples: poiseuille, taylor_green.
 
+   OPEN BOUNDARIES (sps_body_add_zone, sps_zone_def; chapter >>open boundaries)
+      Boxes [lo, hi) [m] on a body where particles leave or enter the world, in the buffer-zone
+      form of Lastiwka, Basa and Quinlan 2009. SPS_ZONE_KILL (any fluid, granular or
+      updated-Lagrangian solid body): the body's particles in the box are removed (a drain).
+      SPS_ZONE_INFLOW (fluids): the box is filled with the body's lattice at once and its
+      particles move at the prescribed velocity (velocity_fn(x, t), or the constant velocity
+      [m/s]; evaluated at each advection step); one that leaves the box on the domain's side
+      (direction along axis) becomes fluid, and a new one is created a box depth behind it, one
+      lattice spacing behind the last of its row, with its density: the creation rate is the flux
+      over the particle volume dp^dim. SPS_ZONE_OUTFLOW (fluids): fluid that enters the box
+      becomes buffer; a buffer particle is held at the outlet pressure (pressure [Pa], gauge as
+      p = c0^2 (rho - rho0); density rho0 + p / c0^2) and at the mean velocity of the fluid within
+      2h upstream of the box in its dp-wide bin of the cross-section (zero gradient along the
+      axis: a velocity frozen at entry would hold fluid that starts at rest there as a plug), and
+      is removed when it leaves the box downstream. The pressure condition is a Dirichlet one
+      carried by a full kernel support of held particles: the fluid next to the box sees the
+      outlet pressure, and the boundary lies within two spacings of the box's face (measured:
+      a channel's pressure line meets p_out within 5 %, bench/VALIDATION.md). A zone's depth along
+      its axis is at least the kernel support 2h; defaults: kind KILL, axis 0, direction +1,
+      velocity 0, pressure 0. Fill the domain flush with the inflow box (the lattices continue).
+      The particle count changes only at the start of an advection step, before the
+      configuration update: removed particles are squeezed out of every array, their order kept,
+      and the ids renumbered in creation order, so ids stay 0..n-1 and unique (a particle's id
+      changes when an older one is removed: follow particles by id between removals only); new
+      particles are appended with the next ids. The arrays grow by half when full, at a step; call
+      sps_world_reserve(w, n) to size them (and, at the next step, the neighbour storage and the
+      zone bodies' own arrays) ahead, so that no step allocates. sps_world_zone_counts tells what
+      each zone created and removed; the field row "zone" (-1 none, else the zone's index) is in
+      sps_world_field_by_name and the VTK files. Refused: a box inverted or not finite, reaching
+      behind a wall or across a periodic axis's box, an inflow or outflow along a periodic axis,
+      a flow zone on a body that is not a fluid, any zone on a total-Lagrangian, free rigid or
+      wall body, zones with observers or SPS_ROTATION_PAIR bodies (both hold particle ids), a
+      velocity or pressure that is not finite (and a velocity_fn that returns one, at the step).
+      The energy watchdog starts its account again at every step (energy flows in and out). A
+      transport correction (TVF, UTVF) leaves buffer particles where their zone moves them.
+      Cost: one pass over the zone bodies' particles per advection step (a step that creates or
+      removes particles costs about 5 % more than one that does not, bench/open_cost.c); a world
+      without zones runs none of it. Restart: the zones are part of the fingerprint (each def
+      item, velocity_fn by whether it is set), the particle counts of the state are read from the
+      file (the program builds the scene as it was built, then restores). Tested at Re = 1; a
+      channel filled from empty at Re 3-10 clustered or blew up after the front reached the
+      outlet (no transport correction). Example: channel_flow.
+
    GRANULAR (material.kind = SPS_MATERIAL_DRUCKER_PRAGER; UTVF sections 2.3, 3.1.3; chapter
    >>material: Drucker-Prager)
       Elastic-perfectly plastic soil: the linear elastic law (c0 = sqrt(K/rho0)), the cone
@@ -836,7 +879,9 @@
       neighbor_capacity; the last-good-state copy). Steps after that never allocate (tested for
       every shear formulation with a counting allocator). A failed allocation returns
       SPS_ERR_OUT_OF_MEMORY with a message naming what it was for and leaves the world usable
-      (tested by refusing each allocation of a scenario in turn). sps_world_diagnostics allocates its
+      (tested by refusing each allocation of a scenario in turn). Open boundaries (OPEN
+      BOUNDARIES) grow the particle arrays by half at a step when they are full, unless
+      sps_world_reserve sized them ahead. sps_world_diagnostics allocates its
       scratch on first use. The cell grid is capped at about 4 cells per particle and wraps
       around (periodic hashing), so a particle thrown far away never grows memory.
 
@@ -852,7 +897,7 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, damage of updated-Lagrangian bodies, removing particles; rolling friction;
+      self-contact, damage of updated-Lagrangian bodies; rolling friction;
       a prescribed coefficient of restitution (contact_damping is a damping ratio of the
       contact layer: the restitution it gives is measured, bench/VALIDATION.md); friction on
       the contact surface's velocity for deformable bodies (a thrown elastic disc leaves with
@@ -10146,23 +10191,26 @@ static void sps__transport(sps_world* w) {
         sps__run_groups(w, b, sps__transport_sums, 0);
         sps__run_groups(w, b, sps__transport_shift, 0);
         sps__thread_share(b, &i0, &i1);
-        for (i = i0; i < i1; ++i)
+        for (i = i0; i < i1; ++i) {
+            if (w->zone && w->zone[i] >= 0) continue; /* a buffer particle moves as its zone holds it (>>open boundaries) */
             for (a = 0; a < w->dim; ++a) w->pos[a][i] += b->transport[(size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G + a];
+        }
         SPS__PRAGMA(omp barrier)
     }
 }
 
 /* >>open boundaries: kill, inflow and outflow zones (OPEN BOUNDARIES in the manual)
 
-   The buffer-zone form of Lastiwka, Basa and Quinlan 2009 (Int. J. Numer. Meth. Fluids 59,
-   1403-1418): an inflow buffer of lattice particles moves at the prescribed velocity and gives
+   The buffer-zone form of Lastiwka, Basa and Quinlan 2009 (Int. J. Numer. Meth. Fluids 61,
+   709-724): an inflow buffer of lattice particles moves at the prescribed velocity and gives
    the fluid next to it a full support; a buffer particle that crosses into the domain becomes
    fluid and a new one is created one box depth behind it, which is one lattice spacing behind
    the last of its row, so the buffer stays a lattice. An outflow buffer holds the particles that
-   crossed into it at the outlet pressure and at the velocity they entered with (the pressure is
-   the boundary condition; the frozen velocity keeps the truncated support at the buffer's end
-   from pushing them), and removes them when they leave it downstream. A kill zone removes what
-   enters it.
+   crossed into it at the outlet pressure and at the velocity of the fluid just upstream
+   (extrapolated with zero gradient along the axis, per bin of the cross-section: the pressure
+   is the boundary condition; a held velocity keeps the truncated support at the buffer's end
+   from pushing them out), and removes them when they leave it downstream. A kill zone removes
+   what enters it.
    The particle count changes only here, once per advection step before the configuration
    update (DESIGN: open boundaries): the zones are matched in particle order (deterministic for
    any thread count), the removed particles are squeezed out of every array (the survivors keep
