@@ -362,6 +362,7 @@ int main(int argc, char** argv) {
     RUN(test_open_kill_zone);
     RUN(test_open_threads_and_restart);
     RUN(test_open_bad_input);
+    RUN(test_open_restart_every_zone_item);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
