@@ -745,7 +745,9 @@
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
       at most 2e8), coordinates, volumes, points and velocities (finite, volumes > 0),
-      constraint masks (1..7), particle ids [0, n), field enums, t_end (finite).
+      constraint masks (1..7), particle ids [0, n), field enums, t_end (finite); zone defs (OPEN
+      BOUNDARIES: cookie, kind 0..2, the box, axis [0, dim), direction +-1, velocity and pressure
+      finite, a flow zone's depth >= 2h, the body's kind, walls, periodic axes, observers).
       Stepping: a world without particles, or a body without particles, gives SPS_ERR_STATE
       naming the body (a box narrower than dp holds no lattice point); at the first step, a
       deformable body with particles on the solid side of a wall gives SPS_ERR_STATE naming the
@@ -1604,9 +1606,10 @@ SPSDEF sps_zone_def sps_default_zone_def(void);
    fluid, granular and updated-Lagrangian solid bodies; inflow and outflow on fluid bodies; the
    box's depth along axis at least the kernel support 2h (a full support of buffer), its lo,
    hi within a periodic axis's box. Refused: a total-Lagrangian, free rigid or wall body, a
-   body with SPS_ROTATION_PAIR in the world, a world with observers (they hold particle ids),
-   frozen_geometry, a def that fails its checks (the message names the field, its value and the
-   allowed range). Allocates the zone index (one real per particle) at the first zone. */
+   body with SPS_ROTATION_PAIR in the world, a world with observers (they hold particle ids), a
+   box reaching behind a wall, a def that fails its checks (the message names the field, its
+   value and the allowed range). Allocates the zone index and velocity (four reals per particle)
+   at the first zone, an outflow zone's bins (4 reals per dp of its cross-section). */
 SPSDEF sps_result sps_body_add_zone(sps_world* w, sps_body b, const sps_zone_def* def, int* zone_id);
 /* Sets an inflow zone's velocity: the constant velocity (length 3, finite; used when fn is NULL)
    and the profile fn (may be NULL) with its user pointer, from the next step on. No allocation. */
@@ -1615,12 +1618,14 @@ SPSDEF sps_result sps_world_set_zone_velocity(sps_world* w, int zone, const sps_
 SPSDEF sps_result sps_world_zone_counts(const sps_world* w, int zone, long* created, long* removed);
 /* Grows every particle array (and, at the next step, the neighbour storage and the zone bodies'
    own arrays) to hold n_particles, so that open boundaries create particles without allocating
-   in a step (without it the arrays grow by half when full). SPS_ERR_INVALID_ARG for n_particles
-   outside [0, 2e8]; SPS_ERR_OUT_OF_MEMORY. */
+   in a step (without it the arrays grow by half when full). Like adding particles, it asks for a
+   step before sps_world_save. SPS_ERR_INVALID_ARG for n_particles outside [0, 2e8];
+   SPS_ERR_OUT_OF_MEMORY. */
 SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles);
 
 /* Advances one advection step (dual stepping: several acoustic sub-steps; single: one).
-   No allocation except at the first step after particles were added. O(N neighbours). */
+   No allocation except at the first step after particles were added, or when open boundaries
+   create more particles than the capacity holds (sps_world_reserve). O(N neighbours). */
 SPSDEF sps_result sps_world_step(sps_world* w);
 /* Steps until time t_end (the last step is shortened to land on it), calling fn after each
    step (may be NULL; return nonzero to stop early). */
@@ -1727,7 +1732,8 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    does not have. */
 SPSDEF const sps_real* sps_world_field_by_name(const sps_world* w, const char* name, int* components);
 SPSDEF const sps_real* sps_body_field(const sps_world* w, sps_body b, const char* name, int* components, int* first, int* count);
-/* Stable particle ids (0..count-1 in order of addition), in current order. */
+/* Stable particle ids (0..count-1 in order of addition), in current order. Open boundaries
+   renumber them, in the same order, when they remove particles (OPEN BOUNDARIES). */
 SPSDEF const int* sps_world_particle_ids(const sps_world* w);
 /* State of the particle with stable id. */
 SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_state* out);
