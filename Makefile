@@ -48,7 +48,7 @@ VARIANTS = spinning_cube ball_plate3d taylor_round
 EXAMPLES = $(EXAMPLE_SOURCES:examples/%.c=%) $(VARIANTS)
 HEADER   = sphsolid.h
 # the test runner tests/test_sphsolid.c includes its parts, one file per part of the library
-TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c tests/test_rigid.c tests/test_periodic.c
+TEST_FILES = tests/test_numerics.c tests/test_api.c tests/test_solids.c tests/test_fluids.c tests/test_rigid.c tests/test_periodic.c tests/test_open.c
 
 .PHONY: demo demo-smoke gallery probes all check quickstart-run examples examples-smoke run test test-fast test-sanitize fuzz fuzz-sanitize memcheck bench clean
 
@@ -187,7 +187,8 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "tensile3d --res 4 --png-field damage --png-view iso" "floating_block --drop 0.1 --tend 0.45" \
                "hydrostatic_fsi --res 5 --tend 0.1" "elastic_gate --res 3 --tend 0.15" \
                "rigid_float --width 0.2 --height 0.2 --tend 2.5" "rigid_roll --shape disc --dp 0.005 --tend 0.4" \
-               "poiseuille --res 20 --tend 0.3" "taylor_green --res 30 --tend 0.5" "cavity --res 20 --tend 2"
+               "poiseuille --res 20 --tend 0.3" "taylor_green --res 30 --tend 0.5" "cavity --res 20 --tend 2" \
+               "channel_flow --res 10 --tend 6"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \
@@ -395,7 +396,7 @@ memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 bench: examples
 	sh bench/run_bench.sh
 # probes that reach into the library's private state (sps__ functions): built only on request
-probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith $(BUILD)/fsi_cost $(BUILD)/particle_cost
+probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith $(BUILD)/fsi_cost $(BUILD)/particle_cost $(BUILD)/open_cost
 # each neighbour pass against its gathers alone and its arithmetic alone (bench/pass_bound.sh)
 $(BUILD)/pass_bound: bench/pass_bound.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
@@ -407,6 +408,9 @@ $(BUILD)/particle_cost: bench/particle_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(B
 $(FLOAT)/particle_cost: bench/particle_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	@mkdir -p $(FLOAT)
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< -o $@ $(LDLIBS)
+# open boundaries: the step time while the particle count changes, with and without sps_world_reserve
+$(BUILD)/open_cost: bench/open_cost.c $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 # the fluid-structure coupling's cost against the fluid passes alone
 $(BUILD)/fsi_cost: bench/fsi_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)

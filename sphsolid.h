@@ -293,6 +293,49 @@
       wrap (the energy watchdog accounts for it). A world without periodic axes runs none of it
       (its neighbour loops are compiled without the image). Examples: poiseuille, taylor_green.
 
+   OPEN BOUNDARIES (sps_body_add_zone, sps_zone_def; chapter >>open boundaries)
+      Boxes [lo, hi) [m] on a body where particles leave or enter the world, in the buffer-zone
+      form of Lastiwka, Basa and Quinlan 2009. SPS_ZONE_KILL (any fluid, granular or
+      updated-Lagrangian solid body): the body's particles in the box are removed (a drain).
+      SPS_ZONE_INFLOW (fluids): the box is filled with the body's lattice at once and its
+      particles move at the prescribed velocity (velocity_fn(x, t), or the constant velocity
+      [m/s]; evaluated at each advection step); one that leaves the box on the domain's side
+      (direction along axis) becomes fluid, and a new one is created a box depth behind it, one
+      lattice spacing behind the last of its row, with its density: the creation rate is the flux
+      over the particle volume dp^dim. SPS_ZONE_OUTFLOW (fluids): fluid that enters the box
+      becomes buffer; a buffer particle is held at the outlet pressure (pressure [Pa], gauge as
+      p = c0^2 (rho - rho0); density rho0 + p / c0^2) and at the mean velocity of the fluid within
+      2h upstream of the box in its dp-wide bin of the cross-section (zero gradient along the
+      axis: a velocity frozen at entry would hold fluid that starts at rest there as a plug), and
+      is removed when it leaves the box downstream. The pressure condition is a Dirichlet one
+      carried by a full kernel support of held particles: the fluid next to the box sees the
+      outlet pressure, and the boundary lies within two spacings of the box's face (measured:
+      a channel's pressure line meets p_out within 5 %, bench/VALIDATION.md). A zone's depth along
+      its axis is at least the kernel support 2h; defaults: kind KILL, axis 0, direction +1,
+      velocity 0, pressure 0. Fill the domain flush with the inflow box (the lattices continue).
+      The particle count changes only at the start of an advection step, before the
+      configuration update: removed particles are squeezed out of every array, their order kept,
+      and the ids renumbered in creation order, so ids stay 0..n-1 and unique (a particle's id
+      changes when an older one is removed: follow particles by id between removals only); new
+      particles are appended with the next ids. The arrays grow by half when full, at a step; call
+      sps_world_reserve(w, n) to size them (and, at the next step, the neighbour storage and the
+      zone bodies' own arrays) ahead, so that no step allocates. sps_world_zone_counts tells what
+      each zone created and removed; the field row "zone" (-1 none, else the zone's index) is in
+      sps_world_field_by_name and the VTK files. Refused: a box inverted or not finite, reaching
+      behind a wall or across a periodic axis's box, an inflow or outflow along a periodic axis,
+      a flow zone on a body that is not a fluid, any zone on a total-Lagrangian, free rigid or
+      wall body, zones with observers or SPS_ROTATION_PAIR bodies (both hold particle ids), a
+      velocity or pressure that is not finite (and a velocity_fn that returns one, at the step).
+      The energy watchdog starts its account again at every step (energy flows in and out). A
+      transport correction (TVF, UTVF) leaves buffer particles where their zone moves them.
+      Cost: one pass over the zone bodies' particles per advection step (a step that creates or
+      removes particles costs about 5 % more than one that does not, bench/open_cost.c); a world
+      without zones runs none of it. Restart: the zones are part of the fingerprint (each def
+      item, velocity_fn by whether it is set), the particle counts of the state are read from the
+      file (the program builds the scene as it was built, then restores). Tested at Re = 1; a
+      channel filled from empty at Re 3-10 clustered or blew up after the front reached the
+      outlet (no transport correction). Example: channel_flow.
+
    GRANULAR (material.kind = SPS_MATERIAL_DRUCKER_PRAGER; UTVF sections 2.3, 3.1.3; chapter
    >>material: Drucker-Prager)
       Elastic-perfectly plastic soil: the linear elastic law (c0 = sqrt(K/rho0)), the cone
@@ -709,7 +752,9 @@
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
       at most 2e8), coordinates, volumes, points and velocities (finite, volumes > 0),
-      constraint masks (1..7), particle ids [0, n), field enums, t_end (finite).
+      constraint masks (1..7), particle ids [0, n), field enums, t_end (finite); zone defs (OPEN
+      BOUNDARIES: cookie, kind 0..2, the box, axis [0, dim), direction +-1, velocity and pressure
+      finite, a flow zone's depth >= 2h, the body's kind, walls, periodic axes, observers).
       Stepping: a world without particles, or a body without particles, gives SPS_ERR_STATE
       naming the body (a box narrower than dp holds no lattice point); at the first step, a
       deformable body with particles on the solid side of a wall gives SPS_ERR_STATE naming the
@@ -843,7 +888,9 @@
       neighbor_capacity; the last-good-state copy). Steps after that never allocate (tested for
       every shear formulation with a counting allocator). A failed allocation returns
       SPS_ERR_OUT_OF_MEMORY with a message naming what it was for and leaves the world usable
-      (tested by refusing each allocation of a scenario in turn). sps_world_diagnostics allocates its
+      (tested by refusing each allocation of a scenario in turn). Open boundaries (OPEN
+      BOUNDARIES) grow the particle arrays by half at a step when they are full, unless
+      sps_world_reserve sized them ahead. sps_world_diagnostics allocates its
       scratch on first use. The cell grid is capped at about 4 cells per particle and wraps
       around (periodic hashing), so a particle thrown far away never grows memory.
 
@@ -859,7 +906,7 @@
       Repeated runs are bit-identical too (tested, like the thread counts).
 
    DOES NOT (yet)
-      self-contact, damage of updated-Lagrangian bodies, removing particles; rolling friction;
+      self-contact, damage of updated-Lagrangian bodies; rolling friction;
       a prescribed coefficient of restitution (contact_damping is a damping ratio of the
       contact layer: the restitution it gives is measured, bench/VALIDATION.md); friction on
       the contact surface's velocity for deformable bodies (a thrown elastic disc leaves with
@@ -873,7 +920,9 @@
                          .vtk.series index with the times, for ParaView); the demo as WebAssembly;
                          the Drucker-Prager cone fitted to Mohr-Coulomb (material.yield_cone: plane
                          strain with the body's dilatancy by default, the papers' eq. 14 and the
-                         3D cones kept; restart format 5).
+                         3D cones kept); open boundaries (sps_body_add_zone: inflow, outflow
+                         and kill zones after Lastiwka, Basa and Quinlan 2009; sps_world_reserve;
+                         ids renumbered in creation order at removals); restart format 5.
       0.14.0 (2026-12-06) free rigid bodies (SPS_MATERIAL_RIGID_DYNAMIC: Newton-Euler with the
                          implicit midpoint rule, friction at the contact point's velocity);
                          geometry from files (chapter >>geometry: STL, OBJ, outlines, SVG; exact
@@ -1551,8 +1600,64 @@ SPSDEF sps_result sps_world_add_observer(sps_world* w, sps_body b, const sps_rea
 /* Interpolated displacement and velocity of an observer (length-3 arrays; either may be NULL). */
 SPSDEF sps_result sps_observer_read(const sps_world* w, sps_observer o, sps_real displacement[3], sps_real velocity[3]);
 
+/* Open boundaries (OPEN BOUNDARIES; chapter >>open boundaries): boxes where a body's particles
+   are removed (a drain), created at an inflow or held at an outlet pressure. */
+typedef enum sps_zone_kind {
+    SPS_ZONE_KILL = 0,    /* the body's particles that enter the box are removed */
+    SPS_ZONE_INFLOW = 1,  /* a buffer of lattice particles moving at the prescribed velocity: one that
+                             leaves the box into the domain becomes fluid, and a new one is created
+                             a box depth behind it (Lastiwka, Basa and Quinlan 2009) */
+    SPS_ZONE_OUTFLOW = 2  /* fluid that enters the box becomes buffer: the outlet pressure, the velocity
+                             it entered with; removed when it leaves the box downstream */
+} sps_zone_kind;
+/* A prescribed inflow velocity v [m/s] at position x [m] and time t [s] (z ignored in 2D). Called
+   for each buffer particle at each advection step, from one thread at a time. */
+typedef void (*sps_zone_velocity_fn)(const sps_real x[3], sps_real t, void* user, sps_real v[3]);
+/* Zone definition. Get one from sps_default_zone_def(), edit, pass to sps_body_add_zone. */
+typedef struct sps_zone_def {
+    sps_zone_kind kind;        /* Default SPS_ZONE_KILL. */
+    sps_real lo[3], hi[3];     /* [m] the box [lo, hi), inside the world (within a periodic axis's box,
+                                  not across it), lo < hi; z ignored in 2D. Default 0 (set them). */
+    int axis;                  /* inflow, outflow: the axis the flow crosses the box along, [0, dim).
+                                  Default 0 (x). */
+    int direction;             /* inflow, outflow: the flow's sense along axis, +1 or -1: an inflow's
+                                  domain lies on that side of the box, an outflow's upstream of it.
+                                  Default +1. */
+    sps_real velocity[3];      /* inflow: the constant velocity [m/s] when velocity_fn is NULL,
+                                  finite. Default 0. */
+    sps_zone_velocity_fn velocity_fn; /* inflow: the velocity profile, or NULL. Default NULL. */
+    void* velocity_user;       /* passed to velocity_fn. Default NULL. */
+    sps_real pressure;         /* outflow: the outlet pressure [Pa] (gauge, as the fluid's p =
+                                  c0^2 (rho - rho0)), finite. Default 0. */
+    int internal_cookie;       /* set by sps_default_zone_def(); do not touch. */
+} sps_zone_def;
+SPSDEF sps_zone_def sps_default_zone_def(void);
+/* Adds a zone to body b and returns its index (0, 1, ... in the order of addition) in *zone_id
+   (may be NULL). An inflow zone fills its box with the body's lattice particles (as
+   sps_body_add_box) at the prescribed velocity: fill the domain flush with it. Kill zones on
+   fluid, granular and updated-Lagrangian solid bodies; inflow and outflow on fluid bodies; the
+   box's depth along axis at least the kernel support 2h (a full support of buffer), its lo,
+   hi within a periodic axis's box. Refused: a total-Lagrangian, free rigid or wall body, a
+   body with SPS_ROTATION_PAIR in the world, a world with observers (they hold particle ids), a
+   box reaching behind a wall, a def that fails its checks (the message names the field, its
+   value and the allowed range). Allocates the zone index and velocity (four reals per particle)
+   at the first zone, an outflow zone's bins (4 reals per dp of its cross-section). */
+SPSDEF sps_result sps_body_add_zone(sps_world* w, sps_body b, const sps_zone_def* def, int* zone_id);
+/* Sets an inflow zone's velocity: the constant velocity (length 3, finite; used when fn is NULL)
+   and the profile fn (may be NULL) with its user pointer, from the next step on. No allocation. */
+SPSDEF sps_result sps_world_set_zone_velocity(sps_world* w, int zone, const sps_real velocity[3], sps_zone_velocity_fn fn, void* user);
+/* The particles zone `zone` created and removed so far (either output may be NULL). */
+SPSDEF sps_result sps_world_zone_counts(const sps_world* w, int zone, long* created, long* removed);
+/* Grows every particle array (and, at the next step, the neighbour storage and the zone bodies'
+   own arrays) to hold n_particles, so that open boundaries create particles without allocating
+   in a step (without it the arrays grow by half when full). Like adding particles, it asks for a
+   step before sps_world_save. SPS_ERR_INVALID_ARG for n_particles outside [0, 2e8];
+   SPS_ERR_OUT_OF_MEMORY. */
+SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles);
+
 /* Advances one advection step (dual stepping: several acoustic sub-steps; single: one).
-   No allocation except at the first step after particles were added. O(N neighbours). */
+   No allocation except at the first step after particles were added, or when open boundaries
+   create more particles than the capacity holds (sps_world_reserve). O(N neighbours). */
 SPSDEF sps_result sps_world_step(sps_world* w);
 /* Steps until time t_end (the last step is shortened to land on it), calling fn after each
    step (may be NULL; return nonzero to stop early). */
@@ -1659,7 +1764,8 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    does not have. */
 SPSDEF const sps_real* sps_world_field_by_name(const sps_world* w, const char* name, int* components);
 SPSDEF const sps_real* sps_body_field(const sps_world* w, sps_body b, const char* name, int* components, int* first, int* count);
-/* Stable particle ids (0..count-1 in order of addition), in current order. */
+/* Stable particle ids (0..count-1 in order of addition), in current order. Open boundaries
+   renumber them, in the same order, when they remove particles (OPEN BOUNDARIES). */
 SPSDEF const int* sps_world_particle_ids(const sps_world* w);
 /* State of the particle with stable id. */
 SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_state* out);
@@ -2178,6 +2284,9 @@ typedef struct sps__body {
     sps_real* damage;     /* total-Lagrangian bodies with damage: D in [0, 1] (sps__tl_damage) */
     sps_real* viscous_work; /* Kelvin-Voigt bodies: the work each particle's viscous force dissipated [J] */
     int field_count; /* particles they hold: its count at the last commit */
+    int field_room;  /* particles they have room for (a body with zones: the world's capacity) */
+    int built_count; /* its count as the program built it (a world with zones: the restart fingerprint's) */
+    int zoned;       /* it has open-boundary zones: its particle count changes in a run */
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
     sps_real tl_c_ref;   /* total Lagrangian: its signal speed in the reference state (sps__tl_signal_speeds) */
@@ -2209,6 +2318,19 @@ typedef struct sps__constraint {
     sps_real velocity[3];
 } sps__constraint;
 
+/* An open-boundary zone (chapter >>open boundaries). */
+typedef struct sps__zone {
+    sps_zone_def def;
+    int body;
+    sps_real depth;    /* hi - lo along its axis: where a new inflow particle goes behind the one that left */
+    sps_real rho_out;  /* outflow: the density of the outlet pressure, rho0 + p / c0^2 */
+    long created, removed;
+    /* outflow: the velocity of the fluid within 2h upstream of the buffer, per dp-wide bin of the
+       box's cross-section (sums of v, then the count: 4 reals a bin), which its buffer takes */
+    sps_real* bins;
+    int bin_n[3], nbins;
+} sps__zone;
+
 typedef struct sps__observer {
     int body, first, count; /* weights in obs_ids / obs_weights [first, first + count) */
 } sps__observer;
@@ -2227,6 +2349,7 @@ struct sps_world {
     sps_real *pos[3], *vel[3], *ref[3], *acc_p[3], *acc_s[3];
     sps_real *rho, *drho, *p, *vol, *mass;
     int *id, *body, *slot_of_id, *cons;
+    sps_real *zone, *zone_vel[3]; /* open boundaries: NULL without zones (>>open boundaries) */
     int needs_sort_by_body; /* particles were added since the last step */
 
     /* run-time guards (sps__check_state, sps__check_time_step) */
@@ -2253,6 +2376,11 @@ struct sps_world {
     int free_rigid_bodies; /* bodies with model.free_rigid: the kick sums their forces (>>material: free rigid bodies) */
     sps__constraint* constraints;
     int ncons;
+    struct sps__zone* zones; /* open boundaries (>>open boundaries) */
+    int nzones;
+    int built;              /* a world with zones: the scene as built is recorded (its first zone update) */
+    int built_n;            /* ... its particle count */
+    uint64_t built_scene;   /* ... and its scene hash (the restart fingerprint's, sps__scene_hash) */
     sps__observer* observers;
     int nobs;
     int *obs_ids;
@@ -2343,6 +2471,7 @@ typedef enum {
     SPS__NEED_PLASTIC,     /* a body's material is plastic (J2, Drucker-Prager) */
     SPS__NEED_SCALED_PENALTY, /* a plastic body's GNO penalty is scaled by its return factors */
     SPS__NEED_CONSTRAINTS, /* allocated by the first sps_body_constrain_box */
+    SPS__NEED_ZONES,       /* allocated by the first sps_body_add_zone (>>open boundaries) */
     SPS__NEED_DRIVEN,      /* a body whose prescribed motion does work (sps__body.driven) */
     SPS__NEED_TRANSPORT,   /* a body with a transport correction (TVF, UTVF) */
     SPS__NEED_DIFFUSION,   /* a Drucker-Prager body with stress diffusion */
@@ -2422,6 +2551,10 @@ static const sps__field_info sps__fields[] = {
     {"body", "body", 0, SPS__OFF(body), 0, 1, 1, SPS__NEED_ALWAYS, SPS__CARRIED},
     {"slot_of_id", "slot of id", 0, SPS__OFF(slot_of_id), 0, 1, 1, SPS__NEED_ALWAYS, 0},
     {"constraint", "constraint", 0, SPS__OFF(cons), 0, 1, 1, SPS__NEED_CONSTRAINTS, SPS__CARRIED},
+    /* open boundaries: the zone a buffer particle is in (-1: none; a real, so that
+       sps_world_field_by_name shows it) and the velocity the kick holds it at */
+    {"zone", "zone", 0, SPS__OFF(zone), 0, 1, 0, SPS__NEED_ZONES, SPS__CARRIED | SPS__VALIDATED},
+    {"zone_velocity", "zone velocity", 0, SPS__OFF(zone_vel), 1, 1, 0, SPS__NEED_ZONES, SPS__CARRIED | SPS__CHECKED | SPS__VALIDATED},
 };
 #undef SPS__OFF
 #undef SPS__BOFF
@@ -2429,6 +2562,10 @@ static const sps__field_info sps__fields[] = {
 
 /* The address of the pointer of field f's array for axis a (a = 0 for one-array fields) in its
    owner: the world w, or the body b for a per-body field. */
+/* Whether the world holds world field f's arrays: always, or since the first constraint or zone. */
+static int sps__world_field_allocated(const sps_world* w, const sps__field_info* f) {
+    return f->need == SPS__NEED_ALWAYS || (f->need == SPS__NEED_CONSTRAINTS && w->cons) || (f->need == SPS__NEED_ZONES && w->zone);
+}
 static void* sps__field_slot(const sps_world* w, const sps__body* b, const sps__field_info* f, int a) {
     return (f->per_body ? (char*)b : (char*)w) + f->offset + (size_t)a * (f->is_int ? sizeof(int*) : sizeof(sps_real*));
 }
@@ -4027,11 +4164,14 @@ static void sps__free_particle_fields(sps_world* w) {
 }
 
 SPSDEF void sps_world_destroy(sps_world* w) {
+    int k;
     if (!w) return;
     sps__report_repeated_warnings(w);
     sps__free_particle_fields(w);
     sps__free(w, w->bodies);
     sps__free(w, w->constraints);
+    for (k = 0; k < w->nzones; ++k) sps__free(w, w->zones[k].bins);
+    sps__free(w, w->zones);
     sps__free(w, w->observers);
     sps__free(w, w->obs_ids);
     sps__free(w, w->obs_weights);
@@ -4114,6 +4254,11 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
         sps__set_error(w, 0, "sps_world_add_body: body '%s': %s", b->name, msg);
         return SPS_ERR_INVALID_ARG;
     }
+    if (b->model.paired && w->nzones > 0) { /* >>open boundaries renumbers the ids its kept pair forces go by */
+        sps__set_error(w, 0, "sps_world_add_body: body '%s': rotation = SPS_ROTATION_PAIR in a world with open-boundary zones, allowed "
+                       "the mean or per-particle rotation (the pair forces are kept by particle id, which zones renumber)", b->name);
+        return SPS_ERR_INVALID_ARG;
+    }
     b->rho0 = def->material.density;
     b->mat = sps__material_constants_of(&def->material);
     b->zeta = def->zeta > 0 ? def->zeta : SPS_R(0.7) * w->dim + SPS_R(2.1); /* ENO section 4 */
@@ -4181,7 +4326,7 @@ static sps_result sps__reserve(sps_world* w, int need) {
     m = (size_t)nc + SPS__LANES; /* + the zeroed lane padding */
     for (k = 0; k < SPS__NFIELDS; ++k) {
         const sps__field_info* f = &sps__fields[k];
-        if (f->need == SPS__NEED_CONSTRAINTS ? !w->cons : f->need != SPS__NEED_ALWAYS) continue;
+        if (!sps__world_field_allocated(w, f)) continue;
         for (a = 0; a < sps__field_arrays(f); ++a)
             if (!sps__grow(w, sps__field_slot(w, NULL, f, a), sps__field_bytes(f), o, m)) return SPS_ERR_OUT_OF_MEMORY;
     }
@@ -4203,6 +4348,10 @@ static sps_result sps__add_one(sps_world* w, int body, const sps_real x[3], sps_
     w->mass[i] = b->rho0 * volume; w->vol[i] = volume;
     w->id[i] = i; w->slot_of_id[i] = i; w->body[i] = body;
     if (w->cons) w->cons[i] = -1;
+    if (w->zone) { /* not in a zone (sps__zone_hold puts it in one) */
+        w->zone[i] = -1;
+        for (a = 0; a < 3; ++a) w->zone_vel[a][i] = 0;
+    }
     for (a = 0; a < w->dim; ++a) sps__watch_adjust(w, body, 0, -w->mass[i] * w->def.gravity[a] * w->pos[a][i]);
     b->count++;
     w->n++;
@@ -5555,12 +5704,20 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
    zeroed past the field_count particles they held (which keep their values: a commit sorts
    the particles by body stably, so each body's particles keep their order and the new ones
-   come last). Returns 0 when out of memory. */
-static int sps__ensure_body_field(sps_world* w, sps__body* b, const sps__field_info* f) {
+   come last), with room for `room` particles (its count; a body with zones: the world's
+   capacity, so that the particles its zones create fit without a new allocation). Returns 0
+   when out of memory. */
+static int sps__ensure_body_field(sps_world* w, sps__body* b, const sps__field_info* f, int room) {
+    const size_t bytes = sps__field_bytes(f);
     int a;
-    for (a = 0; a < sps__field_arrays(f); ++a)
-        if (!sps__grow(w, sps__field_slot(w, b, f, a), sps__field_bytes(f), (size_t)b->field_count, (size_t)b->count + SPS__LANES))
+    for (a = 0; a < sps__field_arrays(f); ++a) {
+        char* x;
+        memcpy(&x, sps__field_slot(w, b, f, a), sizeof x);
+        if (x && room <= b->field_room) /* room enough (a body with zones): the new particles' slots zeroed */
+            memset(x + bytes * (size_t)b->field_count, 0, bytes * (size_t)(b->field_room + SPS__LANES - b->field_count));
+        else if (!sps__grow(w, sps__field_slot(w, b, f, a), bytes, x ? (size_t)b->field_count : 0, (size_t)room + SPS__LANES))
             return 0;
+    }
     return 1;
 }
 
@@ -5577,11 +5734,13 @@ static sps_result sps__commit(sps_world* w) {
         }
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
-        if (b->field_count == b->count) continue;
+        const int room = b->zoned && w->cap > b->count ? w->cap : b->count;
+        if (b->field_count == b->count && room <= b->field_room) continue;
         for (k = 0; k < SPS__NFIELDS; ++k)
-            if (sps__fields[k].per_body && sps__body_needs(b, sps__fields[k].need) && !sps__ensure_body_field(w, b, &sps__fields[k]))
+            if (sps__fields[k].per_body && sps__body_needs(b, sps__fields[k].need) && !sps__ensure_body_field(w, b, &sps__fields[k], room))
                 return SPS_ERR_OUT_OF_MEMORY;
         b->field_count = b->count;
+        if (room > b->field_room) b->field_room = room;
     }
     for (bi = 0; bi < w->nbodies; ++bi) w->bodies[bi].reference_built = 0; /* the sort by body moves their ranges */
     w->allocated_for = w->cap;
@@ -5601,7 +5760,8 @@ static sps_result sps__commit(sps_world* w) {
 }
 
 /* Neighbour slots per particle: a full lattice support (counted once for this dim, kernel and
-   h/dp) times neighbor_capacity. */
+   h/dp) times neighbor_capacity; sized by the capacity, not the count, so that particles
+   created up to it (open boundaries, sps_world_reserve) find their slots. */
 static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     int lattice = 0, reach = (int)(w->support / w->def.dp) + 1, i, j, k, width;
     size_t cap = (size_t)w->cap;
@@ -5616,9 +5776,9 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     /* total slots: half-way between a full lattice and every particle at capacity (local
        compression is common, uniform compression to the capacity is not), plus the padding of
        the lane groups (a group is as long as its longest list) */
-    pairs = (long)((double)lattice * w->n * (1 + w->def.neighbor_capacity) / 2) + (long)lattice * w->n / 4 +
+    pairs = (long)((double)lattice * w->cap * (1 + w->def.neighbor_capacity) / 2) + (long)lattice * w->cap / 4 +
             (long)SPS__LANES * width * (w->nbodies + 1);
-    if (pairs > (long)width * (w->n + SPS__LANES * w->nbodies)) pairs = (long)width * (w->n + SPS__LANES * w->nbodies);
+    if (pairs > (long)width * (w->cap + SPS__LANES * w->nbodies)) pairs = (long)width * (w->cap + SPS__LANES * w->nbodies);
     if (w->allocated_for >= w->cap && w->ell_width == width && w->pair_cap >= pairs) return SPS_OK;
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_count); sps__free(w, w->nb_ell);
     sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
@@ -9435,6 +9595,11 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
                 }
             if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * work;
         }
+        if (w->zone && w->zone[i] >= 0) { /* an open boundary's buffer particle (>>open boundaries) */
+            SPS__UNROLL
+            for (a = 0; a < dim; ++a) w->vel[a][i] = w->zone_vel[a][i];
+            if (w->zones[(int)w->zone[i]].def.kind == SPS_ZONE_OUTFLOW) w->rho[i] = w->zones[(int)w->zone[i]].rho_out;
+        }
         SPS__UNROLL
         for (a = 0; a < dim; ++a) {
             w->pos[a][i] += SPS_R(0.5) * dt * w->vel[a][i];
@@ -10111,10 +10276,433 @@ static void sps__transport(sps_world* w) {
         sps__run_groups(w, b, sps__transport_sums, 0);
         sps__run_groups(w, b, sps__transport_shift, 0);
         sps__thread_share(b, &i0, &i1);
-        for (i = i0; i < i1; ++i)
+        for (i = i0; i < i1; ++i) {
+            if (w->zone && w->zone[i] >= 0) continue; /* a buffer particle moves as its zone holds it (>>open boundaries) */
             for (a = 0; a < w->dim; ++a) w->pos[a][i] += b->transport[(size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G + a];
+        }
         SPS__PRAGMA(omp barrier)
     }
+}
+
+/* >>open boundaries: kill, inflow and outflow zones (OPEN BOUNDARIES in the manual)
+
+   The buffer-zone form of Lastiwka, Basa and Quinlan 2009 (Int. J. Numer. Meth. Fluids 61,
+   709-724): an inflow buffer of lattice particles moves at the prescribed velocity and gives
+   the fluid next to it a full support; a buffer particle that crosses into the domain becomes
+   fluid and a new one is created one box depth behind it, which is one lattice spacing behind
+   the last of its row, so the buffer stays a lattice. An outflow buffer holds the particles that
+   crossed into it at the outlet pressure and at the velocity of the fluid just upstream
+   (extrapolated with zero gradient along the axis, per bin of the cross-section: the pressure
+   is the boundary condition; a held velocity keeps the truncated support at the buffer's end
+   from pushing them out), and removes them when they leave it downstream. A kill zone removes
+   what enters it.
+   The particle count changes only here, once per advection step before the configuration
+   update (DESIGN: open boundaries): the zones are matched in particle order (deterministic for
+   any thread count), the removed particles are squeezed out of every array (the survivors keep
+   their order and their ids are renumbered in creation order: ids stay 0..n-1), the new ones
+   are appended and the commit sorts them into their body. Between updates the kick holds a
+   buffer particle at its zone velocity (sps__kick_range). */
+
+/* Whether v is a valid zone index for the particle in slot i: -1, or a whole number naming a
+   buffer zone (inflow, outflow) of its body (sps_world_validate, restart files). */
+static int sps__zone_index_valid(const sps_world* w, int i, sps_real v) {
+    const int k = (int)v;
+    if (v == -1) return 1;
+    return v >= 0 && v < w->nzones && (sps_real)k == v && w->zones[k].body == w->body[i] && w->zones[k].def.kind != SPS_ZONE_KILL;
+}
+
+static int sps__zone_contains(const sps_world* w, const sps__zone* z, int i) {
+    int a;
+    for (a = 0; a < w->dim; ++a)
+        if (!(w->pos[a][i] >= z->def.lo[a] && w->pos[a][i] < z->def.hi[a])) return 0;
+    return 1;
+}
+/* How far past the face of zone z that the flow leaves it by (inflow: into the domain; outflow:
+   downstream) position x lies along its axis: >= 0 once it has left. */
+static sps_real sps__zone_past_exit(const sps__zone* z, sps_real x) {
+    const sps_real face = z->def.direction > 0 ? z->def.hi[z->def.axis] : z->def.lo[z->def.axis];
+    return z->def.direction > 0 ? x - face : face - x;
+}
+
+/* The bin of zone z's cross-section that particle i lies in (clamped to the box). */
+static int sps__zone_bin(const sps_world* w, const sps__zone* z, int i) {
+    int a, bin = 0;
+    for (a = w->dim - 1; a >= 0; --a) {
+        int k = (int)SPS__FLOOR((w->pos[a][i] - z->def.lo[a]) / w->def.dp);
+        if (a == z->def.axis) continue;
+        k = k < 0 ? 0 : k >= z->bin_n[a] ? z->bin_n[a] - 1 : k;
+        bin = bin * z->bin_n[a] + k;
+    }
+    return bin;
+}
+/* An outflow zone's bins: the mean velocity of the fluid of its body within 2h upstream of its
+   entry face, per bin of the cross-section (Lastiwka et al. extrapolate the flow into the
+   outflow buffer; a velocity frozen at entry would leave the fluid that is at rest there at the
+   start at rest for good, a plug). */
+static void sps__zone_sample(sps_world* w, sps__zone* z) {
+    const int ax = z->def.axis;
+    const sps_real entry = z->def.direction > 0 ? z->def.lo[ax] : z->def.hi[ax];
+    int i, a;
+    memset(z->bins, 0, sizeof(sps_real) * 4 * (size_t)z->nbins);
+    for (i = w->bodies[z->body].begin; i < w->bodies[z->body].end; ++i) {
+        const sps_real upstream = z->def.direction > 0 ? entry - w->pos[ax][i] : w->pos[ax][i] - entry;
+        sps_real* bin;
+        if (w->zone[i] >= 0 || !(upstream > 0 && upstream <= w->support)) continue;
+        for (a = 0; a < w->dim; ++a)
+            if (a != ax && !(w->pos[a][i] >= z->def.lo[a] && w->pos[a][i] < z->def.hi[a])) break;
+        if (a < w->dim) continue;
+        bin = z->bins + 4 * sps__zone_bin(w, z, i);
+        for (a = 0; a < w->dim; ++a) bin[a] += w->vel[a][i];
+        bin[3] += 1;
+    }
+}
+
+/* The prescribed velocity of inflow zone z at x, time t into v; SPS_ERR_INVALID_ARG naming the
+   zone, the point and the value if it is not finite. */
+static sps_result sps__zone_velocity(sps_world* w, int zi, const sps_real x[3], sps_real v[3]) {
+    const sps__zone* z = &w->zones[zi];
+    int a;
+    v[0] = v[1] = v[2] = 0;
+    if (z->def.velocity_fn) z->def.velocity_fn(x, w->time, z->def.velocity_user, v);
+    else memcpy(v, z->def.velocity, sizeof z->def.velocity);
+    for (a = 0; a < w->dim; ++a)
+        if (!sps__finite(v[a])) {
+            sps__set_error(w, 0, "zone %d: velocity_fn gave v[%d] = %g at x = (%g, %g, %g), t = %g, allowed finite", zi, a, (double)v[a],
+                           (double)x[0], (double)x[1], (double)x[2], (double)w->time);
+            return SPS_ERR_INVALID_ARG;
+        }
+    for (a = w->dim; a < 3; ++a) v[a] = 0;
+    return SPS_OK;
+}
+
+/* Holds buffer particle i of zone zi: the zone's velocity (inflow: the prescribed one; outflow:
+   the one it has) and, at an outflow, the outlet pressure. */
+static sps_result sps__zone_hold(sps_world* w, int zi, int i) {
+    const sps__zone* z = &w->zones[zi];
+    sps_real x[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+    int a;
+    sps_result r;
+    for (a = 0; a < w->dim; ++a) { x[a] = w->pos[a][i]; v[a] = w->vel[a][i]; }
+    if (z->def.kind == SPS_ZONE_INFLOW && (r = sps__zone_velocity(w, zi, x, v)) != SPS_OK) return r;
+    if (z->def.kind == SPS_ZONE_OUTFLOW) {
+        const sps_real* bin = z->bins + 4 * sps__zone_bin(w, z, i);
+        for (a = 0; a < w->dim && bin[3] > 0; ++a) v[a] = bin[a] / bin[3]; /* the upstream fluid's (zero gradient along the axis) */
+        w->rho[i] = z->rho_out;
+        w->p[i] = z->def.pressure;
+        w->vol[i] = w->mass[i] / w->rho[i];
+    }
+    w->zone[i] = (sps_real)zi;
+    for (a = 0; a < w->dim; ++a) w->zone_vel[a][i] = w->vel[a][i] = v[a];
+    return SPS_OK;
+}
+
+/* Squeezes out the particles marked in gone[] (n of them slot by slot, `removed` in all): every
+   world array and each body's own, survivors in order; ids renumbered in creation order. The
+   scratch new_id holds n ints. The commit that follows sets the bodies' ranges. */
+static void sps__remove_marked(sps_world* w, const int* gone, int* new_id, int removed) {
+    int k, a, bi, i, j, id;
+    const int n = w->n;
+    for (i = 0; i < n; ++i) new_id[w->id[i]] = gone[i] ? -1 : 0;
+    for (id = 0, j = 0; id < n; ++id)
+        if (new_id[id] == 0) new_id[id] = j++;
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        const size_t bytes = sps__field_bytes(f);
+        for (a = 0; a < sps__field_arrays(f); ++a) {
+            if (!f->per_body) {
+                char* x;
+                memcpy(&x, sps__field_slot(w, NULL, f, a), sizeof x);
+                if (!x) continue;
+                for (i = 0, j = 0; i < n; ++i)
+                    if (!gone[i]) memmove(x + bytes * (size_t)j++, x + bytes * (size_t)i, bytes);
+                memset(x + bytes * (size_t)j, 0, bytes * (size_t)(n - j)); /* as unused slots were */
+                continue;
+            }
+            for (bi = 0; bi < w->nbodies; ++bi) {
+                const sps__body* b = &w->bodies[bi];
+                char* x;
+                int m, kept;
+                memcpy(&x, sps__field_slot(w, b, f, a), sizeof x);
+                if (!x) continue;
+                for (m = 0, kept = 0; m < b->field_count; ++m)
+                    if (!gone[b->begin + m]) memmove(x + bytes * (size_t)kept++, x + bytes * (size_t)m, bytes);
+                memset(x + bytes * (size_t)kept, 0, bytes * (size_t)(b->field_count - kept)); /* the lane padding after the last */
+            }
+        }
+    }
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps__body* b = &w->bodies[bi];
+        int m, lost = 0;
+        for (m = b->begin; m < b->end; ++m) lost += gone[m];
+        b->count -= lost;
+        b->field_count -= lost;
+    }
+    w->n -= removed;
+    for (i = 0; i < w->n; ++i) w->id[i] = new_id[w->id[i]];
+    for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i;
+    w->good_n = 0; /* its ids are gone: the last good state is taken again at this update */
+}
+
+/* Appends a new inflow particle of zone zi at x with density rho, held at the zone velocity. */
+static sps_result sps__zone_create(sps_world* w, int zi, const sps_real x[3], sps_real rho) {
+    sps__zone* z = &w->zones[zi];
+    const int i = w->n;
+    sps_result r;
+    if ((r = sps__add_one(w, z->body, x, w->dp_volume)) != SPS_OK) return r;
+    w->rho[i] = rho;
+    w->p[i] = w->bodies[z->body].mat.c0 * w->bodies[z->body].mat.c0 * (rho - w->bodies[z->body].rho0);
+    w->vol[i] = w->mass[i] / rho;
+    z->created++;
+    return sps__zone_hold(w, zi, i);
+}
+
+/* The scene as the program built it, before the zones change it: a restart's fingerprint (the
+   program builds it again to restore). */
+#ifndef SPHSOLID_NO_STDIO
+static uint64_t sps__scene_hash(const sps_world* w);
+#endif
+static void sps__record_built_scene(sps_world* w) {
+    int bi;
+    if (w->built) return;
+    w->built = 1;
+    w->built_n = w->n;
+    for (bi = 0; bi < w->nbodies; ++bi) w->bodies[bi].built_count = w->bodies[bi].count;
+#ifndef SPHSOLID_NO_STDIO
+    w->built_scene = sps__scene_hash(w);
+#endif
+}
+
+/* Once per advection step, before the configuration update: each particle of a body with zones
+   against its zones, in particle order; then the removals and the new inflow particles. */
+static sps_result sps__open_boundaries(sps_world* w) {
+    int *gone, *new_id, i, k, removed = 0, spawned = 0, n0;
+    sps_real* spawn; /* per new particle: x, y, z, density, zone */
+    sps_result r;
+    if ((r = sps__ready_to_step(w)) != SPS_OK) return r; /* sorted by body, the scratch allocated */
+    sps__record_built_scene(w);
+    n0 = w->n;
+    gone = w->perm;      /* cap ints each: free between configuration updates */
+    new_id = w->cell_of;
+    spawn = (sps_real*)w->scratch; /* 9 cap reals: 5 per inflow particle at most */
+    for (k = 0; k < w->nzones; ++k)
+        if (w->zones[k].def.kind == SPS_ZONE_OUTFLOW) sps__zone_sample(w, &w->zones[k]);
+    for (i = 0; i < n0; ++i) {
+        const int bi = w->body[i];
+        int zi = (int)w->zone[i];
+        gone[i] = 0;
+        if (!w->bodies[bi].zoned) continue;
+        if (zi >= 0) { /* a buffer particle */
+            sps__zone* z = &w->zones[zi];
+            const sps_real past = sps__zone_past_exit(z, w->pos[z->def.axis][i]);
+            if (z->def.kind == SPS_ZONE_INFLOW && past >= 0) { /* into the domain: fluid, and a new one behind it */
+                sps_real* s = spawn + (size_t)5 * spawned++;
+                int a;
+                for (a = 0; a < 3; ++a) s[a] = a < w->dim ? w->pos[a][i] : 0;
+                s[z->def.axis] -= z->def.direction * z->depth;
+                s[3] = w->rho[i];
+                s[4] = (sps_real)zi;
+                w->zone[i] = -1;
+            } else if (z->def.kind == SPS_ZONE_OUTFLOW && !sps__zone_contains(w, z, i)) {
+                if (past >= 0) { gone[i] = 1; z->removed++; ++removed; continue; } /* downstream: out of the world */
+                w->zone[i] = -1; /* back upstream: fluid again */
+            } else if ((r = sps__zone_hold(w, zi, i)) != SPS_OK) return r; /* the velocity profile of this time */
+        }
+        for (k = 0; k < w->nzones && (zi = (int)w->zone[i]) < 0; ++k) {
+            sps__zone* z = &w->zones[k];
+            if (z->body != bi || z->def.kind == SPS_ZONE_INFLOW || !sps__zone_contains(w, z, i)) continue;
+            if (z->def.kind == SPS_ZONE_KILL) { gone[i] = 1; z->removed++; ++removed; break; }
+            if ((r = sps__zone_hold(w, k, i)) != SPS_OK) return r; /* into the outflow buffer */
+        }
+        if (!gone[i] && zi >= 0) /* a kill zone also takes buffer particles */
+            for (k = 0; k < w->nzones; ++k)
+                if (w->zones[k].body == bi && w->zones[k].def.kind == SPS_ZONE_KILL && sps__zone_contains(w, &w->zones[k], i)) {
+                    gone[i] = 1; w->zones[k].removed++; ++removed;
+                    break;
+                }
+    }
+    if (removed) sps__remove_marked(w, gone, new_id, removed);
+    for (k = 0; k < spawned; ++k) {
+        const sps_real* s = spawn + (size_t)5 * k;
+        if ((r = sps__zone_create(w, (int)s[4], s, s[3])) != SPS_OK) return r;
+    }
+    if (removed || spawned) w->needs_sort_by_body = 1; /* the commit sets the ranges and sorts the new particles into their body */
+    sps__rearm_watchdog(w); /* energy flows in and out through the zones: the account starts again at every step */
+    return SPS_OK;
+}
+
+SPSDEF sps_zone_def sps_default_zone_def(void) {
+    sps_zone_def d;
+    memset(&d, 0, sizeof d);
+    d.kind = SPS_ZONE_KILL;
+    d.direction = 1;
+    d.internal_cookie = SPS__COOKIE;
+    return d;
+}
+
+/* The rules of a zone def for body k (sps_body_add_zone); 0 with the message set if one breaks. */
+static int sps__check_zone(sps_world* w, int k, const sps_zone_def* d) {
+    static const char* const fn = "sps_body_add_zone";
+    const sps__body* b = &w->bodies[k];
+    const int flow = d->kind == SPS_ZONE_INFLOW || d->kind == SPS_ZONE_OUTFLOW;
+    const sps_real tol = SPS_R(1e-6) * w->def.dp;
+    int a, c, bi;
+    if (d->internal_cookie != SPS__COOKIE) { sps__set_error(w, 0, "%s: zone def not initialised: start from sps_default_zone_def()", fn); return 0; }
+    if ((int)d->kind < 0 || (int)d->kind > 2) {
+        sps__set_error(w, 0, "%s: kind = %d, allowed 0..2 (SPS_ZONE_KILL, SPS_ZONE_INFLOW, SPS_ZONE_OUTFLOW)", fn, (int)d->kind);
+        return 0;
+    }
+    if (!sps__check_box(w, fn, d->lo, d->hi)) return 0;
+    if (d->axis < 0 || d->axis >= w->dim) { sps__set_error(w, 0, "%s: axis = %d, allowed [0, %d)", fn, d->axis, w->dim); return 0; }
+    if (d->direction != 1 && d->direction != -1) { sps__set_error(w, 0, "%s: direction = %d, allowed +1 or -1", fn, d->direction); return 0; }
+    for (a = 0; a < 3; ++a)
+        if (!sps__finite(d->velocity[a])) { sps__set_error(w, 0, "%s: velocity[%d] = %g, allowed finite", fn, a, (double)d->velocity[a]); return 0; }
+    if (!sps__finite(d->pressure)) { sps__set_error(w, 0, "%s: pressure = %g, allowed finite", fn, (double)d->pressure); return 0; }
+    if (b->model.material->kinematic || b->model.total_lagrangian) {
+        sps__set_error(w, 0, "%s: body '%s' is a %s body, whose particles %s; allowed fluid, granular and updated-Lagrangian solid bodies",
+                       fn, b->name, b->model.free_rigid ? "free rigid" : b->model.total_lagrangian ? "total-Lagrangian" : "wall",
+                       b->model.total_lagrangian ? "keep their reference neighbours for the whole run" : "set its motion and mass together");
+        return 0;
+    }
+    if (flow && (b->model.material->shear || !b->model.pressure_of_density)) {
+        sps__set_error(w, 0, "%s: kind = %s on body '%s', which is not a fluid (its stress is not a pressure of its density); allowed on "
+                       "fluid bodies only (SPS_ZONE_KILL takes any deforming body)", fn, d->kind == SPS_ZONE_INFLOW ? "SPS_ZONE_INFLOW" : "SPS_ZONE_OUTFLOW", b->name);
+        return 0;
+    }
+    if (flow && d->hi[d->axis] - d->lo[d->axis] < w->support * (1 - SPS_R(1e-6))) {
+        sps__set_error(w, 0, "%s: the box's depth along axis %d = %g m, allowed >= the kernel support 2h = %g m (a full support of buffer)", fn,
+                       d->axis, (double)(d->hi[d->axis] - d->lo[d->axis]), (double)w->support);
+        return 0;
+    }
+    for (a = 0; a < w->dim; ++a) {
+        const sps_real o = w->def.periodic_origin[a], L = w->def.periodic[a];
+        if (L > 0 && flow && a == d->axis) {
+            sps__set_error(w, 0, "%s: axis = %d is periodic (periodic[%d] = %g): a flow through it comes back; allowed a non-periodic axis", fn, a, a, (double)L);
+            return 0;
+        }
+        if (L > 0 && (d->lo[a] < o - tol || d->hi[a] > o + L + tol)) {
+            sps__set_error(w, 0, "%s: lo[%d], hi[%d] = %g, %g straddle the periodic box [%g, %g); allowed within it", fn, a, a, (double)d->lo[a],
+                           (double)d->hi[a], (double)o, (double)(o + L));
+            return 0;
+        }
+    }
+    for (c = 0; c < w->nwalls; ++c) /* every corner of the box on the wall's free side */
+        for (a = 0; a < (1 << w->dim); ++a) {
+            sps_real s = 0;
+            int e;
+            for (e = 0; e < w->dim; ++e) s += (((a >> e) & 1 ? d->hi[e] : d->lo[e]) - w->walls[c].point[e]) * w->walls[c].normal[e];
+            if (s < -tol) {
+                sps__set_error(w, 0, "%s: the box [lo, hi] reaches %g m behind wall %d (normal (%g, %g, %g)), outside the domain; allowed on the "
+                               "walls' free side", fn, (double)-s, c, (double)w->walls[c].normal[0], (double)w->walls[c].normal[1],
+                               (double)w->walls[c].normal[2]);
+                return 0;
+            }
+        }
+    for (bi = 0; bi < w->nbodies; ++bi)
+        if (w->bodies[bi].model.paired) {
+            sps__set_error(w, 0, "%s: body '%s' has rotation = SPS_ROTATION_PAIR, whose pair forces are kept by particle id across steps; "
+                           "allowed with zones: the mean or per-particle rotation", fn, w->bodies[bi].name);
+            return 0;
+        }
+    if (w->nobs > 0) {
+        sps__set_error(w, 0, "%s: the world has %d observers, which hold particle ids that a zone's removals renumber; allowed: zones "
+                       "without observers (read the fields near the point instead)", fn, w->nobs);
+        return 0;
+    }
+    return 1;
+}
+
+SPSDEF sps_result sps_body_add_zone(sps_world* w, sps_body b, const sps_zone_def* def, int* zone_id) {
+    int k, i, a, added = 0;
+    sps__zone* z;
+    sps_result r;
+    if (zone_id) *zone_id = -1;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!def) { sps__set_error(w, 0, "sps_body_add_zone: def must not be NULL"); return SPS_ERR_INVALID_ARG; }
+    if ((k = sps__check_body(w, b, "sps_body_add_zone")) < 0 || !sps__check_zone(w, k, def)) return SPS_ERR_INVALID_ARG;
+    if (!w->zone) { /* the zone index and velocity, -1 and 0 for the particles so far */
+        const size_t room = (size_t)w->cap + SPS__LANES;
+        for (a = 0; a < 3; ++a)
+            if (!sps__grow(w, &w->zone_vel[a], sizeof(sps_real), 0, room)) return sps__oom(w, "sps_body_add_zone: the zone velocities");
+        if (!sps__grow(w, &w->zone, sizeof(sps_real), 0, room)) return sps__oom(w, "sps_body_add_zone: the zone index");
+        for (i = 0; i < w->n; ++i) w->zone[i] = -1;
+    }
+    if (!sps__grow(w, &w->zones, sizeof(sps__zone), (size_t)w->nzones, (size_t)w->nzones + 1)) return sps__oom(w, "sps_body_add_zone: the zone");
+    z = &w->zones[w->nzones];
+    z->def = *def;
+    z->body = k;
+    z->depth = def->hi[def->axis] - def->lo[def->axis];
+    z->rho_out = w->bodies[k].rho0 + def->pressure / (w->bodies[k].mat.c0 * w->bodies[k].mat.c0);
+    z->bins = NULL;
+    z->nbins = 1;
+    for (a = 0; a < 3; ++a) {
+        const double cells = a < w->dim && a != def->axis ? ceil((double)((def->hi[a] - def->lo[a]) / w->def.dp)) : 1;
+        if (cells > 1e6 || (z->nbins *= (int)cells) > 1000000) {
+            sps__set_error(w, 0, "sps_body_add_zone: the box's cross-section holds %.3g spacings dp, allowed 1e6", cells * z->nbins);
+            return SPS_ERR_INVALID_ARG;
+        }
+        z->bin_n[a] = (int)cells;
+    }
+    if (def->kind == SPS_ZONE_OUTFLOW && !(z->bins = (sps_real*)sps__alloc(w, sizeof(sps_real) * 4 * (size_t)z->nbins)))
+        return sps__oom(w, "sps_body_add_zone: the outflow bins");
+    if (z->bins) memset(z->bins, 0, sizeof(sps_real) * 4 * (size_t)z->nbins);
+    w->nzones++;
+    w->bodies[k].zoned = 1;
+    if (def->kind == SPS_ZONE_INFLOW) { /* the buffer: the box's lattice points, at the prescribed velocity */
+        const int first = w->n;
+        if ((r = sps__fill(w, "sps_body_add_zone", b, def->lo, def->hi, NULL, NULL, &added)) != SPS_OK || added == 0) {
+            w->nzones--;
+            if (r == SPS_OK) sps__set_error(w, 0, "sps_body_add_zone: the inflow box holds no lattice point of spacing dp = %g", (double)w->def.dp);
+            return r == SPS_OK ? SPS_ERR_INVALID_ARG : r;
+        }
+        for (i = first; i < w->n; ++i)
+            if ((r = sps__zone_hold(w, w->nzones - 1, i)) != SPS_OK) return r;
+    }
+    if (zone_id) *zone_id = w->nzones - 1;
+    return SPS_OK;
+}
+
+static int sps__check_zone_index(sps_world* w, int zone, const char* fn) {
+    if (zone >= 0 && zone < w->nzones) return 1;
+    sps__set_error(w, 0, "%s: zone = %d, allowed [0, %d)", fn, zone, w->nzones);
+    return 0;
+}
+
+SPSDEF sps_result sps_world_set_zone_velocity(sps_world* w, int zone, const sps_real velocity[3], sps_zone_velocity_fn fn, void* user) {
+    static const char* const name = "sps_world_set_zone_velocity";
+    int a;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (!sps__check_zone_index(w, zone, name)) return SPS_ERR_INVALID_ARG;
+    if (w->zones[zone].def.kind != SPS_ZONE_INFLOW) { sps__set_error(w, 0, "%s: zone %d is not an inflow zone (kind = %d), allowed SPS_ZONE_INFLOW", name, zone, (int)w->zones[zone].def.kind); return SPS_ERR_INVALID_ARG; }
+    if (!velocity) { sps__set_error(w, 0, "%s: velocity must not be NULL", name); return SPS_ERR_INVALID_ARG; }
+    for (a = 0; a < 3; ++a)
+        if (!sps__finite(velocity[a])) { sps__set_error(w, 0, "%s: velocity[%d] = %g, allowed finite", name, a, (double)velocity[a]); return SPS_ERR_INVALID_ARG; }
+    memcpy(w->zones[zone].def.velocity, velocity, sizeof w->zones[zone].def.velocity);
+    w->zones[zone].def.velocity_fn = fn;
+    w->zones[zone].def.velocity_user = user;
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_zone_counts(const sps_world* w, int zone, long* created, long* removed) {
+    if (created) *created = 0;
+    if (removed) *removed = 0;
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (zone < 0 || zone >= w->nzones) { sps__set_error_const(w, "sps_world_zone_counts: zone = %d, allowed [0, %d)", zone, w->nzones); return SPS_ERR_INVALID_ARG; }
+    if (created) *created = w->zones[zone].created;
+    if (removed) *removed = w->zones[zone].removed;
+    return SPS_OK;
+}
+
+SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles) {
+    if (!w) return SPS_ERR_INVALID_ARG;
+    if (n_particles < 0 || n_particles > SPS__MAX_PARTICLES) {
+        sps__set_error(w, 0, "sps_world_reserve: n_particles = %d, allowed [0, %d]", n_particles, SPS__MAX_PARTICLES);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (n_particles > w->cap) {
+        if (sps__reserve(w, n_particles) != SPS_OK) return sps__oom(w, "sps_world_reserve: the particle arrays");
+        w->needs_sort_by_body = 1; /* the next step sizes the neighbour storage and the bodies' arrays for it */
+    }
+    return SPS_OK;
 }
 
 /* >>stepping: configuration updates, the advection step and its acoustic sub-steps */
@@ -10311,6 +10899,7 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
     sps_real dt_ad, travel_max;
     int max_sub, unstable = 0;
     long steps_before;
+    if (w->nzones && (r = sps__open_boundaries(w)) != SPS_OK) return r; /* the count changes only here */
     if ((r = sps__update_configuration(w)) != SPS_OK) return r;
     w->advection_steps++;
     w->vmax = sps__frame_speeds(w);
@@ -10503,6 +11092,7 @@ static const struct {
 } sps__state_ranges[] = {
     {"damage", {0, 1, 0}},                 /* D starts at 0, never falls and stops at 1 (TL eq. 45) */
     {"plastic_strain", {0, HUGE_VAL, 0}}, /* accumulated from 0 by |increments| (J2, Drucker-Prager) */
+    {"zone", {-1, 2147483647.0, 0}},      /* -1 or a zone's index (sps__check_zone_field: one of the particle's body) */
 };
 static sps__range sps__field_range(const sps__field_info* f) {
     const sps__range finite = {-HUGE_VAL, HUGE_VAL, 0}, positive = {0, HUGE_VAL, 1};
@@ -10572,6 +11162,11 @@ static void sps__validate_links(const sps_world* w, char* msg, size_t msg_size, 
         for (a = 0; a < 3; ++a)
             if (!sps__finite(c->velocity[a])) sps__rule(msg, msg_size, broken, "constraint %d: velocity[%d] = %g, allowed finite", k, a, (double)c->velocity[a]);
     }
+    for (i = 0; w->zone && i < w->n; ++i)
+        if (!sps__zone_index_valid(w, i, w->zone[i])) {
+            sps__rule(msg, msg_size, broken, "particle id %d: zone %g, allowed -1 or an inflow or outflow zone of its body", w->id[i], (double)w->zone[i]);
+            break;
+        }
     for (i = 0; w->cons && i < w->n; ++i)
         if (w->cons[i] < -1 || w->cons[i] >= w->ncons) {
             sps__rule(msg, msg_size, broken, "particle id %d: constraint index %d, allowed -1 (none) or [0, %d)", w->id[i], w->cons[i], w->ncons);
@@ -11003,6 +11598,11 @@ SPSDEF sps_result sps_world_add_observer(sps_world* w, sps_body b, const sps_rea
     if (!w) return SPS_ERR_INVALID_ARG;
     if (out) out->id = 0;
     if ((k = sps__check_body(w, b, "sps_world_add_observer")) < 0) return SPS_ERR_INVALID_ARG;
+    if (w->nzones > 0) {
+        sps__set_error(w, 0, "sps_world_add_observer: the world has %d open-boundary zones, whose removals renumber the particle ids an "
+                       "observer holds; allowed: observers without zones", w->nzones);
+        return SPS_ERR_INVALID_ARG;
+    }
     if (!out || !sps__finite_point(w, x)) {
         sps__set_error(w, 0, "sps_world_add_observer: x %s and out %s, allowed a finite x and out != NULL",
                        x ? "set" : "NULL", out ? "set" : "NULL");
@@ -11069,8 +11669,8 @@ SPSDEF sps_result sps_observer_read(const sps_world* w, sps_observer o, sps_real
    (a per-body one is 0 for the bodies without it), or computed per particle by value. A new
    output is one row. */
 /* When a row of sps__vtk_arrays is written: always, with sps_vtk_options.stress, or when a
-   body is plastic (J2), total-Lagrangian, or has damage. */
-typedef enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC, SPS__VTK_IF_TOTAL_LAGRANGIAN, SPS__VTK_IF_DAMAGE } sps__vtk_shown_when;
+   body is plastic (J2), total-Lagrangian, or has damage, or the world has zones. */
+typedef enum { SPS__VTK_ALWAYS, SPS__VTK_WITH_STRESS, SPS__VTK_IF_PLASTIC, SPS__VTK_IF_TOTAL_LAGRANGIAN, SPS__VTK_IF_DAMAGE, SPS__VTK_IF_ZONES } sps__vtk_shown_when;
 typedef struct sps__vtk_array {
     const char* name;
     int components; /* per point (a per-axis field: 3, z = 0 in 2D) */
@@ -11106,6 +11706,7 @@ static const sps__vtk_array sps__vtk_arrays[] = {
     {"damage", 1, 0, "damage", NULL, SPS__VTK_IF_DAMAGE},
     {"body", 1, 1, "body", NULL, SPS__VTK_ALWAYS},
     {"id", 1, 1, "id", NULL, SPS__VTK_ALWAYS},
+    {"zone", 1, 0, "zone", NULL, SPS__VTK_IF_ZONES},
 };
 #define SPS__VTK_ARRAYS ((int)(sizeof sps__vtk_arrays / sizeof sps__vtk_arrays[0]))
 
@@ -11119,6 +11720,7 @@ static int sps__vtk_shown(const sps_world* w, const sps__vtk_array* row, const s
         if (w->bodies[bi].model.total_lagrangian) return 1;
     for (bi = 0; row->shown == SPS__VTK_IF_DAMAGE && bi < w->nbodies; ++bi)
         if (w->bodies[bi].model.damage) return 1;
+    if (row->shown == SPS__VTK_IF_ZONES) return w->nzones > 0;
     return row->shown == SPS__VTK_ALWAYS;
 }
 
@@ -11326,7 +11928,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 5u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone */
+#define SPS__RESTART_VERSION 5u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */
@@ -11339,7 +11941,8 @@ static uint64_t sps__fnv(uint64_t hash, const void* data, size_t size) {
 
 /* The world items of the fingerprint: the def items (the causes, named first), then the counts
    that lay out the state. */
-static const char* const sps__world_count_names[] = {"particle count", "body count", "wall count", "constraint count", "contact pairs turned off"};
+static const char* const sps__world_count_names[] = {"particle count", "body count", "wall count", "constraint count", "contact pairs turned off",
+                                                      "zone count"};
 #define SPS__WORLD_PRINT (SPS__WORLD_DEF_ITEMS + (int)(sizeof sps__world_count_names / sizeof sps__world_count_names[0]))
 static const char* sps__world_print_name(int k) {
     return k < SPS__WORLD_DEF_ITEMS ? sps__world_def_items[k].name : sps__world_count_names[k - SPS__WORLD_DEF_ITEMS];
@@ -11348,7 +11951,8 @@ static void sps__world_print(const sps_world* w, double v[SPS__WORLD_PRINT]) {
     double* counts = v + SPS__WORLD_DEF_ITEMS;
     int k;
     for (k = 0; k < SPS__WORLD_DEF_ITEMS; ++k) v[k] = sps__def_value(&w->def, &sps__world_def_items[k]);
-    counts[0] = w->n; counts[1] = w->nbodies; counts[2] = w->nwalls; counts[3] = w->ncons; counts[4] = w->nseparate;
+    counts[0] = w->built ? w->built_n : w->n; /* with zones: as built (the state's own count is in the payload) */
+    counts[1] = w->nbodies; counts[2] = w->nwalls; counts[3] = w->ncons; counts[4] = w->nseparate; counts[5] = w->nzones;
 }
 /* ... and those of each body: its def items, then its particle count. */
 #define SPS__BODY_PRINT (SPS__BODY_DEF_ITEMS + 1)
@@ -11356,7 +11960,18 @@ static const char* sps__body_print_name(int k) { return k < SPS__BODY_DEF_ITEMS 
 static void sps__body_print(const sps__body* b, double v[SPS__BODY_PRINT]) {
     int k;
     for (k = 0; k < SPS__BODY_DEF_ITEMS; ++k) v[k] = sps__def_value(&b->def, &sps__body_def_items[k]);
-    v[SPS__BODY_DEF_ITEMS] = b->count;
+    v[SPS__BODY_DEF_ITEMS] = b->built_count > 0 ? b->built_count : b->count;
+}
+/* ... and those of each zone: its def (the callback by whether there is one). */
+static const char* const sps__zone_print_names[] = {"body", "kind", "lo[0]", "lo[1]", "lo[2]", "hi[0]", "hi[1]", "hi[2]", "axis", "direction",
+                                                    "velocity[0]", "velocity[1]", "velocity[2]", "velocity_fn set", "pressure"};
+#define SPS__ZONE_PRINT ((int)(sizeof sps__zone_print_names / sizeof sps__zone_print_names[0]))
+static void sps__zone_print(const sps__zone* z, double v[SPS__ZONE_PRINT]) {
+    const sps_zone_def* d = &z->def;
+    int a;
+    v[0] = z->body; v[1] = (double)d->kind;
+    for (a = 0; a < 3; ++a) { v[2 + a] = d->lo[a]; v[5 + a] = d->hi[a]; v[10 + a] = d->velocity[a]; }
+    v[8] = d->axis; v[9] = d->direction; v[13] = d->velocity_fn != NULL; v[14] = d->pressure;
 }
 /* The scene as built: body, reference position, mass and constraint of each particle by id,
    from the world's arrays or (restoring) from a payload's, as bytes: the same hash of either. */
@@ -11614,10 +12229,17 @@ static void sps__check_real_field(const sps_world* w, sps__reader* r, const sps_
                                   int count) {
     const sps__range range = sps__field_range(f);
     const size_t values = (size_t)count * (size_t)f->components;
+    char name[96];
     size_t k;
     for (k = 0; k < values; ++k)
         if (!sps__in_range(&range, sps__real_at(p, k))) {
             sps__refuse_value(w, r, f->what, a, first + (int)(k / (size_t)f->components), sps__real_at(p, k), &range);
+            return;
+        }
+    for (k = 0; f->need == SPS__NEED_ZONES && a < 0 && k < values; ++k) /* the zone index: -1 or a zone of the particle's body */
+        if (!sps__zone_index_valid(w, first + (int)k, sps__real_at(p, k))) {
+            sps__refuse(r, f->what, "zone of %s = %g, allowed -1 or a zone of its body (%d zones)", sps__particle_name(w, r, first + (int)k, name, sizeof name),
+                        (double)sps__real_at(p, k), w->nzones);
             return;
         }
 }
@@ -11791,6 +12413,23 @@ static void sps__rigid_transfer(sps__stream* s, sps_world* w, int bi, sps__rigid
     sps__count_item(s, &r->contacts, w->bodies[bi].count, "rigid contact count"); /* it scales the stick drag */
 }
 
+/* A world with zones: the particle counts of the state (the world was resized to them before
+   the passes, sps__zone_resize: they must agree) and each zone's tallies. */
+static void sps__transfer_zones(sps_world* w, sps__stream* s) {
+    int n = w->n, bi, count;
+    if (sps__count_item(s, &n, SPS__MAX_PARTICLES, "particle count in the state") != w->n && s->in)
+        sps__refuse(s->in, "particle count in the state", "particle count in the state = %d, allowed %d", n, w->n);
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        count = w->bodies[bi].count;
+        if (sps__count_item(s, &count, SPS__MAX_PARTICLES, "body particle count in the state") != w->bodies[bi].count && s->in)
+            sps__refuse(s->in, "body particle count in the state", "particle count of body %d in the state = %d, allowed %d", bi, count, w->bodies[bi].count);
+    }
+    for (bi = 0; bi < w->nzones; ++bi) {
+        sps__counter_item(s, &w->zones[bi].created, sizeof w->zones[bi].created, "zone created count");
+        sps__counter_item(s, &w->zones[bi].removed, sizeof w->zones[bi].removed, "zone removed count");
+    }
+}
+
 /* The payload, both ways: every item of the state once, in file order. Saving passes the
    world cast from const (nothing is written into it); restoring runs it three times (the
    passes of sps__reader), into a world whose storage is committed (sps__ready_to_step).
@@ -11800,6 +12439,7 @@ static int sps__transfer_state(sps_world* w, sps__stream* s) {
     int k, bi, kept, good_n, lists, stopped;
     char failure;
     steps[0] = w->acoustic_steps; steps[1] = w->advection_steps;
+    if (w->nzones) sps__transfer_zones(w, s); /* first: the counts the rest is laid out by (sps__zone_resize) */
     sps__real_item(s, w, -1, &w->time, 1, &sps__nonnegative_range, "time");
     sps__real_item(s, w, -1, &w->dt, 1, &sps__nonnegative_range, "time step");
     sps__real_item(s, w, -1, &w->vmax, 1, &sps__nonnegative_range, "maximum speed");
@@ -11884,7 +12524,7 @@ static sps_result sps__read_passes(sps_world* w, sps__reader* r, const unsigned 
         r->left = bytes;
         r->pass = pass;
         *lists = sps__transfer_state(w, &reading);
-        if (pass == SPS__READ_VALUES && !r->bad) sps__check_scene(w, r, scene);
+        if (pass == SPS__READ_VALUES && !r->bad && !w->nzones) sps__check_scene(w, r, scene); /* zones create and remove particles */
     }
     sps__free(w, r->slot_of_id);
     r->slot_of_id = NULL;
@@ -11895,7 +12535,8 @@ static sps_result sps__read_passes(sps_world* w, sps__reader* r, const unsigned 
 static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__writer* s) {
     const uint32_t words[3] = {SPS__RESTART_BYTE_ORDER, SPS__RESTART_VERSION, (uint32_t)sizeof(sps_real)};
     double print[SPS__WORLD_PRINT], body[SPS__BODY_PRINT];
-    const uint64_t scene = sps__scene_hash(w);
+    const uint64_t scene = w->built ? w->built_scene : sps__scene_hash(w);
+    double zone[SPS__ZONE_PRINT];
     int bi;
     sps__put(s, sps__restart_magic, sizeof sps__restart_magic);
     sps__put(s, words, sizeof words);
@@ -11906,6 +12547,10 @@ static void sps__put_header(const sps_world* w, uint64_t payload_bytes, sps__wri
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body_print(&w->bodies[bi], body);
         sps__put(s, body, sizeof body);
+    }
+    for (bi = 0; bi < w->nzones; ++bi) {
+        sps__zone_print(&w->zones[bi], zone);
+        sps__put(s, zone, sizeof zone);
     }
 }
 
@@ -12023,7 +12668,22 @@ static sps_result sps__read_fingerprint(sps_world* w, FILE* f, const char* path,
                 return SPS_ERR_STATE;
             }
     }
-    if (scene != sps__scene_hash(w)) {
+    for (bi = 0; bi < w->nzones; ++bi) {
+        double zone_file[SPS__ZONE_PRINT], zone_mine[SPS__ZONE_PRINT];
+        if (fread(zone_file, sizeof zone_file, 1, f) != 1) {
+            sps__set_error(w, 0, "sps_world_restore: '%s' is truncated: it ends inside the header", path);
+            return SPS_ERR_IO;
+        }
+        sps__zone_print(&w->zones[bi], zone_mine);
+        for (k = 0; k < SPS__ZONE_PRINT; ++k)
+            if (memcmp(&zone_file[k], &zone_mine[k], sizeof zone_file[k]) != 0) {
+                sps__set_error(w, 0, "sps_world_restore: '%s' was saved from another scene: zone %d %s = %g in the file, %g in this world "
+                               "(build the scene as it was built before the save, then restore)", path, bi, sps__zone_print_names[k],
+                               zone_file[k], zone_mine[k]);
+                return SPS_ERR_STATE;
+            }
+    }
+    if (scene != (w->built ? w->built_scene : sps__scene_hash(w))) {
         sps__set_error(w, 0, "sps_world_restore: '%s' was saved from another scene: the particles' reference positions, masses, "
                        "bodies or constraints differ (build the scene as it was built before the save, then restore)", path);
         return SPS_ERR_STATE;
@@ -12062,17 +12722,76 @@ static sps_result sps__read_payload(sps_world* w, FILE* f, const char* path, uin
     return SPS_OK;
 }
 
+static void sps__zone_resize_back(sps_world* w, const int* old_counts);
+/* Sets the bodies' particles to consecutive slots of the world's order, counts[b] each. */
+static void sps__zone_lay_out(sps_world* w, const int* counts) {
+    int bi, i, first = 0;
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        for (i = first; i < first + counts[bi]; ++i) w->body[i] = bi;
+        w->bodies[bi].count = counts[bi];
+        first += counts[bi];
+    }
+    w->n = first;
+    w->needs_sort_by_body = 1;
+}
+/* A world with zones, before the passes read the payload: the state's particle counts (its
+   head, sps__transfer_zones), checked, and the world resized to them (the layout by body; the
+   values come from the passes). *old_counts gets the world's counts for sps__zone_resize_back. */
+static sps_result sps__zone_resize(sps_world* w, const unsigned char* payload, size_t bytes, const char* path, int** old_counts) {
+    const size_t head = sizeof(int) * (size_t)(1 + w->nbodies);
+    int bi, n, sum = 0, *counts;
+    sps_result res;
+    if (bytes < head) { sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: its particle counts do not fit this world", path); return SPS_ERR_IO; }
+    n = sps__int_at(payload, 0);
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        const int c = sps__int_at(payload, (size_t)1 + (size_t)bi);
+        if (c < 1 || c > SPS__MAX_PARTICLES || (sum += c) > SPS__MAX_PARTICLES) {
+            sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: particle count of body %d in the state = %d, allowed [1, %d] in all", path,
+                           bi, c, SPS__MAX_PARTICLES);
+            return SPS_ERR_IO;
+        }
+    }
+    if (n != sum) {
+        sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: particle count in the state = %d, allowed the bodies' sum %d", path, n, sum);
+        return SPS_ERR_IO;
+    }
+    sps__record_built_scene(w); /* the scene as built (this world's, which the fingerprint matched) */
+    if (!(counts = (int*)sps__alloc(w, sizeof(int) * (size_t)(2 * w->nbodies + 1)))) return sps__oom(w, "sps_world_restore: the counts");
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        counts[bi] = w->bodies[bi].count;
+        counts[w->nbodies + bi] = sps__int_at(payload, (size_t)1 + (size_t)bi);
+    }
+    *old_counts = counts;
+    if (sps__reserve(w, n) != SPS_OK) return sps__oom(w, "sps_world_restore: the particle arrays");
+    sps__zone_lay_out(w, counts + w->nbodies);
+    if ((res = sps__ready_to_step(w)) != SPS_OK) sps__zone_resize_back(w, counts);
+    return res;
+}
+/* A refused file: the world's own counts and layout back (its values were not touched). */
+static void sps__zone_resize_back(sps_world* w, const int* old_counts) {
+    int bi, i;
+    sps__zone_lay_out(w, old_counts);
+    for (bi = 0; bi < w->nbodies; ++bi) w->bodies[bi].field_count = old_counts[bi]; /* its arrays kept those values */
+    for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i;
+}
+
 static sps_result sps__restore(sps_world* w, FILE* f, const char* path) {
     uint64_t payload_bytes = 0, scene = 0;
     unsigned char* payload = NULL;
     sps__reader r;
     sps_result res;
-    int i, lists;
+    int i, lists, *old_counts = NULL;
     if ((res = sps__read_header(w, f, path, &payload_bytes)) != SPS_OK || (res = sps__read_fingerprint(w, f, path, &scene)) != SPS_OK) return res;
     if ((res = sps__ready_to_step(w)) != SPS_OK) return res; /* the storage the state goes into */
     if ((res = sps__read_payload(w, f, path, payload_bytes, &payload)) != SPS_OK) { sps__free(w, payload); return res; }
+    if (w->nzones && (res = sps__zone_resize(w, payload, (size_t)payload_bytes, path, &old_counts)) != SPS_OK) {
+        sps__free(w, payload);
+        return res;
+    }
     res = sps__read_passes(w, &r, payload, (size_t)payload_bytes, scene, SPS__READ_APPLY, &lists);
     sps__free(w, payload);
+    if (w->nzones && (res != SPS_OK || r.bad)) sps__zone_resize_back(w, old_counts);
+    sps__free(w, old_counts);
     if (res != SPS_OK) return sps__oom(w, "sps_world_restore: the check of the file's state"); /* nothing was applied */
     if (r.bad) { /* nothing was applied */
         if (r.why[0]) sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: %s", path, r.why);

@@ -187,6 +187,7 @@ static double von_mises(const double s[6], int dim) {
 #include "test_fluids.c"
 #include "test_rigid.c"
 #include "test_periodic.c"
+#include "test_open.c"
 
 int main(int argc, char** argv) {
     int i;
@@ -359,6 +360,11 @@ int main(int argc, char** argv) {
     RUN(test_periodic_body_across_boundary);
     RUN(test_periodic_bad_input);
     RUN(test_periodic_threads_and_restart);
+    RUN(test_open_channel_steady);
+    RUN(test_open_kill_zone);
+    RUN(test_open_threads_and_restart);
+    RUN(test_open_bad_input);
+    RUN(test_open_restart_every_zone_item);
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);
