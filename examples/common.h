@@ -599,6 +599,21 @@ EX_UNUSED static void apply_granular(const granular_options* g, sps_body_def* bd
     bd->material.yield_cone = (sps_yield_cone)g->cone;
     bd->stress_diffusion = (sps_real)g->diffusion;
 }
+/* The slope [m/m] of the least-squares line through the surface heights top[k] at (k + 1/2) dp,
+   k from k0 to k1 (either order), that lie between 20 % and 80 % of height: a heap's flank
+   (heap2d's columns, heap3d's rings); 0 if fewer than 3 do. */
+EX_UNUSED static double ex_flank_slope(const double* top, double dp, int k0, int k1, double height) {
+    const int first = k0 < k1 ? k0 : k1, last = k0 < k1 ? k1 : k0;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int k, m = 0;
+    for (k = first; k <= last; ++k) {
+        const double x = (k + 0.5) * dp, y = top[k];
+        if (y < 0.2 * height || y > 0.8 * height) continue;
+        sx += x; sy += y; sxx += x * x; sxy += x * y; ++m;
+    }
+    if (m < 3) return 0;
+    return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+}
 /* The UTVF paper's gravity [m/s^2] (down y) in the granular examples' worlds. */
 #define GRANULAR_GRAVITY 9.8
 EX_UNUSED static const char* transport_name(int t) { return t == 0 ? "none" : t == 1 ? "TVF" : "UTVF"; }

@@ -64,21 +64,6 @@ static void surface(const sps_world* w, double dp, int columns, double* top) {
     free(count);
 }
 
-/* The slope [m/m] of the least-squares line through the columns (k0..k1, step +-1) whose top
-   is between 20 % and 80 % of the heap's height; 0 if fewer than 3 columns. */
-static double flank_slope(const double* top, double dp, int k0, int k1, double height) {
-    const int step = k1 > k0 ? 1 : -1;
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int k, m = 0;
-    for (k = k0; k != k1 + step; k += step) {
-        const double x = (k + 0.5) * dp, y = top[k];
-        if (y < 0.2 * height || y > 0.8 * height) continue;
-        sx += x; sy += y; sxx += x * x; sxy += x * y; ++m;
-    }
-    if (m < 3) return 0;
-    return (m * sxy - sx * sy) / (m * sxx - sx * sx);
-}
-
 /* Pours the column's volume: one row at the inlet every sqrt(2 dp / g), each added between steps
    (sps_body_add_box), then advances to t_end; a library error ends the program. */
 static void pour(sps_world* w, sps_body soil, double dp, double t_end, run_state* s) {
@@ -169,8 +154,8 @@ int main(int argc, char** argv) {
     surface(w, dp, columns, top);
     for (k = 0; k < columns; ++k)
         if (top[k] > height) { height = top[k]; peak = k; }
-    left = flank_slope(top, dp, peak, 0, height);
-    right = flank_slope(top, dp, peak, columns - 1, height);
+    left = ex_flank_slope(top, dp, peak, 0, height);
+    right = ex_flank_slope(top, dp, peak, columns - 1, height);
     angle = 0.5 * (atan(fabs(left)) + atan(fabs(right))) * 180 / 3.14159265358979323846;
     printf("heap: column %g m x %g m, dp = %g, %d particles, phi = %g deg, damping %g 1/s, t = %.3g s\n", COLUMN_WIDTH, COLUMN_HEIGHT, dp,
            sps_world_particle_count(w), g.phi, damping, (double)d.time);

@@ -61,20 +61,6 @@ static void ring_surface(const sps_world* w, double dp, int rings, double* top) 
     free(count);
 }
 
-/* The slope [m/m] of the least-squares line through the rings whose top is between 20 % and
-   80 % of the heap's height; 0 if fewer than 3 rings. */
-static double flank_slope(const double* top, double dp, int rings, double height) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int k, m = 0;
-    for (k = 0; k < rings; ++k) {
-        const double r = (k + 0.5) * dp, y = top[k];
-        if (y < 0.2 * height || y > 0.8 * height) continue;
-        sx += r; sy += y; sxx += r * r; sxy += r * y; ++m;
-    }
-    if (m < 3) return 0;
-    return (m * sxy - sx * sy) / (m * sxx - sx * sx);
-}
-
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 2, .vtk_every = 0.25, .csv_every = 0.01, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/heap3d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
@@ -129,7 +115,7 @@ int main(int argc, char** argv) {
     ring_surface(w, dp, rings, top);
     for (k = 0; k < rings; ++k)
         if (top[k] > height) height = top[k];
-    slope = flank_slope(top, dp, rings, height);
+    slope = ex_flank_slope(top, dp, 0, rings - 1, height);
     angle = atan(fabs(slope)) * 180 / PI;
     printf("heap3d: cylinder %g m across, %g m high, dp = %g, %d particles, phi = %g deg, cone %d, damping %g 1/s, t = %.3g s\n",
            2 * COLUMN_RADIUS, COLUMN_HEIGHT, dp, sps_world_particle_count(w), g.phi, g.cone, damping, (double)d.time);
