@@ -148,6 +148,8 @@ $(BUILD)/rigid_cost: bench/rigid_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/crates_tank: bench/crates_tank.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/periodic_cost: bench/periodic_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/fluid_rest: bench/fluid_rest.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
@@ -156,7 +158,7 @@ $(BUILD)/game_tank: bench/game_tank.c $(HEADER) $(EXAMPLE_HEADERS) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/geometry_cost: bench/geometry_cost.c tests/mesh_files.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost $(BUILD)/rigid_cost $(BUILD)/crates_tank
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost $(BUILD)/rigid_cost $(BUILD)/crates_tank $(BUILD)/periodic_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh
