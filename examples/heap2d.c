@@ -45,25 +45,6 @@ static int on_step(sps_world* w, void* user) {
     return 0;
 }
 
-/* The surface of the deposit in columns dp wide: the highest particle + dp/2 of each column
-   (0 where a column holds fewer than 2 particles: loose grains are not the heap). */
-static void surface(const sps_world* w, double dp, int columns, double* top) {
-    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
-    int* count = (int*)calloc((size_t)columns, sizeof(int));
-    int i, k, n = sps_world_particle_count(w);
-    for (k = 0; k < columns; ++k) top[k] = 0;
-    if (!count) return;
-    for (i = 0; i < n; ++i) {
-        k = (int)(x[i] / dp);
-        if (k < 0 || k >= columns) continue;
-        if (y[i] + 0.5 * dp > top[k]) top[k] = y[i] + 0.5 * dp;
-        ++count[k];
-    }
-    for (k = 0; k < columns; ++k)
-        if (count[k] < 2) top[k] = 0;
-    free(count);
-}
-
 /* Pours the column's volume: one row at the inlet every sqrt(2 dp / g), each added between steps
    (sps_body_add_box), then advances to t_end; a library error ends the program. */
 static void pour(sps_world* w, sps_body soil, double dp, double t_end, run_state* s) {
@@ -151,7 +132,7 @@ int main(int argc, char** argv) {
     columns = (int)(FLOOR_LENGTH / dp) + 1;
     top = (double*)calloc((size_t)columns, sizeof(double));
     if (!top) return 1;
-    surface(w, dp, columns, top);
+    ex_heap_surface(w, dp, columns, NULL, 2, top);
     for (k = 0; k < columns; ++k)
         if (top[k] > height) { height = top[k]; peak = k; }
     left = ex_flank_slope(top, dp, peak, 0, height);

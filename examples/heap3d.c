@@ -40,27 +40,6 @@ static sps_real cylinder_sdf(const sps_real x[3], void* user) {
     return (sps_real)(sqrt(dx * dx + dz * dz) - COLUMN_RADIUS);
 }
 
-/* The surface of the deposit in rings dp wide about the axis: the highest particle + dp/2 of
-   each ring (0 where a ring holds fewer than 3 particles: loose grains are not the heap). */
-static void ring_surface(const sps_world* w, double dp, int rings, double* top) {
-    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
-    const sps_real* z = sps_world_field(w, SPS_FIELD_POSITION_Z);
-    int* count = (int*)calloc((size_t)rings, sizeof(int));
-    int i, k, n = sps_world_particle_count(w);
-    for (k = 0; k < rings; ++k) top[k] = 0;
-    if (!count) return;
-    for (i = 0; i < n; ++i) {
-        const double dx = x[i] - 0.5 * FLOOR_LENGTH, dz = z[i] - 0.5 * FLOOR_LENGTH;
-        k = (int)(sqrt(dx * dx + dz * dz) / dp);
-        if (k >= rings) continue;
-        if (y[i] + 0.5 * dp > top[k]) top[k] = y[i] + 0.5 * dp;
-        ++count[k];
-    }
-    for (k = 0; k < rings; ++k)
-        if (count[k] < 3) top[k] = 0;
-    free(count);
-}
-
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 2, .vtk_every = 0.25, .csv_every = 0.01, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/heap3d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
@@ -81,6 +60,7 @@ int main(int argc, char** argv) {
                    hi[3] = {0.5 * FLOOR_LENGTH + COLUMN_RADIUS, COLUMN_HEIGHT, 0.5 * FLOOR_LENGTH + COLUMN_RADIUS};
     const sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3] = {FLOOR_LENGTH, 2 * COLUMN_HEIGHT, FLOOR_LENGTH};
     run_state s;
+    double axis[2]; /* x and z of the cylinder's axis */
     int rings, k;
 
     ex_short_openmp_spin(argv);
@@ -110,9 +90,10 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_diagnostics(w, all, &d));
 
     rings = (int)(0.5 * FLOOR_LENGTH / dp);
+    axis[0] = axis[1] = 0.5 * FLOOR_LENGTH;
     top = (double*)calloc((size_t)rings, sizeof(double));
     if (!top) return 1;
-    ring_surface(w, dp, rings, top);
+    ex_heap_surface(w, dp, rings, axis, 3, top);
     for (k = 0; k < rings; ++k)
         if (top[k] > height) height = top[k];
     slope = ex_flank_slope(top, dp, 0, rings - 1, height);
