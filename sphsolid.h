@@ -376,9 +376,11 @@
       geostatic difference sigma_geo,ij = -rho0 (g . x_ij) [g^ g^ + K0 (I - g^ g^)] left alone so
       a layer at rest keeps its weight; its pair sums are taken in the pressure pass and used
       in the stress update of the same sub-step. Walls act through mirror particles as on a
-      fluid (FLUIDS), the images carrying their particle's stress: unchanged at a no-slip wall,
-      which then takes the shear traction (friction), reflected at a slip wall; the velocity
-      gradient uses the no-slip image velocity -v_j. A free-slip wall with
+      fluid (FLUIDS), the images carrying their particle's stress: reflected at a slip wall; at
+      a no-slip wall, which takes the shear traction (friction), continued across it by
+      equilibrium with the body force (gravity and the body's external acceleration; the images'
+      shear then carries the gradient that holds a layer on a slope: chapter >>walls for fluids,
+      the granular images' shear); the velocity gradient uses the no-slip image velocity -v_j. A free-slip wall with
       sps_world_set_wall_friction(mu) resists a particle's sliding by Coulomb's mu times the
       wall's normal force on it (the basal friction of a flow on a smooth bed); a grain that
       left the bulk has no stress to take a no-slip wall's shear with, and slides on along it. sps_body_set_geostatic_stress starts a
@@ -671,7 +673,8 @@
       middle of the sub-step, t that middle (so a load that varies in time or space is
       integrated to second order, like the internal forces), v the velocity before the kick (a
       velocity-dependent force lags half a sub-step). a is added to gravity; "pressure_acceleration"
-      then includes it. Why every sub-step and not once per advection step: at rest an advection
+      then includes it. A granular body calls fn once more, in the contact pass, for each
+      particle within 2h of a no-slip wall (its images' shear is continued by the body force). Why every sub-step and not once per advection step: at rest an advection
       step holds up to max_substeps (100) sub-steps, so a stored load would lag by 100 of them (a
       staircase in time, and a drag evaluated 100 sub-steps late), while a call costs about
       10 ns a particle (2D plate, H/dp 10, 1 thread: 3.98 s against 3.81 s with the same load as
@@ -1753,7 +1756,9 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r); a
    total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
    Drucker-Prager body "plastic_strain" (accumulated deviatoric), "plastic_work" and, with
-   stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR); a body with a
+   stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR) and, in a world
+   with a no-slip wall, "wall_equilibrium" (21: d sigma / dx and rho b of the particles within
+   2h of one, >>walls for fluids); a body with a
    Kelvin-Voigt viscosity or contact damping "viscous_work" [J] (DAMPING, CONTACT).
    sps_world_field_by_name: the world's array of a field every particle has, *components (may
    be NULL) values per particle, particle i's at [components i]; same order and lifetime as
@@ -2267,6 +2272,8 @@ typedef struct sps__body {
     sps_real* transport;   /* TVF, UTVF: SPS__TRANSPORT_VALUES per particle (>>transport) */
     sps_real* diffusion;   /* Drucker-Prager with stress diffusion: its rate (6 per particle) */
     sps_real* next_pressure; /* Drucker-Prager: the pressure of the stress update (sps__finish) */
+    sps_real* wall_equilibrium; /* Drucker-Prager at no-slip walls: SPS__EQUILIBRIUM_VALUES per particle */
+    int wall_equilibrium_needed; /* sps__wants_wall_equilibrium, as of the last commit */
     sps__yield_cone cone;  /* Drucker-Prager: the yield cone */
     sps_real limiter_eta_c0; /* eta / c0 of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
     sps_real diffusion_rate; /* 2 zeta h c0 of the stress diffusion */
@@ -2374,6 +2381,7 @@ struct sps_world {
     sps__body* bodies;
     int nbodies, bodies_cap;
     int free_rigid_bodies; /* bodies with model.free_rigid: the kick sums their forces (>>material: free rigid bodies) */
+    int wall_equilibrium;  /* a body continues its no-slip images' shear by equilibrium (sps__measure_wall_equilibrium) */
     sps__constraint* constraints;
     int ncons;
     struct sps__zone* zones; /* open boundaries (>>open boundaries) */
@@ -2476,6 +2484,7 @@ typedef enum {
     SPS__NEED_TRANSPORT,   /* a body with a transport correction (TVF, UTVF) */
     SPS__NEED_DIFFUSION,   /* a Drucker-Prager body with stress diffusion */
     SPS__NEED_GRANULAR,    /* a Drucker-Prager body */
+    SPS__NEED_WALL_EQUILIBRIUM, /* a Drucker-Prager body in a world with a no-slip wall */
     SPS__NEED_TOTAL_LAGRANGIAN, /* a total-Lagrangian body */
     SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC, /* a total-Lagrangian J2 body */
     SPS__NEED_DAMAGE,      /* a total-Lagrangian body with damage (damage_strain > 0) */
@@ -2490,6 +2499,8 @@ enum {
     SPS__GOOD = 16,    /* copied into the last good state (keep_last_good_state) */
     SPS__VALIDATED = 32 /* checked by sps_world_validate */
 };
+
+#define SPS__EQUILIBRIUM_VALUES 21 /* "wall_equilibrium": 6 x 3 stress derivatives, then rho b */
 
 typedef struct sps__field_info {
     const char* name;  /* for sps_world_field_by_name; per-axis arrays add _x, _y, _z */
@@ -2533,6 +2544,9 @@ static const sps__field_info sps__fields[] = {
     /* Drucker-Prager: -tr(sigma)/3 of the stress update, written by the continuity pass (whose
        Riemann term reads the neighbours' p) and moved into p when the sub-step finishes */
     {"next_pressure", "next pressure", 1, SPS__BOFF(next_pressure), 0, 1, 0, SPS__NEED_GRANULAR, 0},
+    /* Drucker-Prager at a no-slip wall: d sigma / dx and rho b, written by the contact pass and
+       read by the images of the same pass (>>walls for fluids, the granular images' shear) */
+    {"wall_equilibrium", "wall equilibrium", 1, SPS__BOFF(wall_equilibrium), 0, SPS__EQUILIBRIUM_VALUES, 0, SPS__NEED_WALL_EQUILIBRIUM, 0},
     /* written by the continuity pass, read by the penalty pass of the same sub-step */
     {"return_factor", "return factor", 1, SPS__BOFF(return_factor), 0, 1, 0, SPS__NEED_SCALED_PENALTY, 0},
     /* total Lagrangian: B_i = -L_i^-1 (TL eq. 15) of the reference configuration, F_i (TL eq. 17)
@@ -5695,7 +5709,7 @@ static int sps__body_needs(const sps__body* b, sps__need need) {
            (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
            (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven) ||
            (need == SPS__NEED_TRANSPORT && m->transport != SPS_TRANSPORT_NONE) || (need == SPS__NEED_DIFFUSION && m->diffusion) ||
-           (need == SPS__NEED_GRANULAR && !m->pressure_of_density) ||
+           (need == SPS__NEED_GRANULAR && !m->pressure_of_density) || (need == SPS__NEED_WALL_EQUILIBRIUM && b->wall_equilibrium_needed) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
            (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic) ||
            (need == SPS__NEED_DAMAGE && m->damage) || (need == SPS__NEED_KELVIN_VOIGT && (m->viscous == SPS__VISCOUS_KELVIN_VOIGT || b->def.contact_damping > 0));
@@ -5721,6 +5735,7 @@ static int sps__ensure_body_field(sps_world* w, sps__body* b, const sps__field_i
     return 1;
 }
 
+static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b); /* >>walls for fluids */
 static sps_result sps__commit(sps_world* w) {
     int i, bi, k;
     if (sps__ensure_neighbor_storage(w) != SPS_OK) {
@@ -5732,10 +5747,13 @@ static sps_result sps__commit(sps_world* w) {
             if (sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
             break;
         }
+    w->wall_equilibrium = 0;
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
-        const int room = b->zoned && w->cap > b->count ? w->cap : b->count;
-        if (b->field_count == b->count && room <= b->field_room) continue;
+        const int room = b->zoned && w->cap > b->count ? w->cap : b->count, equilibrium = sps__wants_wall_equilibrium(w, b);
+        w->wall_equilibrium |= equilibrium;
+        if (b->field_count == b->count && room <= b->field_room && equilibrium == b->wall_equilibrium_needed) continue;
+        b->wall_equilibrium_needed = equilibrium; /* a no-slip wall added after the first step: its array now */
         for (k = 0; k < SPS__NFIELDS; ++k)
             if (sps__fields[k].per_body && sps__body_needs(b, sps__fields[k].need) && !sps__ensure_body_field(w, b, &sps__fields[k], room))
                 return SPS_ERR_OUT_OF_MEMORY;
@@ -6972,17 +6990,156 @@ static sps_real sps__image_geometry(const sps_world* w, int i, const sps_real x[
     return sps__dwdr(w, r);
 }
 
-/* The stress of image m of body b: the neighbour's deviator tau_j as it is at a no-slip wall
-   (the image continues the stress field, so the wall takes its shear traction, as the
-   reference code's dummy particles with the particle's own stress), reflected across a slip
-   wall, M tau_j M with M = I - 2 n n (no shear traction). */
-static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, sps_real t[9]) {
+/* The stress of image m of body b (granular): the neighbour's deviator tau_j reflected across
+   a slip wall, M tau_j M with M = I - 2 n n (no shear traction); at a no-slip wall tau_j
+   continued across the wall by equilibrium (below; as it is, with even, when the pass that
+   measures equilibrium reads it). */
+static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, int even, sps_real t[9]);
+
+/* >>walls for fluids (continued): the granular images' shear, continued by equilibrium
+
+   A no-slip wall holds a granular body through its images' stress. Given the particle's own
+   deviator (an even reflection, as the reference code's dummy particles), the images carry no
+   gradient of the shear traction across the wall, and the row next to the floor of an infinite
+   slope feels none of the shear that holds the layer above it: the layer slides on the floor
+   about a degree below the cone's limit angle, and a GNO penalty lets it slide at 20 degrees
+   (bench/VALIDATION.md, "Infinite slope"). The image of j at x' (delta = (x' - x_j) . n) takes
+   instead the traction sigma_an (a along the wall) continued by equilibrium,
+       d sigma_an / dn = -rho_j b_a - (I - n n)_cd d sigma_ad / dx_c,
+   with the body force b = g plus the body's external acceleration at x_j (the wall at rest:
+   Adami, Hu and Adams 2012's wall pressure, p_w = p_f + rho (g - a_w) . r_wf, extended to the
+   traction) and the divergence along the wall measured at j: tau' = tau_j + delta (s n + n s),
+   s the tangential part of the right-hand side. On an infinite slope the stress varies across
+   the layer only, and the images carry the shear gradient rho g sin(theta); at a vertical wall
+   beside a column the weight is carried by d sigma_yy / dy, and s = 0 there as for the
+   even image. The pressure is continued hydrostatically as for a fluid (sps__mirror). The
+   gradient is measured once per sub-step, in the contact pass, for the particles within 2h of
+   a no-slip wall (sps__measure_wall_equilibrium), into the field "wall_equilibrium": d sigma /
+   dx (the 6 stress entries times 3 directions, scaled by the lattice's gradient moment as the
+   divergence) and rho b (3). */
+
+/* Whether body b continues its no-slip images' shear by equilibrium: a granular body in a
+   world with a no-slip wall. */
+static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b) {
+    int k;
+    if (!(b->model.stress && b->model.mirrored)) return 0;
+    for (k = 0; k < w->nwalls; ++k)
+        if (w->walls[k].slip == SPS_WALL_NO_SLIP) return 1;
+    return 0;
+}
+
+/* The Cauchy stress -p I + tau (6 entries) from a pressure and a deviator. */
+static void sps__cauchy_of(sps_real p, const sps_real tau[6], sps_real s[6]) {
+    int a;
+    for (a = 0; a < 6; ++a) s[a] = tau[a] - (sps__sym_diagonal(a) ? p : 0);
+}
+
+/* Adds (sigma_k - sigma_i) dW e V_k to the stress gradient g (6 x 3) of particle i. */
+static void sps__add_stress_difference(const sps_world* w, const sps_real si[6], const sps_real sk[6], const sps_real e[3], sps_real dwv,
+                                       sps_real g[18]) {
+    int a, c;
+    for (a = 0; a < 6; ++a)
+        for (c = 0; c < w->dim; ++c) g[3 * a + c] += (sk[a] - si[a]) * dwv * e[c];
+}
+
+/* The stress gradient of image m for sps__measure_wall_equilibrium (its user: particle i's
+   stress and the gradient being summed). */
+typedef struct {
+    const sps_real* si;
+    sps_real* g;
+} sps__gradient_sum;
+static void sps__image_stress_gradient(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
+    const sps__gradient_sum* s = (const sps__gradient_sum*)user;
+    sps_real e[3], r, t[9], tau[6], sk[6];
+    const sps_real dw = sps__image_geometry(w, i, m->x, e, &r);
+    int a;
+    if (dw == 0) return;
+    sps__image_stress(w, b, m, 1, t);
+    for (a = 0; a < 6; ++a) tau[a] = t[3 * sps__sym_row[a] + sps__sym_col[a]];
+    sps__cauchy_of(m->p, tau, sk);
+    sps__add_stress_difference(w, s->si, sk, e, dw * w->vol[m->j], s->g);
+}
+
+/* The external acceleration of body b at particle i and time t (sps_body_set_acceleration), as
+   the kick evaluates it, into acc (zeroed first). */
+static void sps__external_acceleration_at(const sps_world* w, const sps__body* b, int i, sps_real t, sps_real acc[3]) {
+    sps_real x[3] = {0, 0, 0}, x0[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+    int a;
+    for (a = 0; a < 3; ++a) acc[a] = 0;
+    for (a = 0; a < w->dim; ++a) {
+        x[a] = w->pos[a][i];
+        x0[a] = w->ref[a][i];
+        v[a] = w->vel[a][i];
+    }
+    b->acceleration(x, x0, v, t, acc, b->acceleration_user);
+}
+
+/* Whether particle i is within 2h of a no-slip wall. */
+static int sps__near_no_slip_wall(const sps_world* w, int i) {
+    int k;
+    for (k = 0; k < w->nwalls; ++k)
+        if (w->walls[k].slip == SPS_WALL_NO_SLIP && sps__wall_distance(w, &w->walls[k], i) < w->support) return 1;
+    return 0;
+}
+
+/* Particle i's row of "wall_equilibrium" (a granular body's particle within 2h of a no-slip
+   wall; the others' rows are not read): its stress gradient from its neighbours and its
+   images (even), and rho_i b at the sub-step's middle time t. */
+static void sps__measure_wall_equilibrium(sps_world* w, int i, sps_real t) {
+    const sps__body* b = &w->bodies[w->body[i]];
+    sps_real *row, si[6], acc[3] = {0, 0, 0};
+    sps__gradient_sum sum;
+    int m, a;
+    if (!b->wall_equilibrium || !sps__near_no_slip_wall(w, i)) return;
+    row = b->wall_equilibrium + (size_t)SPS__EQUILIBRIUM_VALUES * (i - b->begin);
+    for (a = 0; a < SPS__EQUILIBRIUM_VALUES; ++a) row[a] = 0;
+    sps__cauchy_of(w->p[i], b->tau + (size_t)6 * (i - b->begin), si);
+    for (m = 0; m < w->nb_count[i]; ++m) {
+        const int k = sps__neighbor(w, i, m);
+        sps_real d[3], e[3], r, sk[6];
+        const sps_real r2 = sps__pair_offset(w, i, k, d);
+        r = SPS__SQRT(r2);
+        if (!(r > 0) || !(r < w->support)) continue;
+        for (a = 0; a < 3; ++a) e[a] = d[a] / r;
+        sps__cauchy_of(w->p[k], b->tau + (size_t)6 * (k - b->begin), sk);
+        sps__add_stress_difference(w, si, sk, e, sps__dwdr(w, r) * w->vol[k], row);
+    }
+    sum.si = si;
+    sum.g = row;
+    for (a = 0; a < w->nwalls; ++a) {
+        const sps_real d_i = sps__wall_distance(w, &w->walls[a], i);
+        if (d_i < w->support) sps__wall_images(w, b, i, &w->walls[a], d_i, sps__image_stress_gradient, &sum);
+    }
+    for (a = 0; a < 18; ++a) row[a] *= b->divergence_scale;
+    if (b->acceleration) sps__external_acceleration_at(w, b, i, t, acc);
+    for (a = 0; a < w->dim; ++a) row[18 + a] = w->rho[i] * (w->def.gravity[a] + acc[a]);
+}
+
+static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, int even, sps_real t[9]) {
     const sps_real* tj = b->tau + (size_t)6 * (m->j - b->begin);
     const sps_real* n = m->wall->normal;
     sps_real M[9], Mt[9];
     int a, c;
     for (a = 0; a < 9; ++a) t[a] = tj[sps__sym9[a]];
-    if (m->wall->slip == SPS_WALL_NO_SLIP) return;
+    if (m->wall->slip == SPS_WALL_NO_SLIP) {
+        const sps_real* row = b->wall_equilibrium + (size_t)SPS__EQUILIBRIUM_VALUES * (m->j - b->begin);
+        sps_real s[3] = {0, 0, 0}, sn = 0, delta = 0;
+        if (even || !b->wall_equilibrium) return;
+        for (a = 0; a < w->dim; ++a) delta += (m->x[a] - w->pos[a][m->j]) * n[a];
+        for (a = 0; a < w->dim; ++a) { /* s_a = -rho b_a - (I - n n)_cd d sigma_ad / dx_c */
+            s[a] = -row[18 + a];
+            for (c = 0; c < w->dim; ++c) {
+                int d;
+                for (d = 0; d < w->dim; ++d)
+                    s[a] -= ((c == d) - n[c] * n[d]) * row[3 * sps__sym9[3 * a + d] + c];
+            }
+        }
+        for (a = 0; a < w->dim; ++a) sn += s[a] * n[a];
+        for (a = 0; a < w->dim; ++a) s[a] -= sn * n[a]; /* along the wall: the normal part is the pressure's */
+        for (a = 0; a < w->dim; ++a)
+            for (c = 0; c < w->dim; ++c) t[3 * a + c] += delta * (s[a] * n[c] + n[a] * s[c]);
+        return;
+    }
     for (a = 0; a < 3; ++a)
         for (c = 0; c < 3; ++c) M[3 * a + c] = (a == c) - 2 * (a < w->dim ? n[a] : 0) * (c < w->dim ? n[c] : 0);
     sps__mat3_product(M, t, 0, Mt);
@@ -7007,7 +7164,7 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
     if (b->model.stress) { /* (tau_i + tau_j') . e dW V_j */
         const sps_real* ti = b->tau + (size_t)6 * (i - b->begin);
         sps_real tj[9];
-        sps__image_stress(w, b, m, tj);
+        sps__image_stress(w, b, m, 0, tj);
         for (a = 0; a < w->dim; ++a)
             for (c = 0; c < w->dim; ++c) acc[a] += (ti[sps__sym9[3 * a + c]] + tj[3 * a + c]) * e[c] * dw * vol * b->divergence_scale;
     }
@@ -8357,6 +8514,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
     }
     w->walls[w->nwalls++] = wall;
     w->contact_dirty = 1;
+    if (slip == SPS_WALL_NO_SLIP) w->needs_sort_by_body = 1; /* a granular body's "wall_equilibrium" (the commit) */
     sps__rearm_watchdog(w);
     return SPS_OK;
 }
@@ -8845,11 +9003,14 @@ static void sps__contact_force(sps_world* w, int i, sps_real dt) {
 
 /* The contact pass of a sub-step (after the pressure pass, before the kick): the contact
    densities of all particles, then their forces. Work-shared over the step's team. */
-static void sps__contact_pass(sps_world* w, sps_real dt) {
+static void sps__contact_pass(sps_world* w, sps_real t, sps_real dt) {
     int i;
     if (!w->contact_bodies && w->nwalls == 0) return;
     SPS__PRAGMA(omp for schedule(static))
-    for (i = 0; i < w->n; ++i) w->sigma[i] = sps__contact_density(w, i);
+    for (i = 0; i < w->n; ++i) {
+        w->sigma[i] = sps__contact_density(w, i);
+        if (w->wall_equilibrium) sps__measure_wall_equilibrium(w, i, t);
+    }
     SPS__PRAGMA(omp for schedule(static))
     for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
 }
@@ -9626,16 +9787,11 @@ static sps_real sps__kick_body(sps_world* w, const sps__body* b, int i0, int i1,
 static void sps__add_external_acceleration(sps_world* w, const sps__body* b, int i0, int i1, sps_real t, sps_real dt) {
     int i, a;
     for (i = i0; i < i1; ++i) {
-        sps_real x[3] = {0, 0, 0}, x0[3] = {0, 0, 0}, v[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, power = 0;
-        for (a = 0; a < w->dim; ++a) {
-            x[a] = w->pos[a][i];
-            x0[a] = w->ref[a][i];
-            v[a] = w->vel[a][i];
-        }
-        b->acceleration(x, x0, v, t, acc, b->acceleration_user);
+        sps_real acc[3], power = 0;
+        sps__external_acceleration_at(w, b, i, t, acc);
         for (a = 0; a < w->dim; ++a) {
             w->acc_p[a][i] += acc[a];
-            power += acc[a] * v[a];
+            power += acc[a] * w->vel[a][i];
         }
         if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * power * dt; /* the energy watchdog's account */
     }
@@ -10722,7 +10878,7 @@ static sps_real sps__acoustic_substep(sps_world* w, sps_real t, sps_real dt, sps
     sps__half_drift(w, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__run_groups(w, &w->bodies[bi], w->bodies[bi].model.pass.stress, dt); /* TL */
     for (bi = 0; bi < w->nbodies; ++bi) sps__pressure_pass(w, &w->bodies[bi], dt, penalty_dt);
-    sps__contact_pass(w, dt);
+    sps__contact_pass(w, t + SPS_R(0.5) * dt, dt);
     vmax2 = sps__kick(w, t, dt);
     for (bi = 0; bi < w->nbodies; ++bi) sps__continuity_pass(w, &w->bodies[bi], dt);
     for (bi = 0; bi < w->nbodies; ++bi) /* after the pass above: needs every L_j */

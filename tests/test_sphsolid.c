@@ -340,6 +340,7 @@ int main(int argc, char** argv) {
     RUN(test_granular_lattice_moment);
     RUN(test_granular_free_grain_stops);
     RUN_LONG(test_granular_infinite_slope_stands_and_flows);
+    RUN_LONG(test_granular_slope_floor_holds);
     RUN(test_restart_every_def_field);
     RUN(test_restart_ul_j2_into_tl_j2);
     RUN(test_unread_parameter_warned);
