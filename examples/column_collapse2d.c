@@ -13,7 +13,11 @@
    2005): runout (L_f - L)/L = 1.2 a, and a truncated column that keeps its height H at the wall
    for a < 1.15 (the figures of UTVF Figs. 15-16 are pictures we cannot read numbers from).
 
-   Build: make examples     Run: ./build/column_collapse2d (--length 0.1)
+   --floor coulomb makes the floor free-slip with Coulomb friction mu = tan(phi) (the grains'
+   own), on which a grain that leaves the bulk comes to rest; on the paper's no-slip floor such
+   a grain carries no stress, its images no shear, and it slides on.
+
+   Build: make examples     Run: ./build/column_collapse2d (--length 0.1) (--floor coulomb)
    Expect: the energy within a few % of the reference code's, the toe near 0.32 m (L = 0.2).
    Smoke: column_collapse2d --dp 0.01 --tend 0.01 */
 #include "common.h"
@@ -73,10 +77,13 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 0.8, .vtk_every = 0.05, .csv_every = 0.005, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/column_collapse2d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
     double dp = 0.002, length = 0.2;
+    int floor_kind = 0; /* the --floor choice: 0 no-slip (the paper's), 1 free-slip with Coulomb friction */
     granular_options g = {0, 21.9, 0.1, SPS_CONE_PAPERS};
     opt_spec opts[] = {
         {"length", OPT_REAL, &length, "column length L [m] (0.2 and 0.1 in the paper; height 0.1 m)", 0.02, 0.45, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 5e-4, 0.02, NULL},
+        {"floor", OPT_CHOICE, &floor_kind, "the floor: no-slip (the paper's), or free-slip with Coulomb friction tan(phi)", 0, 0,
+         "no-slip|coulomb"},
         GRANULAR_OPTION_SPECS(g),
         COMMON_OPTION_SPECS(c),
     };
@@ -86,6 +93,7 @@ int main(int argc, char** argv) {
     sps_body soil, all = {0};
     sps_diagnostics d0, d;
     sps_real lo[3] = {0, 0, 0}, hi[3] = {0, COLUMN_HEIGHT, 0}, tank_lo[3] = {0, 0, 0}, tank_hi[3] = {TANK_LENGTH, TANK_HEIGHT, 0};
+    const sps_real floor_point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
     run_state s;
     double wall, toe, farthest, wall_height, a, toe_expected;
     sps_real c0;
@@ -105,7 +113,13 @@ int main(int argc, char** argv) {
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    if (floor_kind == 0) {
+        ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    } else { /* the side walls no-slip; the floor resists sliding by Coulomb's tan(phi) times its normal force */
+        ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP));
+        ex_check(w, sps_world_set_wall_friction(w, 0, (sps_real)tan(g.phi * 3.14159265358979323846 / 180)));
+        ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI | SPS_FACE_Y_LO, SPS_WALL_NO_SLIP));
+    }
     ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
@@ -139,10 +153,10 @@ int main(int argc, char** argv) {
            (double)d.plastic_work, (double)d.max_plastic_strain, d.surface_particles, ex_clustered_particles(w, dp, 0.5), (double)d.min_spacing);
     printf("  zigzag indicator (0: smooth flow, above 1: zigzag): %.3f at the end, largest %.3f (CSV rows); largest speed %.3g m/s\n",
            (double)d.zigzag, s.zigzag_max, (double)d.max_speed);
-    printf("RESULT case=column_collapse2d length=%g dp=%g phi=%g cohesion=%g zeta=%g t=%.4g energy_start=%.5g energy_0.5=%.5g "
+    printf("RESULT case=column_collapse2d length=%g dp=%g phi=%g cohesion=%g zeta=%g floor=%s t=%.4g energy_start=%.5g energy_0.5=%.5g "
            "energy_end=%.5g toe=%.4f farthest=%.4f wall_height=%.4f zigzag=%.3f zigzag_max=%.3f zigzag_limit=1 %s particles=%d steps=%ld "
            "advection_steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
-           length, dp, g.phi, g.cohesion, g.diffusion, (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, farthest, wall_height,
+           length, dp, g.phi, g.cohesion, g.diffusion, floor_kind == 0 ? "no-slip" : "coulomb", (double)d.time, mechanical_energy(&d0), s.energy_half, s.energy_end, toe, farthest, wall_height,
            (double)d.zigzag, s.zigzag_max, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall,
            ns_per_particle_step(w, wall, d.acoustic_steps), c.out);
     sps_world_destroy(w);
