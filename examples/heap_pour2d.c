@@ -26,6 +26,7 @@
 #define HOPPER_HEIGHT 0.1  /* the plates' height above the orifice [m] */
 #define SOIL_AREA 0.005    /* heap2d's column, 0.05 m x 0.1 m [m^2] */
 #define WALL_ROWS 3        /* the plates' thickness in dp: beyond the kernel's support 2h = 2.6 dp */
+#define PEAK_RANGE 0.05    /* the heap's top is sought this far [m] either side of the orifice's axis */
 #define FILL_GAP 0.5       /* the soil filled dp/2 (across) off the plates: filled flush against their lattice staircase
                               it started in the contact's push (a corner grain thrown up at 6 m/s in 5 ms) */
 
@@ -156,13 +157,14 @@ int main(int argc, char** argv) {
     wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
 
-    /* the heap: the soil's columns holding 2 particles or more, contiguous about the highest */
+    /* the heap: the soil's columns holding 2 particles or more, contiguous about the highest
+       within PEAK_RANGE of the orifice's axis (grains spread to a side wall are not its top) */
     columns = (int)(FLOOR_LENGTH / dp) + 1;
     top = (double*)calloc((size_t)columns, sizeof(double));
     if (!top) return 1;
     ex_heap_surface(w, s.soil, dp, columns, NULL, 2, top);
     for (k = 0; k < columns; ++k)
-        if (top[k] > height) { height = top[k]; peak = k; }
+        if (fabs((k + 0.5) * dp - 0.5 * FLOOR_LENGTH) < PEAK_RANGE && top[k] > height) { height = top[k]; peak = k; }
     for (k0 = peak; k0 > 0 && top[k0 - 1] > 0; --k0) {}
     for (k1 = peak; k1 < columns - 1 && top[k1 + 1] > 0; ++k1) {}
     left_toe = k0 * dp;
