@@ -601,15 +601,18 @@ EX_UNUSED static void apply_granular(const granular_options* g, sps_body_def* bd
 }
 /* A heap's surface in bins dp wide: the highest particle + dp/2 of each bin, 0 where a bin holds
    fewer than min_count particles (loose grains are not the heap). The bins are columns along x
-   from 0 (axis NULL: heap2d) or rings about the vertical line through axis = {x, z} (heap3d). */
-EX_UNUSED static void ex_heap_surface(const sps_world* w, double dp, int bins, const double* axis, int min_count, double* top) {
+   from 0 (axis NULL: heap2d) or rings about the vertical line through axis = {x, z} (heap3d).
+   The particles of body heap, or of the whole world for heap = {0} (heap_pour2d leaves its
+   hopper's out). */
+EX_UNUSED static void ex_heap_surface(const sps_world* w, sps_body heap, double dp, int bins, const double* axis, int min_count, double* top) {
     const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
     const sps_real* z = sps_world_field(w, SPS_FIELD_POSITION_Z);
     int* count = (int*)calloc((size_t)bins, sizeof(int));
-    int i, k, n = sps_world_particle_count(w);
+    int i, k, first = 0, n = sps_world_particle_count(w);
     for (k = 0; k < bins; ++k) top[k] = 0;
     if (!count) return;
-    for (i = 0; i < n; ++i) {
+    if (heap.id != 0 && !sps_body_field(w, heap, "position_x", NULL, &first, &n)) n = 0;
+    for (i = first; i < first + n; ++i) {
         const double r = axis ? sqrt(pow(x[i] - axis[0], 2) + pow(z[i] - axis[1], 2)) : x[i];
         k = (int)(r / dp);
         if (k < 0 || k >= bins) continue;
