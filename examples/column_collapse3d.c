@@ -3,15 +3,19 @@
    A cylinder of radius r0 = 0.05 m and height H0 = a r0 (the aspect ratio a = --aspect) of
    cohesionless Drucker-Prager soil (the C4 material of column_collapse2d: rho0 = 2040, E = 5.84
    MPa, nu = 0.3, c = 0, phi = 21.9 degrees, psi = 0; the plane-strain cone, --cone) stands on a
-   no-slip floor (an analytic wall), is released at t = 0 under g = 9.8 (along -y) and spreads to
-   rest. It starts from zero stress, as column_collapse2d and the reference code's C4: the lab's
+   floor (an analytic wall), is released at t = 0 under g = 9.8 (along -y) and spreads to rest.
+   The floor (--floor) is free-slip with Coulomb friction mu = tan(phi) (the grains' own; Lube et
+   al. found wood, baize, Plexiglas and sandpaper floors alike), or no-slip: grains that leave
+   the bulk carry no stress and slide on along a no-slip wall (GRANULAR), and in 3D the whole
+   deposit thins into such grains (at a = 2 a single layer still spreading at 0.9 m/s at 0.6 s).
+   It starts from zero stress, as column_collapse2d and the reference code's C4: the lab's
    column stood in a tube whose wall friction set its stress, not a free layer's geostatic one,
    and it loads itself elastically within H0/c0 (2 ms at a = 2), short beside the fall's
    sqrt(H0/g) (0.1 s). At the end the deposit is read in rings dp wide about the axis (the highest
    particle + dp/2 in each, rings of fewer than 3 particles left out): the runout r_inf, where
-   the deposit, at least 2 dp deep, ends (the first ring out from the axis whose surface is
-   below 2 dp: single grains beyond it are not the deposit), the farthest particle, and the
-   height at the centre H_inf (the ring on the axis).
+   the deposit ends (the first ring out from the axis holding less than one layer of particles,
+   pi (2k + 1) for ring k: the sparse grains beyond it are not the deposit), the farthest
+   particle (+ dp/2), and the height at the centre H_inf (the ring on the axis).
 
    Lube, Huppert, Sparks and Hallworth 2004 (J. Fluid Mech. 508, 175-199) released cylinders of
    sand, salt, couscous, rice and sugar (r0 1.7-9.7 cm) and found the deposit set by a alone, not
@@ -58,11 +62,13 @@ static double lube_height(double a) { return a < 0.74 ? a : 0.88 * pow(a, 1.0 / 
 int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 0.6, .vtk_every = 0.05, .csv_every = 0.005, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/column_collapse3d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
-    double dp = 0.00625, aspect = 2, height, toe = 0, farthest = 0, centre_height, runout, runout_expected, height_expected, wall, *top;
+    int floor_kind = 0; /* the --floor choice: 0 Coulomb, 1 no-slip */
+    double dp = 0.00625, aspect = 2, mu, height, toe = 0, farthest = 0, centre_height, runout, runout_expected, height_expected, wall, *top;
     granular_options g = {0, 21.9, 0.1, SPS_CONE_PLANE_STRAIN};
     opt_spec opts[] = {
         {"aspect", OPT_REAL, &aspect, "aspect ratio a = H0/r0 (r0 = 0.05 m)", 0.2, 4, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m] (0.00625: 8 particles a radius)", 1e-3, 0.0125, NULL},
+        {"floor", OPT_CHOICE, &floor_kind, "the floor: free-slip with Coulomb friction tan(phi), or no-slip", 0, 0, "coulomb|no-slip"},
         GRANULAR_OPTION_SPECS(g),
         COMMON_OPTION_SPECS(c),
     };
@@ -76,7 +82,7 @@ int main(int argc, char** argv) {
     const double axis[2] = {0, 0}; /* x and z of the cylinder's axis */
     const sps_real *x, *z;
     run_state s;
-    int rings, k, i, n;
+    int rings, k, i, n, *counts;
 
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "3D axisymmetric granular column collapse against Lube et al. 2004's scalings", opts, (int)(sizeof opts / sizeof *opts));
@@ -93,7 +99,9 @@ int main(int argc, char** argv) {
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
+    mu = floor_kind == 0 ? tan(g.phi * PI / 180) : 0;
+    ex_check(w, sps_world_add_wall(w, floor_point, up, floor_kind == 0 ? SPS_WALL_FREE_SLIP : SPS_WALL_NO_SLIP));
+    if (floor_kind == 0) ex_check(w, sps_world_set_wall_friction(w, 0, (sps_real)mu));
     ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_sdf(w, soil, lo, hi, cylinder_sdf, NULL, NULL));
@@ -107,9 +115,10 @@ int main(int argc, char** argv) {
 
     rings = (int)(FLOOR_RADIUS / dp);
     top = (double*)calloc((size_t)rings, sizeof(double));
-    if (!top) return 1;
-    ex_heap_surface(w, dp, rings, axis, 3, top);
-    for (k = 0; k < rings && top[k] >= 2 * dp; ++k) toe = (k + 1) * dp;
+    counts = (int*)calloc((size_t)rings, sizeof(int));
+    if (!top || !counts) return 1;
+    ex_heap_surface(w, dp, rings, axis, 3, top, counts);
+    for (k = 0; k < rings && counts[k] >= PI * (2 * k + 1); ++k) toe = (k + 1) * dp;
     centre_height = top[0];
     x = sps_world_field(w, SPS_FIELD_POSITION_X);
     z = sps_world_field(w, SPS_FIELD_POSITION_Z);
@@ -122,20 +131,24 @@ int main(int argc, char** argv) {
     runout_expected = lube_runout(aspect);
     height_expected = lube_height(aspect);
     printf("column_collapse3d: r0 = %g m, H0 = %g m (a = %g), dp = %g (%.1f particles a radius), %d particles, phi = %g deg, cone %d, "
-           "zeta = %g, t = %.3g s\n", COLUMN_RADIUS, height, aspect, dp, COLUMN_RADIUS / dp, n, g.phi, g.cone, g.diffusion, (double)d.time);
-    printf("  runout r_inf (the deposit at least 2 dp deep) %.4f m: (r_inf - r0)/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%);"
-           " farthest particle %.4f m\n", toe, runout, runout_expected, 100 * (runout / runout_expected - 1), farthest);
+           "zeta = %g, floor %s (mu %.3f), t = %.3g s\n", COLUMN_RADIUS, height, aspect, dp, COLUMN_RADIUS / dp, n, g.phi, g.cone, g.diffusion,
+           floor_kind == 0 ? "Coulomb" : "no-slip", mu, (double)d.time);
+    printf("  runout r_inf (the deposit at least one layer deep) %.4f m: (r_inf - r0)/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%);\n"
+           "  farthest particle %.4f m: %.3f\n", toe, runout, runout_expected, 100 * (runout / runout_expected - 1), farthest,
+           (farthest - COLUMN_RADIUS) / COLUMN_RADIUS);
     printf("  height at the centre H_inf %.4f m: H_inf/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%)\n", centre_height,
            centre_height / COLUMN_RADIUS, height_expected, 100 * (centre_height / COLUMN_RADIUS / height_expected - 1));
     printf("  largest speed at the end %.3g m/s, kinetic energy %.3g J, plastic work %.4g J, %d particles closer than 0.5 dp to another\n",
            (double)d.max_speed, (double)d.kinetic_energy, (double)d.plastic_work, ex_clustered_particles(w, dp, 0.5));
-    printf("RESULT case=column_collapse3d aspect=%g dp=%g phi=%g cone=%d zeta=%g t=%.4g runout=%.4f runout_expected=%.4f runout_error=%.4f "
-           "height=%.4f height_expected=%.4f height_error=%.4f toe=%.4f farthest=%.4f max_speed=%.3g %s particles=%d steps=%ld wall_s=%.2f "
-           "ns_per_particle_step=%.1f out=%s\n",
-           aspect, dp, g.phi, g.cone, g.diffusion, (double)d.time, runout, runout_expected, runout / runout_expected - 1, centre_height / COLUMN_RADIUS,
-           height_expected, centre_height / COLUMN_RADIUS / height_expected - 1, toe, farthest, (double)d.max_speed, common_result_fields(&c), n,
-           d.acoustic_steps, wall, ns_per_particle_step(w, wall, d.acoustic_steps), c.out);
+    printf("RESULT case=column_collapse3d aspect=%g dp=%g phi=%g cone=%d zeta=%g floor=%s t=%.4g runout=%.4f runout_expected=%.4f "
+           "runout_error=%.4f height=%.4f height_expected=%.4f height_error=%.4f toe=%.4f farthest=%.4f max_speed=%.3g %s particles=%d "
+           "steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
+           aspect, dp, g.phi, g.cone, g.diffusion, floor_kind == 0 ? "coulomb" : "no-slip", (double)d.time, runout, runout_expected,
+           runout / runout_expected - 1, centre_height / COLUMN_RADIUS, height_expected, centre_height / COLUMN_RADIUS / height_expected - 1, toe,
+           farthest, (double)d.max_speed, common_result_fields(&c), n, d.acoustic_steps, wall, ns_per_particle_step(w, wall, d.acoustic_steps),
+           c.out);
     free(top);
+    free(counts);
     sps_world_destroy(w);
     return 0;
 }
