@@ -13,9 +13,10 @@
    and it loads itself elastically within H0/c0 (2 ms at a = 2), short beside the fall's
    sqrt(H0/g) (0.1 s). At the end the deposit is read in rings dp wide about the axis (the highest
    particle + dp/2 in each, rings of fewer than 3 particles left out): the runout r_inf, where
-   the deposit ends (the first ring out from the axis holding less than one layer of particles,
-   pi (2k + 1) for ring k: the sparse grains beyond it are not the deposit), the farthest
-   particle (+ dp/2), and the height at the centre H_inf (the ring on the axis).
+   the deposit's bottom layer ends (the first ring out from the axis whose particles cover less
+   than half its floor, fewer than pi (2k + 1) / 2 for ring k: the scattered grains beyond it are
+   not the deposit), the farthest particle (+ dp/2), and the height at the centre H_inf (the
+   ring on the axis).
 
    Lube, Huppert, Sparks and Hallworth 2004 (J. Fluid Mech. 508, 175-199) released cylinders of
    sand, salt, couscous, rice and sugar (r0 1.7-9.7 cm) and found the deposit set by a alone, not
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
     counts = (int*)calloc((size_t)rings, sizeof(int));
     if (!top || !counts) return 1;
     ex_heap_surface(w, dp, rings, axis, 3, top, counts);
-    for (k = 0; k < rings && counts[k] >= PI * (2 * k + 1); ++k) toe = (k + 1) * dp;
+    for (k = 0; k < rings && counts[k] >= 0.5 * PI * (2 * k + 1); ++k) toe = (k + 1) * dp;
     centre_height = top[0];
     x = sps_world_field(w, SPS_FIELD_POSITION_X);
     z = sps_world_field(w, SPS_FIELD_POSITION_Z);
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
     printf("column_collapse3d: r0 = %g m, H0 = %g m (a = %g), dp = %g (%.1f particles a radius), %d particles, phi = %g deg, cone %d, "
            "zeta = %g, floor %s (mu %.3f), t = %.3g s\n", COLUMN_RADIUS, height, aspect, dp, COLUMN_RADIUS / dp, n, g.phi, g.cone, g.diffusion,
            floor_kind == 0 ? "Coulomb" : "no-slip", mu, (double)d.time);
-    printf("  runout r_inf (the deposit at least one layer deep) %.4f m: (r_inf - r0)/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%);\n"
+    printf("  runout r_inf (where the deposit's bottom layer ends) %.4f m: (r_inf - r0)/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%);\n"
            "  farthest particle %.4f m: %.3f\n", toe, runout, runout_expected, 100 * (runout / runout_expected - 1), farthest,
            (farthest - COLUMN_RADIUS) / COLUMN_RADIUS);
     printf("  height at the centre H_inf %.4f m: H_inf/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%)\n", centre_height,
