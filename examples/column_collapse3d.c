@@ -56,6 +56,19 @@ static sps_real cylinder_sdf(const sps_real x[3], void* user) {
     return (sps_real)(sqrt((double)x[0] * x[0] + (double)x[2] * x[2]) - COLUMN_RADIUS);
 }
 
+/* The column the lattice holds: its height (the highest particle + dp/2) and the radius of the
+   cylinder of that height holding its volume, n dp^3 (the lattice's height is a whole number of
+   dp, and its circle's staircase holds 3.5 % more area than pi r0^2 at 8 particles a radius). */
+static void lattice_column(const sps_world* w, double dp, double* height, double* radius) {
+    const sps_real* y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    const int n = sps_world_particle_count(w);
+    int i;
+    *height = 0;
+    for (i = 0; i < n; ++i)
+        if (y[i] + 0.5 * dp > *height) *height = y[i] + 0.5 * dp;
+    *radius = sqrt(n * dp * dp * dp / (PI * *height));
+}
+
 /* Lube et al. 2004's scalings: the runout (r_inf - r0)/r0 and the height H_inf/r0 at aspect a. */
 static double lube_runout(double a) { return a < 1.7 ? 1.24 * a : 1.6 * sqrt(a); }
 static double lube_height(double a) { return a < 0.74 ? a : 0.88 * pow(a, 1.0 / 6); }
@@ -64,11 +77,11 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 0.6, .vtk_every = 0.05, .csv_every = 0.005, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/column_collapse3d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
     int floor_kind = 0; /* the --floor choice: 0 Coulomb, 1 no-slip */
-    double dp = 0.00625, aspect = 2, mu, height, toe = 0, farthest = 0, centre_height, runout, runout_expected, height_expected, wall, *top;
+    double dp = 0.00625, aspect = 2, mu, height, radius, a, toe = 0, farthest = 0, centre_height, runout, runout_expected, height_expected, wall, *top;
     granular_options g = {0, 21.9, 0.1, SPS_CONE_PLANE_STRAIN};
     opt_spec opts[] = {
         {"aspect", OPT_REAL, &aspect, "aspect ratio a = H0/r0 (r0 = 0.05 m)", 0.2, 4, NULL},
-        {"dp", OPT_REAL, &dp, "particle spacing [m] (0.00625: 8 particles a radius)", 1e-3, 0.0125, NULL},
+        {"dp", OPT_REAL, &dp, "particle spacing [m]: r0/dp whole (0.00625: 8 particles a radius; 0.0041666667: 12)", 1e-3, 0.0125, NULL},
         {"floor", OPT_CHOICE, &floor_kind, "the floor: free-slip with Coulomb friction tan(phi), or no-slip", 0, 0, "coulomb|no-slip"},
         GRANULAR_OPTION_SPECS(g),
         COMMON_OPTION_SPECS(c),
@@ -90,8 +103,7 @@ int main(int argc, char** argv) {
     apply_common(&c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     memset(&s, 0, sizeof s);
-    height = aspect * COLUMN_RADIUS;
-    hi[1] = (sps_real)height;
+    hi[1] = (sps_real)(aspect * COLUMN_RADIUS);
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
     apply_granular(&g, &bd);
@@ -106,6 +118,8 @@ int main(int argc, char** argv) {
     ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &soil));
     ex_check(w, sps_body_add_sdf(w, soil, lo, hi, cylinder_sdf, NULL, NULL));
+    lattice_column(w, dp, &height, &radius);
+    a = height / radius;
 
     s.t_end = c.t_end;
     output_open(&s.output, &c, "column_collapse3d", "velocity", "");
@@ -128,24 +142,24 @@ int main(int argc, char** argv) {
         const double r = sqrt((double)x[i] * x[i] + (double)z[i] * z[i]) + 0.5 * dp;
         if (r > farthest) farthest = r;
     }
-    runout = (toe - COLUMN_RADIUS) / COLUMN_RADIUS;
-    runout_expected = lube_runout(aspect);
-    height_expected = lube_height(aspect);
-    printf("column_collapse3d: r0 = %g m, H0 = %g m (a = %g), dp = %g (%.1f particles a radius), %d particles, phi = %g deg, cone %d, "
-           "zeta = %g, floor %s (mu %.3f), t = %.3g s\n", COLUMN_RADIUS, height, aspect, dp, COLUMN_RADIUS / dp, n, g.phi, g.cone, g.diffusion,
-           floor_kind == 0 ? "Coulomb" : "no-slip", mu, (double)d.time);
+    runout = (toe - radius) / radius;
+    runout_expected = lube_runout(a);
+    height_expected = lube_height(a);
+    printf("column_collapse3d: a = %g, dp = %g (%.1f particles a radius), %d particles, phi = %g deg, cone %d, zeta = %g, floor %s (mu %.3f), "
+           "t = %.3g s\n  the lattice's column: H0 = %.4f m, r0 = %.4f m (the radius of its volume), a = %.3f\n", aspect, dp, COLUMN_RADIUS / dp, n,
+           g.phi, g.cone, g.diffusion, floor_kind == 0 ? "Coulomb" : "no-slip", mu, (double)d.time, height, radius, a);
     printf("  runout r_inf (where the deposit's bottom layer ends) %.4f m: (r_inf - r0)/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%);\n"
            "  farthest particle %.4f m: %.3f\n", toe, runout, runout_expected, 100 * (runout / runout_expected - 1), farthest,
-           (farthest - COLUMN_RADIUS) / COLUMN_RADIUS);
-    printf("  height at the centre H_inf %.4f m: H_inf/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%)\n", centre_height,
-           centre_height / COLUMN_RADIUS, height_expected, 100 * (centre_height / COLUMN_RADIUS / height_expected - 1));
+           (farthest - radius) / radius);
+    printf("  height at the centre H_inf %.4f m: H_inf/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%)\n", centre_height, centre_height / radius,
+           height_expected, 100 * (centre_height / radius / height_expected - 1));
     printf("  largest speed at the end %.3g m/s, kinetic energy %.3g J, plastic work %.4g J, %d particles closer than 0.5 dp to another\n",
            (double)d.max_speed, (double)d.kinetic_energy, (double)d.plastic_work, ex_clustered_particles(w, dp, 0.5));
-    printf("RESULT case=column_collapse3d aspect=%g dp=%g phi=%g cone=%d zeta=%g floor=%s t=%.4g runout=%.4f runout_expected=%.4f "
+    printf("RESULT case=column_collapse3d aspect=%g aspect_lattice=%.4f radius_lattice=%.5f dp=%g phi=%g cone=%d zeta=%g floor=%s t=%.4g runout=%.4f runout_expected=%.4f "
            "runout_error=%.4f height=%.4f height_expected=%.4f height_error=%.4f toe=%.4f farthest=%.4f max_speed=%.3g %s particles=%d "
            "steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
-           aspect, dp, g.phi, g.cone, g.diffusion, floor_kind == 0 ? "coulomb" : "no-slip", (double)d.time, runout, runout_expected,
-           runout / runout_expected - 1, centre_height / COLUMN_RADIUS, height_expected, centre_height / COLUMN_RADIUS / height_expected - 1, toe,
+           aspect, a, radius, dp, g.phi, g.cone, g.diffusion, floor_kind == 0 ? "coulomb" : "no-slip", (double)d.time, runout, runout_expected,
+           runout / runout_expected - 1, centre_height / radius, height_expected, centre_height / radius / height_expected - 1, toe,
            farthest, (double)d.max_speed, common_result_fields(&c), n, d.acoustic_steps, wall, ns_per_particle_step(w, wall, d.acoustic_steps),
            c.out);
     free(top);
