@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
     common_options c = {.shear = SPS_SHEAR_OG, .cfl = 0.4, .t_end = 0.6, .vtk_every = 0.05, .csv_every = 0.005, .E = 5.84e6, .nu = 0.3,
                         .rho0 = 2040, .out = "out/column_collapse3d", .jitter = 0, .seed = 1, .transport = 0, PNG_DEFAULTS};
     int floor_kind = 0; /* the --floor choice: 0 Coulomb, 1 no-slip */
-    double dp = 0.00625, aspect = 2, mu, height, radius, a, toe = 0, farthest = 0, centre_height, runout, runout_expected, height_expected, wall, *top;
+    double dp = 0.00625, aspect = 2, mu, height, radius, a, toe = 0, farthest = 0, centre_height, wall, *top;
+    double runout, runout_expected, height_expected;
     granular_options g = {0, 21.9, 0.1, SPS_CONE_PLANE_STRAIN};
     opt_spec opts[] = {
         {"aspect", OPT_REAL, &aspect, "aspect ratio a = H0/r0 (r0 = 0.05 m)", 0.2, 4, NULL},
@@ -158,8 +159,8 @@ int main(int argc, char** argv) {
            height_expected, 100 * (centre_height / radius / height_expected - 1));
     printf("  largest speed at the end %.3g m/s, kinetic energy %.3g J, plastic work %.4g J, %d particles closer than 0.5 dp to another\n",
            (double)d.max_speed, (double)d.kinetic_energy, (double)d.plastic_work, ex_clustered_particles(w, dp, 0.5));
-    printf("RESULT case=column_collapse3d aspect=%g aspect_lattice=%.4f radius_lattice=%.5f dp=%g phi=%g cone=%d zeta=%g floor=%s t=%.4g runout=%.4f runout_expected=%.4f "
-           "runout_error=%.4f height=%.4f height_expected=%.4f height_error=%.4f toe=%.4f farthest=%.4f max_speed=%.3g %s particles=%d "
+    printf("RESULT case=column_collapse3d aspect=%g aspect_lattice=%.4f radius_lattice=%.5f dp=%g phi=%g cone=%d zeta=%g floor=%s t=%.4g "
+           "runout=%.4f runout_expected=%.4f runout_error=%.4f height=%.4f height_expected=%.4f height_error=%.4f toe=%.4f farthest=%.4f max_speed=%.3g %s particles=%d "
            "steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
            aspect, a, radius, dp, g.phi, g.cone, g.diffusion, floor_kind == 0 ? "coulomb" : "no-slip", (double)d.time, runout, runout_expected,
            runout / runout_expected - 1, centre_height / radius, height_expected, centre_height / radius / height_expected - 1, toe,
