@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
     const double axis[2] = {0, 0}; /* x and z of the cylinder's axis */
     const sps_real *x, *z;
     run_state s;
-    int rings, k, i, n, *counts;
+    int rings, k, i, n, clustered, *counts;
 
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "3D axisymmetric granular column collapse against Lube et al. 2004's scalings", opts, (int)(sizeof opts / sizeof *opts));
@@ -146,6 +146,7 @@ int main(int argc, char** argv) {
         const double r = sqrt((double)x[i] * x[i] + (double)z[i] * z[i]) + 0.5 * dp;
         if (r > farthest) farthest = r;
     }
+    clustered = ex_clustered_particles(w, dp, 0.5);
     runout = (toe - radius) / radius;
     runout_expected = lube_runout(a);
     height_expected = lube_height(a);
@@ -158,13 +159,13 @@ int main(int argc, char** argv) {
     printf("  height at the centre H_inf %.4f m: H_inf/r0 = %.3f, Lube et al. 2004 %.3f (%+.1f%%)\n", centre_height, centre_height / radius,
            height_expected, 100 * (centre_height / radius / height_expected - 1));
     printf("  largest speed at the end %.3g m/s, kinetic energy %.3g J, plastic work %.4g J, %d particles closer than 0.5 dp to another\n",
-           (double)d.max_speed, (double)d.kinetic_energy, (double)d.plastic_work, ex_clustered_particles(w, dp, 0.5));
+           (double)d.max_speed, (double)d.kinetic_energy, (double)d.plastic_work, clustered);
     printf("RESULT case=column_collapse3d aspect=%g aspect_lattice=%.4f radius_lattice=%.5f dp=%g phi=%g cone=%d zeta=%g floor=%s t=%.4g "
-           "runout=%.4f runout_expected=%.4f runout_error=%.4f height=%.4f height_expected=%.4f height_error=%.4f toe=%.4f farthest=%.4f max_speed=%.3g %s particles=%d "
-           "steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
+           "runout=%.4f runout_expected=%.4f runout_error=%.4f height=%.4f height_expected=%.4f height_error=%.4f toe=%.4f farthest=%.4f "
+           "max_speed=%.3g clustered=%d %s particles=%d steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
            aspect, a, radius, dp, g.phi, g.cone, g.diffusion, floor_kind == 0 ? "coulomb" : "no-slip", (double)d.time, runout, runout_expected,
            runout / runout_expected - 1, centre_height / radius, height_expected, centre_height / radius / height_expected - 1, toe,
-           farthest, (double)d.max_speed, common_result_fields(&c), n, d.acoustic_steps, wall, ns_per_particle_step(w, wall, d.acoustic_steps),
+           farthest, (double)d.max_speed, clustered, common_result_fields(&c), n, d.acoustic_steps, wall, ns_per_particle_step(w, wall, d.acoustic_steps),
            c.out);
     free(top);
     free(counts);
