@@ -165,8 +165,8 @@ int main(int argc, char** argv) {
            "max_speed=%.3g clustered=%d %s particles=%d steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
            aspect, a, radius, dp, g.phi, g.cone, g.diffusion, floor_kind == 0 ? "coulomb" : "no-slip", (double)d.time, runout, runout_expected,
            runout / runout_expected - 1, centre_height / radius, height_expected, centre_height / radius / height_expected - 1, toe,
-           farthest, (double)d.max_speed, clustered, common_result_fields(&c), n, d.acoustic_steps, wall, ns_per_particle_step(w, wall, d.acoustic_steps),
-           c.out);
+           farthest, (double)d.max_speed, clustered, common_result_fields(&c), n, d.acoustic_steps, wall,
+           ns_per_particle_step(w, wall, d.acoustic_steps), c.out);
     free(top);
     free(counts);
     sps_world_destroy(w);
