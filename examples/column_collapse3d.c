@@ -31,7 +31,7 @@
    the column's volume only up to a = 0.59 (concave flanks hold less: the bound moves up a little).
 
    Build: make examples     Run: ./build/column_collapse3d (--aspect 0.5) (--dp 0.0041666667)
-   Expect: the runout within 20 % of Lube's at 8 particles a radius (the default, 2.5 minutes on
+   Expect: the runout within 20 % of Lube's at 8 particles a radius (the default, 2.5-3 minutes on
    one core), within 6 % at 12; the height at the centre 8 % low at a = 0.5, 45 % low at a = 2
    (bench/VALIDATION.md, "Axisymmetric column collapse"); CSV, VTK snapshots, a picture.
    Smoke: column_collapse3d --dp 0.0125 --tend 0.01 */
