@@ -600,17 +600,19 @@ EX_UNUSED static void apply_granular(const granular_options* g, sps_body_def* bd
     bd->stress_diffusion = (sps_real)g->diffusion;
 }
 /* A heap's surface in bins dp wide: the highest particle + dp/2 of each bin, 0 where a bin holds
-   fewer than min_count particles (loose grains are not the heap). The bins are columns along x
-   from 0 (axis NULL: heap2d) or rings about the vertical line through axis = {x, z} (heap3d).
-   The particles of body heap, or of the whole world for heap = {0} (heap_pour2d leaves its
-   hopper's out). */
-EX_UNUSED static void ex_heap_surface(const sps_world* w, sps_body heap, double dp, int bins, const double* axis, int min_count, double* top) {
+   fewer than min_count particles (loose grains are not the heap), and, if counts is not NULL,
+   each bin's particle count. The bins are columns along x from 0 (axis NULL: heap2d) or rings
+   about the vertical line through axis = {x, z} (heap3d, column_collapse3d). The particles of
+   body heap, or of the whole world for heap = {0} (heap_pour2d leaves its hopper's out). */
+EX_UNUSED static void ex_heap_surface(const sps_world* w, sps_body heap, double dp, int bins, const double* axis, int min_count, double* top,
+                                      int* counts) {
     const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
     const sps_real* z = sps_world_field(w, SPS_FIELD_POSITION_Z);
-    int* count = (int*)calloc((size_t)bins, sizeof(int));
+    int* count = counts ? counts : (int*)calloc((size_t)bins, sizeof(int));
     int i, k, first = 0, n = sps_world_particle_count(w);
     for (k = 0; k < bins; ++k) top[k] = 0;
     if (!count) return;
+    for (k = 0; k < bins; ++k) count[k] = 0;
     if (heap.id != 0 && !sps_body_field(w, heap, "position_x", NULL, &first, &n)) n = 0;
     for (i = first; i < first + n; ++i) {
         const double r = axis ? sqrt(pow(x[i] - axis[0], 2) + pow(z[i] - axis[1], 2)) : x[i];
@@ -621,7 +623,7 @@ EX_UNUSED static void ex_heap_surface(const sps_world* w, sps_body heap, double 
     }
     for (k = 0; k < bins; ++k)
         if (count[k] < min_count) top[k] = 0;
-    free(count);
+    if (!counts) free(count);
 }
 /* The slope [m/m] of the least-squares line through the surface heights top[k] at (k + 1/2) dp,
    k from k0 to k1 (either order), that lie between 20 % and 80 % of height: a heap's flank

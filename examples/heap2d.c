@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
     columns = (int)(FLOOR_LENGTH / dp) + 1;
     top = (double*)calloc((size_t)columns, sizeof(double));
     if (!top) return 1;
-    ex_heap_surface(w, all, dp, columns, NULL, 2, top);
+    ex_heap_surface(w, all, dp, columns, NULL, 2, top, NULL);
     for (k = 0; k < columns; ++k)
         if (top[k] > height) { height = top[k]; peak = k; }
     left = ex_flank_slope(top, dp, peak, 0, height);

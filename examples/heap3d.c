@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     axis[0] = axis[1] = 0.5 * FLOOR_LENGTH;
     top = (double*)calloc((size_t)rings, sizeof(double));
     if (!top) return 1;
-    ex_heap_surface(w, all, dp, rings, axis, 3, top);
+    ex_heap_surface(w, all, dp, rings, axis, 3, top, NULL);
     for (k = 0; k < rings; ++k)
         if (top[k] > height) height = top[k];
     slope = ex_flank_slope(top, dp, 0, rings - 1, height);

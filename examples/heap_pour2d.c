@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
     columns = (int)(FLOOR_LENGTH / dp) + 1;
     top = (double*)calloc((size_t)columns, sizeof(double));
     if (!top) return 1;
-    ex_heap_surface(w, s.soil, dp, columns, NULL, 2, top);
+    ex_heap_surface(w, s.soil, dp, columns, NULL, 2, top, NULL);
     for (k = 0; k < columns; ++k)
         if (fabs((k + 0.5) * dp - 0.5 * FLOOR_LENGTH) < PEAK_RANGE && top[k] > height) { height = top[k]; peak = k; }
     for (k0 = peak; k0 > 0 && top[k0 - 1] > 0; --k0) {}
