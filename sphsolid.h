@@ -7115,22 +7115,6 @@ static void sps__measure_wall_equilibrium(sps_world* w, int i, sps_real t) {
     for (a = 0; a < w->dim; ++a) row[18 + a] = w->rho[i] * (w->def.gravity[a] + acc[a]);
 }
 
-/* The continued shear of an image returned radially to the cone at the image's pressure p,
-   sqrt(J2) <= k_c + 3 alpha_phi p, as a particle's stress is (the wall carries no more shear
-   than the soil can): a grain at the cone's apex, in tension, takes none, as its even image
-   would. Without it the grains left on C7's 50-degree bed at the apex were held there by their
-   images' shear alone, and one was shot off at 14 m/s (bench/VALIDATION.md, "Granular media at
-   no-slip walls"). */
-static void sps__image_to_cone(const sps__body* b, sps_real p, sps_real t[9]) {
-    const sps_real radius = b->cone.k_c + 3 * b->cone.alpha_phi * p;
-    sps_real j2 = 0, scale;
-    int a;
-    for (a = 0; a < 9; ++a) j2 += SPS_R(0.5) * t[a] * t[a];
-    if (!(j2 > radius * radius)) return;
-    scale = radius > 0 ? radius / SPS__SQRT(j2) : 0;
-    for (a = 0; a < 9; ++a) t[a] *= scale;
-}
-
 static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, int even, sps_real t[9]) {
     const sps_real* tj = b->tau + (size_t)6 * (m->j - b->begin);
     const sps_real* n = m->wall->normal;
@@ -7154,7 +7138,6 @@ static void sps__image_stress(const sps_world* w, const sps__body* b, const sps_
         for (a = 0; a < w->dim; ++a) s[a] -= sn * n[a]; /* along the wall: the normal part is the pressure's */
         for (a = 0; a < w->dim; ++a)
             for (c = 0; c < w->dim; ++c) t[3 * a + c] += delta * (s[a] * n[c] + n[a] * s[c]);
-        sps__image_to_cone(b, m->p, t);
         return;
     }
     for (a = 0; a < 3; ++a)
