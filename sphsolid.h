@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.15.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.16.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -916,6 +916,11 @@
       omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
+      0.16.0 (2026-12-06) a granular body's no-slip images carry the shear traction continued
+                         across the wall by equilibrium with the body force (a slope holds on
+                         its floor up to the closed-form angle; field "wall_equilibrium");
+                         examples column_collapse3d (Lube et al. 2004) and heap_pour2d (a
+                         hopper's pour); column_collapse2d --floor coulomb.
       0.15.0 (2026-12-06) periodic axes (world def periodic[3], periodic_origin[3]; chapter
                          >>periodic; restart format 4); the fluid's viscous force divided by the
                          lattice moment, its acoustic step capped by the viscosity; moving wall
@@ -1042,9 +1047,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 15
+#define SPHSOLID_VERSION_MINOR 16
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.15.0"
+#define SPHSOLID_VERSION_STRING "0.16.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
