@@ -383,7 +383,9 @@
       the granular images' shear); the velocity gradient uses the no-slip image velocity -v_j. A free-slip wall with
       sps_world_set_wall_friction(mu) resists a particle's sliding by Coulomb's mu times the
       wall's normal force on it (the basal friction of a flow on a smooth bed); a grain that
-      left the bulk has no stress to take a no-slip wall's shear with, and slides on along it. sps_body_set_geostatic_stress starts a
+      left the bulk has no stress to take a no-slip wall's shear with, and slides on along it:
+      for a floor on which loose grains come to rest, use a free-slip wall with friction
+      tan(phi) (examples/column_collapse2d.c --floor coulomb). sps_body_set_geostatic_stress starts a
       layer at rest (K0 = 1 - sin(phi) by default). Fields: "plastic_strain" is the accumulated
       deviatoric plastic strain, sum sqrt(2/3) |dev(d_eps_p)|, "plastic_work" [J] the work of
       the returned stress on the plastic strain increments (the energy account's dissipation),
