@@ -40,19 +40,6 @@
 #define COLUMN_RADIUS 0.05
 #define FLOOR_RADIUS 0.25 /* the rings read: past Lube's runout at a = 4 (r0 (1 + 1.6 sqrt(4)) = 0.21 m) */
 
-typedef struct {
-    output_plan output;
-    double t_end;
-} run_state;
-
-static int on_step(sps_world* w, void* user) {
-    run_state* s = (run_state*)user;
-    sps_diagnostics d;
-    output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
-    return 0;
-}
-
 /* The cylinder about the vertical axis x = z = 0. */
 static sps_real cylinder_sdf(const sps_real x[3], void* user) {
     (void)user;
@@ -99,7 +86,7 @@ int main(int argc, char** argv) {
     const sps_real floor_point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
     const double axis[2] = {0, 0}; /* x and z of the cylinder's axis */
     const sps_real *x, *z;
-    run_state s;
+    ex_plain_run s;
     int rings, k, i, n, clustered, *counts;
 
     ex_short_openmp_spin(argv);
@@ -127,8 +114,8 @@ int main(int argc, char** argv) {
 
     s.t_end = c.t_end;
     output_open(&s.output, &c, "column_collapse3d", "velocity", "");
-    on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    ex_plain_step(w, &s); /* t = 0: the first CSV row and snapshot */
+    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &s), &s.output);
     wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
 

@@ -544,6 +544,19 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
     }
     return wrote;
 }
+/* The state of a run whose steps only write the output due and the progress line. */
+typedef struct {
+    output_plan output;
+    double t_end;
+} ex_plain_run;
+/* sps_world_advance's step callback for an ex_plain_run (user). */
+EX_UNUSED static int ex_plain_step(sps_world* w, void* user) {
+    ex_plain_run* s = (ex_plain_run*)user;
+    sps_diagnostics d;
+    output_tick(w, &s->output, "", &d);
+    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
+    return 0;
+}
 
 /* The end of the run: closes the CSV, writes the final picture dir/name_final.png when
    --png-every < 0, and dir/name_final.svg with --svg. Returns the run's wall time [s] since

@@ -20,19 +20,6 @@
 #define COLUMN_RADIUS 0.025
 #define COLUMN_HEIGHT 0.1
 
-typedef struct {
-    output_plan output;
-    double t_end;
-} run_state;
-
-static int on_step(sps_world* w, void* user) {
-    run_state* s = (run_state*)user;
-    sps_diagnostics d;
-    output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
-    return 0;
-}
-
 /* The cylinder about the vertical axis through the floor's middle. */
 static sps_real cylinder_sdf(const sps_real x[3], void* user) {
     const double dx = x[0] - 0.5 * FLOOR_LENGTH, dz = x[2] - 0.5 * FLOOR_LENGTH;
@@ -59,7 +46,7 @@ int main(int argc, char** argv) {
     const sps_real lo[3] = {0.5 * FLOOR_LENGTH - COLUMN_RADIUS, 0, 0.5 * FLOOR_LENGTH - COLUMN_RADIUS},
                    hi[3] = {0.5 * FLOOR_LENGTH + COLUMN_RADIUS, COLUMN_HEIGHT, 0.5 * FLOOR_LENGTH + COLUMN_RADIUS};
     const sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3] = {FLOOR_LENGTH, 2 * COLUMN_HEIGHT, FLOOR_LENGTH};
-    run_state s;
+    ex_plain_run s;
     double axis[2]; /* x and z of the cylinder's axis */
     int rings, k;
 
@@ -84,8 +71,8 @@ int main(int argc, char** argv) {
 
     s.t_end = c.t_end;
     output_open(&s.output, &c, "heap3d", "velocity", "");
-    on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    ex_plain_step(w, &s); /* t = 0: the first CSV row and snapshot */
+    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &s), &s.output);
     wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
 

@@ -22,19 +22,6 @@
 #define BLOCK_LENGTH 4.0
 #define BLOCK_HEIGHT 2.0
 
-typedef struct {
-    output_plan output;
-    double t_end;
-} run_state;
-
-static int on_step(sps_world* w, void* user) {
-    run_state* s = (run_state*)user;
-    sps_diagnostics d;
-    output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
-    return 0;
-}
-
 /* The surface profile in columns dp wide: each column's highest particle + dp/2 (0: empty). */
 #define MAX_COLUMNS 4096
 typedef struct {
@@ -69,7 +56,7 @@ int main(int argc, char** argv) {
     sps_body soil, all = {0};
     sps_diagnostics d;
     sps_real lo[3] = {0, 0, 0}, hi[3] = {BLOCK_LENGTH, BLOCK_HEIGHT, 0}, box_hi[3] = {5, 2.5, 0};
-    run_state s;
+    ex_plain_run s;
     surface_profile* sp = (surface_profile*)calloc(1, sizeof(surface_profile));
     double wall, dp, crest = -1, toe = 0, rise = 0, rise_at = 0, lowest = 1e30, lowest_at = 0, low_x = 0;
     int k, n, surface0, clustered;
@@ -100,8 +87,8 @@ int main(int argc, char** argv) {
 
     s.t_end = c.t_end;
     output_open(&s.output, &c, "soil_failure2d", "plastic-strain", "");
-    on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    ex_plain_step(w, &s); /* t = 0: the first CSV row and snapshot */
+    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &s), &s.output);
     wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, all, &d));
     surface_of(w, dp, sp);
