@@ -326,7 +326,8 @@
       a flow zone on a body that is not a fluid, any zone on a total-Lagrangian, free rigid or
       wall body, zones with observers or SPS_ROTATION_PAIR bodies (both hold particle ids), a
       velocity or pressure that is not finite (and a velocity_fn that returns one, at the step).
-      The energy watchdog starts its account again at every step (energy flows in and out). A
+      The energy watchdog starts its account again at every step (energy flows in and out)
+      and counts the work of the buffers' held velocities as prescribed work (sps_diagnostics). A
       transport correction (TVF, UTVF) leaves buffer particles where their zone moves them.
       Cost: one pass over the zone bodies' particles per advection step (a step that creates or
       removes particles costs about 5 % more than one that does not, bench/open_cost.c); a world
@@ -9764,8 +9765,13 @@ SPS__INLINE sps_real sps__kick_range(sps_world* w, const sps__body* b, int i0, i
             if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * work;
         }
         if (w->zone && w->zone[i] >= 0) { /* an open boundary's buffer particle (>>open boundaries) */
+            sps_real work = 0; /* the zone's force m (v_zone - v_free)/dt times v_zone, over dt: the inflow's work */
             SPS__UNROLL
-            for (a = 0; a < dim; ++a) w->vel[a][i] = w->zone_vel[a][i];
+            for (a = 0; a < dim; ++a) {
+                work += (w->zone_vel[a][i] - w->vel[a][i]) * w->zone_vel[a][i];
+                w->vel[a][i] = w->zone_vel[a][i];
+            }
+            if (b->driven_work) b->driven_work[i - b->begin] += w->mass[i] * work;
             if (w->zones[(int)w->zone[i]].def.kind == SPS_ZONE_OUTFLOW) w->rho[i] = w->zones[(int)w->zone[i]].rho_out;
         }
         SPS__UNROLL
@@ -10810,6 +10816,10 @@ SPSDEF sps_result sps_body_add_zone(sps_world* w, sps_body b, const sps_zone_def
     if (z->bins) memset(z->bins, 0, sizeof(sps_real) * 4 * (size_t)z->nbins);
     w->nzones++;
     w->bodies[k].zoned = 1;
+    if (def->kind != SPS_ZONE_KILL && sps__watchdog_on(w) && !w->bodies[k].driven) { /* a buffer's held velocity does work: count it */
+        w->bodies[k].driven = 1;
+        w->needs_sort_by_body = 1; /* the next step's commit allocates its prescribed_work */
+    }
     if (def->kind == SPS_ZONE_INFLOW) { /* the buffer: the box's lattice points, at the prescribed velocity */
         const int first = w->n;
         if ((r = sps__fill(w, "sps_body_add_zone", b, def->lo, def->hi, NULL, NULL, &added)) != SPS_OK || added == 0) {

@@ -364,6 +364,7 @@ int main(int argc, char** argv) {
     RUN(test_open_channel_steady);
     RUN(test_open_kill_zone);
     RUN(test_open_threads_and_restart);
+    RUN(test_open_ramped_inflow_counted);
     RUN(test_open_bad_input);
     RUN(test_open_restart_every_zone_item);
 
