@@ -10418,12 +10418,52 @@ SPS__INLINE void sps__transport_shift_finish(sps_world* w, const sps__body* b, s
 SPS__INSTANCES(transport_sum_pairs, plain, 0)
 SPS__INSTANCES(transport_surface_pairs, plain, 0)
 
+/* TVF's sums at a wall: the analytic walls' mirror images (>>walls for fluids) and the coupled
+   solids' particles (>>coupling: fluid-structure) complete the kernel as they do in the
+   continuity sums, so a particle next to a wall has g_i of the whole support and div r_i = d:
+   it is not taken for a surface particle and is kept at its spacing from the wall (the
+   reference code's correction counts its walls too). Without them TVF froze the two layers
+   next to every wall, and the wake of Turek and Hron's cylinder tore voids along the channel's
+   walls that nothing closed (bench/VALIDATION.md, "Turek-Hron"). UTVF keeps the paper's sums
+   over the body's own particles. */
+typedef struct {
+    sps__lane_sums* sums;
+    int lane;
+} sps__transport_image_sums;
+static void sps__image_transport(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
+    const sps__transport_image_sums* s = (const sps__transport_image_sums*)user;
+    sps_real e[3], r;
+    const sps_real dwv = sps__image_geometry(w, i, m->x, e, &r) * w->vol[m->j];
+    int a;
+    (void)b;
+    if (dwv == 0) return;
+    for (a = 0; a < w->dim; ++a) s->sums->row[a][s->lane] += dwv * e[a];
+    sps__add_moment(&s->sums->row[3][s->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
+}
+static void sps__transport_wall_sums(sps_world* w, const sps__body* b, sps__group q, sps__lane_sums* sums) {
+    sps__transport_image_sums s;
+    sps__image image;
+    int l, k;
+    s.sums = sums;
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        const int i = q.i0 + l;
+        s.lane = l;
+        if (b->model.mirrored) sps__each_image(w, b, i, sps__image_transport, &s);
+        for (k = b->coupled ? w->ct_first[i] : 0; b->coupled && k < w->ct_first[i + 1]; ++k) {
+            if (!sps__coupled_pair(w, i, w->ct_j[k])) continue;
+            sps__solid_image(w, i, w->ct_j[k], &image);
+            sps__image_transport(w, b, i, &image, &s);
+        }
+    }
+}
+
 /* The transport passes' kernels for lane group g: the world mode's pair loop, the finish. */
 static void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 9);
     sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    if (b->model.transport == SPS_TRANSPORT_TVF && ((b->model.mirrored && w->nwalls > 0) || b->coupled)) sps__transport_wall_sums(w, b, q, &sums);
     if (w->dim == 2) sps__transport_sums_finish(b, q, &sums, 2);
     else sps__transport_sums_finish(b, q, &sums, 3);
 }

@@ -6,7 +6,7 @@
    inflow buffer of 4 dp at x < 0 moves at the plane Poiseuille profile u(y) = 4 U y (H - y) / H^2,
    U = 0.01 m/s, and creates the particles that leave it; an outflow buffer of 4 dp at the end
    holds the outlet pressure p_out and removes what leaves it. Water-like rho0 = 1000, mu = 0.1
-   Pa s (Re = U H / nu = 1), c0 = 30 U. The fluid starts at rest and develops into the Poiseuille
+   Pa s (Re = U H / nu = 1; --re sets nu), c0 = 30 U. The fluid starts at rest and develops into the Poiseuille
    flow of the inflow: the example compares, over the last third of the run, the flux through
    the cross-section at x = 2 H (sum of u m / rho0 over a slab 2 dp thick / its thickness) with the
    inflow's 2/3 U H, the profile there with the parabola (RMS of u - u(y) over the slab's
@@ -22,8 +22,8 @@
 
 #define H 0.01
 #define U_MAX 0.01
-#define RE 1.0
-#define NU (U_MAX * H / RE)
+static double g_re = 1.0; /* --re: U H / nu */
+#define NU (U_MAX * H / g_re)
 #define LENGTH (3 * H)
 #define BUFFER_DP 4 /* buffer depth in dp: at least the kernel support 2h = 2.6 dp */
 
@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
     double c0_factor = 30, p_out = 1.0;
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles across the channel, H/dp", 4, 400, NULL},
+        {"re", OPT_REAL, &g_re, "Reynolds number U H / nu (U the peak speed)", 0.01, 1000, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
         {"p-out", OPT_REAL, &p_out, "outlet pressure [Pa]", -1e4, 1e4, NULL},
         COMMON_OPTION_SPECS(c),
@@ -142,7 +143,7 @@ int main(int argc, char** argv) {
     s.n_lo = 1 << 30;
     output_open(&s.output, &c, "channel_flow", "velocity", ",flux,l2_error,particles");
     printf("channel_flow: H/dp = %d, %d particles (lattice of the channel and its buffers), Re = %g, U = %g m/s, nu = %g m^2/s, "
-           "c0 = %g m/s, p_out = %g Pa\n", res, lattice, RE, U_MAX, NU, c0_factor * U_MAX, p_out);
+           "c0 = %g m/s, p_out = %g Pa\n", res, lattice, g_re, U_MAX, NU, c0_factor * U_MAX, p_out);
     printf("     t [s]   flux / inflow's   L2 error / U   particles\n");
     on_step(w, &s);
     for (n = 1; n <= 5; ++n) {
@@ -169,7 +170,7 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     printf("RESULT case=channel_flow res=%d Re=%g c0_factor=%g p_out=%g t=%.4g flux=%.6e flux_inflow=%.6e flux_ratio=%.4f l2_error=%.4e "
            "l2_error_pct=%.2f%% count_min=%d count_max=%d lattice=%d created=%ld removed=%ld %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
-           res, RE, c0_factor, p_out, (double)sps_world_time(w), flux, 2.0 / 3 * U_MAX * H, flux / (2.0 / 3 * U_MAX * H), l2, 100 * l2,
+           res, g_re, c0_factor, p_out, (double)sps_world_time(w), flux, 2.0 / 3 * U_MAX * H, flux / (2.0 / 3 * U_MAX * H), l2, 100 * l2,
            s.n_lo, s.n_hi, lattice, created, removed, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;

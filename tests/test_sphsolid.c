@@ -249,6 +249,7 @@ int main(int argc, char** argv) {
     RUN(test_coincident_particles_stay_finite);
     RUN(test_granular_bad_input);
     RUN(test_transport_keeps_linear_momentum);
+    RUN(test_tvf_counts_walls);
     RUN(test_fluid_bad_input);
     RUN(test_contact_determinism);
     RUN(test_j2_radial_return_on_surface);
