@@ -9,7 +9,11 @@
    0.35 m long and 0.02 m thick whose centre line is y = 0.2 (filled from the cylinder's centre,
    its part inside the cylinder clamped). An inflow buffer of 4 dp at x < 0 moves at the
    parabolic profile u(y) = 1.5 U 4 y (H - y) / H^2, ramped up as (1 - cos(pi t / 2)) / 2 over
-   the first 2 s; an outflow buffer of 4 dp at the end holds the pressure at 0. Fluid rho_f =
+   the first 2 s; an outflow buffer of 4 dp at the end holds the pressure at p_out = rho_f (2 U)^2
+   (--p-out): the fluid's pressure is then positive everywhere (the flow past the cylinder's
+   flanks and in the vortices' cores is below the outlet's by up to rho_f u^2 / 2, u up to
+   about 3 U), as the fluid in tension pulls away from the channel's analytic walls (at 0,
+   FSI3's fluid left both walls within 1 s). A uniform pressure does not load the flag. Fluid rho_f =
    1000, nu_f = 1e-3 m^2/s; the flag plane-strain elastic, nu_s = 0.4:
        --case fsi2: U = 1 m/s (Re = U 2r / nu_f = 100), rho_s = 10 000, mu_s = 0.5 MPa (E = 1.4 MPa)
        --case fsi3: U = 2 m/s (Re = 200),              rho_s =  1 000, mu_s = 2 MPa   (E = 5.6 MPa)
@@ -59,6 +63,12 @@ static void inflow_velocity(const sps_real x[3], sps_real t, void* user, sps_rea
     const double ramp = t < RAMP_TIME ? 0.5 * (1 - cos(PI * t / RAMP_TIME)) : 1;
     v[0] = (sps_real)(ramp * 1.5 * c->u_mean * 4 * x[1] * (CHANNEL_HEIGHT - x[1]) / (CHANNEL_HEIGHT * CHANNEL_HEIGHT));
     v[1] = v[2] = 0;
+}
+
+/* The fluid's initial pressure: the outlet's, so that it starts at rest in equilibrium with it. */
+static sps_real uniform_pressure(const sps_real x[3], void* user) {
+    (void)x;
+    return (sps_real)*(const double*)user;
 }
 
 /* The shapes, as signed distances (negative inside). */
@@ -124,7 +134,7 @@ int main(int argc, char** argv) {
     common_options c = {.cfl = 0.4, .t_end = 12.0, .vtk_every = 0.5, .csv_every = 0.005, .E = 0, .nu = 0.4, .rho0 = 0, /* 0: the case's */
                         .out = "out/turek_hron", .transport = 1, PNG_DEFAULTS};
     int res = 2, which = 0, solver = 0, inflow, outflow;
-    double c0_factor = 10, window = 0, length = 2.5, amplitude, mean, frequency, dp, wall;
+    double c0_factor = 10, window = 0, length = 2.5, p_out = -1, amplitude, mean, frequency, dp, wall;
     const char* case_choices = "fsi2|fsi3";
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles across the flag's thickness (0.02 m / dp)", 1, 20, NULL},
@@ -132,6 +142,7 @@ int main(int argc, char** argv) {
         {"solver", OPT_CHOICE, &solver, "the flag: updated-Lagrangian linear elastic (ul) or total-Lagrangian Saint Venant-Kirchhoff (tl)", 0, 0, "ul|tl"},
         {"length", OPT_REAL, &length, "the channel's length [m] (Turek and Hron: 2.5)", 1, 10, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "the fluid's sound speed / U", 2, 1000, NULL},
+        {"p-out", OPT_REAL, &p_out, "the outlet pressure [Pa], < 0: the default rho_f (2 U)^2", -1, 1e6, NULL},
         {"window", OPT_REAL, &window, "the last seconds over which amplitude and frequency are measured, 0: the last third", 0, 100, NULL},
         COMMON_OPTION_SPECS(c),
     };
@@ -154,6 +165,7 @@ int main(int argc, char** argv) {
     if (c.rho0 == 0) c.rho0 = tc->rho_s;
     if (c.E == 0) c.E = 2 * tc->mu_s * (1 + c.nu); /* E = 2 mu (1 + nu) */
     dp = FLAG_THICK / res;
+    if (p_out < 0) p_out = RHO_FLUID * 4 * tc->u_mean * tc->u_mean; /* above the suction of the cylinder's flanks and the vortices */
     apply_common(&c, &wd, &flag_def);
     wd.dim = 2;
     wd.dp = (sps_real)dp;
@@ -197,6 +209,7 @@ int main(int argc, char** argv) {
         ex_unset_unread(&fluid_def);
         ex_check(w, sps_world_add_body(w, &fluid_def, &fluid));
         ex_check(w, sps_body_add_sdf(w, fluid, lo, hi, fluid_sdf, NULL, NULL));
+        ex_check(w, sps_body_set_pressure(w, fluid, uniform_pressure, &p_out));
     }
     ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
     ex_check(w, sps_world_add_wall(w, roof_point, down, SPS_WALL_NO_SLIP));
@@ -205,7 +218,8 @@ int main(int argc, char** argv) {
     in.velocity_fn = inflow_velocity;
     in.velocity_user = (void*)tc;
     ex_check(w, sps_body_add_zone(w, fluid, &in, &inflow));
-    out.kind = SPS_ZONE_OUTFLOW; /* the channel's last 4 dp, at p = 0 */
+    out.kind = SPS_ZONE_OUTFLOW; /* the channel's last 4 dp, at p_out */
+    out.pressure = (sps_real)p_out;
     out.lo[0] = (sps_real)(length - BUFFER_DP * dp); out.hi[0] = (sps_real)length; out.hi[1] = CHANNEL_HEIGHT;
     ex_check(w, sps_body_add_zone(w, fluid, &out, &outflow));
     lattice = sps_world_particle_count(w);
@@ -221,9 +235,9 @@ int main(int argc, char** argv) {
     s.y = (double*)malloc(sizeof(double) * (size_t)s.capacity);
     if (!s.t || !s.y) { fprintf(stderr, "turek_hron: out of memory\n"); return 1; }
     output_open(&s.output, &c, "turek_hron", "velocity", ",tip_dx,tip_dy,particles");
-    printf("turek_hron: %s, dp = %g m (%d across the flag, H/dp = %.0f), %d particles (%d in the flag), Re = %g, U = %g m/s, c0 = %g m/s, "
+    printf("turek_hron: %s, dp = %g m (%d across the flag, H/dp = %.0f), %d particles (%d in the flag), Re = %g, U = %g m/s, c0 = %g m/s, p_out = %g Pa, "
            "flag %s E = %g Pa nu = %g rho = %g\n", tc->name, dp, res, CHANNEL_HEIGHT / dp, lattice, flag_count, tc->u_mean * 2 * CYLINDER_R / NU_FLUID,
-           tc->u_mean, c0_factor * tc->u_mean, solver ? "TL Saint Venant-Kirchhoff" : "UL linear elastic", c.E, c.nu, c.rho0);
+           tc->u_mean, c0_factor * tc->u_mean, p_out, solver ? "TL Saint Venant-Kirchhoff" : "UL linear elastic", c.E, c.nu, c.rho0);
     on_step(w, &s);
     for (n = 1; n <= 8; ++n) {
         const double t = c.t_end * n / 8;
@@ -238,9 +252,9 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     printf("the tip's transverse displacement over the last %.3g s: amplitude %.4e m (Turek-Hron %.4e), frequency %.3f Hz (%.2f), mean %.3e m (%.2e)\n",
            s.window, amplitude, tc->amplitude, frequency, tc->frequency, mean, tc->mean);
-    printf("RESULT case=turek_hron setting=%s res=%d dp=%g length=%g solver=%s c0_factor=%g window=%g amplitude=%.5e amplitude_paper=%.5e amplitude_dev=%+.2f%% "
+    printf("RESULT case=turek_hron setting=%s res=%d dp=%g length=%g solver=%s c0_factor=%g p_out=%g window=%g amplitude=%.5e amplitude_paper=%.5e amplitude_dev=%+.2f%% "
            "frequency=%.4f frequency_paper=%.2f frequency_dev=%+.2f%% mean=%.4e %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
-           tc->name, res, dp, length, solver ? "tl" : "ul", c0_factor, s.window, amplitude, tc->amplitude, 100 * (amplitude / tc->amplitude - 1), frequency,
+           tc->name, res, dp, length, solver ? "tl" : "ul", c0_factor, p_out, s.window, amplitude, tc->amplitude, 100 * (amplitude / tc->amplitude - 1), frequency,
            tc->frequency, 100 * (frequency / tc->frequency - 1), mean, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall,
            c.out);
     free(s.t);
