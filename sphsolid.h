@@ -1267,6 +1267,19 @@ typedef enum sps_transport {
                                (UTVF eqs. 31-37) */
 } sps_transport;
 
+/* The numerical dissipation of a fluid body (fluid_dissipation; FLUIDS): which of the Riemann
+   solver's two dissipative terms it keeps. */
+typedef enum sps_fluid_dissipation {
+    SPS_FLUID_DISSIPATION_RIEMANN = 0, /* both: the momentum equation's limited Z beta (v_ij . e_ij) and
+                                          the continuity equation's density diffusion (UTVF eqs.
+                                          16-20): free surfaces, impacts, inviscid water */
+    SPS_FLUID_DISSIPATION_DENSITY = 1, /* the density diffusion only: the momentum equation has the
+                                          pressure and the physical viscosity alone (a viscous flow;
+                                          needs material.viscosity > 0) */
+    SPS_FLUID_DISSIPATION_NONE = 2     /* neither: the physical viscosity is the only dissipation (a
+                                          viscous flow without walls; needs material.viscosity > 0) */
+} sps_fluid_dissipation;
+
 /* The Drucker-Prager cone of a granular body (material.yield_cone; GRANULAR): which Mohr-Coulomb
    stress state the cone f = alpha_phi I1 + sqrt(J2) - k_c is fitted to, given phi, psi and c. */
 typedef enum sps_yield_cone {
@@ -1365,6 +1378,11 @@ typedef struct sps_body_def {
                                   section 4.6, a principal Green-Lagrange strain (dimensionless),
                                   [0, 100]; past it the damage D grows and degrades the tensile
                                   stress (TOTAL-LAGRANGIAN). 0: no damage. Default 0. */
+    sps_fluid_dissipation fluid_dissipation; /* fluids: the Riemann solver's dissipative terms kept
+                                  (sps_fluid_dissipation; FLUIDS): a viscous flow that the
+                                  viscosity alone keeps stable decays at its physical rate only
+                                  without the momentum term (the Taylor-Green vortex, the
+                                  lid-driven cavity). Default SPS_FLUID_DISSIPATION_RIEMANN. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -2284,6 +2302,8 @@ typedef struct sps__body {
     int wall_equilibrium_needed; /* sps__wants_wall_equilibrium, as of the last commit */
     sps__yield_cone cone;  /* Drucker-Prager: the yield cone */
     sps_real limiter_eta_c0; /* eta / c0 of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
+    sps_real density_diffusion; /* 1: the Riemann solver's density term in the continuity sums, 0: none
+                                   (a fluid's fluid_dissipation = none; sps__fluid_rest_gradient) */
     sps_real diffusion_rate; /* 2 zeta h c0 of the stress diffusion */
     sps_real viscous_coefficient; /* a viscous fluid: 2 mu / the lattice's kernel-gradient moment
                                      (sps__fluid_rest_gradient; the Newtonian force's factor) */
@@ -2930,7 +2950,8 @@ typedef struct sps__def_item {
 typedef char sps__enums_are_ints[sizeof(sps_kernel_type) == sizeof(int) && sizeof(sps_stepping) == sizeof(int) &&
                                          sizeof(sps_shear) == sizeof(int) && sizeof(sps_rotation) == sizeof(int) &&
                                          sizeof(sps_material_kind) == sizeof(int) && sizeof(sps_solver) == sizeof(int) &&
-                                         sizeof(sps_transport) == sizeof(int) && sizeof(sps_hourglass) == sizeof(int)
+                                         sizeof(sps_transport) == sizeof(int) && sizeof(sps_hourglass) == sizeof(int) &&
+                                         sizeof(sps_fluid_dissipation) == sizeof(int)
                                      ? 1 : -1];
 #define SPS__WORLD_ITEM(field, type) {#field, offsetof(sps_world_def, field), type, NULL}
 #define SPS__BODY_ITEM(field, type) {#field, offsetof(sps_body_def, field), type, NULL}
@@ -3009,7 +3030,8 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM_READ_BY(stress_diffusion, SPS__DEF_REAL, sps__reads_drucker_prager),
     SPS__BODY_ITEM(friction, SPS__DEF_REAL),
     SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
-    SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL)}; /* refused on updated-Lagrangian bodies */
+    SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
+    SPS__BODY_ITEM_READ_BY(fluid_dissipation, SPS__DEF_INT, sps__reads_fluid)};
 #define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
 #define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
 /* The value of a def item, as a double (exact for ints and sps_real). */
@@ -3194,6 +3216,15 @@ static sps_real sps__newton_dt(const sps_world* w, const sps__body* b) {
 
 static sps_real sps__lattice_gradient_moment(const sps_world* w); /* >>kernel */
 
+/* Its combination rule (sps__combination_rules): a fluid without the Riemann solver's momentum
+   dissipation needs the viscosity, the only damping left of its particles' noise (an inviscid
+   fluid without it has nothing to stop a zigzag mode). */
+static int sps__inviscid_undissipated(int dim, const sps_body_def* def) {
+    (void)dim;
+    return def->material.kind == SPS_MATERIAL_FLUID && def->fluid_dissipation != SPS_FLUID_DISSIPATION_RIEMANN &&
+           !(def->material.viscosity > 0);
+}
+
 /* c0 is given (sound_speed), K = rho0 c0^2 and no shear modulus: a fluid's pressure is its only
    stress, besides the viscous force when viscosity > 0 (sps__pressure). */
 static sps__material_constants sps__fluid_constants(const sps_material_def* m) {
@@ -3264,6 +3295,10 @@ static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
        same moment -sum_j x_ij,x^2 dW/r V_j (0.974 at h = 1.3 dp in 2D): Poiseuille flow ran 2.7 %
        fast at every resolution until it was divided out */
     b->viscous_coefficient = 2 * b->def.material.viscosity / sps__lattice_gradient_moment(w);
+    /* fluid_dissipation: the limiter at 0 makes beta = 0 in every pair (no momentum term), the
+       density term's factor 0 leaves its sum out; the default keeps both bit for bit */
+    if (b->def.fluid_dissipation != SPS_FLUID_DISSIPATION_RIEMANN) b->limiter_eta_c0 = 0;
+    if (b->def.fluid_dissipation == SPS_FLUID_DISSIPATION_NONE) b->density_diffusion = 0;
 }
 /* Its warnings (sps__material_warnings): water under gravity with a smoothing length at which
    water at rest does not stay at rest (FLUIDS; bench/VALIDATION.md, "Still water": at h = 1.8 dp
@@ -3818,6 +3853,9 @@ static const sps__combination_rule sps__combination_rules[] = {
                                          "pressure pass reads the pair forces the penalty writes, and a granular body's pressure pass "
                                          "has no penalty terms; use 0 (the penalty's own pass) or, for GNO-A, rotation = mean or per "
                                          "particle"},
+    {sps__inviscid_undissipated, "fluid_dissipation = 1 or 2 with material.viscosity = 0: without the Riemann solver's momentum "
+                                 "dissipation only the physical viscosity damps the particles' noise; set material.viscosity > 0 "
+                                 "or fluid_dissipation = 0"},
     {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
     {sps__shifted_reference, "transport = TVF or UTVF with solver = total Lagrangian: its neighbours are those of the reference "
                              "configuration, which a shift of the particles would not move"},
@@ -3864,6 +3902,9 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                (double)def->stress_diffusion);
     SPS__CHECK(def->transport_coefficient >= 0 && def->transport_coefficient <= 1,
                "transport_coefficient = %g, allowed 0 (default 0.2) or (0, 1]", (double)def->transport_coefficient);
+    SPS__CHECK(def->fluid_dissipation == SPS_FLUID_DISSIPATION_RIEMANN || def->fluid_dissipation == SPS_FLUID_DISSIPATION_DENSITY ||
+                   def->fluid_dissipation == SPS_FLUID_DISSIPATION_NONE,
+               "fluid_dissipation = %d, allowed 0 (the Riemann solver's), 1 (density diffusion only) or 2 (none)", (int)def->fluid_dissipation);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(!sps__left_out_by(def), "material.kind = %d with solver = %d: this build left it out (%s is defined)",
@@ -4292,6 +4333,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->oas_w_dp = sps_world_kernel(w, w->def.dp);
     b->transport_alpha = def->transport_coefficient > 0 ? def->transport_coefficient : SPS_R(0.2); /* UTVF section 3.2 */
     b->limiter_eta_c0 = (b->model.material->limiter + b->model.material->limiter_per_dim * w->dim) / b->mat.c0;
+    b->density_diffusion = 1;
     sps__material_setup(w, b);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
     b->driven = b->model.material->kinematic && !b->model.free_rigid && sps__watchdog_on(w);
@@ -7252,7 +7294,7 @@ static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const
     if (dw == 0) return;
     for (a = 0; a < 3; ++a) dv[a] = a < w->dim ? w->vel[a][i] - v[a] : 0;
     rest_dp = r * (rest[0] * e[0] + rest[1] * e[1] + rest[2] * e[2]); /* the image pair's hydrostatic difference */
-    s->sum[SPS__DRHO][s->lane] += (w->p[i] - m->p - rest_dp) / b->z_riemann * dwv;
+    s->sum[SPS__DRHO][s->lane] += (w->p[i] - m->p - rest_dp) / b->z_riemann * dwv * b->density_diffusion;
     if (!b->model.gradient) { /* a fluid: its divergence as sps__continuity_pairs', no velocity gradient */
         s->sum[SPS__DRHO][s->lane] += b->divergence_scale * (dv[0] * e[0] + dv[1] * e[1] + dv[2] * e[2]) * dwv;
         return;
@@ -7415,7 +7457,7 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, 
     const sps__group q = sps__group_of(w, b, g);
     const sps_real scale = divergence ? b->divergence_scale : 0;
     const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
-    const sps_real inv_z = riemann ? 1 / b->z_riemann : 0;
+    const sps_real inv_z = riemann ? b->density_diffusion / b->z_riemann : 0; /* 0: fluid_dissipation = none */
     const sps_real rest_x = b->rest_pressure_gradient[0], rest_y = b->rest_pressure_gradient[1], rest_z = b->rest_pressure_gradient[2];
     const sps_real *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT p = w->p;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
@@ -12162,7 +12204,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 5u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones */
+#define SPS__RESTART_VERSION 6u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */

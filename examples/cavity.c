@@ -77,13 +77,15 @@ static int on_step(sps_world* w, void* user) {
 int main(int argc, char** argv) {
     common_options c = {.cfl = 0.4, .t_end = 20, .vtk_every = 5, .csv_every = 0.1, .E = 1e6, .nu = 0.3, .rho0 = 1000,
                         .out = "out/cavity", .transport = 1, PNG_DEFAULTS};
-    int res = 50, k, line;
+    int res = 50, k, line, dissipation = SPS_FLUID_DISSIPATION_DENSITY;
     double re = 100, c0_factor = 10, max_dev = 0, dev_at = 0, wall;
     const char* ghia_path = "bench/ghia1982.csv";
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles along the cavity's side, L/dp", 10, 1000, NULL},
         {"re", OPT_REAL, &re, "Reynolds number U L / nu (Ghia's tables: 100 or 1000)", 1, 1e4, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
+        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
+         "riemann|density|none"},
         {"ghia", OPT_STRING, &ghia_path, "Ghia et al.'s table (CSV)", 0, 0, NULL},
         COMMON_OPTION_SPECS(c),
     };
@@ -108,6 +110,7 @@ int main(int argc, char** argv) {
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.sound_speed = (sps_real)(c0_factor * LID);
+    bd.fluid_dissipation = (sps_fluid_dissipation)dissipation;
     bd.material.viscosity = (sps_real)(c.rho0 * LID / re);
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_unset_unread(&bd);

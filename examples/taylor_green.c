@@ -61,11 +61,14 @@ int main(int argc, char** argv) {
                         .out = "out/taylor_green", .transport = 1, PNG_DEFAULTS};
     int res = 50;
     double c0_factor = 10, alpha = 0;
+    int dissipation = SPS_FLUID_DISSIPATION_NONE;
     tg_case tc;
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles along the box's side, 1/dp", 10, 1000, NULL},
         {"re", OPT_REAL, &tc.re, "Reynolds number U L / nu", 1, 1e4, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
+        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
+         "riemann|density|none"},
         {"tvf-alpha", OPT_REAL, &alpha, "transport_coefficient alpha of TVF, 0: the library's (0.2)", 0, 1, NULL},
         COMMON_OPTION_SPECS(c),
     };
@@ -91,6 +94,7 @@ int main(int argc, char** argv) {
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.sound_speed = (sps_real)(c0_factor * U0);
+    bd.fluid_dissipation = (sps_fluid_dissipation)dissipation;
     bd.material.viscosity = (sps_real)(c.rho0 * U0 * 1.0 / tc.re);
     bd.transport_coefficient = (sps_real)alpha;
     ex_check(NULL, sps_world_create(&wd, &w));

@@ -361,6 +361,7 @@ int main(int argc, char** argv) {
     RUN(test_periodic_crossing_keeps_momentum);
     RUN(test_periodic_body_across_boundary);
     RUN(test_periodic_bad_input);
+    RUN(test_periodic_taylor_green_decay);
     RUN(test_periodic_threads_and_restart);
     RUN(test_open_channel_steady);
     RUN(test_open_kill_zone);
