@@ -273,7 +273,10 @@
       clustering and voids of tensile instability; velocities are untouched, so linear momentum
       is exact. Surface particles (position divergence -sum r_ij . grad W_ij V_j below 0.75 d, or
       within h of one) are not moved by TVF and are moved along the surface only by UTVF (normal
-      B_i g_i / |B_i g_i|); none with a divergence below 0.6 d. For fluids and solids alike (not
+      B_i g_i / |B_i g_i|); none with a divergence below 0.6 d. TVF's sums count the analytic walls'
+      mirror images and a fluid's coupled solid particles as neighbours (its particles next to a
+      wall are kept at their spacing from it, not frozen as surface particles); UTVF's count the
+      body's own particles, as the paper's. For fluids and solids alike (not
       wall bodies, nor total-Lagrangian ones, whose neighbours are those of the reference). Costs two neighbour passes per sub-step; the diagnostics'
       surface_particles counts the particles below 0.75 d, which voids and cracks raise.
 
@@ -333,9 +336,12 @@
       removes particles costs about 5 % more than one that does not, bench/open_cost.c); a world
       without zones runs none of it. Restart: the zones are part of the fingerprint (each def
       item, velocity_fn by whether it is set), the particle counts of the state are read from the
-      file (the program builds the scene as it was built, then restores). Tested at Re = 1; a
-      channel filled from empty at Re 3-10 clustered or blew up after the front reached the
-      outlet (no transport correction). Example: channel_flow.
+      file (the program builds the scene as it was built, then restores). Above Re of a few
+      the fluid needs TVF (without it Turek and Hron's channel at Re 100 clustered within 2.4 s)
+      and a positive pressure everywhere: set the outlet pressure above the flow's suction
+      (about rho u_max^2 / 2 below the outlet's past an obstacle) and start the fluid at it
+      (sps_body_set_pressure), as fluid in tension pulls away from analytic walls. Examples:
+      channel_flow (Re 1-100), turek_hron (Re 100-200).
 
    GRANULAR (material.kind = SPS_MATERIAL_DRUCKER_PRAGER; UTVF sections 2.3, 3.1.3; chapter
    >>material: Drucker-Prager)
