@@ -235,6 +235,20 @@
       1.3 dp), joins; the acoustic step stays below h^2 / (14 nu) (its stability) and the
       advection step keeps nu/h below its speed. No-slip walls give it the images' velocity
       2 v_wall - v_j (analytic walls, wall bodies): plane Poiseuille flow (example poiseuille).
+      Numerical dissipation (body def fluid_dissipation): the Riemann solver's momentum term
+      Z beta (v_ij . e_ij) acts as an artificial viscosity of about 3 |v_ij . e_ij| h, of the
+      order of nu at Re 100 on lattices of 30-60 particles per length, so a viscous flow decays
+      too fast with it (Taylor-Green vortex, Re 100, 1/dp 30: kinetic energy 28 % low at t = 2
+      s). SPS_FLUID_DISSIPATION_DENSITY leaves it out (the pressure and the viscous force
+      alone, the density diffusion kept); SPS_FLUID_DISSIPATION_NONE leaves out the density
+      diffusion too (the Taylor-Green vortex within 1.4 % at 1/dp 30 and h = 1.5 dp; the
+      density diffusion damps the pressure field that holds a vortex together). Both need
+      material.viscosity > 0 (refused without: only the viscosity then damps the particles'
+      noise); the default SPS_FLUID_DISSIPATION_RIEMANN is for free surfaces, impacts and
+      water. Without the density diffusion a closed box's sound waves are not damped but by
+      the viscosity (the lid-driven cavity's density varies by +-4 % at c0 = 10 U; its
+      profiles are still closer to Ghia et al.'s); bench/VALIDATION.md, "Viscous flows without
+      the Riemann solver's dissipation", has the figures.
       Free surfaces need nothing (particles carry their density). Walls: analytic walls
       (CONTACT) act on a fluid through mirror particles, the images of its particles across each
       wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), and

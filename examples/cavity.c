@@ -76,8 +76,8 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     common_options c = {.cfl = 0.4, .t_end = 20, .vtk_every = 5, .csv_every = 0.1, .E = 1e6, .nu = 0.3, .rho0 = 1000,
-                        .out = "out/cavity", .transport = 1, PNG_DEFAULTS};
-    int res = 50, k, line, dissipation = SPS_FLUID_DISSIPATION_DENSITY;
+                        .out = "out/cavity", .transport = 1, .h_over_dp = 2, PNG_DEFAULTS};
+    int res = 50, k, line, dissipation = SPS_FLUID_DISSIPATION_NONE;
     double re = 100, c0_factor = 10, max_dev = 0, dev_at = 0, wall;
     const char* ghia_path = "bench/ghia1982.csv";
     opt_spec opts[] = {
@@ -123,8 +123,9 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end;
     s.quiet = c.quiet;
     output_open(&s.output, &c, "cavity", "velocity", "");
-    printf("cavity: L/dp = %d, %d particles, Re = %g, c0 = %g m/s, transport %s, to t = %g s\n", res, sps_world_particle_count(w), re,
-           c0_factor * LID, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF", c.t_end);
+    printf("cavity: L/dp = %d, %d particles, Re = %g, c0 = %g m/s, h = %g dp, transport %s, dissipation %s, to t = %g s\n", res,
+           sps_world_particle_count(w), re, c0_factor * LID, c.h_over_dp, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF",
+           dissipation_name(dissipation), c.t_end);
     on_step(w, &s);
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
     wall = output_close(w, &s.output);
@@ -145,9 +146,9 @@ int main(int argc, char** argv) {
     }
     fclose(profiles);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
-    printf("RESULT case=cavity res=%d Re=%g c0_factor=%g t=%.4g max_dev=%.4f max_dev_at=%s%.4f paper=Ghia1982 %s particles=%d steps=%ld "
-           "wall_s=%.2f out=%s\n", res, re, c0_factor, (double)sps_world_time(w), max_dev, dev_at >= 10 ? "v:" : "u:", fmod(dev_at, 10),
-           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
+    printf("RESULT case=cavity res=%d Re=%g c0_factor=%g t=%.4g max_dev=%.4f max_dev_at=%s%.4f paper=Ghia1982 %s h_over_dp=%g dissipation=%s particles=%d "
+           "steps=%ld wall_s=%.2f out=%s\n", res, re, c0_factor, (double)sps_world_time(w), max_dev, dev_at >= 10 ? "v:" : "u:", fmod(dev_at, 10),
+           common_result_fields(&c), c.h_over_dp, dissipation_name(dissipation), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
 }

@@ -58,7 +58,7 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     common_options c = {.cfl = 0.4, .t_end = 2.0, .vtk_every = 0.5, .csv_every = 0.02, .E = 1e6, .nu = 0.3, .rho0 = 1000,
-                        .out = "out/taylor_green", .transport = 1, PNG_DEFAULTS};
+                        .out = "out/taylor_green", .transport = 1, .h_over_dp = 1.5, PNG_DEFAULTS};
     int res = 50;
     double c0_factor = 10, alpha = 0;
     int dissipation = SPS_FLUID_DISSIPATION_NONE;
@@ -111,8 +111,9 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     s.e0 = d.kinetic_energy;
     output_open(&s.output, &c, "taylor_green", "velocity", ",energy_ratio,energy_ratio_exact");
-    printf("taylor_green: 1/dp = %d, %d particles, Re = %g, c0 = %g m/s, transport %s\n", res, sps_world_particle_count(w), tc.re,
-           c0_factor * U0, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+    printf("taylor_green: 1/dp = %d, %d particles, Re = %g, c0 = %g m/s, h = %g dp, transport %s, dissipation %s\n", res,
+           sps_world_particle_count(w), tc.re, c0_factor * U0, c.h_over_dp, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF",
+           dissipation_name(dissipation));
     printf("     t [s]    E / E0      exp(-16 pi^2 t / Re)   error\n");
     on_step(w, &s);
     for (i = 1; i <= 4; ++i) {
@@ -124,9 +125,10 @@ int main(int argc, char** argv) {
     wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     printf("RESULT case=taylor_green res=%d Re=%g c0_factor=%g t=%.4g decay_error=%.4e decay_error_pct=%.3f%% worst_t=%.3g "
-           "energy_ratio=%.6f exact=%.6f min_spacing=%.3f %s particles=%d steps=%ld wall_s=%.2f out=%s\n", res, tc.re, c0_factor,
+           "energy_ratio=%.6f exact=%.6f min_spacing=%.3f %s h_over_dp=%g dissipation=%s particles=%d steps=%ld wall_s=%.2f out=%s\n", res, tc.re, c0_factor,
            (double)sps_world_time(w), s.worst, 100 * s.worst, s.worst_t, d.kinetic_energy / s.e0,
-           exp(-16 * PI * PI * sps_world_time(w) / tc.re), s.output.min_spacing, common_result_fields(&c), sps_world_particle_count(w),
+           exp(-16 * PI * PI * sps_world_time(w) / tc.re), s.output.min_spacing, common_result_fields(&c), c.h_over_dp,
+           dissipation_name(dissipation), sps_world_particle_count(w),
            d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
