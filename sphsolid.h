@@ -238,17 +238,18 @@
       Numerical dissipation (body def fluid_dissipation): the Riemann solver's momentum term
       Z beta (v_ij . e_ij) acts as an artificial viscosity of about 3 |v_ij . e_ij| h, of the
       order of nu at Re 100 on lattices of 30-60 particles per length, so a viscous flow decays
-      too fast with it (Taylor-Green vortex, Re 100, 1/dp 30: kinetic energy 28 % low at t = 2
-      s). SPS_FLUID_DISSIPATION_DENSITY leaves it out (the pressure and the viscous force
-      alone, the density diffusion kept); SPS_FLUID_DISSIPATION_NONE leaves out the density
-      diffusion too (the Taylor-Green vortex within 1.4 % at 1/dp 30 and h = 1.5 dp; the
-      density diffusion damps the pressure field that holds a vortex together). Both need
-      material.viscosity > 0 (refused without: only the viscosity then damps the particles'
-      noise); the default SPS_FLUID_DISSIPATION_RIEMANN is for free surfaces, impacts and
-      water. Without the density diffusion a closed box's sound waves are not damped but by
-      the viscosity (the lid-driven cavity's density varies by +-4 % at c0 = 10 U; its
-      profiles are still closer to Ghia et al.'s); bench/VALIDATION.md, "Viscous flows without
-      the Riemann solver's dissipation", has the figures.
+      too fast with it (the Taylor-Green vortex at Re 100, 1/dp 30, h = 1.5 dp: kinetic energy
+      28 % low at t = 2 s). SPS_FLUID_DISSIPATION_DENSITY leaves it out (the pressure and the
+      viscous force alone; the density diffusion kept: 5.3 %); SPS_FLUID_DISSIPATION_NONE
+      leaves out the density diffusion too, which damps the pressure field that holds a vortex
+      (1.4 %, and 0.95 % at 1/dp 60; 10 % at h = 1.3 dp, where the particles' disorder under
+      TVF dissipates more). Both need material.viscosity > 0 (refused without: only the viscosity
+      then damps the particles' noise); the default SPS_FLUID_DISSIPATION_RIEMANN is for free
+      surfaces, impacts and water. Without the density diffusion a closed box's sound is damped
+      by the viscosity alone: the lid-driven cavity's density varies by +-5 % at c0 = 10 U and
+      its flow by a few per cent in time, its profiles within 2-6 % of Ghia et al.'s at L/dp 40
+      (6 % with the default). bench/VALIDATION.md, "Viscous flows without the Riemann solver's
+      dissipation".
       Free surfaces need nothing (particles carry their density). Walls: analytic walls
       (CONTACT) act on a fluid through mirror particles, the images of its particles across each
       wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), and
