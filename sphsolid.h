@@ -1397,6 +1397,11 @@ typedef struct sps_body_def {
                                   viscosity alone keeps stable decays at its physical rate only
                                   without the momentum term (the Taylor-Green vortex, the
                                   lid-driven cavity). Default SPS_FLUID_DISSIPATION_RIEMANN. */
+    int transport_carries_velocity; /* 1: the transport correction's shift dr_i carries the
+                                  velocity with it, v_i += L_i dr_i (L the velocity gradient), and
+                                  its sums take the walls' images (TRANSPORT); for bodies with a
+                                  velocity gradient (not a fluid under gravity). 0: positions
+                                  only (UTVF eq. 42). Default 0. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -3044,7 +3049,8 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM(friction, SPS__DEF_REAL),
     SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
     SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
-    SPS__BODY_ITEM_READ_BY(fluid_dissipation, SPS__DEF_INT, sps__reads_fluid)};
+    SPS__BODY_ITEM_READ_BY(fluid_dissipation, SPS__DEF_INT, sps__reads_fluid),
+    SPS__BODY_ITEM_READ_BY(transport_carries_velocity, SPS__DEF_INT, sps__reads_transport_coefficient)};
 #define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
 #define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
 /* The value of a def item, as a double (exact for ints and sps_real). */
@@ -3918,6 +3924,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->fluid_dissipation == SPS_FLUID_DISSIPATION_RIEMANN || def->fluid_dissipation == SPS_FLUID_DISSIPATION_DENSITY ||
                    def->fluid_dissipation == SPS_FLUID_DISSIPATION_NONE,
                "fluid_dissipation = %d, allowed 0 (the Riemann solver's), 1 (density diffusion only) or 2 (none)", (int)def->fluid_dissipation);
+    SPS__CHECK(def->transport_carries_velocity == 0 || def->transport_carries_velocity == 1,
+               "transport_carries_velocity = %d, allowed 0 (positions only) or 1 (the velocity with them)", def->transport_carries_velocity);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(!sps__left_out_by(def), "material.kind = %d with solver = %d: this build left it out (%s is defined)",
@@ -4329,6 +4337,11 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->model.pass = sps__choose_passes(w, &b->model);
     if (sps__missing_pass(&b->model, &b->model.pass, msg, sizeof msg)) {
         sps__set_error(w, 0, "sps_world_add_body: body '%s': %s", b->name, msg);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (def->transport != SPS_TRANSPORT_NONE && def->transport_carries_velocity && !b->model.gradient) {
+        sps__set_error(w, 0, "sps_world_add_body: body '%s': transport_carries_velocity = 1 without a velocity gradient to carry the "
+                       "velocity by (a fluid under gravity has none: FLUIDS), allowed 0", b->name);
         return SPS_ERR_INVALID_ARG;
     }
     if (b->model.paired && w->nzones > 0) { /* >>open boundaries renumbers the ids its kept pair forces go by */
@@ -10382,7 +10395,15 @@ static sps_result sps__watch_energy(sps_world* w) {
    Two passes (the sums; the flags and shifts) and a per-particle move, in every thread. Once
    per sub-step, as UTVF eq. 42 stands after the time integration: once per advection step
    (the reference code's fluids) was measured too weak to hold OG's zigzag modes (the plate of
-   C3 at H/dp 20 broke within 0.1 s; per sub-step it swings with min spacing 0.83 dp). */
+   C3 at H/dp 20 broke within 0.1 s; per sub-step it swings with min spacing 0.83 dp).
+   With transport_carries_velocity the shift takes the velocity along, v_i += L_i dr_i, the
+   velocity field's first-order value at the new position (L from this sub-step's continuity
+   pass): a shift that holds the particles near a lattice while the flow shears them otherwise
+   leaves their velocities behind, and the flow between them loses its advection (the role of
+   Adami, Hu and Adams 2013's extra stress rho u (u~ - u) in the momentum equation); and the
+   sums take the walls' images as neighbours (the pressure pass's mirror particles), so the
+   particles next to a wall are shifted as the others instead of left alone as a surface.
+   Linear momentum is then not exact (sum m_i L_i dr_i is not zero in general). */
 
 /* Transport pass 1, the pair loop for lane group g: g_i into rows 0-2, B_i^-1 into rows 3-8. */
 SPS__INLINE void sps__transport_sum_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
@@ -10469,12 +10490,33 @@ SPS__INLINE void sps__transport_shift_finish(sps_world* w, const sps__body* b, s
 SPS__INSTANCES(transport_sum_pairs, plain, 0)
 SPS__INSTANCES(transport_surface_pairs, plain, 0)
 
-/* The transport passes' kernels for lane group g: the world mode's pair loop, the finish. */
+/* A wall image's terms of transport pass 1 (transport_carries_velocity): as a neighbour's. */
+typedef struct sps__transport_image_sums {
+    sps__lane_sums* sums;
+    int lane;
+} sps__transport_image_sums;
+static void sps__transport_image(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
+    const sps__transport_image_sums* t = (const sps__transport_image_sums*)user;
+    sps_real e[3], r;
+    const sps_real dwv = sps__image_geometry(w, i, m->x, e, &r) * w->vol[m->j];
+    int a;
+    (void)b;
+    for (a = 0; a < w->dim; ++a) t->sums->row[a][t->lane] += dwv * e[a];
+    sps__add_moment(&t->sums->row[3][t->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
+}
+
+/* The transport passes' kernels for lane group g: the world mode's pair loop (and, carrying the
+   velocity, the walls' images), the finish. */
 static void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 9);
     sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    if (b->def.transport_carries_velocity && b->model.mirrored && w->nwalls > 0) {
+        sps__transport_image_sums t;
+        t.sums = &sums;
+        for (t.lane = 0; t.lane < SPS__LANES && q.i0 + t.lane < b->end; ++t.lane) sps__each_image(w, b, q.i0 + t.lane, sps__transport_image, &t);
+    }
     if (w->dim == 2) sps__transport_sums_finish(b, q, &sums, 2);
     else sps__transport_sums_finish(b, q, &sums, 3);
 }
@@ -10497,8 +10539,15 @@ static void sps__transport(sps_world* w) {
         sps__run_groups(w, b, sps__transport_shift, 0);
         sps__thread_share(b, &i0, &i1);
         for (i = i0; i < i1; ++i) {
+            const sps_real* dr = b->transport + (size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G;
             if (w->zone && w->zone[i] >= 0) continue; /* a buffer particle moves as its zone holds it (>>open boundaries) */
-            for (a = 0; a < w->dim; ++a) w->pos[a][i] += b->transport[(size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G + a];
+            for (a = 0; a < w->dim; ++a) w->pos[a][i] += dr[a];
+            if (b->def.transport_carries_velocity) { /* v(x + dr) = v + L dr */
+                const sps_real* L = b->grad + (size_t)9 * (i - b->begin);
+                int c;
+                for (a = 0; a < w->dim; ++a)
+                    for (c = 0; c < w->dim; ++c) w->vel[a][i] += L[3 * a + c] * dr[c];
+            }
         }
         SPS__PRAGMA(omp barrier)
     }

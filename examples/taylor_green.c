@@ -63,12 +63,13 @@ int main(int argc, char** argv) {
                         .out = "out/taylor_green", .transport = 1, .h_over_dp = 1.5, PNG_DEFAULTS};
     int res = 50;
     double c0_factor = 10, alpha = 0;
-    int dissipation = SPS_FLUID_DISSIPATION_NONE;
+    int dissipation = SPS_FLUID_DISSIPATION_NONE, carry_velocity = 0;
     tg_case tc;
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles along the box's side, 1/dp", 10, 1000, NULL},
         {"re", OPT_REAL, &tc.re, "Reynolds number U L / nu", 1, 1e4, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
+        {"carry-velocity", OPT_INT, &carry_velocity, "1: the transport shift carries the velocity and sees the walls (transport_carries_velocity)", 0, 1, NULL},
         {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"tvf-alpha", OPT_REAL, &alpha, "transport_coefficient alpha of TVF, 0: the library's (0.2)", 0, 1, NULL},
@@ -97,6 +98,7 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.sound_speed = (sps_real)(c0_factor * U0);
     bd.fluid_dissipation = (sps_fluid_dissipation)dissipation;
+    bd.transport_carries_velocity = carry_velocity;
     bd.material.viscosity = (sps_real)(c.rho0 * U0 * 1.0 / tc.re);
     bd.transport_coefficient = (sps_real)alpha;
     ex_check(NULL, sps_world_create(&wd, &w));
@@ -127,10 +129,10 @@ int main(int argc, char** argv) {
     wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     printf("RESULT case=taylor_green res=%d Re=%g c0_factor=%g t=%.4g decay_error=%.4e decay_error_pct=%.3f%% worst_t=%.3g "
-           "energy_ratio=%.6f exact=%.6f min_spacing=%.3f %s h_over_dp=%g dissipation=%s particles=%d steps=%ld wall_s=%.2f out=%s\n", res, tc.re, c0_factor,
+           "energy_ratio=%.6f exact=%.6f min_spacing=%.3f %s h_over_dp=%g dissipation=%s carry_velocity=%d particles=%d steps=%ld wall_s=%.2f out=%s\n", res, tc.re, c0_factor,
            (double)sps_world_time(w), s.worst, 100 * s.worst, s.worst_t, d.kinetic_energy / s.e0,
            exp(-16 * PI * PI * sps_world_time(w) / tc.re), s.output.min_spacing, common_result_fields(&c), c.h_over_dp,
-           dissipation_name(dissipation), sps_world_particle_count(w),
+           dissipation_name(dissipation), carry_velocity, sps_world_particle_count(w),
            d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
