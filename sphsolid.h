@@ -248,8 +248,9 @@
       surfaces, impacts and water. Without the density diffusion a closed box's sound is damped
       by the viscosity alone: the lid-driven cavity's density varies by +-5 % at c0 = 10 U and
       its flow by a few per cent in time, its profiles within 2-6 % of Ghia et al.'s at L/dp 40
-      (6 % with the default). bench/VALIDATION.md, "Viscous flows without the Riemann solver's
-      dissipation".
+      (6 % with the default), 1.2-2.5 % with the transport shift carrying the velocity
+      (TRANSPORT: transport_carries_velocity). bench/VALIDATION.md, "Viscous flows without the
+      Riemann solver's dissipation".
       Free surfaces need nothing (particles carry their density). Walls: analytic walls
       (CONTACT) act on a fluid through mirror particles, the images of its particles across each
       wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), and
@@ -291,6 +292,19 @@
       B_i g_i / |B_i g_i|); none with a divergence below 0.6 d. For fluids and solids alike (not
       wall bodies, nor total-Lagrangian ones, whose neighbours are those of the reference). Costs two neighbour passes per sub-step; the diagnostics'
       surface_particles counts the particles below 0.75 d, which voids and cracks raise.
+      transport_carries_velocity = 1: the shift carries the velocity, v_i += L_i dr_i (the
+      velocity field's value at the new position to first order, L the body's velocity
+      gradient), and the sums take the walls' mirror particles, so the particles next to a wall
+      are shifted as the others. A shift alone holds the particles near a lattice while the flow
+      shears them and leaves their velocities behind (the role of Adami, Hu and Adams 2013's
+      extra stress rho u (u~ - u)): with the walls' images but without the velocity carried the
+      lid-driven cavity's vortex died; with both, at h = 2 dp, its profiles are within 1.2-2.5 %
+      of Ghia et al.'s at L/dp 40 and 0.5 % at 60, and no pair closes up at a wall (without:
+      pairs 1e-4 dp apart). Linear momentum is then not exact. Needs a velocity gradient
+      (refused for a fluid under gravity). The cavity wants h = 2 dp with it: its largest
+      deviation from Ghia et al.'s is 0.27 at h = 1.3 dp (L/dp 40: the vortex dies), 0.09 at
+      1.5, 0.06 at 1.7 and 0.018 at 2 (L/dp 30; bench/VALIDATION.md, "Viscous flows without the
+      Riemann solver's dissipation").
 
    PERIODIC (sps_world_def.periodic[3], periodic_origin[3]; chapter >>periodic)
       periodic[a] = L > 0 [m] makes axis a repeat with period L from periodic_origin[a]: a

@@ -8,13 +8,14 @@
    points (the walls' own values left out).
 
    Build: make examples        Run: ./build/cavity --res 40 --tend 15
-   Expect (Re 100, TVF, h = 2 dp, fluid_dissipation none): max_dev 0.029 at --res 40 --tend 15,
-   0.051 at --res 30 --tend 10, 0.026 at --res 60 --tend 15; the flow is not steady to better
-   than a few per cent (no density diffusion damps the box's sound), --res 40 --tend 25 gives
-   0.056; Re 1000 at --res 40 --tend 15 0.218; with --dissipation riemann --h-over-dp 1.3 (the
-   library's defaults) 0.061 at --res 40 (bench/VALIDATION.md, "Viscous flows without the
-   Riemann solver's dissipation"); CSV (diagnostics per row, and profiles.csv with both
-   profiles next to Ghia's), VTK snapshots, a picture coloured by speed.
+   Expect (Re 100, TVF carrying the velocity, h = 2 dp, fluid_dissipation none): max_dev 0.018
+   at --res 30 --tend 10, 0.012 at --res 40 --tend 15 (0.017 at 20 s, 0.025 at 25 s: the flow
+   is steady to a few per cent only, no density diffusion damping the box's sound), 0.005 at
+   --res 60 --tend 15; Re 1000 at --res 40 --tend 15 0.26. --carry-velocity 0: 0.029 at --res 40
+   --tend 15 and pairs of particles 1e-4 dp apart at the walls; with the library's defaults
+   (--carry-velocity 0 --dissipation riemann --h-over-dp 1.3) 0.061 (bench/VALIDATION.md,
+   "Viscous flows without the Riemann solver's dissipation"); CSV (diagnostics per row, and
+   profiles.csv with both profiles next to Ghia's), VTK snapshots, a picture coloured by speed.
    Smoke: cavity --res 20 --tend 0.02 */
 #include "common.h"
 
