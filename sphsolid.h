@@ -1305,7 +1305,8 @@ typedef enum sps_fluid_dissipation {
                                           pressure and the physical viscosity alone (a viscous flow;
                                           needs material.viscosity > 0) */
     SPS_FLUID_DISSIPATION_NONE = 2     /* neither: the physical viscosity is the only dissipation (a
-                                          viscous flow without walls; needs material.viscosity > 0) */
+                                          viscous flow; needs material.viscosity > 0; a closed box's
+                                          sound is then damped by the viscosity alone) */
 } sps_fluid_dissipation;
 
 /* The Drucker-Prager cone of a granular body (material.yield_cone; GRANULAR): which Mohr-Coulomb
@@ -12211,7 +12212,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 6u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation */
+#define SPS__RESTART_VERSION 6u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */
