@@ -235,6 +235,22 @@
       1.3 dp), joins; the acoustic step stays below h^2 / (14 nu) (its stability) and the
       advection step keeps nu/h below its speed. No-slip walls give it the images' velocity
       2 v_wall - v_j (analytic walls, wall bodies): plane Poiseuille flow (example poiseuille).
+      Numerical dissipation (body def fluid_dissipation): the Riemann solver's momentum term
+      Z beta (v_ij . e_ij) acts as an artificial viscosity of about 3 |v_ij . e_ij| h, of the
+      order of nu at Re 100 on lattices of 30-60 particles per length, so a viscous flow decays
+      too fast with it (the Taylor-Green vortex at Re 100, 1/dp 30, h = 1.5 dp: kinetic energy
+      28 % low at t = 2 s). SPS_FLUID_DISSIPATION_DENSITY leaves it out (the pressure and the
+      viscous force alone; the density diffusion kept: 5.3 %); SPS_FLUID_DISSIPATION_NONE
+      leaves out the density diffusion too, which damps the pressure field that holds a vortex
+      (1.4 %, and 0.95 % at 1/dp 60; 10 % at h = 1.3 dp, where the particles' disorder under
+      TVF dissipates more). Both need material.viscosity > 0 (refused without: only the viscosity
+      then damps the particles' noise); the default SPS_FLUID_DISSIPATION_RIEMANN is for free
+      surfaces, impacts and water. Without the density diffusion a closed box's sound is damped
+      by the viscosity alone: the lid-driven cavity's density varies by +-5 % at c0 = 10 U and
+      its flow by a few per cent in time, its profiles within 2-6 % of Ghia et al.'s at L/dp 40
+      (6 % with the default), 1.2-2.5 % with the transport shift carrying the velocity
+      (TRANSPORT: transport_carries_velocity). bench/VALIDATION.md, "Viscous flows without the
+      Riemann solver's dissipation".
       Free surfaces need nothing (particles carry their density). Walls: analytic walls
       (CONTACT) act on a fluid through mirror particles, the images of its particles across each
       wall within 2h (reflected velocity, hydrostatic pressure p_j + rho0 g . (x_j' - x_j)), and
@@ -279,6 +295,18 @@
       body's own particles, as the paper's. For fluids and solids alike (not
       wall bodies, nor total-Lagrangian ones, whose neighbours are those of the reference). Costs two neighbour passes per sub-step; the diagnostics'
       surface_particles counts the particles below 0.75 d, which voids and cracks raise.
+      transport_carries_velocity = 1: the shift carries the velocity, v_i += L_i dr_i (the
+      velocity field's value at the new position to first order, L the body's velocity
+      gradient), and UTVF's sums take the walls' mirror particles too (TVF's always do). A shift alone holds the particles near a lattice while the flow
+      shears them and leaves their velocities behind (the role of Adami, Hu and Adams 2013's
+      extra stress rho u (u~ - u)): with the walls' images but without the velocity carried the
+      lid-driven cavity's vortex died; with both, at h = 2 dp, its profiles are within 1.2-2.5 %
+      of Ghia et al.'s at L/dp 40 and 0.5 % at 60, and no pair closes up at a wall (without:
+      pairs 1e-4 dp apart). Linear momentum is then not exact. Needs a velocity gradient
+      (refused for a fluid under gravity). The cavity wants h = 2 dp with it: its largest
+      deviation from Ghia et al.'s is 0.27 at h = 1.3 dp (L/dp 40: the vortex dies), 0.09 at
+      1.5, 0.06 at 1.7 and 0.018 at 2 (L/dp 30; bench/VALIDATION.md, "Viscous flows without the
+      Riemann solver's dissipation").
 
    PERIODIC (sps_world_def.periodic[3], periodic_origin[3]; chapter >>periodic)
       periodic[a] = L > 0 [m] makes axis a repeat with period L from periodic_origin[a]: a
@@ -1283,7 +1311,8 @@ typedef enum sps_fluid_dissipation {
                                           pressure and the physical viscosity alone (a viscous flow;
                                           needs material.viscosity > 0) */
     SPS_FLUID_DISSIPATION_NONE = 2     /* neither: the physical viscosity is the only dissipation (a
-                                          viscous flow without walls; needs material.viscosity > 0) */
+                                          viscous flow; needs material.viscosity > 0; a closed box's
+                                          sound is then damped by the viscosity alone) */
 } sps_fluid_dissipation;
 
 /* The Drucker-Prager cone of a granular body (material.yield_cone; GRANULAR): which Mohr-Coulomb
@@ -1389,6 +1418,11 @@ typedef struct sps_body_def {
                                   viscosity alone keeps stable decays at its physical rate only
                                   without the momentum term (the Taylor-Green vortex, the
                                   lid-driven cavity). Default SPS_FLUID_DISSIPATION_RIEMANN. */
+    int transport_carries_velocity; /* 1: the transport correction's shift dr_i carries the
+                                  velocity with it, v_i += L_i dr_i (L the velocity gradient), and
+                                  UTVF's sums take the walls' images as TVF's (TRANSPORT); for bodies with a
+                                  velocity gradient (not a fluid under gravity). 0: positions
+                                  only (UTVF eq. 42). Default 0. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -3037,7 +3071,8 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM(friction, SPS__DEF_REAL),
     SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
     SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
-    SPS__BODY_ITEM_READ_BY(fluid_dissipation, SPS__DEF_INT, sps__reads_fluid)};
+    SPS__BODY_ITEM_READ_BY(fluid_dissipation, SPS__DEF_INT, sps__reads_fluid),
+    SPS__BODY_ITEM_READ_BY(transport_carries_velocity, SPS__DEF_INT, sps__reads_transport_coefficient)};
 #define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
 #define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
 /* The value of a def item, as a double (exact for ints and sps_real). */
@@ -3911,6 +3946,8 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(def->fluid_dissipation == SPS_FLUID_DISSIPATION_RIEMANN || def->fluid_dissipation == SPS_FLUID_DISSIPATION_DENSITY ||
                    def->fluid_dissipation == SPS_FLUID_DISSIPATION_NONE,
                "fluid_dissipation = %d, allowed 0 (the Riemann solver's), 1 (density diffusion only) or 2 (none)", (int)def->fluid_dissipation);
+    SPS__CHECK(def->transport_carries_velocity == 0 || def->transport_carries_velocity == 1,
+               "transport_carries_velocity = %d, allowed 0 (positions only) or 1 (the velocity with them)", def->transport_carries_velocity);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(!sps__left_out_by(def), "material.kind = %d with solver = %d: this build left it out (%s is defined)",
@@ -4322,6 +4359,11 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->model.pass = sps__choose_passes(w, &b->model);
     if (sps__missing_pass(&b->model, &b->model.pass, msg, sizeof msg)) {
         sps__set_error(w, 0, "sps_world_add_body: body '%s': %s", b->name, msg);
+        return SPS_ERR_INVALID_ARG;
+    }
+    if (def->transport != SPS_TRANSPORT_NONE && def->transport_carries_velocity && !b->model.gradient) {
+        sps__set_error(w, 0, "sps_world_add_body: body '%s': transport_carries_velocity = 1 without a velocity gradient to carry the "
+                       "velocity by (a fluid under gravity has none: FLUIDS), allowed 0", b->name);
         return SPS_ERR_INVALID_ARG;
     }
     if (b->model.paired && w->nzones > 0) { /* >>open boundaries renumbers the ids its kept pair forces go by */
@@ -10400,7 +10442,14 @@ static sps_result sps__watch_energy(sps_world* w) {
    Two passes (the sums; the flags and shifts) and a per-particle move, in every thread. Once
    per sub-step, as UTVF eq. 42 stands after the time integration: once per advection step
    (the reference code's fluids) was measured too weak to hold OG's zigzag modes (the plate of
-   C3 at H/dp 20 broke within 0.1 s; per sub-step it swings with min spacing 0.83 dp). */
+   C3 at H/dp 20 broke within 0.1 s; per sub-step it swings with min spacing 0.83 dp).
+   With transport_carries_velocity the shift takes the velocity along, v_i += L_i dr_i, the
+   velocity field's first-order value at the new position (L from this sub-step's continuity
+   pass): a shift that holds the particles near a lattice while the flow shears them otherwise
+   leaves their velocities behind, and the flow between them loses its advection (the role of
+   Adami, Hu and Adams 2013's extra stress rho u (u~ - u) in the momentum equation); and UTVF's
+   sums take the walls' images as TVF's do (sps__transport_wall_sums).
+   Linear momentum is then not exact (sum m_i L_i dr_i is not zero in general). */
 
 /* Transport pass 1, the pair loop for lane group g: g_i into rows 0-2, B_i^-1 into rows 3-8. */
 SPS__INLINE void sps__transport_sum_pairs(sps_world* w, const sps__body* b, int g, sps_real dt, sps__lane_sums* SPS__RESTRICT sums, const int dim,
@@ -10494,7 +10543,7 @@ SPS__INSTANCES(transport_surface_pairs, plain, 0)
    reference code's correction counts its walls too). Without them TVF froze the two layers
    next to every wall, and the wake of Turek and Hron's cylinder tore voids along the channel's
    walls that nothing closed (bench/VALIDATION.md, "Turek-Hron"). UTVF keeps the paper's sums
-   over the body's own particles. */
+   over the body's own particles unless it carries the velocity (transport_carries_velocity). */
 typedef struct {
     sps__lane_sums* sums;
     int lane;
@@ -10532,7 +10581,8 @@ static void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_rea
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 9);
     sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
-    if (b->model.transport == SPS_TRANSPORT_TVF && ((b->model.mirrored && w->nwalls > 0) || b->coupled)) sps__transport_wall_sums(w, b, q, &sums);
+    if ((b->model.transport == SPS_TRANSPORT_TVF || b->def.transport_carries_velocity) && ((b->model.mirrored && w->nwalls > 0) || b->coupled))
+        sps__transport_wall_sums(w, b, q, &sums);
     if (w->dim == 2) sps__transport_sums_finish(b, q, &sums, 2);
     else sps__transport_sums_finish(b, q, &sums, 3);
 }
@@ -10555,8 +10605,15 @@ static void sps__transport(sps_world* w) {
         sps__run_groups(w, b, sps__transport_shift, 0);
         sps__thread_share(b, &i0, &i1);
         for (i = i0; i < i1; ++i) {
+            const sps_real* dr = b->transport + (size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G;
             if (w->zone && w->zone[i] >= 0) continue; /* a buffer particle moves as its zone holds it (>>open boundaries) */
-            for (a = 0; a < w->dim; ++a) w->pos[a][i] += b->transport[(size_t)SPS__TRANSPORT_VALUES * (i - b->begin) + SPS__TR_G + a];
+            for (a = 0; a < w->dim; ++a) w->pos[a][i] += dr[a];
+            if (b->def.transport_carries_velocity) { /* v(x + dr) = v + L dr */
+                const sps_real* L = b->grad + (size_t)9 * (i - b->begin);
+                int c;
+                for (a = 0; a < w->dim; ++a)
+                    for (c = 0; c < w->dim; ++c) w->vel[a][i] += L[3 * a + c] * dr[c];
+            }
         }
         SPS__PRAGMA(omp barrier)
     }
@@ -12210,7 +12267,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 6u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation */
+#define SPS__RESTART_VERSION 6u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */

@@ -7,8 +7,14 @@
    at run time, --ghia PATH): max_dev is the largest |ours - theirs| / U over their interior
    points (the walls' own values left out).
 
-   Build: make examples        Run: ./build/cavity --res 50 --re 100
-   Expect: see bench/VALIDATION.md, "Periodic and viscous flows"; CSV (diagnostics per row, and
+   Build: make examples        Run: ./build/cavity --res 40 --tend 15
+   Expect (Re 100, TVF carrying the velocity, h = 2 dp, fluid_dissipation none): max_dev 0.018
+   at --res 30 --tend 10, 0.012 at --res 40 --tend 15 (0.017 at 20 s, 0.025 at 25 s: the flow
+   is steady to a few per cent only, no density diffusion damping the box's sound), 0.005 at
+   --res 60 --tend 15; Re 1000 at --res 40 --tend 15 0.26. --carry-velocity 0: 0.029 at --res 40
+   --tend 15 and pairs of particles 1e-4 dp apart at the walls; with the library's defaults
+   (--carry-velocity 0 --dissipation riemann --h-over-dp 1.3) 0.061 (bench/VALIDATION.md,
+   "Viscous flows without the Riemann solver's dissipation"); CSV (diagnostics per row, and
    profiles.csv with both profiles next to Ghia's), VTK snapshots, a picture coloured by speed.
    Smoke: cavity --res 20 --tend 0.02 */
 #include "common.h"
@@ -76,14 +82,15 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     common_options c = {.cfl = 0.4, .t_end = 20, .vtk_every = 5, .csv_every = 0.1, .E = 1e6, .nu = 0.3, .rho0 = 1000,
-                        .out = "out/cavity", .transport = 1, PNG_DEFAULTS};
-    int res = 50, k, line, dissipation = SPS_FLUID_DISSIPATION_DENSITY;
+                        .out = "out/cavity", .transport = 1, .h_over_dp = 2, PNG_DEFAULTS};
+    int res = 50, k, line, dissipation = SPS_FLUID_DISSIPATION_NONE, carry_velocity = 1;
     double re = 100, c0_factor = 10, max_dev = 0, dev_at = 0, wall;
     const char* ghia_path = "bench/ghia1982.csv";
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles along the cavity's side, L/dp", 10, 1000, NULL},
         {"re", OPT_REAL, &re, "Reynolds number U L / nu (Ghia's tables: 100 or 1000)", 1, 1e4, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
+        {"carry-velocity", OPT_INT, &carry_velocity, "1: the transport shift carries the velocity and sees the walls (transport_carries_velocity)", 0, 1, NULL},
         {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"ghia", OPT_STRING, &ghia_path, "Ghia et al.'s table (CSV)", 0, 0, NULL},
@@ -111,6 +118,7 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.sound_speed = (sps_real)(c0_factor * LID);
     bd.fluid_dissipation = (sps_fluid_dissipation)dissipation;
+    bd.transport_carries_velocity = carry_velocity;
     bd.material.viscosity = (sps_real)(c.rho0 * LID / re);
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_unset_unread(&bd);
@@ -123,8 +131,9 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end;
     s.quiet = c.quiet;
     output_open(&s.output, &c, "cavity", "velocity", "");
-    printf("cavity: L/dp = %d, %d particles, Re = %g, c0 = %g m/s, transport %s, to t = %g s\n", res, sps_world_particle_count(w), re,
-           c0_factor * LID, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF", c.t_end);
+    printf("cavity: L/dp = %d, %d particles, Re = %g, c0 = %g m/s, h = %g dp, transport %s, dissipation %s, to t = %g s\n", res,
+           sps_world_particle_count(w), re, c0_factor * LID, c.h_over_dp, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF",
+           dissipation_name(dissipation), c.t_end);
     on_step(w, &s);
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
     wall = output_close(w, &s.output);
@@ -145,9 +154,10 @@ int main(int argc, char** argv) {
     }
     fclose(profiles);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
-    printf("RESULT case=cavity res=%d Re=%g c0_factor=%g t=%.4g max_dev=%.4f max_dev_at=%s%.4f paper=Ghia1982 %s particles=%d steps=%ld "
-           "wall_s=%.2f out=%s\n", res, re, c0_factor, (double)sps_world_time(w), max_dev, dev_at >= 10 ? "v:" : "u:", fmod(dev_at, 10),
-           common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
+    printf("RESULT case=cavity res=%d Re=%g c0_factor=%g t=%.4g max_dev=%.4f max_dev_at=%s%.4f paper=Ghia1982 %s h_over_dp=%g dissipation=%s carry_velocity=%d "
+           "particles=%d "
+           "steps=%ld wall_s=%.2f out=%s\n", res, re, c0_factor, (double)sps_world_time(w), max_dev, dev_at >= 10 ? "v:" : "u:", fmod(dev_at, 10),
+           common_result_fields(&c), c.h_over_dp, dissipation_name(dissipation), carry_velocity, sps_world_particle_count(w), d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
 }

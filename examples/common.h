@@ -218,6 +218,11 @@ EX_UNUSED static const char* rotation_name(int r) {
     static const char* names[] = {"mean", "particle", "pair"};
     return r >= 0 && r < 3 ? names[r] : "?";
 }
+/* A fluid's fluid_dissipation (sps_fluid_dissipation) as the examples' --dissipation spells it. */
+EX_UNUSED static const char* dissipation_name(int d) {
+    static const char* names[] = {"riemann", "density", "none"};
+    return d >= 0 && d < 3 ? names[d] : "?";
+}
 
 /* The a of the least-squares fit y = c0 + c1 t + a t^2 / 2 from the sums S[k] = sum t^k
    (k = 0..4) and Y[k] = sum y t^k (k = 0..2): Cramer's rule for the t^2 coefficient. */

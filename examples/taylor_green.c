@@ -11,10 +11,12 @@
    neighbours than the capacity); --transport tvf (the default here) keeps them apart.
 
    Build: make examples        Run: ./build/taylor_green --res 60
-   Expect (Re 100, TVF): E/E0 below the closed form, decay_error 31 % at --res 30 (1/dp), 14 % at
-   --res 60: the numerical dissipation of the particles' disorder and of the Riemann solver's
-   limited dissipation, about first order in dp (bench/VALIDATION.md, "Periodic flows"); CSV
-   with E/E0 and the exact decay per row, VTK snapshots, a picture coloured by speed.
+   Expect (Re 100, TVF, h = 1.5 dp, fluid_dissipation none): decay_error 1.40 % at --res 30
+   (1/dp), 0.95 % at --res 60, 0.80 % at --res 100; with --dissipation riemann (the library's
+   default, whose momentum term is an artificial viscosity of the order of nu here) 28.4 % and
+   9.4 %, with --dissipation density 5.3 % and 2.4 %, with --carry-velocity 1 2.1 % and 1.1 %
+   (bench/VALIDATION.md, "Viscous flows without the Riemann solver's dissipation"); CSV with
+   E/E0 and the exact decay per row, VTK snapshots, a picture coloured by speed.
    Smoke: taylor_green --res 20 --tend 0.02 */
 #include "common.h"
 
@@ -58,15 +60,16 @@ static int on_step(sps_world* w, void* user) {
 
 int main(int argc, char** argv) {
     common_options c = {.cfl = 0.4, .t_end = 2.0, .vtk_every = 0.5, .csv_every = 0.02, .E = 1e6, .nu = 0.3, .rho0 = 1000,
-                        .out = "out/taylor_green", .transport = 1, PNG_DEFAULTS};
+                        .out = "out/taylor_green", .transport = 1, .h_over_dp = 1.5, PNG_DEFAULTS};
     int res = 50;
     double c0_factor = 10, alpha = 0;
-    int dissipation = SPS_FLUID_DISSIPATION_NONE;
+    int dissipation = SPS_FLUID_DISSIPATION_NONE, carry_velocity = 0;
     tg_case tc;
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles along the box's side, 1/dp", 10, 1000, NULL},
         {"re", OPT_REAL, &tc.re, "Reynolds number U L / nu", 1, 1e4, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
+        {"carry-velocity", OPT_INT, &carry_velocity, "1: the transport shift carries the velocity and sees the walls (transport_carries_velocity)", 0, 1, NULL},
         {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"tvf-alpha", OPT_REAL, &alpha, "transport_coefficient alpha of TVF, 0: the library's (0.2)", 0, 1, NULL},
@@ -95,6 +98,7 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.sound_speed = (sps_real)(c0_factor * U0);
     bd.fluid_dissipation = (sps_fluid_dissipation)dissipation;
+    bd.transport_carries_velocity = carry_velocity;
     bd.material.viscosity = (sps_real)(c.rho0 * U0 * 1.0 / tc.re);
     bd.transport_coefficient = (sps_real)alpha;
     ex_check(NULL, sps_world_create(&wd, &w));
@@ -111,8 +115,9 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     s.e0 = d.kinetic_energy;
     output_open(&s.output, &c, "taylor_green", "velocity", ",energy_ratio,energy_ratio_exact");
-    printf("taylor_green: 1/dp = %d, %d particles, Re = %g, c0 = %g m/s, transport %s\n", res, sps_world_particle_count(w), tc.re,
-           c0_factor * U0, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");
+    printf("taylor_green: 1/dp = %d, %d particles, Re = %g, c0 = %g m/s, h = %g dp, transport %s, dissipation %s\n", res,
+           sps_world_particle_count(w), tc.re, c0_factor * U0, c.h_over_dp, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF",
+           dissipation_name(dissipation));
     printf("     t [s]    E / E0      exp(-16 pi^2 t / Re)   error\n");
     on_step(w, &s);
     for (i = 1; i <= 4; ++i) {
@@ -124,9 +129,10 @@ int main(int argc, char** argv) {
     wall = output_close(w, &s.output);
     ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
     printf("RESULT case=taylor_green res=%d Re=%g c0_factor=%g t=%.4g decay_error=%.4e decay_error_pct=%.3f%% worst_t=%.3g "
-           "energy_ratio=%.6f exact=%.6f min_spacing=%.3f %s particles=%d steps=%ld wall_s=%.2f out=%s\n", res, tc.re, c0_factor,
+           "energy_ratio=%.6f exact=%.6f min_spacing=%.3f %s h_over_dp=%g dissipation=%s carry_velocity=%d particles=%d steps=%ld wall_s=%.2f out=%s\n", res, tc.re, c0_factor,
            (double)sps_world_time(w), s.worst, 100 * s.worst, s.worst_t, d.kinetic_energy / s.e0,
-           exp(-16 * PI * PI * sps_world_time(w) / tc.re), s.output.min_spacing, common_result_fields(&c), sps_world_particle_count(w),
+           exp(-16 * PI * PI * sps_world_time(w) / tc.re), s.output.min_spacing, common_result_fields(&c), c.h_over_dp,
+           dissipation_name(dissipation), carry_velocity, sps_world_particle_count(w),
            d.acoustic_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;

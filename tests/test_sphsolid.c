@@ -251,6 +251,7 @@ int main(int argc, char** argv) {
     RUN(test_transport_keeps_linear_momentum);
     RUN(test_tvf_counts_walls);
     RUN(test_fluid_bad_input);
+    RUN(test_fluid_transport_carries_velocity);
     RUN(test_contact_determinism);
     RUN(test_j2_radial_return_on_surface);
     RUN(test_j2_hardening_raises_surface);
