@@ -190,7 +190,7 @@ GALLERY_RUNS = "plate2d --res 10 --tend 0.065" "plate3d --res 2 --mode 2,2 --ten
                "hydrostatic_fsi --res 5 --tend 0.1" "elastic_gate --res 3 --tend 0.15" \
                "rigid_float --width 0.2 --height 0.2 --tend 2.5" "rigid_roll --shape disc --dp 0.005 --tend 0.4" \
                "poiseuille --res 20 --tend 0.3" "taylor_green --res 30 --tend 0.5" "cavity --res 20 --tend 2" \
-               "channel_flow --res 10 --tend 6"
+               "channel_flow --res 10 --tend 6" "turek_hron --res 2 --length 1.1 --tend 8"
 gallery: examples $(BUILD)/demo $(BUILD)/check_picture
 	@mkdir -p bench/gallery
 	@for run in $(GALLERY_RUNS); do \

@@ -1,4 +1,4 @@
-/* sphsolid.h - v0.16.0 - SPH solid dynamics - MIT (licence at the end of this file)
+/* sphsolid.h - v0.17.0 - SPH solid dynamics - MIT (licence at the end of this file)
 
    An stb-style single-file C99 library for simulating elastic and elastic-plastic (J2) solids
    with updated-Lagrangian
@@ -953,6 +953,13 @@
       omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
+      0.17.0 (2026-12-07) viscous flows: fluid_dissipation (the Riemann solver's momentum term
+                         and density diffusion left out of a viscous fluid) and
+                         transport_carries_velocity (the transport shift carries the velocity;
+                         restart format 6); TVF's sums take the walls' images and coupled
+                         solids; the open boundaries' held velocities count as prescribed work,
+                         and the energy watchdog ignores growth below round-off; example
+                         turek_hron (Turek and Hron's FSI2 and FSI3), channel_flow --re.
       0.16.0 (2026-12-06) a granular body's no-slip images carry the shear traction continued
                          across the wall by equilibrium with the body force (a slope holds on
                          its floor up to the closed-form angle; field "wall_equilibrium");
@@ -1084,9 +1091,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 16
+#define SPHSOLID_VERSION_MINOR 17
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.16.0"
+#define SPHSOLID_VERSION_STRING "0.17.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
