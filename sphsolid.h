@@ -7472,20 +7472,26 @@ static void sps__coupling_force(sps_world* w, int i, int j, sps_real force[3]) {
     for (a = 0; a < w->dim; ++a) force[a] += sign * acc[a];
 }
 
+/* Calls visit(w, b, f, image, user) for every coupled solid particle within 2h of fluid particle
+   f of body b, as its image (the walls' sps__each_image for the solids). */
+static void sps__each_solid_image(sps_world* w, const sps__body* b, int f, sps__image_fn visit, void* user) {
+    sps__image image;
+    int k;
+    for (k = w->ct_first[f]; k < w->ct_first[f + 1]; ++k) {
+        if (!sps__coupled_pair(w, f, w->ct_j[k])) continue;
+        sps__solid_image(w, f, w->ct_j[k], &image);
+        visit(w, b, f, &image, user);
+    }
+}
+
 /* Adds the solid images' terms to the continuity sums of lane group q of fluid body b. */
 static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__group q, sps_real sum[SPS__NSUM][SPS__LANES]) {
     sps__image_sums sums;
-    sps__image image;
-    int l, k;
+    int l;
     sums.sum = sum;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        const int f = q.i0 + l;
         sums.lane = l;
-        for (k = w->ct_first[f]; k < w->ct_first[f + 1]; ++k) {
-            if (!sps__coupled_pair(w, f, w->ct_j[k])) continue;
-            sps__solid_image(w, f, w->ct_j[k], &image);
-            sps__image_continuity(w, b, f, &image, &sums);
-        }
+        sps__each_solid_image(w, b, q.i0 + l, sps__image_continuity, &sums);
     }
 }
 
@@ -10567,18 +10573,12 @@ static void sps__image_transport(sps_world* w, const sps__body* b, int i, const 
 }
 static void sps__transport_wall_sums(sps_world* w, const sps__body* b, sps__group q, sps__lane_sums* sums) {
     sps__transport_image_sums s;
-    sps__image image;
-    int l, k;
+    int l;
     s.sums = sums;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        const int i = q.i0 + l;
         s.lane = l;
-        if (b->model.mirrored) sps__each_image(w, b, i, sps__image_transport, &s);
-        for (k = b->coupled ? w->ct_first[i] : 0; b->coupled && k < w->ct_first[i + 1]; ++k) {
-            if (!sps__coupled_pair(w, i, w->ct_j[k])) continue;
-            sps__solid_image(w, i, w->ct_j[k], &image);
-            sps__image_transport(w, b, i, &image, &s);
-        }
+        if (b->model.mirrored) sps__each_image(w, b, q.i0 + l, sps__image_transport, &s);
+        if (b->coupled) sps__each_solid_image(w, b, q.i0 + l, sps__image_transport, &s);
     }
 }
 
