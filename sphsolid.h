@@ -2440,7 +2440,7 @@ struct sps_world {
         int armed, fired;          /* its start is taken; it has warned */
         long checked_at;           /* acoustic steps at its last check */
         sps_real start, scale, start_time; /* the account at the start, the largest mechanical energy since */
-        sps_real noise;            /* growth below it is round-off (sps__watch_energy) */
+        sps_real noise;            /* growth below it is round-off (sps__energy_round_off, set by the commit) */
         sps_real worst;            /* the largest growth / scale found (sps_diagnostics.energy_growth) */
         int events;                /* checks above the limit (sps_diagnostics.energy_growth_events) */
     } watch;
@@ -5842,6 +5842,7 @@ static int sps__ensure_body_field(sps_world* w, sps__body* b, const sps__field_i
 }
 
 static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b); /* >>walls for fluids */
+static sps_real sps__energy_round_off(const sps_world* w);                       /* >>guards */
 static sps_result sps__commit(sps_world* w) {
     int i, bi, k;
     if (sps__ensure_neighbor_storage(w) != SPS_OK) {
@@ -5879,6 +5880,7 @@ static sps_result sps__commit(sps_world* w) {
         b->ngroups = (b->end - b->begin + SPS__LANES - 1) / SPS__LANES;
         i += b->ngroups;
     }
+    w->watch.noise = sps__energy_round_off(w); /* the energy watchdog's floor: it changes with the particles only */
     w->needs_sort_by_body = 0;
     return SPS_OK;
 }
@@ -10402,7 +10404,6 @@ static sps_result sps__watch_energy(sps_world* w) {
         w->watch.armed = 1;
         w->watch.start = account;
         w->watch.scale = mechanical;
-        w->watch.noise = sps__energy_round_off(w);
         w->watch.start_time = w->time;
         for (bi = 0; bi < w->nbodies; ++bi) {
             sps_real share;

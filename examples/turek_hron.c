@@ -260,7 +260,7 @@ int main(int argc, char** argv) {
            s.window, amplitude, tc->amplitude, frequency, tc->frequency, mean, tc->mean);
     printf("RESULT case=turek_hron setting=%s res=%d dp=%g length=%g solver=%s dissipation=%s c0_factor=%g p_out=%g window=%g amplitude=%.5e amplitude_paper=%.5e amplitude_dev=%+.2f%% "
            "frequency=%.4f frequency_paper=%.2f frequency_dev=%+.2f%% mean=%.4e %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
-           tc->name, res, dp, length, solver ? "tl" : "ul", dissipation == 0 ? "riemann" : dissipation == 1 ? "density" : "none", c0_factor, p_out, s.window, amplitude, tc->amplitude, 100 * (amplitude / tc->amplitude - 1), frequency,
+           tc->name, res, dp, length, solver ? "tl" : "ul", dissipation_name(dissipation), c0_factor, p_out, s.window, amplitude, tc->amplitude, 100 * (amplitude / tc->amplitude - 1), frequency,
            tc->frequency, 100 * (frequency / tc->frequency - 1), mean, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall,
            c.out);
     free(s.t);
