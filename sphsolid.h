@@ -223,13 +223,25 @@
       +0.27 % at 0.01; with the pair sum +0.65 % at 0.02, growing as dp shrinks); tr L is not
       the force's adjoint, and under gravity a tank at rest gained energy with it
       (bench/VALIDATION.md, "Still water").
-      Smoothing length: water under gravity needs h_over_dp >= 2; at smaller h a tank at rest
-      on the lattice grows a particle mode under its pressure (at 1.3 dp within a few seconds,
-      at 1.8 dp by 3 s; with either kernel) and churns, and a fluid body added to such a world
-      under gravity gets a warning. At 2 dp a 2D tank at rest keeps its speed RMS near 1e-5
-      sqrt(g H) for 8-14 s, after which its free surface bursts to about 1e-3 sqrt(g H) (the
-      density diffusion where the surface cuts the kernel: not yet fixed), and standing waves
-      run within 1 % of linear theory; the cost is about twice the neighbours of 1.3 dp in 2D. With
+      Water at rest (body def lattice): on the square lattice of the fills the rows of water
+      under hydrostatic pressure slide in alternate directions (the lattice is a saddle of the
+      pressure forces, the hexagonal packing lower), from round-off, at a rate that grows as
+      sqrt(p) / dp (24/s over the floor of 0.5 m of water at dp 0.02, h = 1.3 dp: a tank at rest
+      churns within 1.5 s; with either kernel), and the churned water's free surface carries
+      0.1-0.2 dp of head too much, which floats bodies that much too high. A 2D fluid with a
+      hydrostatic column at h_over_dp 1.3 is therefore filled on the hexagonal lattice
+      (lattice = SPS_LATTICE_AUTO; sps_lattice), on which the same tank stays at rest (largest
+      speed 1e-3 m/s over 30 s) with its surface's pressure at rho0 g dp/2; its pressure force
+      takes that lattice's moment (0.985 at 1.3 dp). The hexagonal lattice holds at 1.3 dp only
+      (1.5-2 dp: churning after 4-14 s). Boxes filled side by side do not meet row for row
+      (fill one box, or a shape with sps_body_add_sdf), and its half particles stand 0.27 dp
+      from a box's x faces, nearer a wall body's particles than the square lattice's (a first
+      step's kick of 1 % of sqrt(2 g H) in a U-tank of particles). 3D has no close-packed fill:
+      its cubic lattice's rows slide too; there, as on the square lattice in 2D, h_over_dp = 2
+      holds water at rest for 8-14 s, after which its free surface bursts to about 1e-3 sqrt(g
+      H), and standing waves run within 1 % of linear theory (twice the neighbours of 1.3 dp in
+      2D); a fluid under gravity on the square lattice below 2 dp gets a warning
+      (bench/VALIDATION.md, "Water left running", "Still water"). With
       material.viscosity = mu > 0 the viscous force (2 mu/rho_i) sum_j v_ij dW/r_ij V_j
       (Morris et al. 1997), divided by the lattice moment above (else it is 2.7 % weak at h =
       1.3 dp), joins; the acoustic step stays below h^2 / (14 nu) (its stability) and the
@@ -953,6 +965,13 @@
       omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
+      0.18.0 (2026-12-07) water at rest: body def lattice (a 2D fluid under gravity at h_over_dp
+                         1.3 fills on the hexagonal lattice, on which it stays at rest; the
+                         square lattice's rows slide under its pressure; restart format 7);
+                         bench/tank_long (the demo tank left running); floating_block's drafts
+                         from the free surface and the water's volume; dam_break2d and
+                         elastic_gate against their experiments (bench/dam_break_experiments.csv,
+                         bench/lobovsky2014_h300.csv, bench/antoci2007.csv).
       0.17.0 (2026-12-07) viscous flows: fluid_dissipation (the Riemann solver's momentum term
                          and density diffusion left out of a viscous fluid) and
                          transport_carries_velocity (the transport shift carries the velocity;
@@ -1091,9 +1110,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 17
+#define SPHSOLID_VERSION_MINOR 18
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.17.0"
+#define SPHSOLID_VERSION_STRING "0.18.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
