@@ -230,10 +230,12 @@
       churns within 1.5 s; with either kernel), and the churned water's free surface carries
       0.1-0.2 dp of head too much, which floats bodies that much too high. A 2D fluid with a
       hydrostatic column at h_over_dp 1.3 is therefore filled on the hexagonal lattice
-      (lattice = SPS_LATTICE_AUTO; sps_lattice), on which the same tank stays at rest (largest
-      speed 1e-3 m/s over 30 s) with its surface's pressure at rho0 g dp/2; its pressure force
+      (lattice = SPS_LATTICE_AUTO; sps_lattice), on which the same tank stays at rest (its start's
+      settling decays to a largest speed of 1.3e-3 m/s by 20 s) with its surface's pressure at
+      rho0 g dp/2; its pressure force
       takes that lattice's moment (0.985 at 1.3 dp). The hexagonal lattice holds at 1.3 dp only
-      (1.5-2 dp: churning after 4-14 s). Boxes filled side by side do not meet row for row
+      (1.5-2 dp: churning after 4-14 s), and waves at 1.3 dp run fast (a standing wave at
+      depth/dp 25: period -5.7 %; -0.7 % at 2 dp on the square lattice). Boxes filled side by side do not meet row for row
       (fill one box, or a shape with sps_body_add_sdf), and its half particles stand 0.27 dp
       from a box's x faces, nearer a wall body's particles than the square lattice's (a first
       step's kick of 1 % of sqrt(2 g H) in a U-tank of particles). 3D has no close-packed fill:
@@ -2408,7 +2410,7 @@ typedef struct sps__body {
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
     sps_real tl_c_ref;   /* total Lagrangian: its signal speed in the reference state (sps__tl_signal_speeds) */
-    int hexagonal;       /* its fills use the hexagonal lattice (def.lattice resolved: sps__fills_hexagonal) */
+    int hexagonal;       /* its fills use the hexagonal lattice (def.lattice resolved: sps__kind_fills_hexagonal) */
     int coupled;         /* a fluid that touches a solid body: its continuity pass takes the solid's
                             particles as wall images (chapter >>coupling: fluid-structure) */
     sps__rigid rigid;    /* a free rigid body's motion (model.free_rigid) */
@@ -3398,7 +3400,7 @@ static int sps__hydrostatic_column(const sps_world* w) {
    hexagonal packing) from round-off, at a rate that grows as sqrt(p) / dp, fastest over the
    floor (24/s at the floor of 0.5 m of water at dp 0.02, h = 1.3 dp: churning within 1.5 s; at
    h = 2 dp the burst comes after 8-14 s). On the hexagonal lattice at h = 1.3 dp the same tank
-   stays at rest (largest speed 1e-3 m/s over 30 s), and its free surface's pressure is rho0 g
+   stays at rest (largest speed 1.3e-3 m/s at 20 s, decaying), and its free surface's pressure is rho0 g
    dp/2 (on the churned square lattice 0.1-0.2 dp of head higher, which floats a body that much
    too high); at h = 1.5-2 dp the hexagonal lattice churns after 4-14 s (bench/VALIDATION.md,
    "Water left running"). So a fluid with a hydrostatic column in 2D at h_over_dp < 1.4 fills on
