@@ -156,9 +156,11 @@ $(BUILD)/still_water: bench/still_water.c $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/game_tank: bench/game_tank.c $(HEADER) $(EXAMPLE_HEADERS) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
+$(BUILD)/tank_long: bench/tank_long.c $(HEADER) $(EXAMPLE_HEADERS) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/geometry_cost: bench/geometry_cost.c tests/mesh_files.h $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
-bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost $(BUILD)/rigid_cost $(BUILD)/crates_tank $(BUILD)/periodic_cost
+bench-tools: $(BUILD)/fluid_rest $(BUILD)/still_water $(BUILD)/game_tank $(BUILD)/tank_long $(BUILD)/geometry_cost $(BUILD)/realtime $(FLOAT)/realtime $(BUILD)/user_scenes $(BUILD)/svgplot $(BUILD)/io_cost $(BUILD)/damping_cost $(BUILD)/granular_cost $(BUILD)/rigid_cost $(BUILD)/crates_tank $(BUILD)/periodic_cost
 all: float-examples bench-tools
 bench-knobs: all
 	sh bench/knobs.sh

@@ -223,13 +223,27 @@
       +0.27 % at 0.01; with the pair sum +0.65 % at 0.02, growing as dp shrinks); tr L is not
       the force's adjoint, and under gravity a tank at rest gained energy with it
       (bench/VALIDATION.md, "Still water").
-      Smoothing length: water under gravity needs h_over_dp >= 2; at smaller h a tank at rest
-      on the lattice grows a particle mode under its pressure (at 1.3 dp within a few seconds,
-      at 1.8 dp by 3 s; with either kernel) and churns, and a fluid body added to such a world
-      under gravity gets a warning. At 2 dp a 2D tank at rest keeps its speed RMS near 1e-5
-      sqrt(g H) for 8-14 s, after which its free surface bursts to about 1e-3 sqrt(g H) (the
-      density diffusion where the surface cuts the kernel: not yet fixed), and standing waves
-      run within 1 % of linear theory; the cost is about twice the neighbours of 1.3 dp in 2D. With
+      Water at rest (body def lattice): on the square lattice of the fills the rows of water
+      under hydrostatic pressure slide in alternate directions (the lattice is a saddle of the
+      pressure forces, the hexagonal packing lower), from round-off, at a rate that grows as
+      sqrt(p) / dp (24/s over the floor of 0.5 m of water at dp 0.02, h = 1.3 dp: a tank at rest
+      churns within 1.5 s; with either kernel), and the churned water's free surface carries
+      0.1-0.2 dp of head too much, which floats bodies that much too high. A 2D fluid with a
+      hydrostatic column at h_over_dp 1.3 is therefore filled on the hexagonal lattice
+      (lattice = SPS_LATTICE_AUTO; sps_lattice), on which the same tank stays at rest (its start's
+      settling decays to a largest speed of 1.3e-3 m/s by 20 s) with its surface's pressure at
+      rho0 g dp/2; its pressure force
+      takes that lattice's moment (0.985 at 1.3 dp). The hexagonal lattice holds at 1.3 dp only
+      (1.5-2 dp: churning after 4-14 s), and waves at 1.3 dp run fast (a standing wave at
+      depth/dp 25: period -5.7 %; -0.7 % at 2 dp on the square lattice). Boxes filled side by side do not meet row for row
+      (fill one box, or a shape with sps_body_add_sdf), and its half particles stand 0.27 dp
+      from a box's x faces, nearer a wall body's particles than the square lattice's (a first
+      step's kick of 1 % of sqrt(2 g H) in a U-tank of particles). 3D has no close-packed fill:
+      its cubic lattice's rows slide too; there, as on the square lattice in 2D, h_over_dp = 2
+      holds water at rest for 8-14 s, after which its free surface bursts to about 1e-3 sqrt(g
+      H), and standing waves run within 1 % of linear theory (twice the neighbours of 1.3 dp in
+      2D); a fluid under gravity on the square lattice below 2 dp gets a warning
+      (bench/VALIDATION.md, "Water left running", "Still water"). With
       material.viscosity = mu > 0 the viscous force (2 mu/rho_i) sum_j v_ij dW/r_ij V_j
       (Morris et al. 1997), divided by the lattice moment above (else it is 2.7 % weak at h =
       1.3 dp), joins; the acoustic step stays below h^2 / (14 nu) (its stability) and the
@@ -953,6 +967,13 @@
       omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
+      0.18.0 (2026-12-07) water at rest: body def lattice (a 2D fluid under gravity at h_over_dp
+                         1.3 fills on the hexagonal lattice, on which it stays at rest; the
+                         square lattice's rows slide under its pressure; restart format 7);
+                         bench/tank_long (the demo tank left running); floating_block's drafts
+                         from the free surface and the water's volume; dam_break2d and
+                         elastic_gate against their experiments (bench/dam_break_experiments.csv,
+                         bench/lobovsky2014_h300.csv, bench/antoci2007.csv).
       0.17.0 (2026-12-07) viscous flows: fluid_dissipation (the Riemann solver's momentum term
                          and density diffusion left out of a viscous fluid) and
                          transport_carries_velocity (the transport shift carries the velocity;
@@ -1091,9 +1112,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 17
+#define SPHSOLID_VERSION_MINOR 18
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.17.0"
+#define SPHSOLID_VERSION_STRING "0.18.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
@@ -1322,6 +1343,19 @@ typedef enum sps_fluid_dissipation {
                                           sound is then damped by the viscosity alone) */
 } sps_fluid_dissipation;
 
+/* The lattice the fills (sps_body_add_box, sps_body_add_sdf) put a body's particles on
+   (lattice; FLUIDS, "Water at rest"). */
+typedef enum sps_lattice {
+    SPS_LATTICE_AUTO = 0,      /* hexagonal for a 2D fluid with a hydrostatic column (gravity along an
+                                  axis that is not periodic) at h_over_dp < 1.4, square otherwise */
+    SPS_LATTICE_SQUARE = 1,    /* at lo + (i + 1/2) dp along each axis: the box tiled flush */
+    SPS_LATTICE_HEXAGONAL = 2  /* 2D only: rows along x, every other row shifted by half a spacing,
+                                  about dp sqrt(2/sqrt 3) = 1.075 dp apart, dp^2 a particle; the
+                                  shifted rows end in half particles a quarter spacing inside the
+                                  box's x faces. Water under gravity at h = 1.3 dp on it stays at
+                                  rest, where the square lattice's rows slide within seconds */
+} sps_lattice;
+
 /* The Drucker-Prager cone of a granular body (material.yield_cone; GRANULAR): which Mohr-Coulomb
    stress state the cone f = alpha_phi I1 + sqrt(J2) - k_c is fitted to, given phi, psi and c. */
 typedef enum sps_yield_cone {
@@ -1430,6 +1464,10 @@ typedef struct sps_body_def {
                                   UTVF's sums take the walls' images as TVF's (TRANSPORT); for bodies with a
                                   velocity gradient (not a fluid under gravity). 0: positions
                                   only (UTVF eq. 42). Default 0. */
+    sps_lattice lattice;       /* the lattice of the fills (sps_lattice); a wall within a fifth
+                                  of dp of a hexagonal body's particle holds it (the backstop,
+                                  dp/2 for the others: the lattice's half particles stand closer).
+                                  Default SPS_LATTICE_AUTO. */
     void* user_data;           /* yours. */
     int internal_cookie;       /* set by sps_default_body_def(); do not touch. */
 } sps_body_def;
@@ -2372,6 +2410,7 @@ typedef struct sps__body {
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
     sps_real tl_c_ref;   /* total Lagrangian: its signal speed in the reference state (sps__tl_signal_speeds) */
+    int hexagonal;       /* its fills use the hexagonal lattice (def.lattice resolved: sps__kind_fills_hexagonal) */
     int coupled;         /* a fluid that touches a solid body: its continuity pass takes the solid's
                             particles as wall images (chapter >>coupling: fluid-structure) */
     sps__rigid rigid;    /* a free rigid body's motion (model.free_rigid) */
@@ -2505,7 +2544,6 @@ struct sps_world {
     sps__wall* walls;
     int nwalls;
     sps_real wall_sigma[SPS__WALL_TABLE + 1], wall_plane[SPS__WALL_TABLE + 1];
-    sps_real wall_sigma_half; /* a wall's contact density at dp/2 (the fluids' backstop, sps__mirror_force) */
     sps_real rest_wall_sigma, rest_pair_sigma; /* contact densities at rest (contact_rest): a
                                                   wall's at rest_wall_distance, a flush lattice's */
     sps_real rest_wall_distance;
@@ -2998,7 +3036,7 @@ typedef char sps__enums_are_ints[sizeof(sps_kernel_type) == sizeof(int) && sizeo
                                          sizeof(sps_shear) == sizeof(int) && sizeof(sps_rotation) == sizeof(int) &&
                                          sizeof(sps_material_kind) == sizeof(int) && sizeof(sps_solver) == sizeof(int) &&
                                          sizeof(sps_transport) == sizeof(int) && sizeof(sps_hourglass) == sizeof(int) &&
-                                         sizeof(sps_fluid_dissipation) == sizeof(int)
+                                         sizeof(sps_fluid_dissipation) == sizeof(int) && sizeof(sps_lattice) == sizeof(int)
                                      ? 1 : -1];
 #define SPS__WORLD_ITEM(field, type) {#field, offsetof(sps_world_def, field), type, NULL}
 #define SPS__BODY_ITEM(field, type) {#field, offsetof(sps_body_def, field), type, NULL}
@@ -3079,7 +3117,8 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
     SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
     SPS__BODY_ITEM_READ_BY(fluid_dissipation, SPS__DEF_INT, sps__reads_fluid),
-    SPS__BODY_ITEM_READ_BY(transport_carries_velocity, SPS__DEF_INT, sps__reads_transport_coefficient)};
+    SPS__BODY_ITEM_READ_BY(transport_carries_velocity, SPS__DEF_INT, sps__reads_transport_coefficient),
+    SPS__BODY_ITEM(lattice, SPS__DEF_INT)};
 #define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
 #define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
 /* The value of a def item, as a double (exact for ints and sps_real). */
@@ -3262,7 +3301,7 @@ static sps_real sps__newton_dt(const sps_world* w, const sps__body* b) {
 
 /* >>material: weakly compressible fluid (UTVF sections 2.1, 3.1.1) */
 
-static sps_real sps__lattice_gradient_moment(const sps_world* w); /* >>kernel */
+static sps_real sps__lattice_gradient_moment(const sps_world* w, int hexagonal); /* >>kernel */
 
 /* Its combination rule (sps__combination_rules): a fluid without the Riemann solver's momentum
    dissipation needs the viscosity, the only damping left of its particles' noise (an inviscid
@@ -3338,28 +3377,53 @@ static void sps__fluid_model(const sps_world* w, sps__model* m) {
 static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
     int a;
     for (a = 0; a < 3; ++a) b->rest_pressure_gradient[a] = a < w->dim ? b->rho0 * w->def.gravity[a] : 0;
-    b->divergence_scale = b->model.gradient ? 1 : 1 / sps__lattice_gradient_moment(w); /* tr L: no scale */
+    b->divergence_scale = b->model.gradient ? 1 : 1 / sps__lattice_gradient_moment(w, b->hexagonal); /* tr L: no scale */
     /* Morris et al.'s Laplacian sum_j 2 v_ij dW/r V_j gives a quadratic flow's Laplacian times the
        same moment -sum_j x_ij,x^2 dW/r V_j (0.974 at h = 1.3 dp in 2D): Poiseuille flow ran 2.7 %
        fast at every resolution until it was divided out */
-    b->viscous_coefficient = 2 * b->def.material.viscosity / sps__lattice_gradient_moment(w);
+    b->viscous_coefficient = 2 * b->def.material.viscosity / sps__lattice_gradient_moment(w, b->hexagonal);
     /* fluid_dissipation: the limiter at 0 makes beta = 0 in every pair (no momentum term), the
        density term's factor 0 leaves its sum out; the default keeps both bit for bit */
     if (b->def.fluid_dissipation != SPS_FLUID_DISSIPATION_RIEMANN) b->limiter_eta_c0 = 0;
     if (b->def.fluid_dissipation == SPS_FLUID_DISSIPATION_NONE) b->density_diffusion = 0;
 }
-/* Its warnings (sps__material_warnings): water under gravity with a smoothing length at which
-   water at rest does not stay at rest (FLUIDS; bench/VALIDATION.md, "Still water": at h = 1.8 dp
-   a tank at rest churns by 3 s, at 2 dp it is quiet until its free surface bursts at 8-14 s). */
+/* Whether the world gives a fluid a hydrostatic column: gravity along an axis that is not
+   periodic. */
+static int sps__hydrostatic_column(const sps_world* w) {
+    int a, column = 0;
+    for (a = 0; a < w->dim; ++a) column |= w->def.gravity[a] != 0 && !(w->period[a] > 0);
+    return column;
+}
+
+/* Water at rest under gravity on the square lattice does not stay at rest: the lattice is a
+   saddle of the pressure forces, and its rows slide in alternate directions (towards the
+   hexagonal packing) from round-off, at a rate that grows as sqrt(p) / dp, fastest over the
+   floor (24/s at the floor of 0.5 m of water at dp 0.02, h = 1.3 dp: churning within 1.5 s; at
+   h = 2 dp the burst comes after 8-14 s). On the hexagonal lattice at h = 1.3 dp the same tank
+   stays at rest (largest speed 1.3e-3 m/s at 20 s, decaying), and its free surface's pressure is rho0 g
+   dp/2 (on the churned square lattice 0.1-0.2 dp of head higher, which floats a body that much
+   too high); at h = 1.5-2 dp the hexagonal lattice churns after 4-14 s (bench/VALIDATION.md,
+   "Water left running"). So a fluid with a hydrostatic column in 2D at h_over_dp < 1.4 fills on
+   the hexagonal lattice (lattice = SPS_LATTICE_AUTO); 3D has no close-packed fill. */
+#define SPS__HEXAGONAL_H_OVER_DP_MAX SPS_R(1.4)
+static int sps__fluid_fills_hexagonal(const sps_world* w) {
+    return w->dim == 2 && sps__hydrostatic_column(w) && w->def.h_over_dp < SPS__HEXAGONAL_H_OVER_DP_MAX;
+}
+
+/* Its warnings (sps__material_warnings): water under gravity on a lattice and at a smoothing
+   length at which water at rest does not stay at rest (sps__fluid_fills_hexagonal). */
 #define SPS__FLUID_STILL_H_OVER_DP SPS_R(2)
 static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
-    int a, column = 0; /* a hydrostatic column: gravity along an axis that is not periodic */
-    for (a = 0; a < w->dim; ++a) column |= w->def.gravity[a] != 0 && !(w->period[a] > 0);
-    if (column && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
-        sps__warn(w, "body '%s': a fluid under gravity with h_over_dp = %g: water at rest does not stay at rest below %g (it churns "
-                  "within seconds); set the world's h_over_dp = %g (about twice the neighbours of 1.3 in 2D; the solids of the same "
-                  "world take it too, and their figures change: bench/VALIDATION.md, \"Still water\")",
-                  b->name, (double)w->def.h_over_dp, (double)SPS__FLUID_STILL_H_OVER_DP, (double)SPS__FLUID_STILL_H_OVER_DP);
+    const sps_real h_over_dp = w->def.h_over_dp;
+    if (!sps__hydrostatic_column(w)) return;
+    if (!b->hexagonal && h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6))
+        sps__warn(w, "body '%s': a fluid under gravity on the square lattice at h_over_dp = %g: water at rest does not stay at rest (its "
+                  "rows slide within seconds); in 2D fill it on the hexagonal lattice at h_over_dp = 1.3 (lattice = "
+                  "SPS_LATTICE_AUTO or SPS_LATTICE_HEXAGONAL), or set the world's h_over_dp = %g, where it holds for 8-14 s "
+                  "(bench/VALIDATION.md, \"Water left running\")", b->name, (double)h_over_dp, (double)SPS__FLUID_STILL_H_OVER_DP);
+    if (b->hexagonal && !(h_over_dp < SPS__HEXAGONAL_H_OVER_DP_MAX))
+        sps__warn(w, "body '%s': a fluid under gravity on the hexagonal lattice at h_over_dp = %g: water at rest on it churns after 4-14 "
+                  "s at h_over_dp 1.5-2 (it holds at 1.3: bench/VALIDATION.md, \"Water left running\")", b->name, (double)h_over_dp);
 }
 /* >>material: Drucker-Prager (granular media; UTVF sections 2.3, 3.1.3)
 
@@ -3481,7 +3545,7 @@ static void sps__granular_setup(const sps_world* w, sps__body* b) {
     int a;
     b->cone = sps__yield_cone_of(&b->def.material);
     b->diffusion_rate = 2 * b->def.stress_diffusion * w->h * b->mat.c0;
-    b->divergence_scale = 1 / sps__lattice_gradient_moment(w);
+    b->divergence_scale = 1 / sps__lattice_gradient_moment(w, b->hexagonal);
     for (a = 0; a < 6; ++a) {
         const sps_real vertical = g_norm > 0 ? g[sps__sym_row[a]] * g[sps__sym_col[a]] / (g_norm * g_norm) : 0;
         b->geostatic[a] = g_norm > 0 ? -b->rho0 * (vertical + b->cone.k0 * (sps__sym_diagonal(a) - vertical)) : 0;
@@ -3751,6 +3815,21 @@ static void sps__material_warnings(const sps_world* w, const sps__body* b) {
     }
 }
 
+/* Whether a kind's fills default to the hexagonal lattice (lattice = SPS_LATTICE_AUTO). */
+static int sps__kind_fills_hexagonal(const sps_world* w, const sps_body_def* def) {
+    switch (def->material.kind) {
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN:
+    case SPS_MATERIAL_DRUCKER_PRAGER: return 0;
+    case SPS_MATERIAL_FLUID: return sps__fluid_fills_hexagonal(w);
+    }
+    return 0;
+}
+
 /* The macro that left this body's kind or solver out of the build (CONFIG MACROS), or NULL. */
 static const char* sps__left_out_by(const sps_body_def* def) {
     switch (def->material.kind) {
@@ -3955,6 +4034,9 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
                "fluid_dissipation = %d, allowed 0 (the Riemann solver's), 1 (density diffusion only) or 2 (none)", (int)def->fluid_dissipation);
     SPS__CHECK(def->transport_carries_velocity == 0 || def->transport_carries_velocity == 1,
                "transport_carries_velocity = %d, allowed 0 (positions only) or 1 (the velocity with them)", def->transport_carries_velocity);
+    SPS__CHECK(def->lattice == SPS_LATTICE_AUTO || def->lattice == SPS_LATTICE_SQUARE || def->lattice == SPS_LATTICE_HEXAGONAL,
+               "lattice = %d, allowed 0 (auto), 1 (square) or 2 (hexagonal, 2D)", (int)def->lattice);
+    SPS__CHECK(def->lattice != SPS_LATTICE_HEXAGONAL || dim == 2, "lattice = 2 (hexagonal) in a %dD world, allowed in 2D only (3D: 0 or 1)", dim);
     for (k = 0; k < (int)(sizeof sps__combination_rules / sizeof sps__combination_rules[0]); ++k)
         SPS__CHECK(!sps__combination_rules[k].broken(dim, def), sps__combination_rules[k].message, dim);
     SPS__CHECK(!sps__left_out_by(def), "material.kind = %d with solver = %d: this build left it out (%s is defined)",
@@ -4084,16 +4166,20 @@ SPSDEF sps_real sps_world_kernel_derivative(const sps_world* w, sps_real r) {
    The pressure force of a fluid and the stress divergence of a Drucker-Prager body are divided
    by c (sps__body.divergence_scale): the lattice value of the correction B_i = (-sum_j r_ij (x)
    grad W_ij V_j)^-1 (ANG eq. 21), which keeps the pair forces antisymmetric (momentum exact)
-   and costs nothing per pair. */
-static sps_real sps__lattice_gradient_moment(const sps_world* w) {
-    const int reach = (int)(w->support / w->def.dp) + 1, dim = w->dim;
+   and costs nothing per pair. A body filled on the hexagonal lattice (2D, sps_lattice) takes
+   that lattice's sum (0.985 at h = 1.3 dp; the square lattice's value left its water 1 % off
+   its hydrostatic balance at the start). */
+static sps_real sps__lattice_gradient_moment(const sps_world* w, int hexagonal) {
+    const int reach = (int)(w->support / w->def.dp) + 2, dim = w->dim;
     const sps_real volume = dim == 2 ? w->def.dp * w->def.dp : w->def.dp * w->def.dp * w->def.dp;
+    const double spacing = hexagonal ? sqrt(2 / sqrt(3.0)) : 1; /* along a row [dp]; the rows sqrt(3)/2 of it apart */
     sps_real sum = 0;
     int a, b, c;
     for (a = -reach; a <= reach; ++a)
         for (b = -reach; b <= reach; ++b)
             for (c = dim == 3 ? -reach : 0; c <= (dim == 3 ? reach : 0); ++c) {
-                const sps_real r = w->def.dp * SPS__SQRT((sps_real)(a * a + b * b + c * c));
+                const double x = hexagonal ? (a + 0.5 * (b & 1)) * spacing : a, y = hexagonal ? b * spacing * sqrt(3.0) / 2 : b;
+                const sps_real r = w->def.dp * (sps_real)sqrt(x * x + y * y + (double)(c * c));
                 if (r > 0 && r < w->support) sum += r * sps_world_kernel_derivative(w, r) * volume;
             }
     return -sum / dim;
@@ -4389,6 +4475,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     b->transport_alpha = def->transport_coefficient > 0 ? def->transport_coefficient : SPS_R(0.2); /* UTVF section 3.2 */
     b->limiter_eta_c0 = (b->model.material->limiter + b->model.material->limiter_per_dim * w->dim) / b->mat.c0;
     b->density_diffusion = 1;
+    b->hexagonal = def->lattice == SPS_LATTICE_HEXAGONAL || (def->lattice == SPS_LATTICE_AUTO && sps__kind_fills_hexagonal(w, def));
     sps__material_setup(w, b);
     b->mean_rotation[0] = b->mean_rotation[4] = b->mean_rotation[8] = 1;
     b->driven = b->model.material->kinematic && !b->model.free_rigid && sps__watchdog_on(w);
@@ -4505,42 +4592,109 @@ static int sps__rigid_fill_closed(sps_world* w, int k, const char* fn) {
     return 1;
 }
 
+/* Adds the lattice point x of volume `volume` to body k if it lies inside sdf (NULL: the box). */
+static sps_result sps__fill_point(sps_world* w, int k, const sps_real x[3], sps_real volume, sps_real (*sdf)(const sps_real x[3], void* user),
+                                  void* user, int* total) {
+    sps_result r;
+    if (sdf && !(sdf(x, user) < 0)) return SPS_OK;
+    if ((r = sps__add_one(w, k, x, volume)) != SPS_OK) return r;
+    ++*total;
+    return SPS_OK;
+}
+
+/* The square lattice's points lo + (i + 1/2) dp per axis, cnt[a] along axis a. */
+static sps_result sps__fill_square(sps_world* w, int k, const sps_real lo[3], const int cnt[3], sps_real (*sdf)(const sps_real x[3], void* user),
+                                   void* user, int* total) {
+    const sps_real dp = w->def.dp;
+    int i, j, l;
+    sps_result r;
+    for (l = 0; l < cnt[2]; ++l)
+        for (j = 0; j < cnt[1]; ++j)
+            for (i = 0; i < cnt[0]; ++i) {
+                sps_real x[3];
+                x[0] = lo[0] + (i + SPS_R(0.5)) * dp;
+                x[1] = lo[1] + (j + SPS_R(0.5)) * dp;
+                x[2] = w->dim == 3 ? lo[2] + (l + SPS_R(0.5)) * dp : 0;
+                if ((r = sps__fill_point(w, k, x, w->dp_volume, sdf, user, total)) != SPS_OK) return r;
+            }
+    return SPS_OK;
+}
+
+/* The hexagonal lattice of the box (2D; sps_lattice): `columns` along x at the spacing ax =
+   width / columns, `rows` along y at ay = height / rows, each particle of volume ax ay (dp^2 to
+   the rounding of the counts). Even rows at lo + (c + 1/2) ax; odd rows at lo + c ax, 0 < c <
+   columns, and where that puts a particle on the box's x faces, a half particle (ax ay / 2) a
+   quarter spacing inside each, so the rows tile the box and no particle stands on a wall there.
+   A box that spans a periodic x axis has whole odd rows, lo + c ax for c < columns (the period
+   wraps them). */
+static sps_result sps__fill_hexagonal(sps_world* w, int k, const sps_real lo[3], const sps_real hi[3], int columns, int rows,
+                                      sps_real (*sdf)(const sps_real x[3], void* user), void* user, int* total) {
+    const sps_real ax = (hi[0] - lo[0]) / columns, ay = (hi[1] - lo[1]) / rows, volume = ax * ay;
+    const int wraps = w->period[0] > 0 && SPS__FABS(hi[0] - lo[0] - w->period[0]) < SPS_R(1e-6) * w->def.dp;
+    int c, j;
+    sps_result r;
+    for (j = 0; j < rows; ++j) {
+        sps_real x[3] = {0, 0, 0};
+        x[1] = lo[1] + (j + SPS_R(0.5)) * ay;
+        for (c = 0; c < columns; ++c) {
+            if (j % 2 && c == 0 && !wraps) continue; /* the half particles below */
+            x[0] = j % 2 ? lo[0] + c * ax : lo[0] + (c + SPS_R(0.5)) * ax;
+            if ((r = sps__fill_point(w, k, x, volume, sdf, user, total)) != SPS_OK) return r;
+        }
+        if (j % 2 == 0 || wraps) continue;
+        x[0] = lo[0] + SPS_R(0.25) * ax;
+        if ((r = sps__fill_point(w, k, x, SPS_R(0.5) * volume, sdf, user, total)) != SPS_OK) return r;
+        x[0] = hi[0] - SPS_R(0.25) * ax;
+        if ((r = sps__fill_point(w, k, x, SPS_R(0.5) * volume, sdf, user, total)) != SPS_OK) return r;
+    }
+    return SPS_OK;
+}
+
+/* The hexagonal lattice's counts for the box: the spacing along a row dp sqrt(2 / sqrt 3) (a
+   regular lattice of dp^2 a particle) rounded to fill the width, then the rows to keep dp^2 a
+   particle (an even count where y is periodic and the box spans it, so the rows' shifts wrap). */
+static void sps__hexagonal_counts(const sps_world* w, const sps_real lo[3], const sps_real hi[3], double* columns, double* rows) {
+    const double dp = (double)w->def.dp, width = (double)(hi[0] - lo[0]), height = (double)(hi[1] - lo[1]);
+    const int wraps_y = w->period[1] > 0 && fabs(height - (double)w->period[1]) < 1e-6 * dp;
+    *columns = floor(width / (dp * sqrt(2 / sqrt(3.0))) + 0.5);
+    if (*columns < 1) *columns = width >= dp ? 1 : 0;
+    *rows = *columns > 0 ? floor(height * (width / *columns) / (dp * dp) + 0.5) : 0;
+    if (wraps_y) *rows = 2 * floor(*rows / 2 + 0.5);
+    if (*rows < 1) *rows = height >= dp ? 1 : 0;
+}
+
 static sps_result sps__fill(sps_world* w, const char* fn, sps_body b, const sps_real lo[3], const sps_real hi[3],
                             sps_real (*sdf)(const sps_real x[3], void* user), void* user, int* added) {
-    int k, cnt[3] = {1, 1, 1}, a, i, j, l, total = 0;
-    double cells = 1;
+    int k, cnt[3] = {1, 1, 1}, a, total = 0;
+    double cells = 1, columns = 0, rows = 0;
     sps_real dp;
+    sps_result r;
     if (added) *added = 0;
     if (!w) return SPS_ERR_INVALID_ARG;
     if ((k = sps__check_body(w, b, fn)) < 0 || !sps__check_box(w, fn, lo, hi) || sps__rigid_fill_closed(w, k, fn)) return SPS_ERR_INVALID_ARG;
     dp = w->def.dp;
-    for (a = 0; a < w->dim; ++a) {
-        /* count lattice points inside [lo, hi); the slack absorbs the rounding of lo, hi and dp,
-           relative 1e-7 in float: 1e-6 dp lost a whole column of a 204-dp plate there */
-        double c = SPS__FLOOR((hi[a] - lo[a]) / dp + (sizeof(sps_real) == sizeof(float) ? SPS_R(1e-3) : SPS_R(1e-6)));
-        cells *= c;
-        cnt[a] = (int)(c < 1e9 ? c : 1e9);
-        if (c < 1) { /* no lattice point along this axis (and 0 x inf is NaN) */
-            sps__warn_empty_fill(w, fn, b, sdf != NULL);
-            return SPS_OK;
+    if (w->bodies[k].hexagonal) {
+        sps__hexagonal_counts(w, lo, hi, &columns, &rows);
+        cells = (columns + 1) * rows;
+    } else
+        for (a = 0; a < w->dim; ++a) {
+            /* count lattice points inside [lo, hi); the slack absorbs the rounding of lo, hi and dp,
+               relative 1e-7 in float: 1e-6 dp lost a whole column of a 204-dp plate there */
+            double c = SPS__FLOOR((hi[a] - lo[a]) / dp + (sizeof(sps_real) == sizeof(float) ? SPS_R(1e-3) : SPS_R(1e-6)));
+            cells *= c;
+            cnt[a] = (int)(c < 1e9 ? c : 1e9);
         }
+    if (!(cells >= 1)) { /* no lattice point along an axis (and 0 x inf is NaN) */
+        sps__warn_empty_fill(w, fn, b, sdf != NULL);
+        return SPS_OK;
     }
     if (cells > (double)(SPS__MAX_PARTICLES - w->n)) {
         sps__set_error(w, 0, "%s: box holds %.3g lattice points, the world %d particles; allowed a total of %d", fn, cells, w->n, SPS__MAX_PARTICLES);
         return SPS_ERR_INVALID_ARG;
     }
-    for (l = 0; l < cnt[2]; ++l)
-        for (j = 0; j < cnt[1]; ++j)
-            for (i = 0; i < cnt[0]; ++i) {
-                sps_real x[3];
-                sps_result r;
-                x[0] = lo[0] + (i + SPS_R(0.5)) * dp;
-                x[1] = lo[1] + (j + SPS_R(0.5)) * dp;
-                x[2] = w->dim == 3 ? lo[2] + (l + SPS_R(0.5)) * dp : 0;
-                if (sdf && !(sdf(x, user) < 0)) continue;
-                if ((r = sps__add_one(w, k, x, w->dp_volume)) != SPS_OK) return r;
-                ++total;
-            }
+    r = w->bodies[k].hexagonal ? sps__fill_hexagonal(w, k, lo, hi, (int)columns, (int)rows, sdf, user, &total)
+                               : sps__fill_square(w, k, lo, cnt, sdf, user, &total);
+    if (r != SPS_OK) return r;
     if (added) *added = total;
     if (total == 0) sps__warn_empty_fill(w, fn, b, sdf != NULL);
     return SPS_OK;
@@ -7283,13 +7437,17 @@ static void sps__add_friction(sps_real mu, sps_real f_n, sps_real drag, const sp
 /* The backstop of wall wl on particle i, added to acc (force per volume): closer to the wall
    than dp/2, where no particle of a lattice fill stands, the solids' contact pressure K sigma
    counted from sigma(dp/2) on, which holds the particles that the corners' missing images
-   would let through. */
+   would let through; for a body on the hexagonal lattice from dp/5 on (its rows' half
+   particles stand a quarter spacing, 0.27 dp, from the box's faces: pushed off a wall from dp/2
+   on, water on it started with a jolt and churned; sps_lattice). */
+#define SPS__HEXAGONAL_BACKSTOP SPS_R(0.2) /* [dp] */
 static void sps__add_backstop(const sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real acc[3]) {
-    const sps_real d = sps__wall_distance(w, wl, i);
+    const sps_real d = sps__wall_distance(w, wl, i), depth = (b->hexagonal ? SPS__HEXAGONAL_BACKSTOP : SPS_R(0.5)) * w->def.dp;
     int a;
-    if (!(d < SPS_R(0.5) * w->def.dp)) return;
+    if (!(d < depth)) return;
     for (a = 0; a < w->dim; ++a)
-        acc[a] += 2 * b->mat.K * (sps__wall_sigma(w, d) - w->wall_sigma_half) * sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d) * wl->normal[a];
+        acc[a] += 2 * b->mat.K * (sps__wall_sigma(w, d) - sps__wall_sigma(w, depth)) * sps__plane_table_at(w, w->wall_plane, SPS__WALL_TABLE, d) *
+                  wl->normal[a];
 }
 
 /* The force per volume of wall wl on granular particle i, added to acc: its images' and the
@@ -8623,7 +8781,6 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
     if (!sps__grow(w, &w->walls, sizeof wall, (size_t)w->nwalls, (size_t)w->nwalls + 1)) return sps__oom(w, "sps_world_add_wall: the wall table");
     if (w->nwalls == 0) {
         sps__kernel_plane_tables(w, SPS__WALL_TABLE, w->wall_plane, w->wall_sigma);
-        w->wall_sigma_half = sps__wall_sigma(w, SPS_R(0.5) * w->def.dp);
         w->rest_wall_sigma = sps__wall_sigma(w, w->rest_wall_distance);
     }
     w->walls[w->nwalls++] = wall;
@@ -10366,9 +10523,12 @@ static void sps__watch_churn(sps_world* w, sps__body* b) {
     sps__warn(w, "body '%s' churns at t = %g: its kinetic energy rose in %d windows of a quarter second in a row, each at least %g-fold, to %g J (%.2g of its "
               "weight times its height), with nothing driving it; likely cause: %s", b->name, (double)w->time, c->rises,
               (double)SPS__CHURN_RISE, (double)c->previous_max, (double)(c->previous_max / c->weight_height),
-              w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6) ? "h_over_dp below 2: set the world's h_over_dp = 2 (bench/VALIDATION.md, \"Still water\")"
-              : "a slot at a wall, a corner of walls not at right angles, or the free surface's density diffusion (a tank at rest bursts after 8-14 s: "
-                "bench/VALIDATION.md, \"Still water\")");
+              !b->hexagonal && w->def.h_over_dp < SPS__FLUID_STILL_H_OVER_DP - SPS_R(1e-6)
+                  ? "the square lattice at h_over_dp below 2, whose rows slide: in 2D fill it on the hexagonal lattice at h_over_dp = 1.3 "
+                    "(lattice = SPS_LATTICE_AUTO), or set the world's h_over_dp = 2 (bench/VALIDATION.md, \"Water left running\")"
+                  : "a slot at a wall, a corner of walls not at right angles, water filled from boxes whose hexagonal rows do not meet, or the "
+                    "free surface's density diffusion (a square-lattice tank at h_over_dp = 2 bursts after 8-14 s: bench/VALIDATION.md, "
+                    "\"Still water\")");
 }
 
 /* The round-off of the energy account: (100 eps)^2 sum m c0^2, the energy of velocities of 100
@@ -12275,7 +12435,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 6u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity */
+#define SPS__RESTART_VERSION 7u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity; 7: lattice */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */

@@ -8,17 +8,24 @@
    particles are moving walls for it. The block alone is damped (--damping c [1/s]: DAMPING in
    the header, the equilibrium does not depend on c; the water is inviscid and undamped), so the
    heave settles while the water keeps its waves (the tank's first sloshing mode, period 1.2 s).
-   Its draft, the water level minus the block's bottom, is averaged over the last --window
-   seconds (two sloshing periods); the level is that of the water's volume at rho0 plus the
-   block's submerged part filling the tank's width (a mean over the waves).
-   Archimedes: draft = (rho_block / rho_water) x 0.2 m.
+   Its draft, the water level minus the block's bottom, is averaged over 1.5-2.5 s and over the
+   last --window seconds (two sloshing periods); the level is that of the water's volume as it
+   is, sum m / rho (compressed by its own pressure), plus the block's submerged part, filling
+   the tank's width (a mean over the waves; the volume at rho0, sum m / rho0, would put it
+   higher by the column's mean compression, H (g H / (2 c0^2)) = 1.25 mm here). Archimedes:
+   draft = (rho_block / rho_water) x 0.2 m. The RESULT line adds the water's mean pressure over
+   the same two windows, their difference against rho0 g H (a tank whose pressure creeps shows
+   it) and the water's mass at the end against its start.
 
    --dim 3: a cube in a square tank (--width, --depth, --size set all three: e.g. --width 0.4
    --depth 0.2 --size 0.1); the RESULT line adds the water's largest kinetic energy in the
    first and in the last second (water_ke_first, water_ke_last: a tank that churns grows it).
 
    Build: make examples        Run: ./build/floating_block
-   Expect: the block sinks in, bobs and floats with a draft within 1 % of 0.1 m (dp 0.02: -0.8 %);
+   Expect: the block sinks in, bobs and floats (the water on the hexagonal lattice: FLUIDS);
+   dp 0.02, --tend 30 --window 2: draft -0.8 % from the free surface over 28-30 s (-2.9 % at
+   2 s, still settling), -3.1 % from the water's volume; pressure drift +0.11 % of rho g H; the
+   mass exact; dp 0.04: -5.6 % (2.5 particles of draft).
    CSV with the draft per row, VTK snapshots, a picture coloured by pressure.
    Smoke: floating_block --dp 0.05 --tend 0.01 */
 #include "common.h"
@@ -34,26 +41,90 @@ static sps_real hydrostatic(const sps_real x[3], void* user) {
     return (sps_real)(RHO_WATER * G_ACC * (DEPTH - (double)x[1]));
 }
 
+/* The water's mean pressure [Pa] and its mass [kg] (kg/m in 2D). */
+static void water_state(const sps_world* w, sps_body water, double* mean_pressure, double* mass) {
+    const sps_real *p = sps_world_field(w, SPS_FIELD_PRESSURE), *m = sps_world_field(w, SPS_FIELD_MASS);
+    int i, first, count, components;
+    *mean_pressure = *mass = 0;
+    sps_body_field(w, water, "density", &components, &first, &count);
+    for (i = first; i < first + count; ++i) {
+        *mean_pressure += p[i] / count;
+        *mass += m[i];
+    }
+}
+
+/* A running mean over the output rows of a time window. */
+typedef struct {
+    double draft, draft_volume, pressure;
+    int rows;
+} window_mean;
+static void window_add(window_mean* m, double draft, double draft_volume, double pressure) {
+    m->draft += draft;
+    m->draft_volume += draft_volume;
+    m->pressure += pressure;
+    m->rows++;
+}
+
+#define EARLY_FROM 1.5 /* the early window [s]: the draft "at 2 s" */
+#define EARLY_TO 2.5
+
 typedef struct {
     output_plan output;
     sps_body water, block;
-    double t_end, window, draft_sum, drop;
+    window_mean early, late;
+    double t_end, window, drop, mass_start, dp;
     double water_ke_first, water_ke_last, last_second_start; /* the water's largest kinetic energy in the first and last second */
-    int quiet, draft_rows;
+    int quiet;
 } run_state;
 
-/* The draft: the level of the water (its area at rho0 and the block's part below the level
-   fill the tank: level (WIDTH - SIZE) + SIZE bottom = area; in 3D the same with WIDTH^2 and
-   SIZE^2 and volumes) minus the block's bottom (its mean height - SIZE/2). */
-static double draft_of(const sps_world* w, sps_body water, sps_body block) {
-    const sps_real *y = sps_world_field(w, SPS_FIELD_POSITION_Y), *m = sps_world_field(w, SPS_FIELD_MASS);
-    double bottom = 0, area = 0;
+/* The block's bottom: its particles' mean height less SIZE/2. */
+static double block_bottom(const sps_world* w, sps_body block) {
+    const sps_real* y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    double bottom = 0;
     int i, first, count, components;
     sps_body_field(w, block, "density", &components, &first, &count);
     for (i = first; i < first + count; ++i) bottom += y[i];
-    bottom = bottom / count - 0.5 * SIZE;
+    return bottom / count - 0.5 * SIZE;
+}
+
+/* The draft from the free surface: the mean over the tank's dp-wide columns (dp x dp in 3D)
+   clear of the block (beyond 2 dp from its sides) of the highest water particle plus dp/2,
+   less the block's bottom. NaN if no column has water. */
+static double draft_of(const sps_world* w, sps_body water, sps_body block, double dp) {
+    const sps_real *x = sps_world_field(w, SPS_FIELD_POSITION_X), *y = sps_world_field(w, SPS_FIELD_POSITION_Y);
+    const sps_real* z = sps_world_field(w, SPS_FIELD_POSITION_Z);
+    const int n = (int)(WIDTH / dp + 0.5), columns = DIM == 3 ? n * n : n;
+    double* top = malloc(sizeof *top * (size_t)columns), level = 0;
+    int i, c, used = 0, first, count, components;
+    if (!top) return NAN;
+    for (c = 0; c < columns; ++c) top[c] = -1e30;
     sps_body_field(w, water, "density", &components, &first, &count);
-    for (i = first; i < first + count; ++i) area += m[i] / RHO_WATER;
+    for (i = first; i < first + count; ++i) {
+        const int cx = (int)(x[i] / dp), cz = DIM == 3 ? (int)(z[i] / dp) : 0;
+        if (cx < 0 || cx >= n || cz < 0 || cz >= n) continue;
+        c = cz * n + cx;
+        if (y[i] > top[c]) top[c] = y[i];
+    }
+    for (c = 0; c < columns; ++c) {
+        const double ax = fabs((c % n + 0.5) * dp - 0.5 * WIDTH), az = DIM == 3 ? fabs((c / n + 0.5) * dp - 0.5 * WIDTH) : 0;
+        if ((ax > az ? ax : az) < 0.5 * SIZE + 2 * dp || !(top[c] > -1e29)) continue;
+        level += top[c] + 0.5 * dp;
+        ++used;
+    }
+    free(top);
+    return used ? level / used - block_bottom(w, block) : NAN;
+}
+
+/* The draft from the water's volume: the level of the water's area sum m / rho (compressed by
+   its pressure as it is) and the block's part below the level filling the tank (level (WIDTH -
+   SIZE) + SIZE bottom = area; in 3D with WIDTH^2, SIZE^2 and volumes), less the bottom. */
+static double draft_volume_of(const sps_world* w, sps_body water, sps_body block) {
+    const sps_real *m = sps_world_field(w, SPS_FIELD_MASS), *rho = sps_world_field(w, SPS_FIELD_DENSITY);
+    const double bottom = block_bottom(w, block);
+    double area = 0;
+    int i, first, count, components;
+    sps_body_field(w, water, "density", &components, &first, &count);
+    for (i = first; i < first + count; ++i) area += m[i] / rho[i];
     if (DIM == 3) return (area - SIZE * SIZE * bottom) / (WIDTH * WIDTH - SIZE * SIZE) - bottom;
     return (area - SIZE * bottom) / (WIDTH - SIZE) - bottom;
 }
@@ -63,14 +134,16 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d;
     char extra[64];
     const double t = sps_world_time(w);
-    const double draft = t > 0 ? draft_of(w, s->water, s->block) : -s->drop; /* the bodies' ranges are set at the first step */
-    snprintf(extra, sizeof extra, ",%.9g", draft);
+    /* the bodies' ranges are set at the first step */
+    const double draft = t > 0 ? draft_of(w, s->water, s->block, s->dp) : -s->drop;
+    const double draft_volume = t > 0 ? draft_volume_of(w, s->water, s->block) : -s->drop;
+    snprintf(extra, sizeof extra, ",%.9g,%.9g", draft, draft_volume);
     if (output_tick(w, &s->output, extra, &d)) {
         sps_diagnostics dw;
-        if (t >= s->t_end - s->window - 1e-12) {
-            s->draft_sum += draft;
-            s->draft_rows++;
-        }
+        double pressure = 0, mass = 0;
+        if (t > 0) water_state(w, s->water, &pressure, &mass);
+        if (t >= EARLY_FROM && t <= EARLY_TO) window_add(&s->early, draft, draft_volume, pressure);
+        if (t >= s->t_end - s->window - 1e-12) window_add(&s->late, draft, draft_volume, pressure);
         if (t > 0 && sps_world_diagnostics(w, s->water, &dw) == SPS_OK) {
             if (t <= 1 && dw.kinetic_energy > s->water_ke_first) s->water_ke_first = dw.kinetic_energy;
             if (t >= s->last_second_start && dw.kinetic_energy > s->water_ke_last) s->water_ke_last = dw.kinetic_energy;
@@ -100,9 +173,10 @@ int main(int argc, char** argv) {
     sps_world* w;
     sps_diagnostics d;
     sps_body all = {0};
+    int water_count;
     run_state s;
     sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3], lo[3] = {0, 0, 0}, hi[3];
-    double wall, draft, archimedes;
+    double wall, draft, draft_volume, archimedes, early_draft, early_draft_volume, early_pressure, late_pressure, mass_end;
 
     ex_short_openmp_spin(argv);
     opt_parse(argc, argv, "2D jelly block dropped into a water tank: its floating draft against Archimedes", opts, (int)(sizeof opts / sizeof *opts));
@@ -127,6 +201,7 @@ int main(int argc, char** argv) {
     ex_check(w, sps_world_add_body(w, &water_def, &s.water));
     ex_check(w, sps_body_add_box(w, s.water, lo, hi, NULL));
     ex_check(w, sps_body_set_pressure(w, s.water, hydrostatic, NULL));
+    water_count = sps_world_particle_count(w);
     ex_check(w, sps_world_add_body(w, &block_def, &s.block));
     lo[0] = lo[2] = (sps_real)(0.5 * (WIDTH - SIZE)); hi[0] = hi[2] = (sps_real)(lo[0] + SIZE);
     lo[1] = DEPTH + drop; hi[1] = lo[1] + SIZE;
@@ -137,18 +212,35 @@ int main(int argc, char** argv) {
     s.window = window;
     s.drop = drop;
     s.last_second_start = c.t_end - 1;
-    output_open(&s.output, &c, "floating_block", "pressure", ",draft");
+    s.dp = dp;
+    output_open(&s.output, &c, "floating_block", "pressure", ",draft,draft_volume");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
+    {
+        const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
+        int i;
+        for (i = 0; i < water_count; ++i) s.mass_start += m[i]; /* the water's particles come first */
+    }
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
     wall = output_close(w, &s.output);
 
-    draft = s.draft_rows ? s.draft_sum / s.draft_rows : draft_of(w, s.water, s.block);
+    draft = s.late.rows ? s.late.draft / s.late.rows : draft_of(w, s.water, s.block, dp);
+    draft_volume = s.late.rows ? s.late.draft_volume / s.late.rows : draft_volume_of(w, s.water, s.block);
+    early_draft = s.early.rows ? s.early.draft / s.early.rows : NAN; /* NaN: the run ends before the early window */
+    early_draft_volume = s.early.rows ? s.early.draft_volume / s.early.rows : NAN;
+    early_pressure = s.early.rows ? s.early.pressure / s.early.rows : NAN;
+    water_state(w, s.water, &late_pressure, &mass_end);
+    if (s.late.rows) late_pressure = s.late.pressure / s.late.rows;
     archimedes = c.rho0 / RHO_WATER * SIZE;
     ex_check(w, sps_world_diagnostics(w, all, &d));
     printf("RESULT case=floating_block dim=%d dp=%g rho_block=%g damping=%g drop=%g window=%g draft=%.5f archimedes=%.5f rel_error=%+.2f%% "
+           "draft_2s=%.5f rel_error_2s=%+.2f%% draft_volume=%.5f rel_error_volume=%+.2f%% rel_error_volume_2s=%+.2f%% pressure_drift=%+.3f%% "
+           "water_mass_ratio=%.12f "
            "ke_end=%.3e water_ke_first=%.4e water_ke_last=%.4e %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",
-           DIM, dp, c.rho0, damping, drop, window, draft, archimedes, 100 * (draft / archimedes - 1), (double)d.kinetic_energy,
-           s.water_ke_first, s.water_ke_last, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
+           DIM, dp, c.rho0, damping, drop, window, draft, archimedes, 100 * (draft / archimedes - 1), early_draft,
+           100 * (early_draft / archimedes - 1), draft_volume, 100 * (draft_volume / archimedes - 1), 100 * (early_draft_volume / archimedes - 1),
+           100 * (late_pressure - early_pressure) / (RHO_WATER * G_ACC * DEPTH), mass_end / s.mass_start,
+           (double)d.kinetic_energy, s.water_ke_first, s.water_ke_last, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps,
+           d.advection_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
 }

@@ -2391,6 +2391,7 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 55: m->yield_cone = SPS_CONE_PAPERS; break;
     case 56: bd->fluid_dissipation = SPS_FLUID_DISSIPATION_NONE; break;
     case 57: bd->transport_carries_velocity = 1; break;
+    case 58: bd->lattice = SPS_LATTICE_SQUARE; break;
     }
 }
 
@@ -2434,7 +2435,8 @@ static int test_restart_every_def_field(void) {
         BODY_FIELD("contact_damping"), TL_FIELD("damage_strain"), BODY_FIELD("penalty_in_pressure_pass"),
         WORLD_FIELD("contact_rest"), WORLD_FIELD("periodic[0]"), WORLD_FIELD("periodic[1]"), WORLD_FIELD("dim"),
         WORLD_FIELD("periodic_origin[0]"), WORLD_FIELD("periodic_origin[1]"), WORLD_FIELD("periodic_origin[2]"),
-        BODY_FIELD("material.yield_cone"), BODY_FIELD("fluid_dissipation"), BODY_FIELD("transport_carries_velocity")};
+        BODY_FIELD("material.yield_cone"), BODY_FIELD("fluid_dissipation"), BODY_FIELD("transport_carries_velocity"),
+        BODY_FIELD("lattice")};
 #undef WORLD_FIELD
 #undef BODY_FIELD
 #undef TL_FIELD

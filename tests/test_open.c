@@ -158,6 +158,7 @@ static int test_open_kill_zone(void) {
     int zone, k, i;
     wd.dp = 0.01; wd.threads = 1; wd.log = quiet_log; wd.gravity[1] = -9.81;
     bd.material.kind = SPS_MATERIAL_FLUID; bd.material.sound_speed = 30;
+    bd.lattice = SPS_LATTICE_SQUARE; /* 100 particles, ids 0..99 */
     ENSURE(sps_world_create(&wd, &w) == SPS_OK && sps_world_add_body(w, &bd, &f) == SPS_OK && sps_body_add_box(w, f, lo, hi, NULL) == SPS_OK);
     kill.lo[0] = -1; kill.hi[0] = 1; kill.lo[1] = -1; kill.hi[1] = 0.1;
     ENSURE(sps_body_add_zone(w, f, &kill, &zone) == SPS_OK);

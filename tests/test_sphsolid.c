@@ -241,6 +241,8 @@ int main(int argc, char** argv) {
     RUN(test_fluid_corner_images);
     RUN(test_fluid_smoothing_warning);
     RUN(test_fluid_churn_warned);
+    RUN(test_fluid_hexagonal_rest);
+    RUN(test_fluid_hexagonal_fill);
     RUN(test_standing_wave_period);
     RUN(test_drucker_prager_return_on_cone);
     RUN(test_drucker_prager_cones_match_mohr_coulomb);
