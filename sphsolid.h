@@ -971,7 +971,8 @@
                          1.3 fills on the hexagonal lattice, on which it stays at rest; the
                          square lattice's rows slide under its pressure; restart format 7);
                          bench/tank_long (the demo tank left running); floating_block's drafts
-                         from the free surface and the water's volume; dam_break2d and
+                         from the free surface and the water's volume; hydrostatic_fsi --dim 3
+                         (a periodic breadth: plane strain); dam_break2d and
                          elastic_gate against their experiments (bench/dam_break_experiments.csv,
                          bench/lobovsky2014_h300.csv, bench/antoci2007.csv).
       0.17.0 (2026-12-07) viscous flows: fluid_dissipation (the Riemann solver's momentum term
