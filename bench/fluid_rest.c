@@ -10,11 +10,11 @@
    The lattice's shear mode (bench/VALIDATION.md, "Water left running"): --rows N prints at
    every sample the mean horizontal velocity of each of the N lowest rows of particles (the
    square lattice's rows slide in alternate directions, from round-off); --periodic 1 makes x
-   periodic (no side walls); --hexagonal 1 fills the water on a hexagonal lattice of the same
-   area per particle, rows along x (periodic x only: the lattice does not fit side walls).
+   periodic (no side walls); --lattice 0|1|2 is the water's body def lattice (sps_lattice:
+   auto, hexagonal here; square; hexagonal).
 
    Usage: ./build/fluid_rest [--dp 0.04] [--width 1] [--depth 0.5] [--tend 20] [--every 1] [--from 2]
-                             [--rows 0] [--periodic 0] [--hexagonal 0] */
+                             [--rows 0] [--periodic 0] [--lattice 0] */
 #define SPHSOLID_IMPLEMENTATION
 #include "../sphsolid.h"
 #include <math.h>
@@ -36,31 +36,6 @@ static void print_log(int level, const char* message, void* user) {
     (void)level;
     (void)user;
     printf("# %s\n", message);
-}
-
-/* The hexagonal lattice of area dp^2 a particle filling [0, width) x [0, height): rows along x,
-   every other row shifted by half a spacing, the spacing stretched to fit the period width. */
-static sps_result add_hexagonal(sps_world* w, sps_body b, double dp, double width, double height) {
-    const int columns = (int)floor(width / (dp * sqrt(2 / sqrt(3.0))) + 0.5);
-    const double ax = width / columns;
-    const int rows = (int)floor(height * ax / (dp * dp) + 0.5);
-    sps_real* xyz = malloc(sizeof(sps_real) * 3 * (size_t)columns * (size_t)rows);
-    sps_real* vol = malloc(sizeof(sps_real) * (size_t)columns * (size_t)rows);
-    int r, c, n = 0;
-    sps_result result = SPS_ERR_OUT_OF_MEMORY;
-    if (xyz && vol) {
-        for (r = 0; r < rows; ++r)
-            for (c = 0; c < columns; ++c, ++n) {
-                xyz[3 * n] = (sps_real)((c + (r % 2 ? 0.75 : 0.25)) * ax);
-                xyz[3 * n + 1] = (sps_real)((r + 0.5) * height / rows);
-                xyz[3 * n + 2] = 0;
-                vol[n] = (sps_real)(width * height / ((double)columns * rows));
-            }
-        result = sps_body_add_particles(w, b, n, xyz, vol);
-    }
-    free(xyz);
-    free(vol);
-    return result;
 }
 
 /* Prints the mean horizontal velocity of each of the lowest `rows` rows of particles. */
@@ -87,7 +62,7 @@ static double slope(const double* x, const double* y, int n) {
 }
 
 int main(int argc, char** argv) {
-    double dp = 0.04, width = 1, depth = 0.5, t_end = 20, every = 1, from = 2, rows = 0, periodic = 0, hexagonal = 0;
+    double dp = 0.04, width = 1, depth = 0.5, t_end = 20, every = 1, from = 2, rows = 0, periodic = 0, lattice = 0;
     double times[1024], p_means[1024], p_mids[1024], p_tops[1024], tops[1024];
     const double c0 = 10 * sqrt(2 * G_ACC * 0.5);
     sps_world_def wd = sps_default_world_def();
@@ -99,14 +74,14 @@ int main(int argc, char** argv) {
     for (a = 1; a + 1 < argc; a += 2) {
         double* opt = !strcmp(argv[a], "--dp") ? &dp : !strcmp(argv[a], "--width") ? &width : !strcmp(argv[a], "--depth") ? &depth
                     : !strcmp(argv[a], "--tend") ? &t_end : !strcmp(argv[a], "--every") ? &every : !strcmp(argv[a], "--from") ? &from
-                    : !strcmp(argv[a], "--rows") ? &rows : !strcmp(argv[a], "--periodic") ? &periodic : !strcmp(argv[a], "--hexagonal") ? &hexagonal : NULL;
+                    : !strcmp(argv[a], "--rows") ? &rows : !strcmp(argv[a], "--periodic") ? &periodic : !strcmp(argv[a], "--lattice") ? &lattice : NULL;
         if (!opt) break;
         *opt = atof(argv[a + 1]);
     }
     if (a < argc || !(dp > 0) || !(width > 2 * dp) || !(depth > 2 * dp) || !(t_end > 0) || !(every > 0) || t_end / every > 1000 || !(rows >= 0) ||
-        rows > 64 || (hexagonal != 0 && periodic == 0)) {
+        rows > 64 || !(lattice == 0 || lattice == 1 || lattice == 2)) {
         fprintf(stderr, "usage: %s [--dp 0.04] [--width 1] [--depth 0.5] [--tend 20] [--every 1] [--from 2] [--rows 0..64] [--periodic 0|1] "
-                "[--hexagonal 0|1 (with --periodic 1)] (tend/every <= 1000)\n", argv[0]);
+                "[--lattice 0|1|2] (tend/every <= 1000)\n", argv[0]);
         return 2;
     }
     surface = floor(depth / dp + 1e-9) * dp;
@@ -125,9 +100,10 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.density = (sps_real)RHO0;
     bd.material.sound_speed = (sps_real)c0;
+    bd.lattice = (sps_lattice)lattice;
     if (sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI | (periodic != 0 ? SPS_FACE_X_LO | SPS_FACE_X_HI : 0), SPS_WALL_FREE_SLIP) != SPS_OK ||
         sps_world_add_body(w, &bd, &water) != SPS_OK ||
-        (hexagonal != 0 ? add_hexagonal(w, water, dp, width, surface) : sps_body_add_box(w, water, lo, hi, NULL)) != SPS_OK ||
+        sps_body_add_box(w, water, lo, hi, NULL) != SPS_OK ||
         sps_body_set_pressure(w, water, hydrostatic, NULL) != SPS_OK) {
         fprintf(stderr, "%s\n", sps_world_last_error(w));
         return 1;
