@@ -183,8 +183,8 @@
    PLASTICITY (material.kind = SPS_MATERIAL_J2; ANG section 2.2)
       von Mises plasticity with linear isotropic hardening: after the Jaumann update (the trial
       stress tau*) a particle whose |tau*| = sqrt(2 J2) exceeds the yield radius
-      sqrt(2/3)(sigma_Y + kappa alpha) (ANG eq. 11; sigma_Y = material.yield_stress, kappa =
-      material.hardening_modulus) flows by d_gamma = f/(2G + 2 kappa/3), its equivalent plastic
+      sqrt(2/3)(sigma_Y + kappa alpha) (ANG eq. 11; sigma_Y = material.j2.yield_stress, kappa =
+      material.j2.hardening_modulus) flows by d_gamma = f/(2G + 2 kappa/3), its equivalent plastic
       strain alpha grows by sqrt(2/3) d_gamma, and tau = r tau* with r = sqrt(2/3)(sigma_Y +
       kappa alpha)/|tau*| (radial return, ANG eq. 14): exactly on the hardened surface. The
       particle's plastic work grows by V (tau*:tau* - tau:tau)/(4G), the elastic energy the return
@@ -202,7 +202,7 @@
       carries neither, and its kernels contain no return map.
 
    FLUIDS (material.kind = SPS_MATERIAL_FLUID; UTVF sections 2.1, 3.1.1)
-      A weakly compressible fluid: p = c0^2 (rho - rho0) with c0 = material.sound_speed (about
+      A weakly compressible fluid: p = c0^2 (rho - rho0) with c0 = material.fluid.sound_speed (about
       10 times the largest flow speed keeps the density within ~1 %; sps_fluid_sound_speed
       chooses it from the depth and speeds for a density error: SPS_DENSITY_ERROR_GAME trades
       5 % of it for half the sub-steps of a water scene), no shear stress (shear,
@@ -249,7 +249,7 @@
       1.3 dp), joins; the acoustic step stays below h^2 / (14 nu) (its stability) and the
       advection step keeps nu/h below its speed. No-slip walls give it the images' velocity
       2 v_wall - v_j (analytic walls, wall bodies): plane Poiseuille flow (example poiseuille).
-      Numerical dissipation (body def fluid_dissipation): the Riemann solver's momentum term
+      Numerical dissipation (material.fluid.dissipation): the Riemann solver's momentum term
       Z beta (v_ij . e_ij) acts as an artificial viscosity of about 3 |v_ij . e_ij| h, of the
       order of nu at Re 100 on lattices of 30-60 particles per length, so a viscous flow decays
       too fast with it (the Taylor-Green vortex at Re 100, 1/dp 30, h = 1.5 dp: kinetic energy
@@ -389,8 +389,8 @@
    >>material: Drucker-Prager)
       Elastic-perfectly plastic soil: the linear elastic law (c0 = sqrt(K/rho0)), the cone
       f = alpha_phi I1 + sqrt(J2) - k_c and the potential g = alpha_psi I1 + sqrt(J2) (UTVF eqs.
-      11-13; material.cohesion c [Pa], friction_angle phi and dilatancy_angle psi [degrees]),
-      the constants fitted to Mohr-Coulomb as material.yield_cone says (sps_yield_cone). The
+      11-13; material.granular.cohesion c [Pa], friction_angle phi and dilatancy_angle psi [degrees]),
+      the constants fitted to Mohr-Coulomb as material.granular.yield_cone says (sps_yield_cone). The
       default, SPS_CONE_PLANE_STRAIN, is Mohr-Coulomb's strength in plane strain with the
       body's dilatancy (alpha_phi = sin phi / 3, k_c = c cos phi for psi = 0), so a slope stands
       at phi; the papers' cone (UTVF eq. 14, SPS_CONE_PAPERS: alpha_phi = tan phi / sqrt(9 +
@@ -420,7 +420,7 @@
       leaves flow alone (J2's |s|/|s_trial| left it on in flow: C4 clustered 521 particles).
       It is not the default: C4 at L = 0.1 shot a particle off at 0.60 s with it. The other
       shear values are not used. Stress diffusion
-      (Feng et al. 2021; stress_diffusion = zeta, default 0.1, 0: off): d sigma_i/dt +=
+      (Feng et al. 2021; material.granular.stress_diffusion = zeta, default 0.1, 0: off): d sigma_i/dt +=
       2 zeta h c0 sum_j (sigma_i - sigma_j - sigma_geo,ij) r_ij dW/(r_ij^2 + 0.01 h^2) V_j, the
       geostatic difference sigma_geo,ij = -rho0 (g . x_ij) [g^ g^ + K0 (I - g^ g^)] left alone so
       a layer at rest keeps its weight; its pair sums are taken in the pressure pass and used
@@ -465,9 +465,9 @@
       f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji)) (TL eq. 24)
       plus the hourglass force. Its springs (TL eqs. 25-32): particle i holds one to each
       neighbour j, of stiffness k_ij = 1/2 alpha E V0_i V0_j W_ij / X_ij^2 and stretch
-      delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij|, E Young's modulus and alpha = hourglass_alpha
+      delta^i_ij = (F_i X_ij - x_ij) . x_ij/|x_ij|, E Young's modulus and alpha = material.tl.hourglass_alpha
       (default 50, TL Table 1; 0 turns it off); their energy is Phi = sum_i sum_j 1/2 k_ij
-      (delta^i_ij)^2. hourglass = SPS_HOURGLASS_VARIATIONAL (the default) applies -dPhi/dx in
+      (delta^i_ij)^2. material.tl.hourglass = SPS_HOURGLASS_VARIATIONAL (the default) applies -dPhi/dx in
       full: TL eq. 32, f_i += -sum_j (k_ij delta^i_ij + k_ji delta^j_ji) x_ij/|x_ij|, a force
       across the pair from the turn of its direction, and TL eq. 24 applied to the hourglass
       stress Pi_i = 1/V0_i dPhi/dF_i added to P_i (not to the Cauchy stress output), since
@@ -480,8 +480,8 @@
       tensor), is sigma. All forces are antisymmetric in i, j: linear momentum is exact; the
       stress force exerts no torque since P F^T = J sigma is symmetric, and the springs' force is
       the gradient of a rotation-invariant energy (the paper's: central), so angular momentum is
-      exact too (tested: 1e-15 relative in 2D and 3D over 1000 sub-steps). artificial_viscosity
-      = q1 > 0 adds Monaghan's linear artificial viscosity between reference neighbours, q1 c_p h
+      exact too (tested: 1e-15 relative in 2D and 3D over 1000 sub-steps). material.tl.
+      artificial_viscosity = q1 > 0 adds Monaghan's linear artificial viscosity between reference neighbours, q1 c_p h
       rho0 V0_i V0_j |dW(X_ij)| (v_ij . x_ij) x_ij / (|x_ij| (|x_ij|^2 + 0.01 h^2)) (the TL
       author's LAMMPS input: q1 = 0.06; the paper's runs: none): it damps the pairs' stretching
       rates only, hourglass modes among them, and keeps both momenta.
@@ -493,8 +493,8 @@
                          energy mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2 per V0.
       SPS_MATERIAL_J2  (with this solver) the multiplicative elastic-plastic law of the TL
                          frame: F = F_e F_p, Hencky's law in the logarithmic elastic stretches of
-                         b_e = F C_p^-1 F^T, the von Mises radial return in them (yield_stress,
-                         hardening_modulus; chapter >>material: J2 plasticity in the
+                         b_e = F C_p^-1 F^T, the von Mises radial return in them (material.j2:
+                         yield_stress, hardening_modulus; chapter >>material: J2 plasticity in the
                          total-Lagrangian frame), state C_p^-1 (field "plastic_metric", less I)
                          and alpha ("plastic_strain"), plastic work as for updated-Lagrangian J2.
                          The hourglass springs use the yield stress instead of E at particles
@@ -522,7 +522,7 @@
       stress Pi of the variational form included). Contact with other
       bodies and walls is the shared contact pass (tested in the restart round trip: a
       Neo-Hookean block thrown at another over a floor wall).
-      Damage (damage_strain = eps_max > 0; TL section 4.6, chapter >>material: damage in the
+      Damage (material.tl.damage_strain = eps_max > 0; TL section 4.6, chapter >>material: damage in the
       total-Lagrangian frame): each particle carries the damage D in [0, 1] (field "damage",
       VTK array damage, sps_particle_state.damage; saved by sps_world_save, in the last good
       state). While the largest principal Green-Lagrange strain of F_i exceeds eps_max,
@@ -561,14 +561,16 @@
       volume; the shear stress, the velocity gradient, the mean-rotation increments and Gray's
       artificial stress belong to the bodies whose model needs them (an ENO body beside an OG
       body carries no stress). Read them by name: sps_world_field_by_name and sps_body_field.
-      One flat body def carries every kind's parameters; a field set away from its default on
-      a body that does not read it (cohesion on an elastic body, hourglass_alpha on an
-      updated-Lagrangian one, zeta on a GNO-A body, ...) gets one warning from
+      The material def carries each family's parameters in a sub-struct of its own
+      (material.j2, .fluid, .granular, .tl: the field's path names its reader); a field set
+      away from its default on a body that does not read it (material.granular.cohesion on an
+      elastic body, material.tl.hourglass_alpha on an updated-Lagrangian one, zeta on a GNO-A body, ...) gets one warning from
       sps_world_add_body naming each such field (the reads column of sps__body_def_items);
       fields whose combination cannot work are refused instead (the combination rules).
       What zero means, one rule: a term that can be switched off reads 0 as off (damping,
-      hourglass_alpha, artificial_viscosity, stress_diffusion, damage_strain, viscosity,
-      hardening_modulus, cohesion, friction, contact_damping); a coefficient for which 0 would
+      material.tl.hourglass_alpha, .artificial_viscosity, .damage_strain,
+      material.granular.stress_diffusion, .cohesion, material.j2.hardening_modulus,
+      material.viscosity, friction, contact_damping); a coefficient for which 0 would
       be meaningless reads 0 as its published default, and SPS_AUTO (= 0) spells that: zeta
       (0.7 d + 2.1), xi (2), transport_coefficient (0.2), escape_distance (10 body sizes).
 
@@ -791,17 +793,18 @@
       report_fragments 0/1, energy_growth_limit > 0 (INFINITY: off), energy_growth_stops 0/1,
       allocator (both or neither). Body def: cookie, material.density and .youngs_modulus
       (finite > 0), .poisson_ratio (-1, 0.5), the derived sound speed and shear modulus (finite,
-      c0 > 0), for J2 .yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
+      c0 > 0), for J2 material.j2.yield_stress (finite > 0) and .hardening_modulus (finite >= 0), the
       material and shear combination (J2 not with ENO, ENO-A), shear (0..5; OAS only in 2D),
       rotation (0..3), zeta [0, 100], xi [0, 100], penalty_in_pressure_pass 0/1 (1 not with
       rotation = pair or Drucker-Prager), oas_epsilon [0, 1], oas_exponent [1, 12], track_stress 0/1,
       damping finite >= 0 (0 for a wall body), friction finite >= 0 (0 without
       contact and for fluid and Drucker-Prager bodies), material.viscosity finite >= 0 (0 for
       wall and Drucker-Prager bodies), wall friction (finite >= 0, an existing free-slip wall),
-      solver 0..1, hourglass_alpha [0, 1000], hourglass 0..1, damage_strain [0, 100] and
-      artificial_viscosity [0, 1] (> 0 with the total-Lagrangian solver only),
-      stress_diffusion [0, 1], material.cohesion >= 0, friction_angle [0, 90), dilatancy_angle
-      [0, friction_angle], Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian
+      solver 0..1, material.tl.hourglass_alpha [0, 1000], .hourglass 0..1, .damage_strain [0, 100]
+      and .artificial_viscosity [0, 1] (> 0 with the total-Lagrangian solver only),
+      for Drucker-Prager material.granular.stress_diffusion [0, 1], .cohesion >= 0,
+      .friction_angle [0, 90), .dilatancy_angle [0, friction_angle], .yield_cone 0..4, for a
+      fluid material.fluid.dissipation 0..2, Saint Venant-Kirchhoff and Neo-Hookean with the total-Lagrangian
       solver only and that solver with those laws or J2 only. Calls: NULL pointers (defs, outputs,
       callbacks, points, paths), body and observer handles (of this world: a handle of another
       or a destroyed world is refused), boxes (finite, lo < hi), particle counts (a world holds
@@ -992,7 +995,7 @@
                          lattice moment, its acoustic step capped by the viscosity; moving wall
                          surfaces (sps_world_set_wall_velocity); sps_world_write_vtk_series (a
                          .vtk.series index with the times, for ParaView); the demo as WebAssembly;
-                         the Drucker-Prager cone fitted to Mohr-Coulomb (material.yield_cone: plane
+                         the Drucker-Prager cone fitted to Mohr-Coulomb (material.granular.yield_cone: plane
                          strain with the body's dilatancy by default, the papers' eq. 14 and the
                          3D cones kept); open boundaries (sps_body_add_zone: inflow, outflow
                          and kill zones after Lastiwka, Basa and Quinlan 2009; sps_world_reserve;
@@ -1280,12 +1283,12 @@ typedef enum sps_material_kind {
                                  by contact; density, E and nu set its mass and contact stiffness */
     SPS_MATERIAL_J2 = 2,      /* von Mises elastic-plastic: the linear elastic law, and the shear
                                  stress returned radially onto the yield surface
-                                 sqrt(2 J2) = sqrt(2/3)(yield_stress + hardening_modulus alpha),
+                                 sqrt(2 J2) = sqrt(2/3)(j2.yield_stress + j2.hardening_modulus alpha),
                                  alpha the equivalent plastic strain (ANG eqs. 11, 14; MATERIALS).
                                  Needs a stress-based shear formulation: OG, OAS, GNO or GNO-A
                                  (GNO-A is ANG's choice; ENO and ENO-A are refused) */
     SPS_MATERIAL_FLUID = 3,   /* weakly compressible fluid (UTVF section 2.1; FLUIDS): p = c0^2 (rho
-                                 - rho0) with c0 = sound_speed, no shear stress (the body's shear
+                                 - rho0) with c0 = fluid.sound_speed, no shear stress (the body's shear
                                  formulation is not used), the Riemann solver with its
                                  dissipation limiter in the momentum and continuity equations
                                  (UTVF eqs. 16-20), and a Newtonian viscosity if viscosity > 0 */
@@ -1293,12 +1296,12 @@ typedef enum sps_material_kind {
                                  Green-Lagrange strain (TL eq. 19); total-Lagrangian bodies only */
     SPS_MATERIAL_NEO_HOOKEAN = 5, /* compressible Neo-Hookean S = mu (I - C^-1) + lambda ln(J) C^-1
                                  (TL eq. 44); total-Lagrangian bodies only */
-    SPS_MATERIAL_DRUCKER_PRAGER = 6, /* granular: elastic-perfectly plastic Drucker-Prager (cohesion,
-                                 friction_angle, dilatancy_angle; UTVF section 2.3; GRANULAR): the
+    SPS_MATERIAL_DRUCKER_PRAGER = 6, /* granular: elastic-perfectly plastic Drucker-Prager (material.granular:
+                                 cohesion, friction_angle, dilatancy_angle; UTVF section 2.3; GRANULAR): the
                                  whole stress integrated (Jaumann rate, the pressure is its
                                  trace, not a function of density), returned onto the cone, with
                                  the Riemann solver's limited dissipation and stress diffusion
-                                 (stress_diffusion); the shear formulation is not used */
+                                 (granular.stress_diffusion); the shear formulation is not used */
     SPS_MATERIAL_RIGID_DYNAMIC = 7 /* a free rigid body (Box2D's dynamic body; FREE RIGID BODIES): its
                                  particles move as one rigid body by Newton-Euler under the sum
                                  of the forces they receive (contact, walls, fluid, gravity,
@@ -1330,7 +1333,7 @@ typedef enum sps_transport {
                                (UTVF eqs. 31-37) */
 } sps_transport;
 
-/* The numerical dissipation of a fluid body (fluid_dissipation; FLUIDS): which of the Riemann
+/* The numerical dissipation of a fluid body (material.fluid.dissipation; FLUIDS): which of the Riemann
    solver's two dissipative terms it keeps. */
 typedef enum sps_fluid_dissipation {
     SPS_FLUID_DISSIPATION_RIEMANN = 0, /* both: the momentum equation's limited Z beta (v_ij . e_ij) and
@@ -1357,7 +1360,7 @@ typedef enum sps_lattice {
                                   rest, where the square lattice's rows slide within seconds */
 } sps_lattice;
 
-/* The Drucker-Prager cone of a granular body (material.yield_cone; GRANULAR): which Mohr-Coulomb
+/* The Drucker-Prager cone of a granular body (material.granular.yield_cone; GRANULAR): which Mohr-Coulomb
    stress state the cone f = alpha_phi I1 + sqrt(J2) - k_c is fitted to, given phi, psi and c. */
 typedef enum sps_yield_cone {
     SPS_CONE_PLANE_STRAIN = 0, /* Mohr-Coulomb's strength in plane strain with the body's dilatancy
@@ -1374,32 +1377,76 @@ typedef enum sps_yield_cone {
                                   cones' */
 } sps_yield_cone;
 
-/* Material: its kind and constants. */
+/* J2 plasticity's parameters (material.j2; chapter >>material: J2 plasticity). */
+typedef struct sps_j2_def {
+    sps_real yield_stress;      /* initial yield stress sigma_Y [Pa], finite > 0 (must be set for J2).
+                                   Default 0. */
+    sps_real hardening_modulus; /* linear isotropic hardening modulus kappa [Pa], finite >= 0 (0:
+                                   perfect plasticity). Default 0. */
+} sps_j2_def;
+
+/* A weakly compressible fluid's parameters (material.fluid; chapter >>material: weakly
+   compressible fluid). Its viscosity is material.viscosity, shared with the solids' Kelvin-Voigt
+   damping: one Newtonian shear viscosity either way. */
+typedef struct sps_fluid_def {
+    sps_real sound_speed;  /* the artificial sound speed c0 [m/s], finite > 0 (must be set for a
+                              fluid; about 10 times the largest flow speed keeps the density within
+                              1 %, UTVF section 2.1; sps_fluid_sound_speed). The other kinds' c0
+                              follows from E and nu. Default 0. */
+    sps_fluid_dissipation dissipation; /* the Riemann solver's dissipative terms kept
+                              (sps_fluid_dissipation; FLUIDS): a viscous flow that the viscosity
+                              alone keeps stable decays at its physical rate only without the
+                              momentum term (the Taylor-Green vortex, the lid-driven cavity).
+                              Default SPS_FLUID_DISSIPATION_RIEMANN. */
+} sps_fluid_def;
+
+/* A Drucker-Prager (granular) body's parameters (material.granular; chapter >>material:
+   Drucker-Prager; GRANULAR). */
+typedef struct sps_granular_def {
+    sps_real cohesion;        /* cohesion c [Pa], finite >= 0. Default 0. */
+    sps_real friction_angle;  /* friction angle phi [degrees], in [0, 90). Default 0. */
+    sps_real dilatancy_angle; /* dilatancy angle psi [degrees], in [0, friction_angle] (0: no volume
+                                 change in plastic flow). Default 0. */
+    sps_yield_cone yield_cone; /* the cone fitted to Mohr-Coulomb's phi, psi and c (sps_yield_cone).
+                                 Default SPS_CONE_PLANE_STRAIN (a heap stands at phi);
+                                 SPS_CONE_PAPERS reproduces UTVF's figures. */
+    sps_real stress_diffusion; /* the coefficient zeta of the stress diffusion (Feng et al. 2021;
+                                 GRANULAR), [0, 1] (0: off). Default 0.1. */
+} sps_granular_def;
+
+/* A total-Lagrangian body's parameters (material.tl, read by bodies with solver = total
+   Lagrangian, whatever their kind; chapter >>solver: total Lagrangian; TOTAL-LAGRANGIAN). */
+typedef struct sps_tl_def {
+    sps_real hourglass_alpha;  /* the hourglass coefficient alpha of TL eq. 32, [0, 1000] (0: no
+                                  hourglass control). Default 50. */
+    sps_hourglass hourglass;   /* the form of the hourglass force, 0..1. Default
+                                  SPS_HOURGLASS_VARIATIONAL. */
+    sps_real artificial_viscosity; /* Monaghan's linear artificial viscosity q1 between reference
+                                  neighbours (TOTAL-LAGRANGIAN), [0, 1]; 0: none. Default 0. */
+    sps_real damage_strain;    /* the damage threshold eps_max of TL section 4.6, a principal
+                                  Green-Lagrange strain (dimensionless), [0, 100]; past it the
+                                  damage D grows and degrades the tensile stress
+                                  (TOTAL-LAGRANGIAN). 0: no damage. Default 0. */
+} sps_tl_def;
+
+/* Material: its kind, the constants every kind shares, and one sub-struct of parameters per
+   family of kinds, read only by the kinds (or the solver) it names: a body that sets one its
+   kind does not read gets a warning (sps_world_add_body). */
 typedef struct sps_material_def {
     sps_real density;        /* reference density rho0 [kg/m^3], > 0. Default 1000. */
-    sps_real youngs_modulus; /* E [Pa], > 0. Default 1e6. */
-    sps_real poisson_ratio;  /* nu, in (-1, 0.5). Default 0.3. */
+    sps_real youngs_modulus; /* E [Pa], > 0 (not read by fluids). Default 1e6. */
+    sps_real poisson_ratio;  /* nu, in (-1, 0.5) (not read by fluids). Default 0.3. */
     sps_material_kind kind;  /* Default SPS_MATERIAL_ELASTIC. */
-    sps_real yield_stress;   /* J2: initial yield stress sigma_Y [Pa], finite > 0 (must be set for
-                                J2; ignored by the other kinds). Default 0. */
-    sps_real hardening_modulus; /* J2: linear isotropic hardening modulus kappa [Pa], finite >= 0
-                                   (0: perfect plasticity); ignored by the other kinds. Default 0. */
-    sps_real sound_speed;    /* fluid: the artificial sound speed c0 [m/s], finite > 0 (must be set
-                                for a fluid; about 10 times the largest flow speed keeps the
-                                density within 1 %, UTVF section 2.1); ignored by the other
-                                kinds, whose c0 follows from E and nu. Default 0. */
     sps_real viscosity;      /* fluid: the dynamic viscosity mu [Pa s], finite >= 0 (0: inviscid).
                                 Elastic, J2, Saint Venant-Kirchhoff, Neo-Hookean: the Kelvin-Voigt
                                 viscosity eta [Pa s], finite >= 0, the material damping (DAMPING:
                                 vibrations decay, rigid motion is not braked; 0: none). Not for
-                                rigid and Drucker-Prager bodies. Default 0. */
-    sps_real cohesion;       /* Drucker-Prager: cohesion c [Pa], finite >= 0. Default 0. */
-    sps_real friction_angle; /* Drucker-Prager: friction angle phi [degrees], in [0, 90). Default 0. */
-    sps_real dilatancy_angle; /* Drucker-Prager: dilatancy angle psi [degrees], in [0, friction_angle]
-                                (0: no volume change in plastic flow). Default 0. */
-    sps_yield_cone yield_cone; /* Drucker-Prager: the cone fitted to Mohr-Coulomb's phi, psi and c
-                                (sps_yield_cone). Default SPS_CONE_PLANE_STRAIN (a heap stands at
-                                phi); SPS_CONE_PAPERS reproduces UTVF's figures. */
+                                rigid and Drucker-Prager bodies. Shared rather than per kind: it
+                                is the one Newtonian shear viscosity of both. Default 0. */
+    sps_j2_def j2;             /* SPS_MATERIAL_J2 */
+    sps_fluid_def fluid;       /* SPS_MATERIAL_FLUID */
+    sps_granular_def granular; /* SPS_MATERIAL_DRUCKER_PRAGER */
+    sps_tl_def tl;             /* solver = SPS_SOLVER_TOTAL_LAGRANGIAN */
 } sps_material_def;
 
 /* Body definition: a material, a shear formulation and which outputs the body needs. */
@@ -1429,16 +1476,6 @@ typedef struct sps_body_def {
                                   dv/dt = a - c v (DAMPING; numerical, not a physical material
                                   damping: for reaching a static equilibrium). 0 = off. Not for
                                   wall bodies. Default 0. */
-    sps_real hourglass_alpha;  /* total-Lagrangian bodies: the hourglass coefficient alpha of TL
-                                  eq. 32, [0, 1000] (0: no hourglass control). Default 50. */
-    sps_hourglass hourglass;   /* total-Lagrangian bodies: the form of the hourglass force, 0..1.
-                                  Default SPS_HOURGLASS_VARIATIONAL. */
-    sps_real artificial_viscosity; /* total-Lagrangian bodies: Monaghan's linear artificial
-                                  viscosity q1 between reference neighbours (TOTAL-LAGRANGIAN),
-                                  [0, 1]; 0: none. Default 0. */
-    sps_real stress_diffusion; /* Drucker-Prager bodies: the coefficient zeta of the stress
-                                  diffusion (Feng et al. 2021; GRANULAR), [0, 1] (0: off).
-                                  Default 0.1. */
     sps_real friction;         /* Coulomb friction coefficient mu, finite >= 0, of its contacts
                                   with other bodies and walls (CONTACT); a pair's is the geometric
                                   mean sqrt(mu_a mu_b), so a frictionless partner (0) gives none.
@@ -1451,15 +1488,6 @@ typedef struct sps_body_def {
                                   on the normal velocity. The bounce's restitution it gives is
                                   measured, not set (CONTACT). Needs contact = 1; not for fluid and
                                   Drucker-Prager bodies. 0: none (elastic contact). Default 0. */
-    sps_real damage_strain;    /* total-Lagrangian bodies: the damage threshold eps_max of TL
-                                  section 4.6, a principal Green-Lagrange strain (dimensionless),
-                                  [0, 100]; past it the damage D grows and degrades the tensile
-                                  stress (TOTAL-LAGRANGIAN). 0: no damage. Default 0. */
-    sps_fluid_dissipation fluid_dissipation; /* fluids: the Riemann solver's dissipative terms kept
-                                  (sps_fluid_dissipation; FLUIDS): a viscous flow that the
-                                  viscosity alone keeps stable decays at its physical rate only
-                                  without the momentum term (the Taylor-Green vortex, the
-                                  lid-driven cavity). Default SPS_FLUID_DISSIPATION_RIEMANN. */
     int transport_carries_velocity; /* 1: the transport correction's shift dr_i carries the
                                   velocity with it, v_i += L_i dr_i (L the velocity gradient), and
                                   UTVF's sums take the walls' images as TVF's (TRANSPORT); for bodies with a
@@ -1531,7 +1559,7 @@ typedef struct sps_particle_state {
     sps_real density, pressure, von_mises; /* von_mises is 0 unless the body tracks stress */
     int body_index;
     sps_real plastic_strain;  /* equivalent plastic strain alpha (0 unless the body is J2) */
-    sps_real damage;          /* damage D in [0, 1] (0 unless the body has damage_strain > 0) */
+    sps_real damage;          /* damage D in [0, 1] (0 unless the body has material.tl.damage_strain > 0) */
 } sps_particle_state;
 
 /* Callback of sps_body_set_velocity: v from the reference position x (both length 3). */
@@ -1558,7 +1586,7 @@ SPSDEF sps_world_def sps_default_world_def(void);
 SPSDEF sps_material_def sps_default_material_def(void);
 SPSDEF sps_body_def sps_default_body_def(void);
 
-/* The sound speed c0 [m/s] for a fluid (material.sound_speed) whose density may vary by the
+/* The sound speed c0 [m/s] for a fluid (material.fluid.sound_speed) whose density may vary by the
    fraction density_error e, in (0, 0.5]: U / sqrt(e), U the larger of flow_speed and the
    free-fall speed sqrt(2 g depth) of water `depth` deep under gravity of magnitude g (the
    dynamic pressure rho U^2 against rho c0^2; it also bounds the hydrostatic compression at the
@@ -1567,7 +1595,7 @@ SPSDEF sps_body_def sps_default_body_def(void);
    for a density within 5 % (bench/VALIDATION.md, "The natural set-up"). 0 for an
    argument out of range (not finite, negative, or e outside (0, 0.5]) and when g depth and
    flow_speed are all 0 (no speed to scale by), which the body's check then refuses as
-   material.sound_speed = 0. */
+   material.fluid.sound_speed = 0. */
 #define SPS_DENSITY_ERROR_ACCURATE 0.01
 #define SPS_DENSITY_ERROR_GAME 0.05
 SPSDEF sps_real sps_fluid_sound_speed(sps_real gravity, sps_real depth, sps_real flow_speed, sps_real density_error);
@@ -1866,7 +1894,7 @@ SPSDEF const sps_real* sps_world_field(const sps_world* w, sps_field f);
    if its model needs them (FIELDS), as well as "shear_increment_x" .. (mean rotation),
    "artificial_stress" (3: xx xy yy, OAS), and for J2 bodies "plastic_strain" (alpha),
    "plastic_work" [J] and, with a GNO penalty, "return_factor" (the last sub-step's r); a
-   total-Lagrangian body with damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
+   total-Lagrangian body with material.tl.damage_strain > 0 has "damage" (D, TOTAL-LAGRANGIAN); a
    Drucker-Prager body "plastic_strain" (accumulated deviatoric), "plastic_work" and, with
    stress diffusion, "stress_diffusion" (6: the last sub-step's rate, GRANULAR) and, in a world
    with a no-slip wall, "wall_equilibrium" (21: d sigma / dx and rho b of the particles within
@@ -2207,9 +2235,9 @@ typedef struct sps__yield_cone {
    of the other kinds get a warning when set (sps__warn_unread_fields). */
 enum {
     SPS__READS_MODULI = 1,      /* youngs_modulus, poisson_ratio */
-    SPS__READS_HARDENING = 2,   /* yield_stress, hardening_modulus (J2) */
-    SPS__READS_SOUND_SPEED = 4, /* sound_speed (fluid) */
-    SPS__READS_CONE = 8,        /* cohesion, friction_angle, dilatancy_angle and stress_diffusion (Drucker-Prager) */
+    SPS__READS_HARDENING = 2,   /* material.j2 (J2) */
+    SPS__READS_SOUND_SPEED = 4, /* material.fluid (fluid) */
+    SPS__READS_CONE = 8,        /* material.granular (Drucker-Prager) */
     SPS__READS_STRESS = 16      /* track_stress and, updated Lagrangian, the shear formulation: a stress of its own */
 };
 
@@ -2304,12 +2332,12 @@ typedef struct sps__model {
     int viscous;  /* SPS__VISCOUS_NEWTON: a Newtonian viscous force (a fluid with viscosity > 0);
                      SPS__VISCOUS_KELVIN_VOIGT: a solid's material damping (>>material: Kelvin-Voigt) */
     int riemann_density; /* the continuity equation's Riemann pressure term (fluids, granular) */
-    int diffusion; /* the stress diffusion of a Drucker-Prager body (def stress_diffusion > 0) */
+    int diffusion; /* the stress diffusion of a Drucker-Prager body (material.granular.stress_diffusion > 0) */
     int mirrored;  /* walls act through mirror particles (the material's choice) */
     int pressure_of_density; /* the half drift sets p from rho (not for Drucker-Prager) */
     sps_transport transport; /* the transport correction after each sub-step (>>transport) */
     int total_lagrangian; /* reference neighbours and gradients (chapter >>solver: total Lagrangian) */
-    int damage;   /* total Lagrangian with damage_strain > 0: the damage field (TL eqs. 45-46) */
+    int damage;   /* total Lagrangian with material.tl.damage_strain > 0: the damage field (TL eqs. 45-46) */
     int free_rigid; /* a free rigid body: its particles move as one body by Newton-Euler (chapter
                        >>material: free rigid bodies); its row is kinematic (no pass of its own) */
     sps__passes pass;
@@ -2389,7 +2417,7 @@ typedef struct sps__body {
     sps__yield_cone cone;  /* Drucker-Prager: the yield cone */
     sps_real limiter_eta_c0; /* eta / c0 of the Riemann dissipation limiter (UTVF eq. 20), 0: none */
     sps_real density_diffusion; /* 1: the Riemann solver's density term in the continuity sums, 0: none
-                                   (a fluid's fluid_dissipation = none; sps__fluid_rest_gradient) */
+                                   (a fluid's material.fluid.dissipation = none; sps__fluid_rest_gradient) */
     sps_real diffusion_rate; /* 2 zeta h c0 of the stress diffusion */
     sps_real viscous_coefficient; /* a viscous fluid: 2 mu / the lattice's kernel-gradient moment
                                      (sps__fluid_rest_gradient; the Newtonian force's factor) */
@@ -2602,7 +2630,7 @@ typedef enum {
     SPS__NEED_WALL_EQUILIBRIUM, /* a Drucker-Prager body in a world with a no-slip wall */
     SPS__NEED_TOTAL_LAGRANGIAN, /* a total-Lagrangian body */
     SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC, /* a total-Lagrangian J2 body */
-    SPS__NEED_DAMAGE,      /* a total-Lagrangian body with damage (damage_strain > 0) */
+    SPS__NEED_DAMAGE,      /* a total-Lagrangian body with damage (material.tl.damage_strain > 0) */
     SPS__NEED_KELVIN_VOIGT /* a solid with material damping (material.viscosity > 0) or contact
                               damping (contact_damping > 0): the dissipated work */
 } sps__need;
@@ -2938,6 +2966,8 @@ SPSDEF sps_material_def sps_default_material_def(void) {
     m.density = SPS_R(1000.0);
     m.youngs_modulus = SPS_R(1e6);
     m.poisson_ratio = SPS_R(0.3);
+    m.tl.hourglass_alpha = 50;                      /* TL section 4.2, Table 1 */
+    m.granular.stress_diffusion = SPS_R(0.1);       /* Feng et al. 2021, as UTVF section 3.1.3 */
     return m;
 }
 
@@ -2961,8 +2991,6 @@ SPSDEF sps_body_def sps_default_body_def(void) {
     d.oas_epsilon = SPS_R(0.3);
     d.oas_exponent = 4;
     d.contact = 1;
-    d.hourglass_alpha = 50; /* TL section 4.2, Table 1 */
-    d.stress_diffusion = SPS_R(0.1); /* Feng et al. 2021, as UTVF section 3.1.3 */
     d.internal_cookie = SPS__COOKIE;
     return d;
 }
@@ -3090,14 +3118,14 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM(material.density, SPS__DEF_REAL),
     SPS__BODY_ITEM_READ_BY(material.youngs_modulus, SPS__DEF_REAL, sps__reads_elastic_moduli),
     SPS__BODY_ITEM_READ_BY(material.poisson_ratio, SPS__DEF_REAL, sps__reads_elastic_moduli),
-    SPS__BODY_ITEM_READ_BY(material.yield_stress, SPS__DEF_REAL, sps__reads_j2),
-    SPS__BODY_ITEM_READ_BY(material.hardening_modulus, SPS__DEF_REAL, sps__reads_j2),
-    SPS__BODY_ITEM_READ_BY(material.sound_speed, SPS__DEF_REAL, sps__reads_fluid),
+    SPS__BODY_ITEM_READ_BY(material.j2.yield_stress, SPS__DEF_REAL, sps__reads_j2),
+    SPS__BODY_ITEM_READ_BY(material.j2.hardening_modulus, SPS__DEF_REAL, sps__reads_j2),
+    SPS__BODY_ITEM_READ_BY(material.fluid.sound_speed, SPS__DEF_REAL, sps__reads_fluid),
     SPS__BODY_ITEM(material.viscosity, SPS__DEF_REAL), /* the kinds that do not read it refuse it (sps__combination_rules) */
-    SPS__BODY_ITEM_READ_BY(material.cohesion, SPS__DEF_REAL, sps__reads_drucker_prager),
-    SPS__BODY_ITEM_READ_BY(material.friction_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
-    SPS__BODY_ITEM_READ_BY(material.dilatancy_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
-    SPS__BODY_ITEM_READ_BY(material.yield_cone, SPS__DEF_INT, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.granular.cohesion, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.granular.friction_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.granular.dilatancy_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.granular.yield_cone, SPS__DEF_INT, sps__reads_drucker_prager),
     SPS__BODY_ITEM_READ_BY(shear, SPS__DEF_INT, sps__reads_shear),
     SPS__BODY_ITEM_READ_BY(rotation, SPS__DEF_INT, sps__reads_rotation),
     SPS__BODY_ITEM_READ_BY(zeta, SPS__DEF_REAL, sps__reads_zeta),
@@ -3110,14 +3138,14 @@ static const sps__def_item sps__body_def_items[] = {
     SPS__BODY_ITEM(contact, SPS__DEF_INT),
     SPS__BODY_ITEM_READ_BY(transport_coefficient, SPS__DEF_REAL, sps__reads_transport_coefficient),
     SPS__BODY_ITEM(damping, SPS__DEF_REAL),
-    SPS__BODY_ITEM_READ_BY(hourglass_alpha, SPS__DEF_REAL, sps__reads_total_lagrangian),
-    SPS__BODY_ITEM_READ_BY(hourglass, SPS__DEF_INT, sps__reads_total_lagrangian),
-    SPS__BODY_ITEM(artificial_viscosity, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
-    SPS__BODY_ITEM_READ_BY(stress_diffusion, SPS__DEF_REAL, sps__reads_drucker_prager),
+    SPS__BODY_ITEM_READ_BY(material.tl.hourglass_alpha, SPS__DEF_REAL, sps__reads_total_lagrangian),
+    SPS__BODY_ITEM_READ_BY(material.tl.hourglass, SPS__DEF_INT, sps__reads_total_lagrangian),
+    SPS__BODY_ITEM(material.tl.artificial_viscosity, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
+    SPS__BODY_ITEM_READ_BY(material.granular.stress_diffusion, SPS__DEF_REAL, sps__reads_drucker_prager),
     SPS__BODY_ITEM(friction, SPS__DEF_REAL),
     SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
-    SPS__BODY_ITEM(damage_strain, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
-    SPS__BODY_ITEM_READ_BY(fluid_dissipation, SPS__DEF_INT, sps__reads_fluid),
+    SPS__BODY_ITEM(material.tl.damage_strain, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
+    SPS__BODY_ITEM_READ_BY(material.fluid.dissipation, SPS__DEF_INT, sps__reads_fluid),
     SPS__BODY_ITEM_READ_BY(transport_carries_velocity, SPS__DEF_INT, sps__reads_transport_coefficient),
     SPS__BODY_ITEM(lattice, SPS__DEF_INT)};
 #define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
@@ -3227,10 +3255,10 @@ static const sps__material_model sps__free_rigid_material = {SPS_MATERIAL_RIGID_
 static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
     int broken = 0;
     sps__elastic_check(m, msg, msg_size, &broken);
-    SPS__CHECK(m->yield_stress > 0 && sps__finite(m->yield_stress), "material.yield_stress = %g, allowed finite > 0 Pa for J2",
-               (double)m->yield_stress);
-    SPS__CHECK(m->hardening_modulus >= 0 && sps__finite(m->hardening_modulus),
-               "material.hardening_modulus = %g, allowed finite >= 0 Pa for J2 (0: perfect plasticity)", (double)m->hardening_modulus);
+    SPS__CHECK(m->j2.yield_stress > 0 && sps__finite(m->j2.yield_stress), "material.j2.yield_stress = %g, allowed finite > 0 Pa for J2",
+               (double)m->j2.yield_stress);
+    SPS__CHECK(m->j2.hardening_modulus >= 0 && sps__finite(m->j2.hardening_modulus),
+               "material.j2.hardening_modulus = %g, allowed finite >= 0 Pa for J2 (0: perfect plasticity)", (double)m->j2.hardening_modulus);
     *broken_out += broken;
 }
 /* Its combination rule (sps__combination_rules): the return map needs the stress force. */
@@ -3309,30 +3337,34 @@ static sps_real sps__lattice_gradient_moment(const sps_world* w, int hexagonal);
    fluid without it has nothing to stop a zigzag mode). */
 static int sps__inviscid_undissipated(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->material.kind == SPS_MATERIAL_FLUID && def->fluid_dissipation != SPS_FLUID_DISSIPATION_RIEMANN &&
+    return def->material.kind == SPS_MATERIAL_FLUID && def->material.fluid.dissipation != SPS_FLUID_DISSIPATION_RIEMANN &&
            !(def->material.viscosity > 0);
 }
 
-/* c0 is given (sound_speed), K = rho0 c0^2 and no shear modulus: a fluid's pressure is its only
+/* c0 is given (material.fluid.sound_speed), K = rho0 c0^2 and no shear modulus: a fluid's pressure is its only
    stress, besides the viscous force when viscosity > 0 (sps__pressure). */
 static sps__material_constants sps__fluid_constants(const sps_material_def* m) {
     sps__material_constants c;
-    c.c0 = m->sound_speed;
-    c.K = m->density * m->sound_speed * m->sound_speed;
+    c.c0 = m->fluid.sound_speed;
+    c.K = m->density * m->fluid.sound_speed * m->fluid.sound_speed;
     c.G = 0;
     return c;
 }
 static void sps__fluid_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
     int broken = 0;
     SPS__CHECK(m->density > 0 && sps__finite(m->density), "material.density = %g, allowed finite > 0", (double)m->density);
-    SPS__CHECK(m->sound_speed > 0 && sps__finite(m->sound_speed),
-               "material.sound_speed = %g, allowed finite > 0 m/s for a fluid (about 10 times the largest flow speed)", (double)m->sound_speed);
+    SPS__CHECK(m->fluid.sound_speed > 0 && sps__finite(m->fluid.sound_speed),
+               "material.fluid.sound_speed = %g, allowed finite > 0 m/s for a fluid (about 10 times the largest flow speed)", (double)m->fluid.sound_speed);
     SPS__CHECK(m->viscosity >= 0 && sps__finite(m->viscosity), "material.viscosity = %g, allowed finite >= 0 Pa s (0: inviscid)",
                (double)m->viscosity);
+    SPS__CHECK(m->fluid.dissipation == SPS_FLUID_DISSIPATION_RIEMANN || m->fluid.dissipation == SPS_FLUID_DISSIPATION_DENSITY ||
+                   m->fluid.dissipation == SPS_FLUID_DISSIPATION_NONE,
+               "material.fluid.dissipation = %d, allowed 0 (the Riemann solver's), 1 (density diffusion only) or 2 (none) for a fluid",
+               (int)m->fluid.dissipation);
     if (!broken) {
         const sps__material_constants c = sps__fluid_constants(m);
-        SPS__CHECK(sps__finite(c.K) && c.K > 0, "material: bulk modulus rho0 c0^2 = %g Pa from density = %g and sound_speed = %g, allowed finite > 0",
-                   (double)c.K, (double)m->density, (double)m->sound_speed);
+        SPS__CHECK(sps__finite(c.K) && c.K > 0, "material: bulk modulus rho0 c0^2 = %g Pa from density = %g and fluid.sound_speed = %g, allowed finite > 0",
+                   (double)c.K, (double)m->density, (double)m->fluid.sound_speed);
     }
     *broken_out += broken;
 }
@@ -3383,10 +3415,10 @@ static void sps__fluid_rest_gradient(const sps_world* w, sps__body* b) {
        same moment -sum_j x_ij,x^2 dW/r V_j (0.974 at h = 1.3 dp in 2D): Poiseuille flow ran 2.7 %
        fast at every resolution until it was divided out */
     b->viscous_coefficient = 2 * b->def.material.viscosity / sps__lattice_gradient_moment(w, b->hexagonal);
-    /* fluid_dissipation: the limiter at 0 makes beta = 0 in every pair (no momentum term), the
+    /* material.fluid.dissipation: the limiter at 0 makes beta = 0 in every pair (no momentum term), the
        density term's factor 0 leaves its sum out; the default keeps both bit for bit */
-    if (b->def.fluid_dissipation != SPS_FLUID_DISSIPATION_RIEMANN) b->limiter_eta_c0 = 0;
-    if (b->def.fluid_dissipation == SPS_FLUID_DISSIPATION_NONE) b->density_diffusion = 0;
+    if (b->def.material.fluid.dissipation != SPS_FLUID_DISSIPATION_RIEMANN) b->limiter_eta_c0 = 0;
+    if (b->def.material.fluid.dissipation == SPS_FLUID_DISSIPATION_NONE) b->density_diffusion = 0;
 }
 /* Whether the world gives a fluid a hydrostatic column: gravity along an axis that is not
    periodic. */
@@ -3450,7 +3482,7 @@ static sps_real sps__inscribed_alpha(sps_real theta) {
     const sps_real tan_theta = SPS__SIN(theta) / SPS__COS(theta);
     return tan_theta / SPS__SQRT(9 + 12 * tan_theta * tan_theta);
 }
-/* The cone of a def (its yield_cone): alpha_phi, k_c, alpha_psi and K0 = 1 - sin(phi), the
+/* The cone of a def (its granular.yield_cone): alpha_phi, k_c, alpha_psi and K0 = 1 - sin(phi), the
    at-rest ratio of horizontal to vertical stress (Jaky) of the geostatic stress.
    Plane strain: with the potential's alpha_psi = a (the inscribed form, which gives the plane-
    strain dilatancy sin psi), zero plastic strain out of the plane sets s_zz = -2 a sqrt(J2), so
@@ -3459,34 +3491,34 @@ static sps_real sps__inscribed_alpha(sps_real theta) {
    alpha_phi = sin phi / (3 (sqrt(1 - 3a^2) + a sin phi)) and k_c = c cos phi (1 - 3 alpha_phi a) /
    sqrt(1 - 3a^2) (for a = alpha_phi: UTVF eq. 14; for psi = 0: sin phi / 3 and c cos phi). */
 static sps__yield_cone sps__yield_cone_of(const sps_material_def* m) {
-    const sps_real deg = SPS_R(3.14159265358979323846) / 180, phi = m->friction_angle * deg, psi = m->dilatancy_angle * deg;
+    const sps_real deg = SPS_R(3.14159265358979323846) / 180, phi = m->granular.friction_angle * deg, psi = m->granular.dilatancy_angle * deg;
     sps__yield_cone c;
-    switch (m->yield_cone) {
+    switch (m->granular.yield_cone) {
     case SPS_CONE_PLANE_STRAIN: {
         const sps_real a = sps__inscribed_alpha(psi), root = SPS__SQRT(1 - 3 * a * a);
         c.alpha_phi = SPS__SIN(phi) / (3 * (root + a * SPS__SIN(phi)));
-        c.k_c = m->cohesion * SPS__COS(phi) * (1 - 3 * c.alpha_phi * a) / root;
+        c.k_c = m->granular.cohesion * SPS__COS(phi) * (1 - 3 * c.alpha_phi * a) / root;
         c.alpha_psi = a;
         break;
     }
     case SPS_CONE_PAPERS: {
         const sps_real tan_phi = SPS__SIN(phi) / SPS__COS(phi), root_phi = SPS__SQRT(9 + 12 * tan_phi * tan_phi);
         c.alpha_phi = tan_phi / root_phi;
-        c.k_c = 3 * m->cohesion / root_phi;
+        c.k_c = 3 * m->granular.cohesion / root_phi;
         c.alpha_psi = sps__inscribed_alpha(psi);
         break;
     }
     case SPS_CONE_COMPRESSION:
     case SPS_CONE_EXTENSION: {
-        const sps_real meridian = m->yield_cone == SPS_CONE_COMPRESSION ? -1 : 1;
+        const sps_real meridian = m->granular.yield_cone == SPS_CONE_COMPRESSION ? -1 : 1;
         c.alpha_phi = sps__meridian_alpha(phi, meridian);
-        c.k_c = sps__meridian_k(phi, m->cohesion, meridian);
+        c.k_c = sps__meridian_k(phi, m->granular.cohesion, meridian);
         c.alpha_psi = sps__meridian_alpha(psi, meridian);
         break;
     }
     case SPS_CONE_COMPROMISE:
         c.alpha_phi = (sps__meridian_alpha(phi, -1) + sps__meridian_alpha(phi, 1)) / 2;
-        c.k_c = (sps__meridian_k(phi, m->cohesion, -1) + sps__meridian_k(phi, m->cohesion, 1)) / 2;
+        c.k_c = (sps__meridian_k(phi, m->granular.cohesion, -1) + sps__meridian_k(phi, m->granular.cohesion, 1)) / 2;
         c.alpha_psi = (sps__meridian_alpha(psi, -1) + sps__meridian_alpha(psi, 1)) / 2;
         break;
     }
@@ -3496,20 +3528,22 @@ static sps__yield_cone sps__yield_cone_of(const sps_material_def* m) {
 static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
     int broken = 0;
     sps__elastic_check(m, msg, msg_size, &broken);
-    SPS__CHECK(m->cohesion >= 0 && sps__finite(m->cohesion), "material.cohesion = %g, allowed finite >= 0 Pa for Drucker-Prager",
-               (double)m->cohesion);
-    SPS__CHECK(m->friction_angle >= 0 && m->friction_angle < 90, "material.friction_angle = %g, allowed [0, 90) degrees for Drucker-Prager",
-               (double)m->friction_angle);
-    SPS__CHECK(m->dilatancy_angle >= 0 && m->dilatancy_angle <= m->friction_angle,
-               "material.dilatancy_angle = %g, allowed [0, friction_angle = %g] degrees for Drucker-Prager", (double)m->dilatancy_angle,
-               (double)m->friction_angle);
-    SPS__CHECK(m->yield_cone >= SPS_CONE_PLANE_STRAIN && m->yield_cone <= SPS_CONE_COMPROMISE,
-               "material.yield_cone = %d, allowed %d (SPS_CONE_PLANE_STRAIN) to %d (SPS_CONE_COMPROMISE) for Drucker-Prager",
-               (int)m->yield_cone, (int)SPS_CONE_PLANE_STRAIN, (int)SPS_CONE_COMPROMISE);
+    SPS__CHECK(m->granular.cohesion >= 0 && sps__finite(m->granular.cohesion), "material.granular.cohesion = %g, allowed finite >= 0 Pa for Drucker-Prager",
+               (double)m->granular.cohesion);
+    SPS__CHECK(m->granular.friction_angle >= 0 && m->granular.friction_angle < 90, "material.granular.friction_angle = %g, allowed [0, 90) degrees for Drucker-Prager",
+               (double)m->granular.friction_angle);
+    SPS__CHECK(m->granular.dilatancy_angle >= 0 && m->granular.dilatancy_angle <= m->granular.friction_angle,
+               "material.granular.dilatancy_angle = %g, allowed [0, material.granular.friction_angle = %g] degrees for Drucker-Prager", (double)m->granular.dilatancy_angle,
+               (double)m->granular.friction_angle);
+    SPS__CHECK(m->granular.yield_cone >= SPS_CONE_PLANE_STRAIN && m->granular.yield_cone <= SPS_CONE_COMPROMISE,
+               "material.granular.yield_cone = %d, allowed %d (SPS_CONE_PLANE_STRAIN) to %d (SPS_CONE_COMPROMISE) for Drucker-Prager",
+               (int)m->granular.yield_cone, (int)SPS_CONE_PLANE_STRAIN, (int)SPS_CONE_COMPROMISE);
+    SPS__CHECK(m->granular.stress_diffusion >= 0 && m->granular.stress_diffusion <= 1,
+               "material.granular.stress_diffusion = %g, allowed [0, 1] (0: off) for Drucker-Prager", (double)m->granular.stress_diffusion);
     *broken_out += broken;
 }
 /* A Drucker-Prager body's stabilisation: the divergence of its stress (UTVF eq. 25) and the
-   stress diffusion (its def's stress_diffusion), no hourglass penalty (the reference code's). */
+   stress diffusion (its def's granular.stress_diffusion), no hourglass penalty (the reference code's). */
 static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular stress", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
 /* Its row (sps__material_model; the columns: >>material: linear elastic): eta = 20 d for granular
    bodies (UTVF section 3.1.3, after Zhang et al. 2024); mirror walls as the reference code's
@@ -3525,13 +3559,13 @@ static const sps__stabilisation* sps__granular_stabilisation(const sps_body_def*
 /* Its warnings (sps__material_warnings): angles that look like radians. */
 static void sps__granular_warnings(const sps_world* w, const sps__body* b) {
     const sps_material_def* m = &b->def.material;
-    if (m->friction_angle > 0 && m->friction_angle <= SPS__PI / 2) /* soils and granular media: 20 to 45 degrees */
-        sps__warn(w, "body '%s': material.friction_angle = %g and dilatancy_angle = %g look like radians (%g and %g degrees); both are "
-                  "in degrees, plausible range [5, 60]", b->name, (double)m->friction_angle, (double)m->dilatancy_angle,
-                  (double)(m->friction_angle * 180 / SPS__PI), (double)(m->dilatancy_angle * 180 / SPS__PI));
+    if (m->granular.friction_angle > 0 && m->granular.friction_angle <= SPS__PI / 2) /* soils and granular media: 20 to 45 degrees */
+        sps__warn(w, "body '%s': material.granular.friction_angle = %g and dilatancy_angle = %g look like radians (%g and %g degrees); both are "
+                  "in degrees, plausible range [5, 60]", b->name, (double)m->granular.friction_angle, (double)m->granular.dilatancy_angle,
+                  (double)(m->granular.friction_angle * 180 / SPS__PI), (double)(m->granular.dilatancy_angle * 180 / SPS__PI));
 }
 /* Its model (sps__kind_model): the stress diffusion where the def sets it. */
-static void sps__granular_model(const sps_body_def* def, sps__model* m) { m->diffusion = def->stress_diffusion > 0; }
+static void sps__granular_model(const sps_body_def* def, sps__model* m) { m->diffusion = def->material.granular.stress_diffusion > 0; }
 /* Its combination rule (sps__combination_rules): the penalty is kept per particle. */
 static int sps__granular_pair_rotation(int dim, const sps_body_def* def) {
     (void)dim;
@@ -3545,7 +3579,7 @@ static void sps__granular_setup(const sps_world* w, sps__body* b) {
     const sps_real g_norm = SPS__SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
     int a;
     b->cone = sps__yield_cone_of(&b->def.material);
-    b->diffusion_rate = 2 * b->def.stress_diffusion * w->h * b->mat.c0;
+    b->diffusion_rate = 2 * b->def.material.granular.stress_diffusion * w->h * b->mat.c0;
     b->divergence_scale = 1 / sps__lattice_gradient_moment(w, b->hexagonal);
     for (a = 0; a < 6; ++a) {
         const sps_real vertical = g_norm > 0 ? g[sps__sym_row[a]] * g[sps__sym_col[a]] / (g_norm * g_norm) : 0;
@@ -3935,11 +3969,11 @@ static int sps__shifted_reference(int dim, const sps_body_def* def) {
 }
 static int sps__damage_updated(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->damage_strain > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
+    return def->material.tl.damage_strain > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
 static int sps__viscosity_updated(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->artificial_viscosity > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
+    return def->material.tl.artificial_viscosity > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
 static int sps__viscous_wall_or_granular(int dim, const sps_body_def* def) {
     const sps__material_model* material = sps__material_of(def->material.kind);
@@ -3981,9 +4015,9 @@ static const sps__combination_rule sps__combination_rules[] = {
                                          "pressure pass reads the pair forces the penalty writes, and a granular body's pressure pass "
                                          "has no penalty terms; use 0 (the penalty's own pass) or, for GNO-A, rotation = mean or per "
                                          "particle"},
-    {sps__inviscid_undissipated, "fluid_dissipation = 1 or 2 with material.viscosity = 0: without the Riemann solver's momentum "
+    {sps__inviscid_undissipated, "material.fluid.dissipation = 1 or 2 with material.viscosity = 0: without the Riemann solver's momentum "
                                  "dissipation only the physical viscosity damps the particles' noise; set material.viscosity > 0 "
-                                 "or fluid_dissipation = 0"},
+                                 "or material.fluid.dissipation = 0"},
     {sps__moving_wall_particles, "transport = TVF or UTVF with material.kind = rigid: a wall body's particles keep the motion given to them"},
     {sps__shifted_reference, "transport = TVF or UTVF with solver = total Lagrangian: its neighbours are those of the reference "
                              "configuration, which a shift of the particles would not move"},
@@ -3991,9 +4025,9 @@ static const sps__combination_rule sps__combination_rules[] = {
                                 "take the deformation gradient of the reference configuration; use solver = total Lagrangian"},
     {sps__total_lagrangian_other_law, "solver = total Lagrangian with material.kind other than Saint Venant-Kirchhoff (4), Neo-Hookean "
                                       "(5) or J2 (2): a total-Lagrangian body needs a law of the deformation gradient"},
-    {sps__damage_updated, "damage_strain > 0 with solver = updated Lagrangian: the damage model (TL eqs. 45-46) reads the "
+    {sps__damage_updated, "material.tl.damage_strain > 0 with solver = updated Lagrangian: the damage model (TL eqs. 45-46) reads the "
                           "deformation gradient of the reference configuration; use solver = total Lagrangian"},
-    {sps__viscosity_updated, "artificial_viscosity > 0 with solver = updated Lagrangian: it acts between the reference "
+    {sps__viscosity_updated, "material.tl.artificial_viscosity > 0 with solver = updated Lagrangian: it acts between the reference "
                              "neighbours of a total-Lagrangian body; use solver = total Lagrangian"},
     {sps__oas_outside_2d, "shear = OAS with dim = %d: Gray et al.'s artificial stress is 2D only"},
     {sps__damped_wall, "damping > 0 with material.kind = rigid: a wall body's particles keep the velocity given to them"},
@@ -4016,23 +4050,18 @@ static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* ms
     SPS__CHECK(sps__stabilisation_of(def->shear) != NULL, "shear = %d, allowed 0..5 (ENO, ENO-A, OG, OAS, GNO, GNO-A)", (int)def->shear);
     SPS__CHECK(def->solver == SPS_SOLVER_UPDATED_LAGRANGIAN || def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN,
                "solver = %d, allowed 0 (updated Lagrangian) or 1 (total Lagrangian)", (int)def->solver);
-    SPS__CHECK(def->hourglass_alpha >= 0 && def->hourglass_alpha <= 1000, "hourglass_alpha = %g, allowed [0, 1000]",
-               (double)def->hourglass_alpha);
-    SPS__CHECK(def->hourglass == SPS_HOURGLASS_VARIATIONAL || def->hourglass == SPS_HOURGLASS_PAPER,
-               "hourglass = %d, allowed 0 (variational) or 1 (paper: TL eq. 32 as printed)", (int)def->hourglass);
-    SPS__CHECK(def->artificial_viscosity >= 0 && def->artificial_viscosity <= 1, "artificial_viscosity = %g, allowed [0, 1] (0: none)",
-               (double)def->artificial_viscosity);
-    SPS__CHECK(def->damage_strain >= 0 && def->damage_strain <= 100,
-               "damage_strain = %g, allowed [0, 100] (a principal Green-Lagrange strain; 0: no damage)", (double)def->damage_strain);
+    SPS__CHECK(def->material.tl.hourglass_alpha >= 0 && def->material.tl.hourglass_alpha <= 1000, "material.tl.hourglass_alpha = %g, allowed [0, 1000]",
+               (double)def->material.tl.hourglass_alpha);
+    SPS__CHECK(def->material.tl.hourglass == SPS_HOURGLASS_VARIATIONAL || def->material.tl.hourglass == SPS_HOURGLASS_PAPER,
+               "material.tl.hourglass = %d, allowed 0 (variational) or 1 (paper: TL eq. 32 as printed)", (int)def->material.tl.hourglass);
+    SPS__CHECK(def->material.tl.artificial_viscosity >= 0 && def->material.tl.artificial_viscosity <= 1, "material.tl.artificial_viscosity = %g, allowed [0, 1] (0: none)",
+               (double)def->material.tl.artificial_viscosity);
+    SPS__CHECK(def->material.tl.damage_strain >= 0 && def->material.tl.damage_strain <= 100,
+               "material.tl.damage_strain = %g, allowed [0, 100] (a principal Green-Lagrange strain; 0: no damage)", (double)def->material.tl.damage_strain);
     SPS__CHECK(def->transport == SPS_TRANSPORT_NONE || def->transport == SPS_TRANSPORT_TVF || def->transport == SPS_TRANSPORT_UTVF,
                "transport = %d, allowed 0 (none), 1 (TVF) or 2 (UTVF)", (int)def->transport);
-    SPS__CHECK(def->stress_diffusion >= 0 && def->stress_diffusion <= 1, "stress_diffusion = %g, allowed [0, 1] (0: off)",
-               (double)def->stress_diffusion);
     SPS__CHECK(def->transport_coefficient >= 0 && def->transport_coefficient <= 1,
                "transport_coefficient = %g, allowed 0 (default 0.2) or (0, 1]", (double)def->transport_coefficient);
-    SPS__CHECK(def->fluid_dissipation == SPS_FLUID_DISSIPATION_RIEMANN || def->fluid_dissipation == SPS_FLUID_DISSIPATION_DENSITY ||
-                   def->fluid_dissipation == SPS_FLUID_DISSIPATION_NONE,
-               "fluid_dissipation = %d, allowed 0 (the Riemann solver's), 1 (density diffusion only) or 2 (none)", (int)def->fluid_dissipation);
     SPS__CHECK(def->transport_carries_velocity == 0 || def->transport_carries_velocity == 1,
                "transport_carries_velocity = %d, allowed 0 (positions only) or 1 (the velocity with them)", def->transport_carries_velocity);
     SPS__CHECK(def->lattice == SPS_LATTICE_AUTO || def->lattice == SPS_LATTICE_SQUARE || def->lattice == SPS_LATTICE_HEXAGONAL,
@@ -4106,7 +4135,7 @@ static sps__model sps__resolve_model(const sps_world* w, const sps_body_def* def
     if (def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN) { /* its stress comes from F: tau holds its Cauchy stress + p I */
         m.stabilisation = &sps__tl_hourglass;
         m.total_lagrangian = m.stress = 1; /* m.plastic stays: a J2 body's return map is sps__tl_j2 */
-        m.damage = def->damage_strain > 0;
+        m.damage = def->material.tl.damage_strain > 0;
         m.paired = m.gradient = m.artificial_stress = m.scaled_penalty = 0;
         m.turn = SPS__TURN_NONE;
     }
@@ -6847,7 +6876,7 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
     sps_real* SPS__RESTRICT work = b->plastic_work + k0;
     sps_real* SPS__RESTRICT factor = scaled ? b->return_factor + k0 : NULL;
     const sps_real *SPS__RESTRICT mass = w->mass + q.i0, *SPS__RESTRICT rho = w->rho + q.i0;
-    const sps_real G = b->mat.G, yield_stress = b->def.material.yield_stress, hardening = b->def.material.hardening_modulus;
+    const sps_real G = b->mat.G, yield_stress = b->def.material.j2.yield_stress, hardening = b->def.material.j2.hardening_modulus;
     const int end = b->end;
     int l;
     SPS__PRAGMA(omp simd)
@@ -7679,7 +7708,7 @@ SPS__INLINE void sps__continuity_pairs(sps_world* w, const sps__body* b, int g, 
     const sps__group q = sps__group_of(w, b, g);
     const sps_real scale = divergence ? b->divergence_scale : 0;
     const sps_real shear_rate = 2 * b->zeta * b->mat.G * dt; /* ENO eq. 24 without 1/rho_i */
-    const sps_real inv_z = riemann ? b->density_diffusion / b->z_riemann : 0; /* 0: fluid_dissipation = none */
+    const sps_real inv_z = riemann ? b->density_diffusion / b->z_riemann : 0; /* 0: material.fluid.dissipation = none */
     const sps_real rest_x = b->rest_pressure_gradient[0], rest_y = b->rest_pressure_gradient[1], rest_z = b->rest_pressure_gradient[2];
     const sps_real *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT p = w->p;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
@@ -8160,7 +8189,7 @@ static void sps__tl_reference(sps_world* w, sps__body* b) {
         sps__newton_inverse_step(A, B, dim);
         if (S > s_max) s_max = S;
     }
-    c2 = (b->mat.K + b->mat.G * 4 / 3 + b->def.hourglass_alpha * b->def.material.youngs_modulus * w->h * w->h * s_max / dim) / b->rho0;
+    c2 = (b->mat.K + b->mat.G * 4 / 3 + b->def.material.tl.hourglass_alpha * b->def.material.youngs_modulus * w->h * w->h * s_max / dim) / b->rho0;
     b->mat.c0 = b->tl_c_ref = SPS__SQRT(c2);
     if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
     b->reference_built = 1;
@@ -8359,7 +8388,7 @@ static sps_real sps__tl_j2(sps_real lambda, sps_real mu, sps_real yield, sps_rea
 
 /* >>material: damage in the total-Lagrangian frame (TL section 4.6, eqs. 45-46)
 
-   A body with damage_strain = eps_max > 0 carries the damage D in [0, 1] of each particle (field
+   A body with material.tl.damage_strain = eps_max > 0 carries the damage D in [0, 1] of each particle (field
    "damage"). The rate model of TL eq. 45: while the largest principal Green-Lagrange strain of
    F_i exceeds eps_max, D^(1/3) grows at 0.4 c0 / h, with c0 the P-wave speed
    sqrt((K + 4G/3)/rho0) and h the kernel radius (the support 2h here: where W reaches 0), so
@@ -8457,7 +8486,7 @@ SPS__INLINE sps_real sps__tl_pair_vectors(const sps_world* w, int i, int j, cons
 }
 
 /* Whether body b's stress pass adds the hourglass stress Pi (the variational form, alpha > 0). */
-#define SPS__TL_SPRING_STRESS(b) ((b)->def.hourglass == SPS_HOURGLASS_VARIATIONAL && (b)->def.hourglass_alpha > 0)
+#define SPS__TL_SPRING_STRESS(b) ((b)->def.material.tl.hourglass == SPS_HOURGLASS_VARIATIONAL && (b)->def.material.tl.hourglass_alpha > 0)
 
 /* The hourglass springs of particle i at its deformation gradient F (neighbours from slot first;
    modulus: sps__tl_hourglass_modulus): their energy sum_j 1/2 k_ij (delta^i_ij)^2, returned, and,
@@ -8465,7 +8494,7 @@ SPS__INLINE sps_real sps__tl_pair_vectors(const sps_world* w, int i, int j, cons
    sum_j 1/2 alpha E_i V0_j W_ij / R_ij^2 d^i_ij x_ij (x) X_ij (row-major 3 x 3). */
 static sps_real sps__tl_springs(const sps_world* w, const sps__body* b, int i, int first, const int dim, const sps_real F[9],
                                 sps_real modulus, sps_real Pi[9]) {
-    const sps_real half_alpha_E = SPS_R(0.5) * b->def.hourglass_alpha * modulus;
+    const sps_real half_alpha_E = SPS_R(0.5) * b->def.material.tl.hourglass_alpha * modulus;
     sps_real energy = 0;
     int k, a, c;
     for (k = 0; Pi && k < 9; ++k) Pi[k] = 0;
@@ -8491,7 +8520,7 @@ static sps_real sps__tl_springs(const sps_world* w, const sps__body* b, int i, i
 SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int law) {
     const sps__group q = sps__group_of(w, b, g);
     const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b), damage_rate = b->damage ? sps__tl_damage_rate(w, b) : 0;
-    const sps_real E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
+    const sps_real E = b->def.material.youngs_modulus, Y = b->def.material.j2.yield_stress;
     const int springs = SPS__TL_SPRING_STRESS(b);
     int l, a, c, k;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
@@ -8503,13 +8532,13 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         J = sps__det3(F);
         if (law == SPS__LAW_J2) {
             sps_real work = 0;
-            sps__tl_j2(lambda, mu, b->def.material.yield_stress, b->def.material.hardening_modulus, F, J, b->tl_plastic + (size_t)6 * o,
+            sps__tl_j2(lambda, mu, b->def.material.j2.yield_stress, b->def.material.j2.hardening_modulus, F, J, b->tl_plastic + (size_t)6 * o,
                        b->plastic_strain + o, 1, P, &work);
             b->plastic_work[o] += SPS__V0(w, b, i) * work;
         } else {
             sps__tl_law(law, lambda, mu, F, J, P);
         }
-        if (b->damage) sps__tl_damage(damage_rate, b->def.damage_strain, dt, F, J, b->damage + o, P);
+        if (b->damage) sps__tl_damage(damage_rate, b->def.material.tl.damage_strain, dt, F, J, b->damage + o, P);
         if (springs) sps__tl_springs(w, b, i, q.s0 + l, dim, F, sps__tl_hourglass_modulus(b, o, E, Y, law == SPS__LAW_J2), Pi);
         for (a = 0; a < 3; ++a)
             for (c = 0; c < 3; ++c) {
@@ -8552,7 +8581,7 @@ static void sps__tl_kelvin_voigt(const sps_world* w, const sps__body* b, int i, 
    flowed, TL section 4.5). All are antisymmetric in i, j, so the pair sums conserve linear
    momentum; the stress force exerts no torque (P F^T = J sigma is symmetric), and the springs'
    forces, the gradient of a rotation-invariant energy (or, in the paper's form, central), none
-   either. With artificial_viscosity = q1 > 0, Monaghan's linear artificial viscosity between
+   either. With material.tl.artificial_viscosity = q1 > 0, Monaghan's linear artificial viscosity between
    reference neighbours (as the TL author's LAMMPS input uses it, there q1 = 0.06; the paper's
    runs had none): f_i += sum_j q1 c_p h rho0 V0_i V0_j |dW(R_ij)| (v_ij . x_ij) x_ij /
    (|x_ij| (|x_ij|^2 + 0.01 h^2)), v_ij = v_j - v_i, c_p the P-wave speed: central and
@@ -8561,9 +8590,9 @@ static void sps__tl_kelvin_voigt(const sps_world* w, const sps__body* b, int i, 
    the hourglass modes' among them. acc_p = f_i / m_i. */
 SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real half_alpha = SPS_R(0.5) * b->def.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.yield_stress;
-    const int springs = half_alpha > 0, turn = b->def.hourglass == SPS_HOURGLASS_VARIATIONAL;
-    const sps_real viscosity = b->def.artificial_viscosity * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) * w->h * b->rho0;
+    const sps_real half_alpha = SPS_R(0.5) * b->def.material.tl.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.j2.yield_stress;
+    const int springs = half_alpha > 0, turn = b->def.material.tl.hourglass == SPS_HOURGLASS_VARIATIONAL;
+    const sps_real viscosity = b->def.material.tl.artificial_viscosity * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) * w->h * b->rho0;
     const int pair_terms = springs || viscosity > 0 || b->viscous_work; /* the terms below that need X_ij and x_ij */
     int l, a, c, k;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
@@ -8692,14 +8721,14 @@ static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
     if (law == SPS__LAW_J2) { /* the state is not advanced: a copy */
         sps_real cp[6], alpha = b->plastic_strain[i - b->begin];
         memcpy(cp, b->tl_plastic + (size_t)6 * (i - b->begin), sizeof cp);
-        psi = sps__tl_j2(SPS__LAME_LAMBDA(b), b->mat.G, b->def.material.yield_stress, b->def.material.hardening_modulus, F, sps__det3(F),
+        psi = sps__tl_j2(SPS__LAME_LAMBDA(b), b->mat.G, b->def.material.j2.yield_stress, b->def.material.j2.hardening_modulus, F, sps__det3(F),
                          cp, &alpha, 0, P, NULL);
     } else {
         psi = sps__tl_law(law, SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
     }
     if (b->damage) psi *= 1 - b->damage[i - b->begin];
-    modulus = sps__tl_hourglass_modulus(b, i - b->begin, b->def.material.youngs_modulus, b->def.material.yield_stress, law == SPS__LAW_J2);
-    springs = b->def.hourglass_alpha > 0 ? sps__tl_springs(w, b, i, w->nb_first[i], w->dim, F, modulus, NULL) : 0;
+    modulus = sps__tl_hourglass_modulus(b, i - b->begin, b->def.material.youngs_modulus, b->def.material.j2.yield_stress, law == SPS__LAW_J2);
+    springs = b->def.material.tl.hourglass_alpha > 0 ? sps__tl_springs(w, b, i, w->nb_first[i], w->dim, F, modulus, NULL) : 0;
     return SPS__V0(w, b, i) * psi + springs;
 }
 
@@ -12436,7 +12465,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 7u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity; 7: lattice */
+#define SPS__RESTART_VERSION 7u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.granular.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity; 7: lattice */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */

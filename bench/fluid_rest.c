@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     bd.name = "water";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.density = (sps_real)RHO0;
-    bd.material.sound_speed = (sps_real)c0;
+    bd.material.fluid.sound_speed = (sps_real)c0;
     bd.lattice = (sps_lattice)lattice;
     if (sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI | (periodic != 0 ? SPS_FACE_X_LO | SPS_FACE_X_HI : 0), SPS_WALL_FREE_SLIP) != SPS_OK ||
         sps_world_add_body(w, &bd, &water) != SPS_OK ||

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     opt_parse(argc, argv, "cost of the fluid-structure coupling against the fluid passes alone", opts, (int)(sizeof opts / sizeof *opts));
     wd.dim = 2; wd.dp = (sps_real)dp; wd.threads = 1; wd.gravity[1] = (sps_real)-9.81; wd.log = ex_log;
     water_def.material.kind = SPS_MATERIAL_FLUID;
-    water_def.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.4));
+    water_def.material.fluid.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.4));
     tank_def.material.kind = SPS_MATERIAL_RIGID;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_body(w, &water_def, &water));

@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = 1000;
-    water_def.material.sound_speed = sps_fluid_sound_speed((sps_real)9.81, (sps_real)DEPTH, 0, (sps_real)density_error);
+    water_def.material.fluid.sound_speed = sps_fluid_sound_speed((sps_real)9.81, (sps_real)DEPTH, 0, (sps_real)density_error);
     raft_def.name = "raft";
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP));
@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
     printf("RESULT case=game_tank dp=%g density_error=%g c0=%.3f E=%g fps=%g frames=%d substeps_per_frame=%.1f physics_ms_mean=%.2f "
            "physics_ms_max=%.2f real_time=%.3f water_density_error_max=%.4f water_ke_first=%.4e water_ke_last=%.4e draft=%.5f "
            "archimedes_about=%.5f %s particles=%d wall_s=%.2f\n",
-           dp, density_error, (double)water_def.material.sound_speed, E, fps, frames, (double)d.acoustic_steps / frames,
+           dp, density_error, (double)water_def.material.fluid.sound_speed, E, fps, frames, (double)d.acoustic_steps / frames,
            1e3 * physics / frames, 1e3 * physics_max, (frames / fps) / physics, rho_err, ke_first, ke_last, drafts ? draft_sum / drafts : 0,
            0.5 * BLOCK, common_result_fields(&c), sps_world_particle_count(w), wall_seconds() - start);
     sps_world_destroy(w);

@@ -125,7 +125,7 @@ static void container(void) {
     bd.material.kind = SPS_MATERIAL_RIGID;
     sps_world_add_body(w, &bd, &wall);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)(10 * sqrt(g * H));
+    bd.material.fluid.sound_speed = (sps_real)(10 * sqrt(g * H));
     sps_world_add_body(w, &bd, &water);
     if (sps_body_add_mesh_shell(w, wall, m, lo, top, 3, NULL) != SPS_OK || sps_body_add_mesh(w, water, m, lo, level, -1, &n_water) != SPS_OK) {
         printf("%s\n", sps_world_last_error(w));

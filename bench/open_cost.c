@@ -61,7 +61,7 @@ static void run(int res, int steps, int threads, int reserve) {
     wd.threads = threads;
     if (sps_world_create(&wd, &w) != SPS_OK) exit(1);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 30 * U;
+    bd.material.fluid.sound_speed = 30 * U;
     bd.material.viscosity = (sps_real)(1000 * U * H); /* Re = 1 */
     in.kind = SPS_ZONE_INFLOW; in.lo[0] = (sps_real)(-4 * dp); in.hi[1] = (sps_real)H; in.velocity_fn = parabola;
     drain.kind = SPS_ZONE_OUTFLOW; drain.lo[0] = (sps_real)(L - 4 * dp); drain.hi[0] = (sps_real)L; drain.hi[1] = (sps_real)H;

@@ -38,7 +38,7 @@ static double channel_cost(int res, int steps, int threads, int periodic) {
     if (periodic) wd.periodic[0] = (sps_real)L;
     if (sps_world_create(&wd, &w) != SPS_OK) exit(1);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10;
+    bd.material.fluid.sound_speed = 10;
     bd.material.viscosity = 10;
     if (sps_world_add_body(w, &bd, &b) != SPS_OK || sps_body_add_box(w, b, lo, hi, NULL) != SPS_OK) exit(1);
     if (sps_world_add_box_walls(w, lo, hi, periodic ? SPS_FACE_X_LO | SPS_FACE_X_HI : 0, SPS_WALL_NO_SLIP) != SPS_OK) exit(1);

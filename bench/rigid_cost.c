@@ -53,7 +53,7 @@ static long tank_substeps(double t_end, int crate) {
     wd.gravity[1] = -9.81;
     wd.log = ex_log;
     water.material.kind = SPS_MATERIAL_FLUID;
-    water.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.5));
+    water.material.fluid.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.5));
     box.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
     box.material.density = 7800;
     ex_check(NULL, sps_world_create(&wd, &w));

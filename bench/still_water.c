@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
     bd.name = "water";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.density = (sps_real)RHO0;
-    bd.material.sound_speed = (sps_real)c0;
+    bd.material.fluid.sound_speed = (sps_real)c0;
     bd.material.viscosity = (sps_real)viscosity;
     for (k = 0; k < dim; ++k) hi[k] = (sps_real)size[k];
     if (!add_tank(w, dim, as_body, size, dp) || sps_world_add_body(w, &bd, &water) != SPS_OK || sps_body_add_box(w, water, lo, hi, NULL) != SPS_OK

@@ -41,7 +41,7 @@ static sps_world* plate(sps_hourglass form) {
     bd.material.density = 1000;
     bd.material.youngs_modulus = (sps_real)2e6;
     bd.material.poisson_ratio = (sps_real)0.3975;
-    bd.hourglass = form;
+    bd.material.tl.hourglass = form;
     if (sps_world_create(&wd, &w) != SPS_OK || sps_world_add_body(w, &bd, &b) != SPS_OK || sps_body_add_box(w, b, lo, hi, NULL) != SPS_OK ||
         sps_body_constrain_box(w, b, clamp_lo, clamp_hi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK || sps_body_set_velocity(w, b, swing, NULL) != SPS_OK) {
         fprintf(stderr, "tl_hourglass_cost: set-up failed\n");

@@ -147,7 +147,7 @@ static sps_result build_tank(sps_world* w, sps_body_def bd, const scene_options*
     g_depth = depth;
     water.name = "water";
     water.material.kind = SPS_MATERIAL_FLUID;
-    water.material.sound_speed = sps_fluid_sound_speed((sps_real)9.81, (sps_real)depth, 0, (sps_real)SPS_DENSITY_ERROR_ACCURATE);
+    water.material.fluid.sound_speed = sps_fluid_sound_speed((sps_real)9.81, (sps_real)depth, 0, (sps_real)SPS_DENSITY_ERROR_ACCURATE);
     if ((r = sps_world_add_box_walls(w, lo, hi, o->dim == 3 ? SPS_FACE_Y_HI : SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP)) != SPS_OK) return r;
     if ((r = add_box_body(w, &water, wlo, whi, 0, &b)) != SPS_OK || (r = sps_body_set_pressure(w, b, hydrostatic, NULL)) != SPS_OK) return r;
     bd.material.density = 500;
@@ -171,7 +171,7 @@ static sps_result build_float(const scene_options* o, sps_world* w, sps_body_def
     sps_body body;
     sps_result r;
     water.material.kind = SPS_MATERIAL_FLUID;
-    water.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.2));
+    water.material.fluid.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * 0.2));
     water.name = "water";
     g_depth = 0.2;
     if ((r = sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP)) != SPS_OK) return r;

@@ -100,9 +100,9 @@ int main(int argc, char** argv) {
     bd.name = "beam";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
-    bd.hourglass_alpha = (sps_real)alpha;
-    bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)artificial_viscosity;
+    bd.material.tl.hourglass_alpha = (sps_real)alpha;
+    bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
+    bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
     bd.damping = (sps_real)(2 * omega); /* critical for the first mode */
     memset(&s, 0, sizeof s);
     s.t_ramp = ramp * 2 * PI / omega;

@@ -116,8 +116,8 @@ int main(int argc, char** argv) {
     wd.energy_growth_limit = (sps_real)INFINITY; /* the lid's work is not in the energy account */
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)(c0_factor * LID);
-    bd.fluid_dissipation = (sps_fluid_dissipation)dissipation;
+    bd.material.fluid.sound_speed = (sps_real)(c0_factor * LID);
+    bd.material.fluid.dissipation = (sps_fluid_dissipation)dissipation;
     bd.transport_carries_velocity = carry_velocity;
     bd.material.viscosity = (sps_real)(c.rho0 * LID / re);
     ex_check(NULL, sps_world_create(&wd, &w));

@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
     wd.log = ex_log;
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)(c0_factor * U_MAX);
+    bd.material.fluid.sound_speed = (sps_real)(c0_factor * U_MAX);
     bd.material.viscosity = (sps_real)(NU * c.rho0);
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_unset_unread(&bd);

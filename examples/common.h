@@ -60,7 +60,7 @@ typedef struct {
     const char* choices;  /* OPT_CHOICE: "a|b|c" */
 } opt_spec;
 
-/* The total-Lagrangian examples' hourglass options (sps_body_def.hourglass, .artificial_viscosity). */
+/* The total-Lagrangian examples' hourglass options (material.tl.hourglass, .artificial_viscosity). */
 #define EX_HOURGLASS_OPTIONS(form, q1)                                                                                     \
     {"hourglass", OPT_CHOICE, &(form), "TL hourglass force: variational (-grad of the springs' energy) or paper (TL eq. 32 alone)", \
      0, 0, "variational|paper"},                                                                                               \
@@ -612,10 +612,10 @@ typedef struct {
      "plane-strain|papers|compression|extension|compromise"}
 /* Copies them into a Drucker-Prager body's def (its density, E and nu are the common options). */
 EX_UNUSED static void apply_granular(const granular_options* g, sps_body_def* bd) {
-    bd->material.cohesion = (sps_real)g->cohesion;
-    bd->material.friction_angle = (sps_real)g->phi;
-    bd->material.yield_cone = (sps_yield_cone)g->cone;
-    bd->stress_diffusion = (sps_real)g->diffusion;
+    bd->material.granular.cohesion = (sps_real)g->cohesion;
+    bd->material.granular.friction_angle = (sps_real)g->phi;
+    bd->material.granular.yield_cone = (sps_yield_cone)g->cone;
+    bd->material.granular.stress_diffusion = (sps_real)g->diffusion;
 }
 /* A heap's surface in bins dp wide: the highest particle + dp/2 of each bin, 0 where a bin holds
    fewer than min_count particles (loose grains are not the heap), and, if counts is not NULL,

@@ -265,7 +265,7 @@ int main(int argc, char** argv) {
     wd.gravity[1] = (sps_real)-G_ACC;
     bd.name = "water";
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)c0;
+    bd.material.fluid.sound_speed = (sps_real)c0;
     bd.material.viscosity = (sps_real)viscosity;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));

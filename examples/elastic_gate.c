@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
-    water_def.material.sound_speed = (sps_real)(20 * sqrt(G_ACC * WATER_HEIGHT));
+    water_def.material.fluid.sound_speed = (sps_real)(20 * sqrt(G_ACC * WATER_HEIGHT));
     gate_def.name = "gate";
     if (solver == 1) {
         gate_def.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;

@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
     wd.dp = (sps_real)dp;
     bd.name = "drop";
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)c0;
+    bd.material.fluid.sound_speed = (sps_real)c0;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_unset_unread(&bd); /* a fluid reads no shear formulation */

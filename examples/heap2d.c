@@ -9,7 +9,7 @@
    same way (with --damping 0 it is the fast collapse, whose deposit runs out farther and stands
    lower). At the end the heap's flanks are fitted by straight lines between 20 % and 80 % of its
    height, on both sides: the angle of repose is the mean of the two slopes' angles. With the
-   cone fitted to Mohr-Coulomb in plane strain (material.yield_cone's default, --cone) an
+   cone fitted to Mohr-Coulomb in plane strain (material.granular.yield_cone's default, --cone) an
    infinite slope stands up to the friction angle, so the quasi-static heap's flanks should stand
    at about phi (a heap of dry grains: angle of repose close to the internal friction angle);
    --cone papers (UTVF eq. 14) acts as a smaller angle with psi = 0 (28.7 degrees for 30).

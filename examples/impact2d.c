@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
     wd.log = ex_log;
     wd.escape_distance = (sps_real)(2 * IM_SPEED * c.t_end + IM_PLATE_H); /* see the header comment */
     bd.material.kind = SPS_MATERIAL_J2;
-    bd.material.yield_stress = (sps_real)yield;
+    bd.material.j2.yield_stress = (sps_real)yield;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
     gap = (2 * (double)wd.h_over_dp - 1) * dp; /* between the surfaces: the particles 2h apart */

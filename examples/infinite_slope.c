@@ -14,7 +14,7 @@
    0) then fails where the slope's stress ratio tan(theta) reaches sin(phi) cos(psi) / (1 -
    sin(phi) sin(psi)) (Davis 1968: the strength mobilised on the planes of zero extension), which
    is tan(phi) for associated flow (psi = phi) and sin(phi) for psi = 0: 26.6 degrees for phi =
-   30. The plane-strain cone (material.yield_cone's default) reproduces Mohr-Coulomb in plane
+   30. The plane-strain cone (material.granular.yield_cone's default) reproduces Mohr-Coulomb in plane
    strain, so the layer holds below that angle and flows above it. Measured: the top layer's
    displacement along the slope after the ramp (the velocity integrated over the hold, in dp)
    and its speed at the end; the layer "flows" when the displacement passes 1 dp.

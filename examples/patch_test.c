@@ -165,9 +165,9 @@ int main(int argc, char** argv) {
     bd.name = "patch";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
-    bd.hourglass_alpha = (sps_real)alpha;
-    bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)artificial_viscosity;
+    bd.material.tl.hourglass_alpha = (sps_real)alpha;
+    bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
+    bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &patch));

@@ -117,9 +117,9 @@ int main(int argc, char** argv) {
     if (solver == 1) {
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
-        bd.hourglass_alpha = alpha;
-        bd.hourglass = (sps_hourglass)hourglass_form;
-        bd.artificial_viscosity = (sps_real)artificial_viscosity;
+        bd.material.tl.hourglass_alpha = alpha;
+        bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
+        bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
     }
     bd.material.viscosity = viscosity;
     ex_unset_unread(&bd); /* --solver tl: no shear formulation */

@@ -109,9 +109,9 @@ int main(int argc, char** argv) {
     bd.name = "rubber";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
-    bd.hourglass_alpha = (sps_real)alpha;
-    bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)artificial_viscosity;
+    bd.material.tl.hourglass_alpha = (sps_real)alpha;
+    bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
+    bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
     td.material = bd.material;
     td.material.kind = SPS_MATERIAL_RIGID;
     memset(&st, 0, sizeof st);

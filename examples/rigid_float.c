@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
-    water_def.material.sound_speed = (sps_real)(10 * sqrt(2 * G_ACC * DEPTH));
+    water_def.material.fluid.sound_speed = (sps_real)(10 * sqrt(2 * G_ACC * DEPTH));
     box_def.name = "box";
     box_def.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
     box_def.damping = (sps_real)damping;

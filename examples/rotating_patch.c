@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
     wd.dp = (sps_real)dp;
     bd.name = "patch";
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)c0;
+    bd.material.fluid.sound_speed = (sps_real)c0;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_body(w, &bd, &patch));

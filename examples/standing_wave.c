@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
-    water_def.material.sound_speed = (sps_real)(mach * sqrt(G_ACC * DEPTH));
+    water_def.material.fluid.sound_speed = (sps_real)(mach * sqrt(G_ACC * DEPTH));
     water_def.material.viscosity = (sps_real)viscosity;
     ex_unset_unread(&water_def);
     tank_hi[0] = hi[0] = (sps_real)length;
@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
     }
     printf("RESULT case=standing_wave kh=%g res=%g h_over_dp=%g amplitude=%g viscosity=%g c0=%.4g period=%.5f theory=%.5f err=%+.2f%% "
            "decay_per_period=%.4f lamb=%.4f first_peak=%.4g last_peak=%.4g half_periods=%d particles=%d steps=%ld wall_s=%.2f out=%s\n",
-           kh, res, c.h_over_dp, amplitude, viscosity, (double)water_def.material.sound_speed, period, period_theory,
+           kh, res, c.h_over_dp, amplitude, viscosity, (double)water_def.material.fluid.sound_speed, period, period_theory,
            period > 0 ? 100 * (period / period_theory - 1) : 0.0, decay, lamb, s.first_peak / s.theory.amplitude,
            s.last_peak / s.theory.amplitude, s.peaks, n, sps_world_substep_count(w), wall, c.out);
     free(s.surface_ids);

@@ -73,9 +73,9 @@ int main(int argc, char** argv) {
     bd.name = "strip";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
-    bd.hourglass_alpha = (sps_real)alpha;
-    bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)artificial_viscosity;
+    bd.material.tl.hourglass_alpha = (sps_real)alpha;
+    bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
+    bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
     if (c.t_end <= 0) c.t_end = (length - H) / (2 * v);
     if (c.csv_every <= 0) c.csv_every = c.t_end / 200;
     if (c.vtk_every == 0) c.vtk_every = c.t_end / 5;

@@ -78,10 +78,10 @@ int main(int argc, char** argv) {
     bd.name = "bar";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_J2;
-    bd.material.yield_stress = (sps_real)yield;
-    bd.hourglass_alpha = (sps_real)alpha;
-    bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)artificial_viscosity;
+    bd.material.j2.yield_stress = (sps_real)yield;
+    bd.material.tl.hourglass_alpha = (sps_real)alpha;
+    bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
+    bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_unset_unread(&bd);
     ex_check(w, sps_world_add_body(w, &bd, &bar));

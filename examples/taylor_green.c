@@ -96,8 +96,8 @@ int main(int argc, char** argv) {
     wd.log = ex_log;
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)(c0_factor * U0);
-    bd.fluid_dissipation = (sps_fluid_dissipation)dissipation;
+    bd.material.fluid.sound_speed = (sps_real)(c0_factor * U0);
+    bd.material.fluid.dissipation = (sps_fluid_dissipation)dissipation;
     bd.transport_carries_velocity = carry_velocity;
     bd.material.viscosity = (sps_real)(c.rho0 * U0 * 1.0 / tc.re);
     bd.transport_coefficient = (sps_real)alpha;

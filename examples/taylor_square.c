@@ -171,8 +171,8 @@ int main(int argc, char** argv) {
     /* escape_distance: the default (10 bar lengths beyond the bar's box) never stops a bar that stays whole */
     bd.name = "bar";
     bd.material.kind = material == 0 ? SPS_MATERIAL_J2 : SPS_MATERIAL_ELASTIC;
-    bd.material.yield_stress = (sps_real)yield;
-    bd.material.hardening_modulus = (sps_real)hardening;
+    bd.material.j2.yield_stress = (sps_real)yield;
+    bd.material.j2.hardening_modulus = (sps_real)hardening;
     wd.log = ex_log;
     ex_check(NULL, sps_world_create(&wd, &w));
     ex_check(w, sps_world_add_body(w, &bd, &bar));

@@ -143,11 +143,11 @@ int main(int argc, char** argv) {
     bd.name = "specimen";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = law ? SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF : SPS_MATERIAL_J2;
-    bd.material.yield_stress = (sps_real)AUTHORS_YIELD;
-    bd.hourglass_alpha = (sps_real)alpha;
-    bd.hourglass = (sps_hourglass)hourglass_form;
-    bd.artificial_viscosity = (sps_real)artificial_viscosity;
-    bd.damage_strain = (sps_real)eps_max;
+    bd.material.j2.yield_stress = (sps_real)AUTHORS_YIELD;
+    bd.material.tl.hourglass_alpha = (sps_real)alpha;
+    bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
+    bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
+    bd.material.tl.damage_strain = (sps_real)eps_max;
     ex_check(NULL, sps_world_create(&wd, &w));
     memset(&s, 0, sizeof s);
     ex_unset_unread(&bd);

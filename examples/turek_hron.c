@@ -186,9 +186,9 @@ int main(int argc, char** argv) {
     fluid_def.name = "fluid";
     fluid_def.material.kind = SPS_MATERIAL_FLUID;
     fluid_def.material.density = RHO_FLUID;
-    fluid_def.material.sound_speed = (sps_real)(c0_factor * tc->u_mean);
+    fluid_def.material.fluid.sound_speed = (sps_real)(c0_factor * tc->u_mean);
     fluid_def.material.viscosity = (sps_real)(NU_FLUID * RHO_FLUID);
-    fluid_def.fluid_dissipation = (sps_fluid_dissipation)dissipation;
+    fluid_def.material.fluid.dissipation = (sps_fluid_dissipation)dissipation;
     fluid_def.transport = flag_def.transport; /* the common --transport is for the fluid */
     flag_def.transport = SPS_TRANSPORT_NONE;
     ex_check(NULL, sps_world_create(&wd, &w));

@@ -50,9 +50,9 @@ int main(void) {
         sps_result r;
         bd = sps_default_body_def();
         bd.material.kind = bodies[k].kind; bd.solver = bodies[k].solver; bd.shear = bodies[k].shear;
-        bd.material.sound_speed = bd.material.kind == SPS_MATERIAL_FLUID ? 20 : 0;
-        bd.material.yield_stress = bd.material.kind == SPS_MATERIAL_J2 ? 1e4 : 0;
-        bd.material.friction_angle = bd.material.kind == SPS_MATERIAL_DRUCKER_PRAGER ? 30 : 0;
+        bd.material.fluid.sound_speed = bd.material.kind == SPS_MATERIAL_FLUID ? 20 : 0;
+        bd.material.j2.yield_stress = bd.material.kind == SPS_MATERIAL_J2 ? 1e4 : 0;
+        bd.material.granular.friction_angle = bd.material.kind == SPS_MATERIAL_DRUCKER_PRAGER ? 30 : 0;
         macro = expected_refusal(&bd);
         r = sps_world_add_body(w, &bd, &b);
         if (macro ? r != SPS_ERR_INVALID_ARG || !strstr(sps_world_last_error(w), macro) : r != SPS_OK) {

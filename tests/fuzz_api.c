@@ -248,16 +248,16 @@ static sps_body_def random_body_def(void) {
                                                     : chance(0.15) ? SPS_MATERIAL_RIGID : chance(0.2) ? SPS_MATERIAL_J2
                                                     : chance(0.2) ? SPS_MATERIAL_FLUID : chance(0.15) ? SPS_MATERIAL_DRUCKER_PRAGER
                                                     : SPS_MATERIAL_ELASTIC);
-    d.material.cohesion = chance(0.3) ? 0 : maybe_hostile(d.material.youngs_modulus * exp(uniform(log(1e-4), log(1e-2))), p);
-    d.material.friction_angle = maybe_hostile(uniform(0, 45), p);
-    d.material.dilatancy_angle = chance(0.6) ? 0 : maybe_hostile(uniform(0, 1) * d.material.friction_angle, p);
-    d.stress_diffusion = chance(0.3) ? 0 : maybe_hostile(uniform(0, 1), p);
-    d.material.sound_speed = maybe_hostile(exp(uniform(log(1), log(1e3))), p);
+    d.material.granular.cohesion = chance(0.3) ? 0 : maybe_hostile(d.material.youngs_modulus * exp(uniform(log(1e-4), log(1e-2))), p);
+    d.material.granular.friction_angle = maybe_hostile(uniform(0, 45), p);
+    d.material.granular.dilatancy_angle = chance(0.6) ? 0 : maybe_hostile(uniform(0, 1) * d.material.granular.friction_angle, p);
+    d.material.granular.stress_diffusion = chance(0.3) ? 0 : maybe_hostile(uniform(0, 1), p);
+    d.material.fluid.sound_speed = maybe_hostile(exp(uniform(log(1), log(1e3))), p);
     d.material.viscosity = chance(0.6) ? 0 : maybe_hostile(exp(uniform(log(1e-3), log(10))), p);
     d.transport = (sps_transport)(chance(p) ? hostile_int() : below(3));
     d.transport_coefficient = chance(0.7) ? 0 : maybe_hostile(uniform(0, 1), p);
-    d.material.yield_stress = maybe_hostile(d.material.youngs_modulus * exp(uniform(log(1e-4), log(1e-2))), p);
-    d.material.hardening_modulus = chance(0.5) ? 0 : maybe_hostile(d.material.youngs_modulus * uniform(0, 0.01), p);
+    d.material.j2.yield_stress = maybe_hostile(d.material.youngs_modulus * exp(uniform(log(1e-4), log(1e-2))), p);
+    d.material.j2.hardening_modulus = chance(0.5) ? 0 : maybe_hostile(d.material.youngs_modulus * uniform(0, 0.01), p);
     d.contact = chance(p) ? hostile_int() : !chance(0.1);
     d.zeta = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);
     d.xi = chance(0.7) ? 0 : maybe_hostile(uniform(0, 10), p);

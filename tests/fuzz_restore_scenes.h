@@ -58,11 +58,11 @@ static sps_world* fuzz_scene_build(int k, sps_real dp) {
     case 1: /* total Lagrangian: Neo-Hookean with damage, beside a J2 body */
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
-        bd.damage_strain = 2e-3;
+        bd.material.tl.damage_strain = 2e-3;
         rigid = bd;
         rigid.material.kind = SPS_MATERIAL_J2;
-        rigid.material.yield_stress = 2e3;
-        rigid.damage_strain = 0;
+        rigid.material.j2.yield_stress = 2e3;
+        rigid.material.tl.damage_strain = 0;
         rigid.name = "tl_j2";
         ok = sps_world_add_body(w, &rigid, &b) == SPS_OK && sps_body_add_box(w, b, floor_lo, floor_hi, NULL) == SPS_OK &&
              sps_body_set_velocity(w, b, fuzz_swirl, &speed) == SPS_OK;
@@ -70,7 +70,7 @@ static sps_world* fuzz_scene_build(int k, sps_real dp) {
     case 2: /* water in a tank of analytic walls, with the transport correction */
         bd.material.kind = SPS_MATERIAL_FLUID;
         bd.material.density = 1000;
-        bd.material.sound_speed = 20;
+        bd.material.fluid.sound_speed = 20;
         bd.material.viscosity = 1e-3;
         bd.transport = SPS_TRANSPORT_UTVF;
         bd.track_stress = 0;
@@ -82,9 +82,9 @@ static sps_world* fuzz_scene_build(int k, sps_real dp) {
         bd.material.density = 1850;
         bd.material.youngs_modulus = 1.8e6;
         bd.material.poisson_ratio = 0.3;
-        bd.material.cohesion = 5e3;
-        bd.material.friction_angle = 25;
-        bd.stress_diffusion = 0.1;
+        bd.material.granular.cohesion = 5e3;
+        bd.material.granular.friction_angle = 25;
+        bd.material.granular.stress_diffusion = 0.1;
         bd.track_stress = 0;
         speed = 0.1;
         ok = sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK;
@@ -92,14 +92,14 @@ static sps_world* fuzz_scene_build(int k, sps_real dp) {
     case 4: /* 3D, J2, GNO-A (the velocity gradient is state) */
         bd.shear = SPS_SHEAR_GNO_A;
         bd.material.kind = SPS_MATERIAL_J2;
-        bd.material.yield_stress = 2e3;
+        bd.material.j2.yield_stress = 2e3;
         hi[0] = 0.06; hi[1] = 0.05; hi[2] = 0.05;
         at[0] = 0.03;
         break;
     default: /* Saint Venant-Kirchhoff, frozen geometry, ENO with the mean rotation */
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
-        bd.artificial_viscosity = 0.5;
+        bd.material.tl.artificial_viscosity = 0.5;
         break;
     }
     ok = ok && sps_world_add_body(w, &bd, &a) == SPS_OK && sps_body_add_box(w, a, lo, hi, NULL) == SPS_OK &&

@@ -192,25 +192,25 @@ static int add_case_body(sps_world* w, const pinned_case* c, sps_shear shear, do
     bd.material.youngs_modulus = (sps_real)(1e6 * (1 + 0.25 * index)); /* bodies differ */
     if (c->plastic == 2) { /* a weak soil: the motion takes it onto the cone at once */
         bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-        bd.material.cohesion = (sps_real)2e3;
-        bd.material.friction_angle = 30;
-        bd.material.dilatancy_angle = 5;
-        bd.material.yield_cone = SPS_CONE_PAPERS; /* the cone these hashes were pinned with */
+        bd.material.granular.cohesion = (sps_real)2e3;
+        bd.material.granular.friction_angle = 30;
+        bd.material.granular.dilatancy_angle = 5;
+        bd.material.granular.yield_cone = SPS_CONE_PAPERS; /* the cone these hashes were pinned with */
     } else if (c->plastic) { /* a yield stress a quarter of the shear stress the motion builds in the run: it yields */
         bd.material.kind = SPS_MATERIAL_J2;
-        bd.material.yield_stress = (sps_real)5e3;
-        bd.material.hardening_modulus = (sps_real)1e5;
+        bd.material.j2.yield_stress = (sps_real)5e3;
+        bd.material.j2.hardening_modulus = (sps_real)1e5;
     }
     bd.transport = c->transport;
     if (c->fluid) {
         bd.material.kind = SPS_MATERIAL_FLUID;
-        bd.material.sound_speed = 20;
+        bd.material.fluid.sound_speed = 20;
         bd.material.viscosity = c->fluid == 2 ? (sps_real)0.5 : 0;
     }
     if (c->tl) {
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = (sps_material_kind)c->tl;
-        bd.damage_strain = c->damage ? (sps_real)1e-3 : 0;
+        bd.material.tl.damage_strain = c->damage ? (sps_real)1e-3 : 0;
     }
     if (DAMPED(c)) {
         bd.material.viscosity = 20;

@@ -1644,8 +1644,8 @@ static sps_world* restart_build(const restart_scene* sc, int threads, sps_observ
     if (sc->tl_kind) {
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = (sps_material_kind)sc->tl_kind;
-        bd.material.yield_stress = 2e3; /* J2: yields in the swirl */
-        bd.damage_strain = sc->damage_strain;
+        bd.material.j2.yield_stress = 2e3; /* J2: yields in the swirl */
+        bd.material.tl.damage_strain = sc->damage_strain;
     }
     if (sps_world_add_body(w, &bd, &a) != SPS_OK || sps_body_add_box(w, a, lo, hi, NULL) != SPS_OK ||
         sps_body_set_velocity(w, a, random_velocity, &seed) != SPS_OK ||
@@ -2105,7 +2105,7 @@ static int test_setup_quiet_mistakes_warn(void) {
     sps_world_destroy(w);
     bd = sps_default_body_def();
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 20;
+    bd.material.fluid.sound_speed = 20;
     bd.name = "water";
     wd.h_over_dp = 2;
     g_warnings = 0;
@@ -2129,7 +2129,7 @@ static int test_warnings_print_once(void) {
     sps_diagnostics d;
     wd.log = warning_log;
     fluid.material.kind = SPS_MATERIAL_FLUID;
-    fluid.material.sound_speed = 20;
+    fluid.material.fluid.sound_speed = 20;
     fluid.name = "water";
     solid.contact = 0;
     solid.name = "block";
@@ -2165,12 +2165,12 @@ static int test_setup_mistakes_named(void) {
     ENSURE(sps_body_set_rigid_motion(w, b, v, omega) == SPS_ERR_STATE);
     ENSURE(sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK && sps_body_set_rigid_motion(w, b, v, omega) == SPS_OK);
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd.material.friction_angle = 0.52; /* 30 degrees in radians */
+    bd.material.granular.friction_angle = 0.52; /* 30 degrees in radians */
     g_warnings = 0;
     ENSURE(sps_world_add_body(w, &bd, &sand) == SPS_OK && g_warnings == 1);
     printf("    %s\n", g_warning_last);
     ENSURE(strstr(g_warning_last, "friction_angle = 0.52") && strstr(g_warning_last, "look like radians"));
-    bd.material.friction_angle = 30; /* degrees: no warning */
+    bd.material.granular.friction_angle = 30; /* degrees: no warning */
     ENSURE(sps_world_add_body(w, &bd, &sand) == SPS_OK && g_warnings == 1);
     bd.shear = SPS_SHEAR_GNO_A; /* the default rotation (auto) keeps a granular GNO-A body valid: mean, not pair */
     ENSURE(bd.rotation == SPS_ROTATION_AUTO && sps_world_add_body(w, &bd, &sand) == SPS_OK);
@@ -2354,13 +2354,13 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 18: m->density = 2000; break;
     case 19: m->youngs_modulus = 2e6; break;
     case 20: m->poisson_ratio = 0.25; break;
-    case 21: m->yield_stress = 1e3; break;
-    case 22: m->hardening_modulus = 1e3; break;
-    case 23: m->sound_speed = 10; break;
+    case 21: m->j2.yield_stress = 1e3; break;
+    case 22: m->j2.hardening_modulus = 1e3; break;
+    case 23: m->fluid.sound_speed = 10; break;
     case 24: m->viscosity = 0.1; break;
-    case 25: m->cohesion = 1; break;
-    case 26: m->friction_angle = 10; break;
-    case 27: m->friction_angle = 10; m->dilatancy_angle = 5; break; /* the file has friction_angle 0: named first */
+    case 25: m->granular.cohesion = 1; break;
+    case 26: m->granular.friction_angle = 10; break;
+    case 27: m->granular.friction_angle = 10; m->granular.dilatancy_angle = 5; break; /* the file has friction_angle 0: named first */
     case 28: bd->shear = SPS_SHEAR_GNO_A; break;
     case 29: bd->rotation = SPS_ROTATION_MEAN; break;
     case 30: bd->zeta = 3; break;
@@ -2373,13 +2373,13 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 37: bd->contact = 0; break;
     case 38: bd->transport_coefficient = 0.3; break;
     case 39: bd->damping = 1; break;
-    case 40: bd->hourglass_alpha = 10; break;
-    case 41: bd->hourglass = SPS_HOURGLASS_PAPER; break;
-    case 42: bd->artificial_viscosity = 0.5; break;
-    case 43: bd->stress_diffusion = 0.2; break;
+    case 40: bd->material.tl.hourglass_alpha = 10; break;
+    case 41: bd->material.tl.hourglass = SPS_HOURGLASS_PAPER; break;
+    case 42: bd->material.tl.artificial_viscosity = 0.5; break;
+    case 43: bd->material.granular.stress_diffusion = 0.2; break;
     case 44: bd->friction = 0.3; break;
     case 45: bd->contact_damping = 0.5; break;
-    case 46: bd->damage_strain = 0.01; break;
+    case 46: bd->material.tl.damage_strain = 0.01; break;
     case 47: bd->penalty_in_pressure_pass = 1; break;
     case 48: wd->contact_rest = SPS_CONTACT_REST_KERNEL; break;
     case 49: wd->periodic[0] = 0.1; break;
@@ -2388,8 +2388,8 @@ static void change_def(int k, sps_world_def* wd, sps_body_def* bd) {
     case 52: wd->periodic_origin[0] = 1; break;
     case 53: wd->periodic_origin[1] = 1; break;
     case 54: wd->periodic_origin[2] = 1; break;
-    case 55: m->yield_cone = SPS_CONE_PAPERS; break;
-    case 56: bd->fluid_dissipation = SPS_FLUID_DISSIPATION_NONE; break;
+    case 55: m->granular.yield_cone = SPS_CONE_PAPERS; break;
+    case 56: bd->material.fluid.dissipation = SPS_FLUID_DISSIPATION_NONE; break;
     case 57: bd->transport_carries_velocity = 1; break;
     case 58: bd->lattice = SPS_LATTICE_SQUARE; break;
     }
@@ -2425,17 +2425,17 @@ static int test_restart_every_def_field(void) {
         WORLD_FIELD("gravity[1]"), WORLD_FIELD("gravity[2]"), WORLD_FIELD("frozen_geometry"), WORLD_FIELD("neighbor_capacity"),
         WORLD_FIELD("escape_distance"), WORLD_FIELD("energy_growth_limit"), WORLD_FIELD("energy_growth_stops"),
         WORLD_FIELD("keep_last_good_state"), BODY_FIELD("material.kind"), BODY_FIELD("material.density"),
-        BODY_FIELD("material.youngs_modulus"), BODY_FIELD("material.poisson_ratio"), BODY_FIELD("material.yield_stress"),
-        BODY_FIELD("material.hardening_modulus"), BODY_FIELD("material.sound_speed"), BODY_FIELD("material.viscosity"),
-        BODY_FIELD("material.cohesion"), BODY_FIELD("material.friction_angle"), BODY_FIELD("material.friction_angle"),
+        BODY_FIELD("material.youngs_modulus"), BODY_FIELD("material.poisson_ratio"), BODY_FIELD("material.j2.yield_stress"),
+        BODY_FIELD("material.j2.hardening_modulus"), BODY_FIELD("material.fluid.sound_speed"), BODY_FIELD("material.viscosity"),
+        BODY_FIELD("material.granular.cohesion"), BODY_FIELD("material.granular.friction_angle"), BODY_FIELD("material.granular.friction_angle"),
         BODY_FIELD("shear"), BODY_FIELD("rotation"), BODY_FIELD("zeta"), BODY_FIELD("xi"), BODY_FIELD("oas_epsilon"),
         BODY_FIELD("oas_exponent"), BODY_FIELD("track_stress"), BODY_FIELD("solver"), BODY_FIELD("transport"),
-        BODY_FIELD("contact"), BODY_FIELD("transport_coefficient"), BODY_FIELD("damping"), BODY_FIELD("hourglass_alpha"),
-        BODY_FIELD("hourglass"), TL_FIELD("artificial_viscosity"), BODY_FIELD("stress_diffusion"), BODY_FIELD("friction"),
-        BODY_FIELD("contact_damping"), TL_FIELD("damage_strain"), BODY_FIELD("penalty_in_pressure_pass"),
+        BODY_FIELD("contact"), BODY_FIELD("transport_coefficient"), BODY_FIELD("damping"), BODY_FIELD("material.tl.hourglass_alpha"),
+        BODY_FIELD("material.tl.hourglass"), TL_FIELD("material.tl.artificial_viscosity"), BODY_FIELD("material.granular.stress_diffusion"), BODY_FIELD("friction"),
+        BODY_FIELD("contact_damping"), TL_FIELD("material.tl.damage_strain"), BODY_FIELD("penalty_in_pressure_pass"),
         WORLD_FIELD("contact_rest"), WORLD_FIELD("periodic[0]"), WORLD_FIELD("periodic[1]"), WORLD_FIELD("dim"),
         WORLD_FIELD("periodic_origin[0]"), WORLD_FIELD("periodic_origin[1]"), WORLD_FIELD("periodic_origin[2]"),
-        BODY_FIELD("material.yield_cone"), BODY_FIELD("fluid_dissipation"), BODY_FIELD("transport_carries_velocity"),
+        BODY_FIELD("material.granular.yield_cone"), BODY_FIELD("material.fluid.dissipation"), BODY_FIELD("transport_carries_velocity"),
         BODY_FIELD("lattice")};
 #undef WORLD_FIELD
 #undef BODY_FIELD
@@ -2487,7 +2487,7 @@ static int test_restart_ul_j2_into_tl_j2(void) {
     ENSURE((fd = mkstemp(path)) >= 0);
     close(fd);
     wd.dp = 0.01; wd.threads = 1; wd.log = quiet_log;
-    bd.material.kind = SPS_MATERIAL_J2; bd.material.yield_stress = 1e4; bd.shear = SPS_SHEAR_GNO_A;
+    bd.material.kind = SPS_MATERIAL_J2; bd.material.j2.yield_stress = 1e4; bd.shear = SPS_SHEAR_GNO_A;
     for (solver = 0; solver < 2; ++solver) {
         bd.solver = solver ? SPS_SOLVER_TOTAL_LAGRANGIAN : SPS_SOLVER_UPDATED_LAGRANGIAN;
         ENSURE(sps_world_create(&wd, &w) == SPS_OK);
@@ -2527,27 +2527,27 @@ static int unread_warnings(const sps_body_def* bd) {
 static int test_unread_parameter_warned(void) {
     sps_body_def bd = sps_default_body_def();
     ENSURE(unread_warnings(&bd) == 0);
-    bd.material.cohesion = 5;
-    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.cohesion = 5") && strstr(g_log_last, "(elastic, updated Lagrangian, ENO-A)"));
+    bd.material.granular.cohesion = 5;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.granular.cohesion = 5") && strstr(g_log_last, "(elastic, updated Lagrangian, ENO-A)"));
     bd = sps_default_body_def();
-    bd.hourglass_alpha = 0;
-    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "hourglass_alpha = 0") && strstr(g_log_last, "updated Lagrangian"));
+    bd.material.tl.hourglass_alpha = 0;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.tl.hourglass_alpha = 0") && strstr(g_log_last, "updated Lagrangian"));
     bd = sps_default_body_def();
-    bd.shear = SPS_SHEAR_GNO_A; bd.zeta = 3; bd.material.kind = SPS_MATERIAL_J2; bd.material.yield_stress = 1e4;
-    bd.material.sound_speed = 20;
-    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.sound_speed = 20, zeta = 3") && strstr(g_log_last, "(J2, updated Lagrangian, GNO-A)"));
+    bd.shear = SPS_SHEAR_GNO_A; bd.zeta = 3; bd.material.kind = SPS_MATERIAL_J2; bd.material.j2.yield_stress = 1e4;
+    bd.material.fluid.sound_speed = 20;
+    ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.fluid.sound_speed = 20, zeta = 3") && strstr(g_log_last, "(J2, updated Lagrangian, GNO-A)"));
     /* the same fields where they are read: no warning */
     bd = sps_default_body_def();
-    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER; bd.material.cohesion = 5; bd.material.friction_angle = 30; bd.shear = SPS_SHEAR_GNO_A;
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER; bd.material.granular.cohesion = 5; bd.material.granular.friction_angle = 30; bd.shear = SPS_SHEAR_GNO_A;
     bd.xi = 3; bd.rotation = SPS_ROTATION_MEAN;
     ENSURE(unread_warnings(&bd) == 0);
     bd = sps_default_body_def();
-    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN; bd.hourglass_alpha = 10;
+    bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN; bd.material.tl.hourglass_alpha = 10;
     ENSURE(unread_warnings(&bd) == 0);
     bd.zeta = 3; /* a total-Lagrangian body has no ENO term */
     ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "zeta = 3") && strstr(g_log_last, "total Lagrangian"));
     bd = sps_default_body_def();
-    bd.material.kind = SPS_MATERIAL_FLUID; bd.material.sound_speed = 20; bd.material.youngs_modulus = 5e6;
+    bd.material.kind = SPS_MATERIAL_FLUID; bd.material.fluid.sound_speed = 20; bd.material.youngs_modulus = 5e6;
     ENSURE(unread_warnings(&bd) == 1 && strstr(g_log_last, "material.youngs_modulus = 5e+06") && strstr(g_log_last, "(fluid, updated Lagrangian)"));
     return 0;
 }
@@ -2596,12 +2596,12 @@ static int test_missing_pass_instance(void) {
                     sps_result r;
                     bd = sps_default_body_def();
                     bd.material.kind = (sps_material_kind)kind; bd.shear = (sps_shear)shears[shear];
-                    bd.material.yield_stress = 1e4; bd.material.sound_speed = 20; bd.material.friction_angle = 30;
+                    bd.material.j2.yield_stress = 1e4; bd.material.fluid.sound_speed = 20; bd.material.granular.friction_angle = 30;
                     bd.rotation = (sps_rotation)(variant & 3);
                     bd.solver = (sps_solver)((variant >> 2) & 1);
                     bd.material.viscosity = (variant >> 3) & 1 ? 0.1 : 0;
                     bd.track_stress = (variant >> 4) & 1;
-                    bd.stress_diffusion = (variant >> 5) & 1 ? 0.1 : 0;
+                    bd.material.granular.stress_diffusion = (variant >> 5) & 1 ? 0.1 : 0;
                     r = sps_world_add_body(w, &bd, &b);
                     if (r != SPS_OK && strstr(sps_world_last_error(w), "pass instance")) printf("    %s\n", sps_world_last_error(w));
                     ENSURE(r == SPS_OK || !strstr(sps_world_last_error(w), "pass instance"));
@@ -2677,9 +2677,9 @@ static sps_body_def generic_kind_def(sps_material_kind kind) {
     sps_body_def bd = sps_default_body_def();
     bd.material.kind = kind;
     bd.shear = SPS_SHEAR_GNO_A;
-    bd.material.sound_speed = 20;
-    bd.material.yield_stress = 1e4;
-    bd.material.friction_angle = 30;
+    bd.material.fluid.sound_speed = 20;
+    bd.material.j2.yield_stress = 1e4;
+    bd.material.granular.friction_angle = 30;
     bd.solver = kind == SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF || kind == SPS_MATERIAL_NEO_HOOKEAN ? SPS_SOLVER_TOTAL_LAGRANGIAN
                                                                                                 : SPS_SOLVER_UPDATED_LAGRANGIAN;
     return bd;
@@ -2842,7 +2842,7 @@ static int test_penalty_in_pressure_pass_def(void) {
     ENSURE(add_penalty_body(&bd, 2, 0, SPS_KERNEL_WENDLAND_C2) == SPS_ERR_INVALID_ARG);
     ENSURE(strstr(g_log_last, "penalty_in_pressure_pass = 1 with rotation = pair") != NULL);
     bd.rotation = SPS_ROTATION_MEAN;
-    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER; bd.material.cohesion = 5; bd.material.friction_angle = 30;
+    bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER; bd.material.granular.cohesion = 5; bd.material.granular.friction_angle = 30;
     ENSURE(add_penalty_body(&bd, 2, 0, SPS_KERNEL_WENDLAND_C2) == SPS_ERR_INVALID_ARG);
     ENSURE(strstr(g_log_last, "material.kind = Drucker-Prager") != NULL);
     bd = sps_default_body_def(); /* ENO-A: no penalty to move */
@@ -2858,7 +2858,7 @@ static int test_penalty_in_pressure_pass_def(void) {
                     bd.shear = shears[s];
                     bd.rotation = rotations[r];
                     bd.penalty_in_pressure_pass = 1;
-                    if (j2) { bd.material.kind = SPS_MATERIAL_J2; bd.material.yield_stress = 1e4; }
+                    if (j2) { bd.material.kind = SPS_MATERIAL_J2; bd.material.j2.yield_stress = 1e4; }
                     if (add_penalty_body(&bd, 2 + mode / 3, mode % 3 == 2, mode % 3 == 1 ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2) != SPS_OK)
                         printf("    %s shear %d rotation %d mode %d: %s\n", j2 ? "J2" : "elastic", (int)shears[s], (int)rotations[r], mode, g_log_last);
                     ENSURE(add_penalty_body(&bd, 2 + mode / 3, mode % 3 == 2, mode % 3 == 1 ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2) == SPS_OK);

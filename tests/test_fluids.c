@@ -31,7 +31,7 @@ static sps_world* still_tank(double width, int layers, double h_over_dp, sps_lat
     wd.log = log;
     if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)(10 * sqrt(9.81 * level_05));
+    bd.material.fluid.sound_speed = (sps_real)(10 * sqrt(9.81 * level_05));
     bd.lattice = lattice;
     if (sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) != SPS_OK || sps_world_add_body(w, &bd, water) != SPS_OK
         || sps_body_add_box(w, *water, lo, hi, NULL) != SPS_OK || sps_body_set_pressure(w, *water, water_at_rest, (void*)&level_05) != SPS_OK) {
@@ -165,7 +165,7 @@ static int test_fluid_hexagonal_fill(void) {
     int i, j, n, added = 0, periodic;
     wd.dim = 2; wd.dp = (sps_real)dp; wd.threads = 1; wd.log = quiet_log; wd.gravity[1] = -9.81;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 20;
+    bd.material.fluid.sound_speed = 20;
     bd.lattice = SPS_LATTICE_HEXAGONAL;
     for (periodic = 0; periodic < 2; ++periodic) {
         const sps_real *x, *y, *m;
@@ -216,7 +216,7 @@ static int fluid_warnings_for(double h_over_dp, double gravity, sps_lattice latt
     wd.h_over_dp = (sps_real)h_over_dp;
     wd.gravity[1] = (sps_real)-gravity;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 20;
+    bd.material.fluid.sound_speed = 20;
     bd.lattice = lattice;
     g_warnings = 0; g_warning_last[0] = 0;
     if (sps_world_create(&wd, &w) != SPS_OK) return -1;
@@ -320,8 +320,8 @@ static sps_material_def c5_soil(void) {
     m.density = 1850;
     m.youngs_modulus = 1.8e6;
     m.poisson_ratio = 0.3;
-    m.cohesion = 5e3;
-    m.friction_angle = 25;
+    m.granular.cohesion = 5e3;
+    m.granular.friction_angle = 25;
     return m;
 }
 
@@ -347,7 +347,7 @@ static int test_drucker_prager_return_on_cone(void) {
         sps__yield_cone c;
         sps_real t[6], before[6];
         double scale = (k % 4 + 0.2) * 2e4, f0, i1, dev_before[6], dev_after[6], ratio = 0;
-        if (k % 3 == 0) m.cohesion = 0;
+        if (k % 3 == 0) m.granular.cohesion = 0;
         c = sps__yield_cone_of(&m);
         for (a = 0; a < 6; ++a) before[a] = t[a] = (sps_real)(scale * rnd(&seed));
         f0 = yield_function(t, &m);
@@ -386,7 +386,7 @@ static void principal_stress(double s1, double s2, double s3, sps_real s[6]) {
     s[0] = (sps_real)s1; s[1] = 0; s[2] = 0; s[3] = (sps_real)s2; s[4] = 0; s[5] = (sps_real)s3;
 }
 
-/* Each cone of material.yield_cone meets Mohr-Coulomb where it says it does (tension positive,
+/* Each cone of material.granular.yield_cone meets Mohr-Coulomb where it says it does (tension positive,
    Mohr's circle of centre p_m and radius t = c cos phi - p_m sin phi on the Coulomb line):
    plane strain, with the out-of-plane stress that the potential's flow leaves at zero strain
    (d g / d sigma_zz = 0); the compression cone at triaxial compression (the axial stress the
@@ -405,10 +405,10 @@ static int test_drucker_prager_cones_match_mohr_coulomb(void) {
                 sps_real s[6];
                 sps__yield_cone c;
                 double a, d, sqrt_j2;
-                m.friction_angle = (sps_real)phis[i];
-                m.cohesion = (sps_real)cohesions[j];
-                m.dilatancy_angle = (sps_real)(k == 2 ? phis[i] : k * 10); /* psi 0, 10 and phi (associated) */
-                m.yield_cone = SPS_CONE_PLANE_STRAIN;
+                m.granular.friction_angle = (sps_real)phis[i];
+                m.granular.cohesion = (sps_real)cohesions[j];
+                m.granular.dilatancy_angle = (sps_real)(k == 2 ? phis[i] : k * 10); /* psi 0, 10 and phi (associated) */
+                m.granular.yield_cone = SPS_CONE_PLANE_STRAIN;
                 c = sps__yield_cone_of(&m);
                 a = (double)c.alpha_psi;
                 d = -3 * a * t / sqrt(1 - 3 * a * a); /* sigma_zz - p_m at zero out-of-plane plastic strain */
@@ -416,22 +416,22 @@ static int test_drucker_prager_cones_match_mohr_coulomb(void) {
                 sqrt_j2 = sqrt(d * d / 3 + t * t);
                 ENSURE_NEAR(a + (2 * d / 3) / (2 * sqrt_j2), 0, 1e-12); /* no flow out of the plane */
                 ENSURE(fabs(yield_function(s, &m)) < 1e-12 * scale);
-                m.yield_cone = SPS_CONE_COMPRESSION; /* s3 axial; the lateral p_m + t twice */
+                m.granular.yield_cone = SPS_CONE_COMPRESSION; /* s3 axial; the lateral p_m + t twice */
                 principal_stress(p_m + t, p_m + t, p_m - t, s);
                 ENSURE(fabs(yield_function(s, &m)) < 1e-12 * scale);
-                m.yield_cone = SPS_CONE_COMPROMISE; /* outside it at compression ... */
+                m.granular.yield_cone = SPS_CONE_COMPROMISE; /* outside it at compression ... */
                 ENSURE(yield_function(s, &m) > 1e-3 * scale);
-                m.yield_cone = SPS_CONE_EXTENSION; /* s1 axial; the lateral p_m - t twice */
+                m.granular.yield_cone = SPS_CONE_EXTENSION; /* s1 axial; the lateral p_m - t twice */
                 principal_stress(p_m + t, p_m - t, p_m - t, s);
                 ENSURE(fabs(yield_function(s, &m)) < 1e-12 * scale);
-                m.yield_cone = SPS_CONE_COMPROMISE; /* ... inside it at extension */
+                m.granular.yield_cone = SPS_CONE_COMPROMISE; /* ... inside it at extension */
                 ENSURE(yield_function(s, &m) < -1e-3 * scale);
             }
     {
         sps_material_def m = c5_soil();
         sps__yield_cone c;
-        m.friction_angle = 30;
-        m.yield_cone = SPS_CONE_PAPERS;
+        m.granular.friction_angle = 30;
+        m.granular.yield_cone = SPS_CONE_PAPERS;
         c = sps__yield_cone_of(&m);
         ENSURE_NEAR(c.alpha_phi, tan(30 * deg) / sqrt(9 + 12 * tan(30 * deg) * tan(30 * deg)), 1e-15);
         ENSURE_NEAR(c.k_c, 3 * 5e3 / sqrt(9 + 12 * tan(30 * deg) * tan(30 * deg)), 1e-9);
@@ -460,7 +460,7 @@ static double slope_displacement(double angle, sps_shear shear, int res) {
     bd.material.density = SLOPE_RHO0;
     bd.material.youngs_modulus = (sps_real)SLOPE_E;
     bd.material.poisson_ratio = (sps_real)SLOPE_NU;
-    bd.stress_diffusion = (sps_real)0.1;
+    bd.material.granular.stress_diffusion = (sps_real)0.1;
     if (slope_create(&p, &wd, &bd, &w, &soil) != SPS_OK) { sps_world_destroy(w); return NAN; }
     while (sps_world_time(w) < 1.5 - 1e-9) {
         if (sps_world_step(w) != SPS_OK) { sps_world_destroy(w); return NAN; }
@@ -578,10 +578,10 @@ static int test_granular_bad_input(void) {
     sps_body_def d = sps_default_body_def(), bad;
     ENSURE(w);
     d.material = c5_soil();
-    bad = d; bad.material.cohesion = -1;         ENSURE(rejects_body_def(w, &bad, "material.cohesion = -1") == 0);
-    bad = d; bad.material.friction_angle = 90;   ENSURE(rejects_body_def(w, &bad, "material.friction_angle = 90") == 0);
-    bad = d; bad.material.dilatancy_angle = 30;  ENSURE(rejects_body_def(w, &bad, "material.dilatancy_angle = 30") == 0);
-    bad = d; bad.stress_diffusion = 2;           ENSURE(rejects_body_def(w, &bad, "stress_diffusion = 2") == 0);
+    bad = d; bad.material.granular.cohesion = -1;         ENSURE(rejects_body_def(w, &bad, "material.granular.cohesion = -1") == 0);
+    bad = d; bad.material.granular.friction_angle = 90;   ENSURE(rejects_body_def(w, &bad, "material.granular.friction_angle = 90") == 0);
+    bad = d; bad.material.granular.dilatancy_angle = 30;  ENSURE(rejects_body_def(w, &bad, "material.granular.dilatancy_angle = 30") == 0);
+    bad = d; bad.material.granular.stress_diffusion = 2;           ENSURE(rejects_body_def(w, &bad, "material.granular.stress_diffusion = 2") == 0);
     bad = d; bad.shear = SPS_SHEAR_GNO_A; bad.rotation = SPS_ROTATION_PAIR;
     ENSURE(rejects_body_def(w, &bad, "rotation = pair") == 0);
     ENSURE(sps_body_set_geostatic_stress(w, (sps_body){0}, 1, 0) == SPS_ERR_INVALID_ARG);
@@ -645,7 +645,7 @@ static int test_transport_keeps_linear_momentum(void) {
             const sps_real* x;
             ENSURE(w);
             bd.material.kind = (sps_material_kind)kinds[k][0];
-            bd.material.sound_speed = 100;
+            bd.material.fluid.sound_speed = 100;
             bd.transport = pass ? (sps_transport)kinds[k][1] : SPS_TRANSPORT_NONE;
             ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK);
             ENSURE(sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK);
@@ -694,7 +694,7 @@ static double tvf_wall_distance(sps_transport transport) {
     int id;
     if (!w) return -1;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10;
+    bd.material.fluid.sound_speed = 10;
     bd.material.viscosity = 0.1;
     bd.transport = transport;
     if (sps_world_add_body(w, &bd, &b) != SPS_OK || sps_body_add_box(w, b, lo, hi, NULL) != SPS_OK ||
@@ -732,9 +732,9 @@ static int test_fluid_bad_input(void) {
     sps_real lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0};
     ENSURE(w);
     d.material.kind = SPS_MATERIAL_FLUID;
-    d.material.sound_speed = 10;
-    bad = d; bad.material.sound_speed = 0;    ENSURE(rejects_body_def(w, &bad, "material.sound_speed = 0") == 0);
-    bad = d; bad.material.sound_speed = NAN;  ENSURE(rejects_body_def(w, &bad, "material.sound_speed = nan") == 0);
+    d.material.fluid.sound_speed = 10;
+    bad = d; bad.material.fluid.sound_speed = 0;    ENSURE(rejects_body_def(w, &bad, "material.fluid.sound_speed = 0") == 0);
+    bad = d; bad.material.fluid.sound_speed = NAN;  ENSURE(rejects_body_def(w, &bad, "material.fluid.sound_speed = nan") == 0);
     bad = d; bad.material.viscosity = -1;     ENSURE(rejects_body_def(w, &bad, "material.viscosity = -1") == 0);
     bad = d; bad.material.density = 0;        ENSURE(rejects_body_def(w, &bad, "material.density = 0") == 0);
     bad = d; bad.transport = (sps_transport)7; ENSURE(rejects_body_def(w, &bad, "transport = 7") == 0);
@@ -775,7 +775,7 @@ static sps_body_def fsi_water(double c0) {
     sps_body_def bd = sps_default_body_def();
     bd.name = "water";
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = (sps_real)c0;
+    bd.material.fluid.sound_speed = (sps_real)c0;
     bd.lattice = SPS_LATTICE_SQUARE;
     return bd;
 }
@@ -1041,8 +1041,8 @@ static int test_granular_free_grain_stops(void) {
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
     bd.material.density = 2040;
     bd.material.youngs_modulus = (sps_real)5.84e6;
-    bd.material.cohesion = 0;
-    bd.material.friction_angle = (sps_real)phi;
+    bd.material.granular.cohesion = 0;
+    bd.material.granular.friction_angle = (sps_real)phi;
     ENSURE(sps_world_add_box_walls(w, box_lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
     ENSURE(sps_world_set_wall_friction(w, -1, (sps_real)tan(phi * 3.14159265358979323846 / 180)) == SPS_OK);
     ENSURE(sps_world_add_body(w, &bd, &grain) == SPS_OK);
@@ -1108,7 +1108,7 @@ static int test_fluid_rest_long(void) {
     wd.log = quiet_log;
     ENSURE(sps_world_create(&wd, &w) == SPS_OK);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = c0;
+    bd.material.fluid.sound_speed = c0;
     ENSURE(sps_world_add_box_walls(w, lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP) == SPS_OK);
     ENSURE(sps_world_add_body(w, &bd, &water) == SPS_OK);
     ENSURE(sps_body_add_box(w, water, lo, hi, NULL) == SPS_OK);
@@ -1144,10 +1144,10 @@ static double cavity_min_spacing(int carries, double* kinetic) {
     wd.log = quiet_log;
     wd.energy_growth_limit = (sps_real)INFINITY; /* the lid's work is not in the energy account */
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10;
+    bd.material.fluid.sound_speed = 10;
     bd.material.viscosity = 10; /* rho0 U L / Re */
     bd.transport = SPS_TRANSPORT_TVF;
-    bd.fluid_dissipation = SPS_FLUID_DISSIPATION_NONE;
+    bd.material.fluid.dissipation = SPS_FLUID_DISSIPATION_NONE;
     bd.transport_carries_velocity = carries;
     if (sps_world_create(&wd, &w) != SPS_OK || sps_world_add_body(w, &bd, &fluid) != SPS_OK ||
         sps_body_add_box(w, fluid, lo, hi, NULL) != SPS_OK || sps_world_add_box_walls(w, lo, hi, 0, SPS_WALL_NO_SLIP) != SPS_OK ||
@@ -1183,7 +1183,7 @@ static int test_fluid_transport_carries_velocity(void) {
     wd.log = quiet_log;
     ENSURE(sps_world_create(&wd, &w) == SPS_OK);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10;
+    bd.material.fluid.sound_speed = 10;
     bd.transport = SPS_TRANSPORT_TVF;
     bd.transport_carries_velocity = 1;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "transport_carries_velocity = 1 without a velocity gradient"));

@@ -413,7 +413,7 @@ static int test_container(void) {
     bd.material.kind = SPS_MATERIAL_RIGID;
     ENSURE(sps_world_add_body(w, &bd, &wall) == SPS_OK);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 20;
+    bd.material.fluid.sound_speed = 20;
     ENSURE(sps_world_add_body(w, &bd, &water) == SPS_OK);
     ENSURE(sps_body_add_mesh_shell(w, wall, m, lo, top, 3, &n_wall) == SPS_OK); /* open at the top */
     ENSURE(sps_body_add_mesh(w, water, m, lo, level, -1, &n_water) == SPS_OK);  /* water 0.5 deep */

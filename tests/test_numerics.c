@@ -1303,7 +1303,7 @@ static int test_penalty_in_pressure_pass_matches_paper(void) {
         bd.rotation = cases[c].rotation;
         if (cases[c].j2) {
             bd.material.kind = SPS_MATERIAL_J2;
-            bd.material.yield_stress = 2e3; /* below the random field's stresses (~1e4 Pa): it yields */
+            bd.material.j2.yield_stress = 2e3; /* below the random field's stresses (~1e4 Pa): it yields */
         }
         ENSURE(penalty_block_run(cases[c].dim, bd, 1, 300, v[0], &n) == 0);
         bd.penalty_in_pressure_pass = 1;

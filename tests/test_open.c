@@ -30,7 +30,7 @@ static sps_world* open_channel_changed(int threads, int zones[2], int change) {
     wd.dp = dp; wd.threads = threads; wd.log = quiet_log;
     if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 30 * OPEN_U;
+    bd.material.fluid.sound_speed = 30 * OPEN_U;
     bd.material.viscosity = 0.1; /* Re = 1 */
     in.kind = SPS_ZONE_INFLOW; in.lo[0] = -OPEN_BUF * dp; in.hi[1] = OPEN_H; in.velocity_fn = open_parabola;
     out.kind = SPS_ZONE_OUTFLOW; out.lo[0] = (OPEN_LEN - OPEN_BUF) * dp; out.hi[0] = L; out.hi[1] = OPEN_H; out.pressure = OPEN_P;
@@ -157,7 +157,7 @@ static int test_open_kill_zone(void) {
     char unique[100];
     int zone, k, i;
     wd.dp = 0.01; wd.threads = 1; wd.log = quiet_log; wd.gravity[1] = -9.81;
-    bd.material.kind = SPS_MATERIAL_FLUID; bd.material.sound_speed = 30;
+    bd.material.kind = SPS_MATERIAL_FLUID; bd.material.fluid.sound_speed = 30;
     bd.lattice = SPS_LATTICE_SQUARE; /* 100 particles, ids 0..99 */
     ENSURE(sps_world_create(&wd, &w) == SPS_OK && sps_world_add_body(w, &bd, &f) == SPS_OK && sps_body_add_box(w, f, lo, hi, NULL) == SPS_OK);
     kill.lo[0] = -1; kill.hi[0] = 1; kill.lo[1] = -1; kill.hi[1] = 0.1;
@@ -272,7 +272,7 @@ static int test_open_bad_input(void) {
     sps_body f, s, wb, t;
     sps_observer o;
     wd.dp = 0.01; wd.log = quiet_log;
-    fluid.material.kind = SPS_MATERIAL_FLUID; fluid.material.sound_speed = 10;
+    fluid.material.kind = SPS_MATERIAL_FLUID; fluid.material.fluid.sound_speed = 10;
     solid.rotation = SPS_ROTATION_MEAN; /* the default pair rotation is refused with zones (below) */
     wall.material.kind = SPS_MATERIAL_RIGID;
     tl.solver = SPS_SOLVER_TOTAL_LAGRANGIAN; tl.material.kind = SPS_MATERIAL_NEO_HOOKEAN;

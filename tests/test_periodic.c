@@ -34,7 +34,7 @@ static int test_periodic_crossing_keeps_momentum(void) {
     int steps = 0, i, outside = 0;
     ENSURE(w);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 5;
+    bd.material.fluid.sound_speed = 5;
     ENSURE(sps_world_add_body(w, &bd, &fluid) == SPS_OK && sps_body_add_box(w, fluid, lo, hi, NULL) == SPS_OK);
     ENSURE(sps_body_set_velocity(w, fluid, periodic_uniform_flow, NULL) == SPS_OK);
     ENSURE(sps_world_diagnostics(w, ALL_BODIES, &d0) == SPS_OK);
@@ -81,8 +81,8 @@ static int periodic_straddle_energy(sps_material_kind kind, double lo, double* e
     sps_diagnostics d;
     if (!w) return 1;
     bd.material.kind = kind;
-    if (kind == SPS_MATERIAL_FLUID) bd.material.sound_speed = 10;
-    if (kind == SPS_MATERIAL_DRUCKER_PRAGER) { bd.material.cohesion = 1e4; bd.material.friction_angle = 30; }
+    if (kind == SPS_MATERIAL_FLUID) bd.material.fluid.sound_speed = 10;
+    if (kind == SPS_MATERIAL_DRUCKER_PRAGER) { bd.material.granular.cohesion = 1e4; bd.material.granular.friction_angle = 30; }
     if (sps_world_add_body(w, &bd, &b) != SPS_OK || sps_body_add_box(w, b, blo, bhi, NULL) != SPS_OK) return 1;
     if (sps_body_set_velocity(w, b, periodic_shake, &lo) != SPS_OK) return 1;
     if (step_acoustic(w, 200) != SPS_OK || sps_world_diagnostics(w, ALL_BODIES, &d) != SPS_OK) return 1;
@@ -196,10 +196,10 @@ static double taylor_green_energy_ratio(sps_fluid_dissipation dissipation) {
     wd.periodic[0] = wd.periodic[1] = 1;
     wd.log = quiet_log;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10;
+    bd.material.fluid.sound_speed = 10;
     bd.material.viscosity = 10; /* rho0 U L / Re */
     bd.transport = SPS_TRANSPORT_TVF;
-    bd.fluid_dissipation = dissipation;
+    bd.material.fluid.dissipation = dissipation;
     if (sps_world_create(&wd, &w) == SPS_OK && sps_world_add_body(w, &bd, &fluid) == SPS_OK && sps_body_add_box(w, fluid, lo, hi, NULL) == SPS_OK &&
         sps_body_set_velocity(w, fluid, taylor_green_velocity, NULL) == SPS_OK &&
         sps_body_set_pressure(w, fluid, taylor_green_pressure, NULL) == SPS_OK && sps_world_diagnostics(w, ALL_BODIES, &d0) == SPS_OK &&
@@ -231,13 +231,13 @@ static int test_periodic_taylor_green_decay(void) {
     wd.log = quiet_log;
     ENSURE(sps_world_create(&wd, &w) == SPS_OK);
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10;
-    bd.fluid_dissipation = SPS_FLUID_DISSIPATION_NONE;
+    bd.material.fluid.sound_speed = 10;
+    bd.material.fluid.dissipation = SPS_FLUID_DISSIPATION_NONE;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG &&
-           strstr(sps_world_last_error(w), "fluid_dissipation = 1 or 2 with material.viscosity = 0"));
+           strstr(sps_world_last_error(w), "material.fluid.dissipation = 1 or 2 with material.viscosity = 0"));
     bd.material.viscosity = 1;
-    bd.fluid_dissipation = (sps_fluid_dissipation)3;
-    ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "fluid_dissipation = 3, allowed 0"));
+    bd.material.fluid.dissipation = (sps_fluid_dissipation)3;
+    ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "material.fluid.dissipation = 3, allowed 0"));
     sps_world_destroy(w);
     return 0;
 }
@@ -258,7 +258,7 @@ static sps_world* periodic_channel(int threads, double L) {
     wd.log = quiet_log;
     if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 10;
+    bd.material.fluid.sound_speed = 10;
     bd.material.viscosity = 1;
     sps_world_add_wall(w, floor_, up, SPS_WALL_NO_SLIP);
     sps_world_add_wall(w, roof, down, SPS_WALL_NO_SLIP);

@@ -126,7 +126,7 @@ static int test_rigid_bad_input(void) {
                strstr(sps_world_last_error(w), "sps_body_lock_axes"));
     }
     bd.material.kind = SPS_MATERIAL_FLUID;
-    bd.material.sound_speed = 20;
+    bd.material.fluid.sound_speed = 20;
     ENSURE(sps_world_add_body(w, &bd, &fluid) == SPS_OK);
     ENSURE(sps_body_set_mass_properties(w, fluid, 1, NULL) == SPS_ERR_INVALID_ARG);
     ENSURE(strstr(sps_world_last_error(w), "material.kind = 3 (fluid), allowed 7")); /* a fluid made rigid */

@@ -87,8 +87,8 @@ static int test_j2_uniaxial_strain_closed_form(void) {
     bd.material.density = 1000;
     bd.material.youngs_modulus = (sps_real)E;
     bd.material.poisson_ratio = (sps_real)nu;
-    bd.material.yield_stress = (sps_real)yield;
-    bd.material.hardening_modulus = (sps_real)kappa;
+    bd.material.j2.yield_stress = (sps_real)yield;
+    bd.material.j2.hardening_modulus = (sps_real)kappa;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK);
     ENSURE(sps_body_add_box(w, b, lo, hi, &n) == SPS_OK && n == 1000);
     for (slab = 0; slab < 10; ++slab) {
@@ -164,8 +164,8 @@ static int test_j2_taylor_bar_coarse(void) {
     bd.material.density = 8930;
     bd.material.youngs_modulus = (sps_real)1.17e11;
     bd.material.poisson_ratio = (sps_real)0.35;
-    bd.material.yield_stress = (sps_real)4e8;
-    bd.material.hardening_modulus = (sps_real)1e8;
+    bd.material.j2.yield_stress = (sps_real)4e8;
+    bd.material.j2.hardening_modulus = (sps_real)1e8;
     ENSURE(sps_world_add_body(w, &bd, &bar) == SPS_OK);
     ENSURE(sps_body_add_box(w, bar, lo, hi, &n) == SPS_OK && n == 1080);
     ENSURE(sps_body_set_velocity(w, bar, taylor_velocity, NULL) == SPS_OK);
@@ -206,14 +206,14 @@ static int test_j2_bad_input(void) {
     bd.material.kind = SPS_MATERIAL_J2;
     bd.shear = SPS_SHEAR_GNO_A;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG); /* yield_stress defaults to 0 */
-    ENSURE(strstr(sps_world_last_error(w), "material.yield_stress = 0"));
-    bd.material.yield_stress = 1e4;
-    bd.material.hardening_modulus = -1;
+    ENSURE(strstr(sps_world_last_error(w), "material.j2.yield_stress = 0"));
+    bd.material.j2.yield_stress = 1e4;
+    bd.material.j2.hardening_modulus = -1;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG);
-    ENSURE(strstr(sps_world_last_error(w), "material.hardening_modulus = -1"));
-    bd.material.hardening_modulus = (sps_real)NAN;
+    ENSURE(strstr(sps_world_last_error(w), "material.j2.hardening_modulus = -1"));
+    bd.material.j2.hardening_modulus = (sps_real)NAN;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG);
-    bd.material.hardening_modulus = 0;
+    bd.material.j2.hardening_modulus = 0;
     bd.shear = SPS_SHEAR_ENO_A;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG);
     ENSURE(strstr(sps_world_last_error(w), "J2 with shear = ENO or ENO-A"));
@@ -222,7 +222,7 @@ static int test_j2_bad_input(void) {
     bd.shear = SPS_SHEAR_GNO_A;
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK);
     bd.material.kind = SPS_MATERIAL_ELASTIC; /* the J2 fields are ignored by an elastic body */
-    bd.material.hardening_modulus = -5;
+    bd.material.j2.hardening_modulus = -5;
     {
         sps_real blo[3], bhi[3];
         sps_body e;
@@ -490,7 +490,7 @@ static sps_world* tl_box_of(int dim, sps_body_def bd, int n, int held, sps_body*
 static sps_world* tl_box(int dim, sps_material_kind kind, double alpha, int n, int held, sps_body* out) {
     sps_body_def bd = sps_default_body_def();
     bd.material.kind = kind;
-    bd.hourglass_alpha = alpha;
+    bd.material.tl.hourglass_alpha = alpha;
     return tl_box_of(dim, bd, n, held, out);
 }
 
@@ -695,7 +695,7 @@ static int test_tl_j2_return(void) {
         wd.dim = 3; wd.dp = 1e-3; wd.log = quiet_log; wd.threads = 1;
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_J2;
-        bd.material.yield_stress = (sps_real)Y; /* yield strain 1e-3 of E 1e6 */
+        bd.material.j2.yield_stress = (sps_real)Y; /* yield strain 1e-3 of E 1e6 */
         ENSURE(sps_world_create(&wd, &w) == SPS_OK);
         ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK && sps_body_add_box(w, b, lo, hi, NULL) == SPS_OK);
         ENSURE(sps_body_constrain_box(w, b, all_lo, all_hi, SPS_AXIS_ALL, NULL, NULL) == SPS_OK);
@@ -744,7 +744,7 @@ static sps_world* tl_damage_run(int dim, int n, double eps_max, const double l[3
     sps_body_def bd = sps_default_body_def();
     sps_world* w;
     bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
-    bd.damage_strain = eps_max;
+    bd.material.tl.damage_strain = eps_max;
     if ((w = tl_box_of(dim, bd, n, 1, b)) == NULL) return NULL;
     tl_map(w, A, c);
     if (sps_world_advance(w, (sps_real)t, NULL, NULL) != SPS_OK) {
@@ -771,14 +771,14 @@ static int test_tl_damage_rate(void) {
         ENSURE(sps_world_create(&wd, &w) == SPS_OK);
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
-        bd.damage_strain = -0.5;
+        bd.material.tl.damage_strain = -0.5;
         ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG);
-        ENSURE(strstr(sps_world_last_error(w), "damage_strain = -0.5, allowed [0, 100]") != NULL);
-        bd.damage_strain = 0.08;
+        ENSURE(strstr(sps_world_last_error(w), "material.tl.damage_strain = -0.5, allowed [0, 100]") != NULL);
+        bd.material.tl.damage_strain = 0.08;
         bd.solver = SPS_SOLVER_UPDATED_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_ELASTIC;
         ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG);
-        ENSURE(strstr(sps_world_last_error(w), "damage_strain > 0 with solver = updated Lagrangian") != NULL);
+        ENSURE(strstr(sps_world_last_error(w), "material.tl.damage_strain > 0 with solver = updated Lagrangian") != NULL);
         sps_world_destroy(w);
     }
     for (above = 0; above < 2; ++above) {
@@ -878,7 +878,7 @@ static sps_world* tl_irregular_patch(int dim, int n, sps_hourglass form, sps_bod
     wd.dim = dim; wd.dp = 1e-3; wd.log = quiet_log; wd.threads = 1;
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
-    bd.hourglass = form;
+    bd.material.tl.hourglass = form;
     if (sps_world_create(&wd, &w) != SPS_OK) return NULL;
     if (sps_world_add_body(w, &bd, out) != SPS_OK || sps_body_add_particles(w, *out, count, xyz, NULL) != SPS_OK ||
         sps_body_constrain_box(w, *out, all_lo, all_hi, SPS_AXIS_ALL, NULL, NULL) != SPS_OK || sps_world_step(w) != SPS_OK) {
@@ -905,30 +905,30 @@ static void tl_deform(sps_world* w, const double A[9], double noise) {
    (dim values per particle slot); the springs alone when springs_only (alpha 50 less alpha 0). */
 static void tl_forces(sps_world* w, int springs_only, double* f) {
     sps__body* b = &w->bodies[0];
-    const sps_real alpha = b->def.hourglass_alpha;
+    const sps_real alpha = b->def.material.tl.hourglass_alpha;
     int pass, i, a;
     for (pass = 0; pass < (springs_only ? 2 : 1); ++pass) {
-        b->def.hourglass_alpha = pass ? 0 : alpha;
+        b->def.material.tl.hourglass_alpha = pass ? 0 : alpha;
         sps__run_groups(w, b, b->model.pass.stress, 0);
         sps__run_groups(w, b, b->model.pass.pressure, 0);
         for (i = 0; i < w->n; ++i)
             for (a = 0; a < w->dim; ++a) f[w->dim * i + a] = (pass ? f[w->dim * i + a] : 0) + (pass ? -1 : 1) * (double)(w->acc_p[a][i] * w->mass[i]);
     }
-    b->def.hourglass_alpha = alpha;
+    b->def.material.tl.hourglass_alpha = alpha;
 }
 
 /* The stored energy sum_i sps__tl_energy at the current positions; the springs' Phi alone when
    springs_only. */
 static double tl_stored_energy(sps_world* w, int springs_only) {
     sps__body* b = &w->bodies[0];
-    const sps_real alpha = b->def.hourglass_alpha;
+    const sps_real alpha = b->def.material.tl.hourglass_alpha;
     double e = 0;
     int i;
     for (i = 0; i < w->n; ++i) e += (double)sps__tl_energy(w, b, i);
     if (springs_only) {
-        b->def.hourglass_alpha = 0;
+        b->def.material.tl.hourglass_alpha = 0;
         for (i = 0; i < w->n; ++i) e -= (double)sps__tl_energy(w, b, i);
-        b->def.hourglass_alpha = alpha;
+        b->def.material.tl.hourglass_alpha = alpha;
     }
     return e;
 }
@@ -1056,7 +1056,7 @@ static int test_tl_artificial_viscosity(void) {
             sps_diagnostics d0, d1;
             int id, a, steps;
             bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
-            bd.artificial_viscosity = damped ? (sps_real)0.5 : 0;
+            bd.material.tl.artificial_viscosity = damped ? (sps_real)0.5 : 0;
             w = tl_box_of(dim, bd, dim == 2 ? 10 : 5, 0, &b);
             ENSURE(w != NULL);
             for (id = 0; id < sps_world_particle_count(w); ++id) {
@@ -1099,14 +1099,14 @@ static int test_tl_artificial_viscosity(void) {
         ENSURE(sps_world_create(&wd, &w) == SPS_OK);
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
-        bd.artificial_viscosity = (sps_real)1.5;
-        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "artificial_viscosity = 1.5"));
-        bd.artificial_viscosity = (sps_real)0.1;
-        bd.hourglass = (sps_hourglass)2;
-        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "hourglass = 2"));
+        bd.material.tl.artificial_viscosity = (sps_real)1.5;
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "material.tl.artificial_viscosity = 1.5"));
+        bd.material.tl.artificial_viscosity = (sps_real)0.1;
+        bd.material.tl.hourglass = (sps_hourglass)2;
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "material.tl.hourglass = 2"));
         bd = sps_default_body_def();
-        bd.artificial_viscosity = (sps_real)0.1; /* an updated-Lagrangian body */
-        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "artificial_viscosity > 0"));
+        bd.material.tl.artificial_viscosity = (sps_real)0.1; /* an updated-Lagrangian body */
+        ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "material.tl.artificial_viscosity > 0"));
         sps_world_destroy(w);
     }
     return 0;
@@ -1321,7 +1321,7 @@ static int test_friction_damping_bad_input(void) {
     bad = d; bad.friction = -0.1;                 ENSURE(rejects_body_def(w, &bad, "friction = -0.1, allowed finite >= 0") == 0);
     bad = d; bad.friction = (sps_real)NAN;        ENSURE(rejects_body_def(w, &bad, "friction = nan") == 0);
     bad = d; bad.friction = 0.3; bad.contact = 0; ENSURE(rejects_body_def(w, &bad, "friction > 0 with contact = 0") == 0);
-    bad = d; bad.friction = 0.3; bad.material.kind = SPS_MATERIAL_FLUID; bad.material.sound_speed = 10;
+    bad = d; bad.friction = 0.3; bad.material.kind = SPS_MATERIAL_FLUID; bad.material.fluid.sound_speed = 10;
     ENSURE(rejects_body_def(w, &bad, "friction > 0 with material.kind = fluid") == 0);
     bad = d; bad.material.viscosity = -2;         ENSURE(rejects_body_def(w, &bad, "material.viscosity = -2, allowed finite >= 0") == 0);
     bad = d; bad.material.viscosity = (sps_real)NAN; ENSURE(rejects_body_def(w, &bad, "material.viscosity = nan") == 0);

@@ -60,10 +60,10 @@ SCENE_UNUSED static sps_result slope_create(slope_params* p, sps_world_def* wd, 
     wd->gravity[1] = (sps_real)(-SLOPE_GRAVITY * cos(theta)); /* the slope's frame: the normal part */
     wd->periodic[0] = (sps_real)(SLOPE_LENGTH_DP * dp);
     bd->material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
-    bd->material.cohesion = 0;
-    bd->material.friction_angle = (sps_real)p->phi;
-    bd->material.dilatancy_angle = (sps_real)p->psi;
-    bd->material.yield_cone = p->cone;
+    bd->material.granular.cohesion = 0;
+    bd->material.granular.friction_angle = (sps_real)p->phi;
+    bd->material.granular.dilatancy_angle = (sps_real)p->psi;
+    bd->material.granular.yield_cone = p->cone;
     p->g_along = SLOPE_GRAVITY * sin(theta);
     if ((r = sps_world_create(wd, &w)) != SPS_OK) return r;
     *out = w;

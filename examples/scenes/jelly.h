@@ -97,7 +97,7 @@ SCENE_UNUSED static sps_result jelly_add_water(jelly_scene* s) {
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = 1000;
-    water_def.material.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * JELLY_WATER_DEPTH)); /* 10 times the fastest flow */
+    water_def.material.fluid.sound_speed = (sps_real)(10 * sqrt(2 * 9.81 * JELLY_WATER_DEPTH)); /* 10 times the fastest flow */
     if ((r = sps_world_add_body(s->w, &water_def, &s->water)) != SPS_OK || (r = sps_body_add_box(s->w, s->water, lo, hi, NULL)) != SPS_OK)
         return r;
     return sps_body_set_pressure(s->w, s->water, jelly_hydrostatic, NULL);
