@@ -2224,6 +2224,14 @@ typedef struct sps__material_constants {
 
 /* The yield surface of a plastic material. */
 typedef enum { SPS__YIELD_NONE, SPS__YIELD_VON_MISES, SPS__YIELD_DRUCKER_PRAGER } sps__yield;
+/* How walls act on a body (a material row's column, chapter >>walls for fluids). */
+typedef enum {
+    SPS__MIRROR_NONE,     /* the solids' wall penalty (chapter >>contact) */
+    SPS__MIRROR_PRESSURE, /* mirror particles carrying the particle's pressure, corners imaged too (a fluid) */
+    SPS__MIRROR_STRESS    /* mirror particles carrying the particle's stress (continued by equilibrium at a
+                             no-slip wall), the no-slip image velocity in its velocity gradient, each wall
+                             on its own with its Coulomb friction and no corner images (granular media) */
+} sps__mirror_kind;
 
 /* The Drucker-Prager cone of a body (>>material: Drucker-Prager). */
 typedef struct sps__yield_cone {
@@ -2257,8 +2265,8 @@ typedef struct sps__material_model {
        limiter_per_dim: a further eta per space dimension (granular: 20 d). */
     sps_real limiter, limiter_per_dim;
     int riemann_density;
-    int mirrored; /* walls act on it through mirror particles (>>walls by mirror particles),
-                     not the solids' penalty */
+    sps__mirror_kind mirrored; /* walls act on it through mirror particles (>>walls for fluids), or not:
+                     the solids' penalty */
     int pressure_of_density; /* p = c0^2 (rho - rho0) at every half drift; 0: p is -tr(sigma)/3 of
                                 its integrated stress and rho = rho0 + p / c0^2 (Drucker-Prager) */
     int viscous; /* the force of its material.viscosity (an SPS__VISCOUS_ value): NONE refuses it */
@@ -2333,7 +2341,7 @@ typedef struct sps__model {
                      SPS__VISCOUS_KELVIN_VOIGT: a solid's material damping (>>material: Kelvin-Voigt) */
     int riemann_density; /* the continuity equation's Riemann pressure term (fluids, granular) */
     int diffusion; /* the stress diffusion of a Drucker-Prager body (material.granular.stress_diffusion > 0) */
-    int mirrored;  /* walls act through mirror particles (the material's choice) */
+    sps__mirror_kind mirrored; /* walls act through mirror particles (the material's choice) */
     int pressure_of_density; /* the half drift sets p from rho (not for Drucker-Prager) */
     sps_transport transport; /* the transport correction after each sub-step (>>transport) */
     int total_lagrangian; /* reference neighbours and gradients (chapter >>solver: total Lagrangian) */
@@ -3203,7 +3211,7 @@ static sps_real sps__elastic_energy_density(const sps__material_constants* c, sp
 }
 /* Its row (sps__material_model): kind, name, kinematic, plastic, shear, limiter eta + per dim,
    Riemann density, mirrored walls, pressure of density, viscous force, fields read. */
-static const sps__material_model sps__elastic_material = {SPS_MATERIAL_ELASTIC, "elastic", 0, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
+static const sps__material_model sps__elastic_material = {SPS_MATERIAL_ELASTIC, "elastic", 0, SPS__YIELD_NONE, 1, 0, 0, 0, SPS__MIRROR_NONE, 1,
                                                           SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_STRESS};
 
 /* >>material: rigid (wall bodies) */
@@ -3230,7 +3238,7 @@ static int sps__moving_wall_particles(int dim, const sps_body_def* def) {
     return def->transport != SPS_TRANSPORT_NONE && sps__rigid_kind(def);
 }
 /* Its row (sps__material_model; the columns: >>material: linear elastic). */
-static const sps__material_model sps__rigid_material = {SPS_MATERIAL_RIGID, "rigid", 1, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
+static const sps__material_model sps__rigid_material = {SPS_MATERIAL_RIGID, "rigid", 1, SPS__YIELD_NONE, 1, 0, 0, 0, SPS__MIRROR_NONE, 1,
                                                         SPS__VISCOUS_NONE, SPS__READS_MODULI};
 
 /* >>material: free rigid bodies (Box2D's dynamic bodies; FREE RIGID BODIES in the manual)
@@ -3246,7 +3254,7 @@ static void sps__free_rigid_model(sps__model* m) {
 }
 /* Its row (sps__material_model; the columns: >>material: linear elastic). */
 static const sps__material_model sps__free_rigid_material = {SPS_MATERIAL_RIGID_DYNAMIC, "free rigid", 1, SPS__YIELD_NONE, 1, 0, 0,
-                                                             0, 0, 1, SPS__VISCOUS_NONE, SPS__READS_MODULI};
+                                                             0, SPS__MIRROR_NONE, 1, SPS__VISCOUS_NONE, SPS__READS_MODULI};
 
 /* >>material: J2 plasticity (von Mises, linear isotropic hardening; ANG section 2.2) */
 
@@ -3269,7 +3277,7 @@ static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
 }
 /* Its row (sps__material_model; the columns: >>material: linear elastic). The stored energy of a
    J2 body is its elastic part; the return map's share is plastic work. */
-static const sps__material_model sps__j2_material = {SPS_MATERIAL_J2, "J2", 0, SPS__YIELD_VON_MISES, 1, 0, 0, 0, 0, 1,
+static const sps__material_model sps__j2_material = {SPS_MATERIAL_J2, "J2", 0, SPS__YIELD_VON_MISES, 1, 0, 0, 0, SPS__MIRROR_NONE, 1,
                                                      SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_HARDENING | SPS__READS_STRESS};
 
 /* >>material: Kelvin-Voigt (material damping of solids; DAMPING in the manual)
@@ -3379,7 +3387,7 @@ static sps_real sps__fluid_energy_density(const sps__material_constants* c, sps_
 static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid)", 0, 0, 0, 0, 0, 0, {0.6, 0.6}};
 /* Its row (sps__material_model; the columns: >>material: linear elastic): eta = 3 for fluids
    (UTVF section 3.1.1, after Zhang et al. 2017). */
-static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, 3, 0, 1, 1, 1,
+static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, 3, 0, 1, SPS__MIRROR_PRESSURE, 1,
                                                         SPS__VISCOUS_NEWTON, SPS__READS_SOUND_SPEED};
 /* Whether the world has gravity (a fluid then has a hydrostatic state to hold). */
 static int sps__has_gravity(const sps_world* w) {
@@ -3549,7 +3557,7 @@ static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular 
    bodies (UTVF section 3.1.3, after Zhang et al. 2024); mirror walls as the reference code's
    dummy wall particles; no Riemann density term: the density follows the pressure (sps__finish). */
 static const sps__material_model sps__drucker_prager_material = {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", 0, SPS__YIELD_DRUCKER_PRAGER, 1,
-                                                                  0, 20, 0, 1, 0, SPS__VISCOUS_NONE,
+                                                                  0, 20, 0, SPS__MIRROR_STRESS, 0, SPS__VISCOUS_NONE,
                                                                   SPS__READS_MODULI | SPS__READS_CONE | SPS__READS_STRESS};
 /* Its stabilisation (sps__kind_stabilisation): the divergence of its stress, or ANG's penalty
    with it where the def asks GNO or GNO-A (GRANULAR). */
@@ -3651,6 +3659,32 @@ SPS__INLINE void sps__drucker_prager_update(sps_real sig[6], const sps_real* L, 
     sps__drucker_prager_return(sig, c);
 }
 
+/* Its pair terms in the pressure pass (SPS__TERM_GRANULAR, sps__pressure_pairs), lane l of the
+   pair (i, j) at distance rij with dW and V_j: the stress diffusion's sum (Feng et al. 2021),
+   (sigma_i - sigma_j - geostatic difference) r dW/(r^2 + 0.01 h^2) V_j (soft2 = 0.01 h^2; dp_ij
+   = p_i - p_j; the lanes' deviators tau_i side by side, j's at tau + tj: an int offset from the
+   array, a gather, which a pointer to j's entries defeats). Unscaled by the lattice moment: a
+   smoothing, not the divergence. */
+SPS__INLINE void sps__granular_diffusion_pair(sps_real (*spread)[SPS__LANES], int l, sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj,
+                                              sps_real rij, sps_real dw, sps_real vol_j, sps_real soft2, const sps_real* gravity, sps_real ex, sps_real ey,
+                                              sps_real ez, sps_real dp_ij, const sps_real* geostatic, const int dim) {
+    const sps_real weight = rij * dw * vol_j / (rij * rij + soft2);
+    const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0));
+    spread[0][l] += weight * (tau_i[0][l] - tau[tj] - dp_ij - geostatic[0] * g_x);
+    spread[1][l] += weight * (tau_i[1][l] - tau[tj + 1] - geostatic[1] * g_x);
+    spread[3][l] += weight * (tau_i[3][l] - tau[tj + 3] - dp_ij - geostatic[3] * g_x);
+    spread[5][l] += weight * (tau_i[5][l] - tau[tj + 5] - dp_ij - geostatic[5] * g_x);
+    if (dim == 3) {
+        spread[2][l] += weight * (tau_i[2][l] - tau[tj + 2] - geostatic[2] * g_x);
+        spread[4][l] += weight * (tau_i[4][l] - tau[tj + 4] - geostatic[4] * g_x);
+    }
+}
+/* ... and the pressure pass's finish: the stress diffusion rate 2 zeta h c0 times those sums. */
+SPS__INLINE void sps__granular_store_diffusion(const sps__body* b, int i, sps_real (*spread)[SPS__LANES], int l) {
+    int a;
+    for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i - b->begin) + a] = b->diffusion_rate * spread[a][l];
+}
+
 /* >>material: Saint Venant-Kirchhoff (total Lagrangian; TL eqs. 18-20) */
 
 /* The hyperelastic laws of total-Lagrangian bodies take the linear elastic checks; their
@@ -3665,14 +3699,14 @@ static sps__material_constants sps__hyperelastic_constants(const sps_material_de
 /* Its row (sps__material_model; the columns: >>material: linear elastic): total-Lagrangian
    bodies only, their stored energy comes from F (sps__tl_energy). */
 static const sps__material_model sps__saint_venant_kirchhoff_material = {SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF, "Saint Venant-Kirchhoff", 0,
-                                                                          SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1, SPS__VISCOUS_KELVIN_VOIGT,
+                                                                          SPS__YIELD_NONE, 1, 0, 0, 0, SPS__MIRROR_NONE, 1, SPS__VISCOUS_KELVIN_VOIGT,
                                                                           SPS__READS_MODULI | SPS__READS_STRESS};
 
 /* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
 
 /* Its checks and constants are Saint Venant-Kirchhoff's (sps__hyperelastic_constants); its row
    (sps__material_model; the columns: >>material: linear elastic) as Saint Venant-Kirchhoff's. */
-static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, SPS__YIELD_NONE, 1, 0, 0, 0, 0, 1,
+static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, SPS__YIELD_NONE, 1, 0, 0, 0, SPS__MIRROR_NONE, 1,
                                                                SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_STRESS};
 
 /* >>generic: the material hooks, dispatched in one place
@@ -3900,26 +3934,22 @@ static const char* sps__left_out_by(const sps_body_def* def) {
     return NULL;
 }
 
-/* The laws of total-Lagrangian bodies (chapter >>solver: total Lagrangian), a literal in the
-   stress pass. */
-enum { SPS__LAW_NONE = -1, SPS__LAW_SAINT_VENANT_KIRCHHOFF, SPS__LAW_NEO_HOOKEAN, SPS__LAW_J2 };
-
-/* The law of a total-Lagrangian body's kind; SPS__LAW_NONE for a kind without one (the
-   combination rules refuse it, and sps__tl_passes then finds no kernel, which
-   sps_world_add_body reports: sps__missing_pass). Every kind is a case and there is no default,
-   so -Wswitch names a new kind here. */
-static int sps__tl_law_of(sps_material_kind kind) {
+/* Whether a kind has a law of the deformation gradient for the total-Lagrangian solver (its
+   case in sps__tl_law, chapter >>generic (continued): the laws of total-Lagrangian bodies); a
+   kind without one is refused by the combination rules, and sps__tl_passes finds no kernel for
+   it, which sps_world_add_body reports (sps__missing_pass). */
+static int sps__tl_has_law(sps_material_kind kind) {
     switch (kind) {
-    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return SPS__LAW_SAINT_VENANT_KIRCHHOFF;
-    case SPS_MATERIAL_NEO_HOOKEAN: return SPS__LAW_NEO_HOOKEAN;
-    case SPS_MATERIAL_J2: return SPS__LAW_J2;
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN:
+    case SPS_MATERIAL_J2: return 1;
     case SPS_MATERIAL_ELASTIC:
     case SPS_MATERIAL_RIGID:
     case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_FLUID:
-    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__LAW_NONE;
+    case SPS_MATERIAL_DRUCKER_PRAGER: return 0;
     }
-    return SPS__LAW_NONE; /* a value outside the enum (refused by the def check) */
+    return 0; /* a value outside the enum (refused by the def check) */
 }
 
 /* >>model (continued): the rows */
@@ -3961,7 +3991,7 @@ static int sps__hyperelastic_updated(int dim, const sps_body_def* def) {
 }
 static int sps__total_lagrangian_other_law(int dim, const sps_body_def* def) {
     (void)dim;
-    return def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN && sps__tl_law_of(def->material.kind) == SPS__LAW_NONE;
+    return def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN && !sps__tl_has_law(def->material.kind);
 }
 static int sps__shifted_reference(int dim, const sps_body_def* def) {
     (void)dim;
@@ -5991,18 +6021,32 @@ static sps_result sps__ensure_pair_storage(sps_world* w) {
     return SPS_OK;
 }
 
-/* Whether body b's model needs the arrays of kind need. */
+/* Whether body b's model needs the arrays of kind need (a per-body field's row, sps__fields).
+   The world's arrays (NEED_ALWAYS, and those the first constraint or zone allocates) are not a
+   body's: 0. Every need is a case and there is no default, so -Wswitch names a new one here. */
 static int sps__body_needs(const sps__body* b, sps__need need) {
     const sps__model* m = &b->model;
-    return (need == SPS__NEED_GRADIENT && m->gradient) || (need == SPS__NEED_STRESS && m->stress) ||
-           (need == SPS__NEED_MEAN_TURN && m->turn == SPS__TURN_MEAN) ||
-           (need == SPS__NEED_ARTIFICIAL && m->artificial_stress) || (need == SPS__NEED_PLASTIC && m->plastic) ||
-           (need == SPS__NEED_SCALED_PENALTY && m->scaled_penalty) || (need == SPS__NEED_DRIVEN && b->driven) ||
-           (need == SPS__NEED_TRANSPORT && m->transport != SPS_TRANSPORT_NONE) || (need == SPS__NEED_DIFFUSION && m->diffusion) ||
-           (need == SPS__NEED_GRANULAR && !m->pressure_of_density) || (need == SPS__NEED_WALL_EQUILIBRIUM && b->wall_equilibrium_needed) ||
-           (need == SPS__NEED_TOTAL_LAGRANGIAN && m->total_lagrangian) ||
-           (need == SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC && m->total_lagrangian && m->plastic) ||
-           (need == SPS__NEED_DAMAGE && m->damage) || (need == SPS__NEED_KELVIN_VOIGT && (m->viscous == SPS__VISCOUS_KELVIN_VOIGT || b->def.contact_damping > 0));
+    switch (need) {
+    case SPS__NEED_ALWAYS:
+    case SPS__NEED_CONSTRAINTS:
+    case SPS__NEED_ZONES: return 0;
+    case SPS__NEED_GRADIENT: return m->gradient;
+    case SPS__NEED_STRESS: return m->stress;
+    case SPS__NEED_MEAN_TURN: return m->turn == SPS__TURN_MEAN;
+    case SPS__NEED_ARTIFICIAL: return m->artificial_stress;
+    case SPS__NEED_PLASTIC: return m->plastic != SPS__YIELD_NONE;
+    case SPS__NEED_SCALED_PENALTY: return m->scaled_penalty;
+    case SPS__NEED_DRIVEN: return b->driven;
+    case SPS__NEED_TRANSPORT: return m->transport != SPS_TRANSPORT_NONE;
+    case SPS__NEED_DIFFUSION: return m->diffusion;
+    case SPS__NEED_GRANULAR: return !m->pressure_of_density;
+    case SPS__NEED_WALL_EQUILIBRIUM: return b->wall_equilibrium_needed;
+    case SPS__NEED_TOTAL_LAGRANGIAN: return m->total_lagrangian;
+    case SPS__NEED_TOTAL_LAGRANGIAN_PLASTIC: return m->total_lagrangian && m->plastic != SPS__YIELD_NONE;
+    case SPS__NEED_DAMAGE: return m->damage;
+    case SPS__NEED_KELVIN_VOIGT: return m->viscous == SPS__VISCOUS_KELVIN_VOIGT || b->def.contact_damping > 0;
+    }
+    return 0;
 }
 
 /* Body b's array(s) of the per-body field f for its count particles and the lane padding,
@@ -6315,8 +6359,7 @@ enum {
     SPS__TERM_STRESS = 1 << 0,    /* pressure: the divergence of the shear stress (OG family) */
     SPS__TERM_PAIRED = 1 << 1,    /* pressure: the accumulated pair forces; continuity, penalty: the
                                      increments go to the pair forces (SPS_ROTATION_PAIR) */
-    SPS__TERM_LIMITED = 1 << 2,   /* pressure: the Riemann dissipation limiter (fluids; with stress:
-                                     a granular body, its divergence scaled, its stress diffusion) */
+    SPS__TERM_LIMITED = 1 << 2,   /* pressure: the Riemann dissipation limiter (fluids, granular bodies) */
     SPS__TERM_NEWTON = 1 << 3,    /* pressure: a fluid's Newtonian viscous force */
     SPS__TERM_ART = 1 << 4,       /* rare pressure terms: Gray et al.'s artificial stress (OAS) */
     SPS__TERM_DAMPING = 1 << 5,   /* rare pressure terms: a solid's Kelvin-Voigt damping */
@@ -6329,8 +6372,11 @@ enum {
                                      sums it in any case: a row, not a loop of its own) */
     SPS__TERM_PENALTY = 1 << 12,   /* pressure: also the previous sub-step's GNO penalty sums
                                      (penalty_in_pressure_pass), PROJECTED and SCALED as the penalty's */
-    SPS__TERM_DIVERGENCE = 1 << 13 /* continuity, with RIEMANN: a fluid's velocity divergence as the pair
+    SPS__TERM_DIVERGENCE = 1 << 13, /* continuity, with RIEMANN: a fluid's velocity divergence as the pair
                                      sum, scaled as its pressure force (sps__continuity_pairs) */
+    SPS__TERM_GRANULAR = 1 << 14  /* pressure: a Drucker-Prager body's terms: its stress divergence scaled
+                                     as a fluid's pressure force, its stress diffusion's sums
+                                     (sps__granular_diffusion_pair; sps__kind_pressure_terms) */
 };
 
 /* The sums of a pass's pair loop, per lane, that it hands to the pass's finish: lane arrays
@@ -6479,7 +6525,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
                                      const int geo, const int terms) {
     const int stress = (terms & SPS__TERM_STRESS) != 0, paired = (terms & SPS__TERM_PAIRED) != 0;
     const int limited = (terms & SPS__TERM_LIMITED) != 0, newton = (terms & SPS__TERM_NEWTON) != 0;
-    const int granular = stress && limited; /* a Drucker-Prager body: its stress divergence scaled too */
+    const int granular = (terms & SPS__TERM_GRANULAR) != 0; /* its stress divergence scaled too */
     const int penalty = (terms & SPS__TERM_PENALTY) != 0, projected = (terms & SPS__TERM_PROJECTED) != 0;
     const int scaled = (terms & SPS__TERM_SCALED) != 0;
     const sps__group q = sps__group_of(w, b, g);
@@ -6534,18 +6580,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
                     acc[0][l] += (sxx * ex + sxy * ey) * dwv;
                     acc[1][l] += (sxy * ex + syy * ey) * dwv;
                 }
-                if (granular) { /* (sigma_i - sigma_j - geostatic difference) r dW/(r^2 + 0.01 h^2) V_j */
-                    const sps_real weight = rij * dw * vol[j] / (rij * rij + soft2); /* unscaled: a smoothing, not the divergence */
-                    const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0)), dp_ij = p[i] - p[j];
-                    spread[0][l] += weight * (tau_i[0][l] - tau[tj] - dp_ij - geostatic[0] * g_x);
-                    spread[1][l] += weight * (tau_i[1][l] - tau[tj + 1] - geostatic[1] * g_x);
-                    spread[3][l] += weight * (tau_i[3][l] - tau[tj + 3] - dp_ij - geostatic[3] * g_x);
-                    spread[5][l] += weight * (tau_i[5][l] - tau[tj + 5] - dp_ij - geostatic[5] * g_x);
-                    if (dim == 3) {
-                        spread[2][l] += weight * (tau_i[2][l] - tau[tj + 2] - geostatic[2] * g_x);
-                        spread[4][l] += weight * (tau_i[4][l] - tau[tj + 4] - geostatic[4] * g_x);
-                    }
-                }
+                if (granular) sps__granular_diffusion_pair(spread, l, tau_i, tau, tj, rij, dw, vol[j], soft2, gravity, ex, ey, ez, p[i] - p[j], geostatic, dim);
             }
             if (penalty) { /* in the penalty's configuration, before this sub-step's half drift */
                 const sps__pair_geometry e_kicked = sps__pair_before_drift(w, i, s, j, dim, geo, SPS_R(0.5) * dt);
@@ -6620,8 +6655,7 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
         if (dim == 3) w->acc_p[2][i] = acc[2][l] / w->rho[i];
         if (paired)
             for (k = 0; k < dim; ++k) w->acc_p[k][i] += shear[k][l] / w->mass[i];
-        if (diffusion)
-            for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i - b->begin) + a] = b->diffusion_rate * spread[a][l];
+        if (diffusion) sps__granular_store_diffusion(b, i, spread, l);
         if (damping) {
             sps_real power = 0; /* of the viscous force, at the velocities it was evaluated with */
             for (a = 0; a < dim; ++a) {
@@ -6664,7 +6698,7 @@ static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) 
 #ifdef SPHSOLID_NO_GRANULAR
 #define SPS__PRESSURE_GRANULAR_LOOPS(X)
 #else
-#define SPS__PRESSURE_GRANULAR_LOOPS(X) X(granular, SPS__TERM_STRESS | SPS__TERM_LIMITED)
+#define SPS__PRESSURE_GRANULAR_LOOPS(X) X(granular, SPS__TERM_STRESS | SPS__TERM_LIMITED | SPS__TERM_GRANULAR)
 #endif
 /* with the GNO penalty of the previous sub-step (penalty_in_pressure_pass; J2 bodies' scaled) */
 #ifdef SPHSOLID_NO_PLASTICITY
@@ -6834,6 +6868,11 @@ SPS__INLINE void sps__stress_lanes(const sps__body* b, sps__group q, const int d
     }
 }
 
+/* >>material: J2 plasticity (continued): the updated-Lagrangian return map
+
+   Called per lane group by the continuity pass's finish through sps__stress_update_lanes
+   (chapter >>generic); sps__next_stress is the Jaumann update every stress shares. */
+
 /* Radial return (J2 plasticity, ANG section 2.2) of one trial stress t (the Jaumann update,
    entries xx xy xz yy yz zz, those of dim): with |t| = sqrt(t:t) = sqrt(2 J2) and the yield
    radius y = sqrt(2/3)(sigma_Y + kappa alpha), a trial outside (f = |t| - y > 0, ANG eq. 11)
@@ -6898,6 +6937,11 @@ SPS__INLINE void sps__j2_stress_lanes(sps_world* w, const sps__body* b, sps__gro
         }
     }
 }
+
+/* >>material: Drucker-Prager (continued): the stress update of a lane group
+
+   Called per lane group by the continuity pass's finish through sps__stress_update_lanes
+   (chapter >>generic). */
 
 /* The Drucker-Prager update (sps__drucker_prager_update) of lane l of granular body b's lane
    group q from its velocity gradient (gradient) and the stress diffusion of the pressure pass
@@ -6992,7 +7036,24 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
         for (a = 0; a < 6; ++a) b->tau[(size_t)6 * (first + l) + a] = tau[a][l];
 }
 
-/* >>generic (continued): the stress update of a lane group, by its yield surface */
+/* >>generic (continued): the updated-Lagrangian passes' hooks: a kind's pair terms and the stress
+   update of a lane group, by its yield surface */
+
+/* The pressure pass's pair terms of a kind's own (sps__pressure_terms): Drucker-Prager's
+   (SPS__TERM_GRANULAR); 0 for a kind that has none. */
+static int sps__kind_pressure_terms(sps_material_kind kind) {
+    switch (kind) {
+    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__TERM_GRANULAR;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: return 0;
+    }
+    return 0;
+}
 
 /* The stress update of lane group q from its velocity gradients L (the continuity pass's
    finish): the return map of the body's yield surface (chapters >>material: J2 plasticity and
@@ -7251,7 +7312,7 @@ static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_
         const sps__wall* corner[3];
         if (!(d_i < w->support)) continue;
         sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
-        if (b->model.stress) continue; /* a granular body's walls act one by one (sps__grain_wall_force) */
+        if (b->model.mirrored == SPS__MIRROR_STRESS) continue; /* its walls act one by one (sps__grain_wall_force) */
         corner[0] = &w->walls[k];
         for (k2 = k + 1; k2 < w->nwalls; ++k2) {
             if (!sps__joins_corner(w, i, corner, 1, &w->walls[k2])) continue;
@@ -7310,11 +7371,11 @@ static void sps__image_stress(const sps_world* w, const sps__body* b, const sps_
    dx (the 6 stress entries times 3 directions, scaled by the lattice's gradient moment as the
    divergence) and rho b (3). */
 
-/* Whether body b continues its no-slip images' shear by equilibrium: a granular body in a
-   world with a no-slip wall. */
+/* Whether body b continues its no-slip images' shear by equilibrium: a body whose images carry
+   its stress (SPS__MIRROR_STRESS: granular) in a world with a no-slip wall. */
 static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b) {
     int k;
-    if (!(b->model.stress && b->model.mirrored)) return 0;
+    if (b->model.mirrored != SPS__MIRROR_STRESS) return 0;
     for (k = 0; k < w->nwalls; ++k)
         if (w->walls[k].slip == SPS_WALL_NO_SLIP) return 1;
     return 0;
@@ -7439,8 +7500,8 @@ static void sps__image_stress(const sps_world* w, const sps__body* b, const sps_
 }
 
 /* The pressure pass's terms (sps__pressure) of one image, added to acc (per unit mass * rho_i):
-   the Riemann pressure, the viscous force (a viscous fluid) and the stress divergence (a body
-   with a stress: granular). */
+   the Riemann pressure, the viscous force (a viscous fluid) and the stress divergence (images
+   that carry the stress: SPS__MIRROR_STRESS, granular). */
 static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
     sps_real* acc = (sps_real*)user, e[3], r, u = 0, beta, f2;
     const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), vol = w->vol[m->j];
@@ -7453,7 +7514,7 @@ static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps_
         acc[a] -= f2 * e[a];
         if (b->model.viscous == SPS__VISCOUS_NEWTON) acc[a] += b->viscous_coefficient * dw * vol / r * (w->vel[a][i] - m->vv[a]);
     }
-    if (b->model.stress) { /* (tau_i + tau_j') . e dW V_j */
+    if (b->model.mirrored == SPS__MIRROR_STRESS) { /* (tau_i + tau_j') . e dW V_j */
         const sps_real* ti = b->tau + (size_t)6 * (i - b->begin);
         sps_real tj[9];
         sps__image_stress(w, b, m, 0, tj);
@@ -7512,7 +7573,7 @@ static void sps__grain_wall_force(sps_world* w, const sps__body* b, int i, const
 static void sps__mirror_force(sps_world* w, const sps__body* b, int i, sps_real dt) {
     sps_real acc[3] = {0, 0, 0};
     int a, k;
-    if (b->model.stress) { /* granular: wall by wall, for each wall's friction */
+    if (b->model.mirrored == SPS__MIRROR_STRESS) { /* wall by wall, for each wall's friction */
         for (k = 0; k < w->nwalls; ++k) sps__grain_wall_force(w, b, i, &w->walls[k], dt, acc);
     } else {
         sps__each_image(w, b, i, sps__image_force, acc);
@@ -7526,12 +7587,12 @@ typedef struct {
     sps_real (*sum)[SPS__LANES];
     int lane;
 } sps__image_sums;
-/* The velocity gradient of a body with a stress (granular) takes the no-slip image velocity
+/* The velocity gradient of a body whose images carry its stress (granular) takes the no-slip image velocity
    at a no-slip wall (the shear that carries the wall's friction); a fluid's the reflected one
    (the normal part alone enters its density rate). */
 static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
     const sps__image_sums* s = (const sps__image_sums*)user;
-    const sps_real* v = b->model.stress ? m->vv : m->v;
+    const sps_real* v = b->model.mirrored == SPS__MIRROR_STRESS ? m->vv : m->v;
     const sps_real* rest = b->rest_pressure_gradient;
     sps_real e[3], r, dv[3], rest_dp;
     const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), dwv = dw * w->vol[m->j];
@@ -7995,7 +8056,7 @@ typedef struct sps__loop_row {
 #ifdef SPHSOLID_NO_GRANULAR
 #define SPS__PRESSURE_DIFFUSION_ROW
 #else
-#define SPS__PRESSURE_DIFFUSION_ROW {SPS__TERM_STRESS | SPS__TERM_LIMITED | SPS__TERM_DIFFUSION, sps__pressure_pairs_granular},
+#define SPS__PRESSURE_DIFFUSION_ROW {SPS__TERM_STRESS | SPS__TERM_LIMITED | SPS__TERM_GRANULAR | SPS__TERM_DIFFUSION, sps__pressure_pairs_granular},
 #endif
 static const sps__loop_row sps__pressure_rows[] = {SPS__PRESSURE_LOOPS(SPS__PRESSURE_ROW) SPS__PRESSURE_DIFFUSION_ROW};
 static const sps__loop_row sps__continuity_rows[] = {SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_ROW)};
@@ -8015,7 +8076,7 @@ static sps__pair_loop sps__find_loop(const sps__loop_row* rows, int nrows, int t
 static int sps__pressure_terms(const sps__model* m) {
     return (m->stabilisation->stress_force ? SPS__TERM_STRESS : 0) | (m->paired ? SPS__TERM_PAIRED : 0) |
            (m->limited ? SPS__TERM_LIMITED : 0) | (m->viscous == SPS__VISCOUS_NEWTON ? SPS__TERM_NEWTON : 0) |
-           (m->diffusion ? SPS__TERM_DIFFUSION : 0);
+           (m->diffusion ? SPS__TERM_DIFFUSION : 0) | sps__kind_pressure_terms(m->material->kind);
 }
 static int sps__continuity_terms(const sps__model* m) {
     const int eno = m->stabilisation->eno;
@@ -8210,49 +8271,66 @@ SPS__INLINE sps_real sps__tl_spring(const sps_real F[9], const sps_real X[3], co
     return px * inv_x2;
 }
 
-/* The first Piola-Kirchhoff stress P (row-major 3 x 3) of the deformation gradient F (row-major
-   3 x 3; in 2D, plane strain, F_zz = 1 and the out-of-plane entries 0) and the stored energy per
-   reference volume, returned; J = det F. Saint Venant-Kirchhoff (TL eqs. 18-20):
-   S = lambda tr(E) I + 2 mu E, E = (F^T F - I)/2, P = F S, psi = lambda/2 tr(E)^2 + mu E:E.
-   Neo-Hookean (TL eq. 44): P = F S = mu (F - F^-T) + lambda ln(J) F^-T,
-   psi = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2. */
-SPS__INLINE sps_real sps__tl_law(const int law, sps_real lambda, sps_real mu, const sps_real F[9], sps_real J, sps_real P[9]) {
+/* Lame constants of a total-Lagrangian body: mu = G, lambda = K - 2G/3. */
+#define SPS__LAME_LAMBDA(b) ((b)->mat.K - (b)->mat.G * 2 / 3)
+
+/* The law of a total-Lagrangian kind (dispatched by sps__tl_law in chapter >>generic): the
+   first Piola-Kirchhoff stress P (row-major 3 x 3) of the deformation gradient F (row-major
+   3 x 3; in 2D, plane strain, F_zz = 1 and the out-of-plane entries 0) at particle o of body b,
+   J = det F, and the stored energy per reference volume, returned. A law with a state of its
+   own (J2) advances it when update is 1 (the stress pass; 0: the energy account reads it) and
+   puts the plastic work density of the step in *work. */
+
+/* >>material: Saint Venant-Kirchhoff (continued): its law
+
+   S = lambda tr(E) I + 2 mu E, E = (F^T F - I)/2, P = F S, psi = lambda/2 tr(E)^2 + mu E:E
+   (TL eqs. 18-20). */
+SPS__INLINE sps_real sps__saint_venant_kirchhoff_law(const sps__body* b, const sps_real F[9], sps_real P[9]) {
+    const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b);
+    sps_real E[9], S[9], tr = 0, ee = 0;
     int a, c, k;
-    if (law == SPS__LAW_SAINT_VENANT_KIRCHHOFF) {
-        sps_real E[9], S[9], tr = 0, ee = 0;
-        for (a = 0; a < 3; ++a)
-            for (c = 0; c < 3; ++c) {
-                sps_real C = 0;
-                for (k = 0; k < 3; ++k) C += F[3 * k + a] * F[3 * k + c];
-                E[3 * a + c] = SPS_R(0.5) * (C - (a == c));
-            }
-        for (a = 0; a < 3; ++a) tr += E[4 * a];
-        for (k = 0; k < 9; ++k) {
-            S[k] = 2 * mu * E[k] + (k % 4 == 0 ? lambda * tr : 0);
-            ee += E[k] * E[k];
+    for (a = 0; a < 3; ++a)
+        for (c = 0; c < 3; ++c) {
+            sps_real C = 0;
+            for (k = 0; k < 3; ++k) C += F[3 * k + a] * F[3 * k + c];
+            E[3 * a + c] = SPS_R(0.5) * (C - (a == c));
         }
-        sps__mat3_product(F, S, 0, P);
-        return SPS_R(0.5) * lambda * tr * tr + mu * ee;
-    } else {
-        /* F^-T from the cofactors: (F^-T)_ac = cof(F)_ac / J */
-        const sps_real lnJ = SPS__LOG(J), inv_J = 1 / J;
-        sps_real cof[9], trC = 0;
-        cof[0] = F[4] * F[8] - F[5] * F[7];
-        cof[1] = F[5] * F[6] - F[3] * F[8];
-        cof[2] = F[3] * F[7] - F[4] * F[6];
-        cof[3] = F[2] * F[7] - F[1] * F[8];
-        cof[4] = F[0] * F[8] - F[2] * F[6];
-        cof[5] = F[1] * F[6] - F[0] * F[7];
-        cof[6] = F[1] * F[5] - F[2] * F[4];
-        cof[7] = F[2] * F[3] - F[0] * F[5];
-        cof[8] = F[0] * F[4] - F[1] * F[3];
-        for (k = 0; k < 9; ++k) {
-            P[k] = mu * F[k] + (lambda * lnJ - mu) * cof[k] * inv_J;
-            trC += F[k] * F[k];
-        }
-        return SPS_R(0.5) * mu * (trC - 3) - mu * lnJ + SPS_R(0.5) * lambda * lnJ * lnJ;
+    for (a = 0; a < 3; ++a) tr += E[4 * a];
+    for (k = 0; k < 9; ++k) {
+        S[k] = 2 * mu * E[k] + (k % 4 == 0 ? lambda * tr : 0);
+        ee += E[k] * E[k];
     }
+    sps__mat3_product(F, S, 0, P);
+    return SPS_R(0.5) * lambda * tr * tr + mu * ee;
 }
+
+/* >>material: Neo-Hookean (continued): its law
+
+   P = F S = mu (F - F^-T) + lambda ln(J) F^-T, psi = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2
+   (TL eq. 44). */
+SPS__INLINE sps_real sps__neo_hookean_law(const sps__body* b, const sps_real F[9], sps_real J, sps_real P[9]) {
+    const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b);
+    /* F^-T from the cofactors: (F^-T)_ac = cof(F)_ac / J */
+    const sps_real lnJ = SPS__LOG(J), inv_J = 1 / J;
+    sps_real cof[9], trC = 0;
+    int k;
+    cof[0] = F[4] * F[8] - F[5] * F[7];
+    cof[1] = F[5] * F[6] - F[3] * F[8];
+    cof[2] = F[3] * F[7] - F[4] * F[6];
+    cof[3] = F[2] * F[7] - F[1] * F[8];
+    cof[4] = F[0] * F[8] - F[2] * F[6];
+    cof[5] = F[1] * F[6] - F[0] * F[7];
+    cof[6] = F[1] * F[5] - F[2] * F[4];
+    cof[7] = F[2] * F[3] - F[0] * F[5];
+    cof[8] = F[0] * F[4] - F[1] * F[3];
+    for (k = 0; k < 9; ++k) {
+        P[k] = mu * F[k] + (lambda * lnJ - mu) * cof[k] * inv_J;
+        trC += F[k] * F[k];
+    }
+    return SPS_R(0.5) * mu * (trC - 3) - mu * lnJ + SPS_R(0.5) * lambda * lnJ * lnJ;
+}
+
+/* >>solver: total Lagrangian (continued) */
 
 /* det F of a row-major 3 x 3 matrix. */
 SPS__INLINE sps_real sps__det3(const sps_real F[9]) {
@@ -8386,7 +8464,60 @@ static sps_real sps__tl_j2(sps_real lambda, sps_real mu, sps_real yield, sps_rea
     return psi;
 }
 
-/* >>material: damage in the total-Lagrangian frame (TL section 4.6, eqs. 45-46)
+/* J2's law in the frame (sps__tl_law): the state C_p^-1 - I and alpha of particle o, advanced
+   with update, a copy left unchanged without (the energy account). */
+static sps_real sps__j2_tl_law(const sps__body* b, int o, const sps_real F[9], sps_real J, int update, sps_real P[9], sps_real* work) {
+    sps_real *cp = b->tl_plastic + (size_t)6 * o, *alpha = b->plastic_strain + o, cp_copy[6], alpha_copy;
+    if (!update) {
+        memcpy(cp_copy, cp, sizeof cp_copy);
+        alpha_copy = *alpha;
+        cp = cp_copy;
+        alpha = &alpha_copy;
+    }
+    return sps__tl_j2(SPS__LAME_LAMBDA(b), b->mat.G, b->def.material.j2.yield_stress, b->def.material.j2.hardening_modulus, F, J, cp, alpha,
+                      update, P, work);
+}
+/* The modulus of the hourglass springs at a J2 particle that has flowed: the yield stress
+   instead of E (TL section 4.5; sps__tl_hourglass_modulus). */
+static sps_real sps__j2_tl_flowed_modulus(const sps__body* b) { return b->def.material.j2.yield_stress; }
+
+/* >>generic (continued): the laws of total-Lagrangian bodies */
+
+/* The law of body b's kind at particle o (sps__saint_venant_kirchhoff_law explains the
+   arguments). A kind without a law has no total-Lagrangian kernel (sps__tl_passes), so its case
+   is not reached; P is zeroed there all the same. */
+SPS__INLINE sps_real sps__tl_law(const sps__body* b, int o, const sps_real F[9], sps_real J, int update, sps_real P[9], sps_real* work) {
+    int k;
+    switch (b->def.material.kind) {
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF: return sps__saint_venant_kirchhoff_law(b, F, P);
+    case SPS_MATERIAL_NEO_HOOKEAN: return sps__neo_hookean_law(b, F, J, P);
+    case SPS_MATERIAL_J2: return sps__j2_tl_law(b, o, F, J, update, P, work);
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_DRUCKER_PRAGER: break;
+    }
+    for (k = 0; k < 9; ++k) P[k] = 0;
+    return 0;
+}
+/* The hourglass springs' modulus at a particle of body b that has flowed (plastic kinds only:
+   sps__tl_hourglass_modulus reads it where plastic_strain > 0); E for the others. */
+static sps_real sps__tl_flowed_modulus(const sps__body* b) {
+    switch (b->def.material.kind) {
+    case SPS_MATERIAL_J2: return sps__j2_tl_flowed_modulus(b);
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_DRUCKER_PRAGER:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: break;
+    }
+    return b->def.material.youngs_modulus;
+}
+
+/* >>solver: total Lagrangian (continued): damage (TL section 4.6, eqs. 45-46)
 
    A body with material.tl.damage_strain = eps_max > 0 carries the damage D in [0, 1] of each particle (field
    "damage"). The rate model of TL eq. 45: while the largest principal Green-Lagrange strain of
@@ -8434,9 +8565,6 @@ static void sps__tl_damage(sps_real rate, sps_real eps_max, sps_real dt, const s
     sps__inverse3(F, J, Finv);
     sps__mat3_product(T, Finv, 1, P);
 }
-
-/* Lame constants of a total-Lagrangian body: mu = G, lambda = K - 2G/3. */
-#define SPS__LAME_LAMBDA(b) ((b)->mat.K - (b)->mat.G * 2 / 3)
 
 /* Deformation gradient of particle i (TL eq. 17): F_i = I + sum_j V0_j (u_j - u_i) (x) dW B_i E_ij,
    u = x - X, into F (row-major 3 x 3, F_zz = 1 in 2D). */
@@ -8512,15 +8640,18 @@ static sps_real sps__tl_springs(const sps_world* w, const sps__body* b, int i, i
     return SPS__V0(w, b, i) * energy;
 }
 
-/* Stress pass of lane group g: F_i, P_i by the body's law (degraded by its damage, TL eqs. 45-46,
-   when the body has damage), Q_i = (P_i + Pi_i) B_i with the hourglass stress Pi_i of the
-   variational form (for the force pass; Pi = 0 otherwise),
+/* >>solver: total Lagrangian (continued): the stress and force passes, the stored energy */
+
+/* Stress pass of lane group g: F_i, P_i by the body's law (sps__tl_law; degraded by its damage,
+   TL eqs. 45-46, when the body has damage), Q_i = (P_i + Pi_i) B_i with the hourglass stress
+   Pi_i of the variational form (for the force pass; Pi = 0 otherwise),
    the Cauchy stress sigma = P F^T / J stored as tau = sigma + p I (so that -p I + tau, what the
-   output reads, is sigma) and the density rho0/J (TL eq. 3). law and dim are literals. */
-SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int law) {
+   output reads, is sigma) and the density rho0/J (TL eq. 3). dim is a literal; plastic: the
+   law has plastic work (its particles that have flowed take sps__tl_flowed_modulus). */
+SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b), damage_rate = b->damage ? sps__tl_damage_rate(w, b) : 0;
-    const sps_real E = b->def.material.youngs_modulus, Y = b->def.material.j2.yield_stress;
+    const sps_real damage_rate = b->damage ? sps__tl_damage_rate(w, b) : 0;
+    const sps_real E = b->def.material.youngs_modulus, Y = sps__tl_flowed_modulus(b);
     const int springs = SPS__TL_SPRING_STRESS(b);
     int l, a, c, k;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
@@ -8530,16 +8661,13 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         sps_real P[9], Pi[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, sigma[9], J;
         sps__tl_deformation(w, b, i, q.s0 + l, dim, F);
         J = sps__det3(F);
-        if (law == SPS__LAW_J2) {
+        {
             sps_real work = 0;
-            sps__tl_j2(lambda, mu, b->def.material.j2.yield_stress, b->def.material.j2.hardening_modulus, F, J, b->tl_plastic + (size_t)6 * o,
-                       b->plastic_strain + o, 1, P, &work);
-            b->plastic_work[o] += SPS__V0(w, b, i) * work;
-        } else {
-            sps__tl_law(law, lambda, mu, F, J, P);
+            sps__tl_law(b, o, F, J, 1, P, &work);
+            if (plastic) b->plastic_work[o] += SPS__V0(w, b, i) * work;
         }
         if (b->damage) sps__tl_damage(damage_rate, b->def.material.tl.damage_strain, dt, F, J, b->damage + o, P);
-        if (springs) sps__tl_springs(w, b, i, q.s0 + l, dim, F, sps__tl_hourglass_modulus(b, o, E, Y, law == SPS__LAW_J2), Pi);
+        if (springs) sps__tl_springs(w, b, i, q.s0 + l, dim, F, sps__tl_hourglass_modulus(b, o, E, Y, plastic), Pi);
         for (a = 0; a < 3; ++a)
             for (c = 0; c < 3; ++c) {
                 sps_real s = 0, t = 0;
@@ -8577,8 +8705,8 @@ static void sps__tl_kelvin_voigt(const sps_world* w, const sps__body* b, int i, 
    (Q holds the hourglass stress too), and the springs' pair forces: TL eq. 32,
    f_i += -sum_j (k_ij d^i + k_ji d^j) x_ij, and in the variational form the turn of the pair,
    f_i += sum_j k_ij d^i (p^i - d^i x_ij) + k_ji d^j (p^j - d^j x_ij) (sps__tl_spring; k with E
-   Young's modulus, or for a J2 body (plastic, a literal) the yield stress at particles that have
-   flowed, TL section 4.5). All are antisymmetric in i, j, so the pair sums conserve linear
+   Young's modulus, or for a plastic body (plastic, a literal) sps__tl_flowed_modulus at particles
+   that have flowed, TL section 4.5). All are antisymmetric in i, j, so the pair sums conserve linear
    momentum; the stress force exerts no torque (P F^T = J sigma is symmetric), and the springs'
    forces, the gradient of a rotation-invariant energy (or, in the paper's form, central), none
    either. With material.tl.artificial_viscosity = q1 > 0, Monaghan's linear artificial viscosity between
@@ -8590,7 +8718,7 @@ static void sps__tl_kelvin_voigt(const sps_world* w, const sps__body* b, int i, 
    the hourglass modes' among them. acc_p = f_i / m_i. */
 SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real half_alpha = SPS_R(0.5) * b->def.material.tl.hourglass_alpha, E = b->def.material.youngs_modulus, Y = b->def.material.j2.yield_stress;
+    const sps_real half_alpha = SPS_R(0.5) * b->def.material.tl.hourglass_alpha, E = b->def.material.youngs_modulus, Y = sps__tl_flowed_modulus(b);
     const int springs = half_alpha > 0, turn = b->def.material.tl.hourglass == SPS_HOURGLASS_VARIATIONAL;
     const sps_real viscosity = b->def.material.tl.artificial_viscosity * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) * w->h * b->rho0;
     const int pair_terms = springs || viscosity > 0 || b->viscous_work; /* the terms below that need X_ij and x_ij */
@@ -8640,16 +8768,15 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
 
 /* The passes' kernels: like the updated-Lagrangian passes' finishes, compiled once per dimension
    (a total-Lagrangian body's pair geometry is its reference one: no mode of its own), the law
-   (sps__tl_law_of) read at run time. */
+   (sps__tl_law) dispatched at run time. */
 #ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN /* else no kernel: sps_world_add_body refuses the bodies */
-static int sps__tl_law_of(sps_material_kind kind);
 static void sps__tl_stress_pass(sps_world* w, const sps__body* b, int g, sps_real dt) {
-    const int law = sps__tl_law_of(b->model.material->kind);
-    if (w->dim == 2) sps__tl_stress(w, b, g, dt, 2, law);
-    else sps__tl_stress(w, b, g, dt, 3, law);
+    const int plastic = b->model.plastic != SPS__YIELD_NONE;
+    if (w->dim == 2) sps__tl_stress(w, b, g, dt, 2, plastic);
+    else sps__tl_stress(w, b, g, dt, 3, plastic);
 }
 static void sps__tl_force_pass(sps_world* w, const sps__body* b, int g, sps_real dt) {
-    const int plastic = sps__tl_law_of(b->model.material->kind) == SPS__LAW_J2;
+    const int plastic = b->model.plastic != SPS__YIELD_NONE;
     if (w->dim == 2) sps__tl_force(w, b, g, dt, 2, plastic);
     else sps__tl_force(w, b, g, dt, 3, plastic);
 }
@@ -8660,7 +8787,7 @@ static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
     memset(&p, 0, sizeof p);
     (void)w;
 #ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN
-    if (sps__tl_law_of(m->material->kind) == SPS__LAW_NONE) return p; /* no kernel: sps__missing_pass names it */
+    if (!sps__tl_has_law(m->material->kind)) return p; /* no kernel: sps__missing_pass names it */
     p.stress = sps__tl_stress_pass;
     p.pressure = sps__tl_force_pass;
 #else
@@ -8715,19 +8842,12 @@ static void sps__tl_signal_speeds(sps_world* w) {
    dissipates (its springs' modulus has the factor 1 - D already). */
 static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
     sps_real F[9], P[9], psi, modulus, springs;
-    const int law = sps__tl_law_of(b->def.material.kind);
     if (!b->reference_built) return 0;
     sps__tl_deformation(w, b, i, w->nb_first[i], w->dim, F);
-    if (law == SPS__LAW_J2) { /* the state is not advanced: a copy */
-        sps_real cp[6], alpha = b->plastic_strain[i - b->begin];
-        memcpy(cp, b->tl_plastic + (size_t)6 * (i - b->begin), sizeof cp);
-        psi = sps__tl_j2(SPS__LAME_LAMBDA(b), b->mat.G, b->def.material.j2.yield_stress, b->def.material.j2.hardening_modulus, F, sps__det3(F),
-                         cp, &alpha, 0, P, NULL);
-    } else {
-        psi = sps__tl_law(law, SPS__LAME_LAMBDA(b), b->mat.G, F, sps__det3(F), P);
-    }
+    psi = sps__tl_law(b, i - b->begin, F, sps__det3(F), 0, P, NULL); /* the state is not advanced */
     if (b->damage) psi *= 1 - b->damage[i - b->begin];
-    modulus = sps__tl_hourglass_modulus(b, i - b->begin, b->def.material.youngs_modulus, b->def.material.j2.yield_stress, law == SPS__LAW_J2);
+    modulus = sps__tl_hourglass_modulus(b, i - b->begin, b->def.material.youngs_modulus, sps__tl_flowed_modulus(b),
+                                        b->model.plastic != SPS__YIELD_NONE);
     springs = b->def.material.tl.hourglass_alpha > 0 ? sps__tl_springs(w, b, i, w->nb_first[i], w->dim, F, modulus, NULL) : 0;
     return SPS__V0(w, b, i) * psi + springs;
 }
