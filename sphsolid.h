@@ -552,8 +552,10 @@
       sps__continuity_pairs_eno_gradient_2d_wendland, what a profiler shows), its choices
       literals; what the pass does once per lane group after it (the velocity gradient, the
       stress update and return map, the rotation, the stores) is one function per pass compiled
-      per dimension, which reads the body's model at run time. Adding a material is its chapter
-      (its row, check, constants, energy) and its case in each switch of chapter >>generic; a
+      per dimension, which reads the body's model at run time. Adding a material is its value in
+      sps_material_kind, its parameter sub-struct in sps_material_def (if it has parameters),
+      its chapter (its row, check, constants, energy, parameter rows) and its case in each
+      switch of chapter >>generic, which lists the places; a
       new stabilisation a row in sps__stabilisations and, where its pair terms differ, a pair
       loop of the passes.
       Per-particle arrays are rows of sps__fields (name, components, when needed, housekeeping).
@@ -2239,14 +2241,13 @@ typedef struct sps__yield_cone {
     sps_real k0; /* 1 - sin(phi): the geostatic stress's horizontal to vertical ratio */
 } sps__yield_cone;
 
-/* The material fields a kind reads beyond its density (sps__material_model.reads): the def items
-   of the other kinds get a warning when set (sps__warn_unread_fields). */
+/* The shared fields a kind reads beyond its density (sps__material_model.reads): the def items
+   of the other kinds get a warning when set (sps__warn_unread_fields). A kind's own parameter
+   sub-struct (material.j2, .fluid, .granular) is read by that kind alone: its chapter's reads
+   function (sps__reads_j2, ...) says so. */
 enum {
-    SPS__READS_MODULI = 1,      /* youngs_modulus, poisson_ratio */
-    SPS__READS_HARDENING = 2,   /* material.j2 (J2) */
-    SPS__READS_SOUND_SPEED = 4, /* material.fluid (fluid) */
-    SPS__READS_CONE = 8,        /* material.granular (Drucker-Prager) */
-    SPS__READS_STRESS = 16      /* track_stress and, updated Lagrangian, the shear formulation: a stress of its own */
+    SPS__READS_MODULI = 1, /* youngs_modulus, poisson_ratio */
+    SPS__READS_STRESS = 2  /* track_stress and, updated Lagrangian, the shear formulation: a stress of its own */
 };
 
 /* A material's row: its name and the properties the step reads, one row in each material's
@@ -3091,10 +3092,7 @@ static int sps__reads(const sps_body_def* d, int fields) {
 static int sps__updated_solid(const sps_body_def* d) {
     return d->solver == SPS_SOLVER_UPDATED_LAGRANGIAN && sps__reads(d, SPS__READS_STRESS);
 }
-static int sps__reads_j2(const sps_body_def* d) { return sps__reads(d, SPS__READS_HARDENING); }
-static int sps__reads_fluid(const sps_body_def* d) { return sps__reads(d, SPS__READS_SOUND_SPEED); }
 static int sps__reads_elastic_moduli(const sps_body_def* d) { return sps__reads(d, SPS__READS_MODULI); }
-static int sps__reads_drucker_prager(const sps_body_def* d) { return sps__reads(d, SPS__READS_CONE); }
 static int sps__reads_total_lagrangian(const sps_body_def* d) { return d->solver == SPS_SOLVER_TOTAL_LAGRANGIAN; }
 static int sps__reads_stress(const sps_body_def* d) { return sps__reads(d, SPS__READS_STRESS); }
 static int sps__reads_transport_coefficient(const sps_body_def* d) { return d->transport != SPS_TRANSPORT_NONE; }
@@ -3120,44 +3118,14 @@ static const sps__def_item sps__world_def_items[] = {
     SPS__WORLD_ITEM(periodic[0], SPS__DEF_REAL), SPS__WORLD_ITEM(periodic[1], SPS__DEF_REAL), SPS__WORLD_ITEM(periodic[2], SPS__DEF_REAL),
     SPS__WORLD_ITEM(periodic_origin[0], SPS__DEF_REAL), SPS__WORLD_ITEM(periodic_origin[1], SPS__DEF_REAL),
     SPS__WORLD_ITEM(periodic_origin[2], SPS__DEF_REAL)};
-static const sps__def_item sps__body_def_items[] = {
-    SPS__BODY_ITEM(solver, SPS__DEF_INT),
-    SPS__BODY_ITEM(material.kind, SPS__DEF_INT),
-    SPS__BODY_ITEM(material.density, SPS__DEF_REAL),
-    SPS__BODY_ITEM_READ_BY(material.youngs_modulus, SPS__DEF_REAL, sps__reads_elastic_moduli),
-    SPS__BODY_ITEM_READ_BY(material.poisson_ratio, SPS__DEF_REAL, sps__reads_elastic_moduli),
-    SPS__BODY_ITEM_READ_BY(material.j2.yield_stress, SPS__DEF_REAL, sps__reads_j2),
-    SPS__BODY_ITEM_READ_BY(material.j2.hardening_modulus, SPS__DEF_REAL, sps__reads_j2),
-    SPS__BODY_ITEM_READ_BY(material.fluid.sound_speed, SPS__DEF_REAL, sps__reads_fluid),
-    SPS__BODY_ITEM(material.viscosity, SPS__DEF_REAL), /* the kinds that do not read it refuse it (sps__combination_rules) */
-    SPS__BODY_ITEM_READ_BY(material.granular.cohesion, SPS__DEF_REAL, sps__reads_drucker_prager),
-    SPS__BODY_ITEM_READ_BY(material.granular.friction_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
-    SPS__BODY_ITEM_READ_BY(material.granular.dilatancy_angle, SPS__DEF_REAL, sps__reads_drucker_prager),
-    SPS__BODY_ITEM_READ_BY(material.granular.yield_cone, SPS__DEF_INT, sps__reads_drucker_prager),
-    SPS__BODY_ITEM_READ_BY(shear, SPS__DEF_INT, sps__reads_shear),
-    SPS__BODY_ITEM_READ_BY(rotation, SPS__DEF_INT, sps__reads_rotation),
-    SPS__BODY_ITEM_READ_BY(zeta, SPS__DEF_REAL, sps__reads_zeta),
-    SPS__BODY_ITEM_READ_BY(xi, SPS__DEF_REAL, sps__reads_xi),
-    SPS__BODY_ITEM_READ_BY(penalty_in_pressure_pass, SPS__DEF_INT, sps__reads_xi),
-    SPS__BODY_ITEM_READ_BY(oas_epsilon, SPS__DEF_REAL, sps__reads_oas),
-    SPS__BODY_ITEM_READ_BY(oas_exponent, SPS__DEF_REAL, sps__reads_oas),
-    SPS__BODY_ITEM_READ_BY(track_stress, SPS__DEF_INT, sps__reads_stress),
-    SPS__BODY_ITEM(transport, SPS__DEF_INT),
-    SPS__BODY_ITEM(contact, SPS__DEF_INT),
-    SPS__BODY_ITEM_READ_BY(transport_coefficient, SPS__DEF_REAL, sps__reads_transport_coefficient),
-    SPS__BODY_ITEM(damping, SPS__DEF_REAL),
-    SPS__BODY_ITEM_READ_BY(material.tl.hourglass_alpha, SPS__DEF_REAL, sps__reads_total_lagrangian),
-    SPS__BODY_ITEM_READ_BY(material.tl.hourglass, SPS__DEF_INT, sps__reads_total_lagrangian),
-    SPS__BODY_ITEM(material.tl.artificial_viscosity, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
-    SPS__BODY_ITEM_READ_BY(material.granular.stress_diffusion, SPS__DEF_REAL, sps__reads_drucker_prager),
-    SPS__BODY_ITEM(friction, SPS__DEF_REAL),
-    SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
-    SPS__BODY_ITEM(material.tl.damage_strain, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */
-    SPS__BODY_ITEM_READ_BY(material.fluid.dissipation, SPS__DEF_INT, sps__reads_fluid),
-    SPS__BODY_ITEM_READ_BY(transport_carries_velocity, SPS__DEF_INT, sps__reads_transport_coefficient),
-    SPS__BODY_ITEM(lattice, SPS__DEF_INT)};
 #define SPS__WORLD_DEF_ITEMS ((int)(sizeof sps__world_def_items / sizeof sps__world_def_items[0]))
-#define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
+/* The body rows: sps__body_def_items (chapter >>generic (continued): the body def items), each
+   kind's rows from its chapter; the total-Lagrangian solver's (material.tl) here. */
+#define SPS__TL_DEF_ITEMS                                                                                   \
+    SPS__BODY_ITEM_READ_BY(material.tl.hourglass_alpha, SPS__DEF_REAL, sps__reads_total_lagrangian),      \
+    SPS__BODY_ITEM_READ_BY(material.tl.hourglass, SPS__DEF_INT, sps__reads_total_lagrangian),             \
+    SPS__BODY_ITEM(material.tl.artificial_viscosity, SPS__DEF_REAL), /* refused on updated-Lagrangian bodies */ \
+    SPS__BODY_ITEM(material.tl.damage_strain, SPS__DEF_REAL),        /* refused on updated-Lagrangian bodies */
 /* The value of a def item, as a double (exact for ints and sps_real). */
 static double sps__def_value(const void* def, const sps__def_item* item) {
     const char* at = (const char*)def + item->offset;
@@ -3247,28 +3215,35 @@ static const sps__material_model sps__rigid_material = {SPS_MATERIAL_RIGID, "rig
    pass of its own, no neighbour lists, no stress, no waves: the time step sees its contact
    stiffness c0 = sqrt(K / rho0) and its speed), and the kick sums the forces its particles
    received into a force and a torque on one body (chapter >>material: free rigid bodies
-   (continued): motion). Its rules and energy are the wall body's. */
-static void sps__free_rigid_model(sps__model* m) {
-    sps__rigid_model(m);
-    m->free_rigid = 1;
-}
+   (continued): motion). Its rules, energy and model are the wall body's (their composition:
+   chapter >>generic), and its model adds: */
+static void sps__free_rigid_model(sps__model* m) { m->free_rigid = 1; }
+/* Not in a periodic world (sps__kind_not_periodic): its pose is the centre of mass of its
+   particles, which a body across the boundary does not have. */
+static const char* const sps__free_rigid_not_periodic = "a free rigid body (its pose has no periodic image)";
 /* Its row (sps__material_model; the columns: >>material: linear elastic). */
 static const sps__material_model sps__free_rigid_material = {SPS_MATERIAL_RIGID_DYNAMIC, "free rigid", 1, SPS__YIELD_NONE, 1, 0, 0,
                                                              0, SPS__MIRROR_NONE, 1, SPS__VISCOUS_NONE, SPS__READS_MODULI};
 
 /* >>material: J2 plasticity (von Mises, linear isotropic hardening; ANG section 2.2) */
 
-/* The elastic constants and checks, and the yield stress and hardening modulus. The return map
-   itself is sps__j2_stress_lanes (chapter >>solver), where the Jaumann update is. */
+/* The elastic constants and checks (chapter >>generic composes them with its own), and the yield
+   stress and hardening modulus. The return map: sps__j2_stress_lanes (chapter >>material: J2
+   plasticity (continued)) and in the total-Lagrangian frame sps__j2_tl_law. */
 static void sps__j2_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
     int broken = 0;
-    sps__elastic_check(m, msg, msg_size, &broken);
     SPS__CHECK(m->j2.yield_stress > 0 && sps__finite(m->j2.yield_stress), "material.j2.yield_stress = %g, allowed finite > 0 Pa for J2",
                (double)m->j2.yield_stress);
     SPS__CHECK(m->j2.hardening_modulus >= 0 && sps__finite(m->j2.hardening_modulus),
                "material.j2.hardening_modulus = %g, allowed finite >= 0 Pa for J2 (0: perfect plasticity)", (double)m->j2.hardening_modulus);
     *broken_out += broken;
 }
+/* Its rows of the def items (sps__body_def_items: restart fingerprint, unread-field warnings):
+   material.j2, read by J2 bodies alone. */
+static int sps__reads_j2(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_J2; }
+#define SPS__J2_DEF_ITEMS                                                               \
+    SPS__BODY_ITEM_READ_BY(material.j2.yield_stress, SPS__DEF_REAL, sps__reads_j2),      \
+    SPS__BODY_ITEM_READ_BY(material.j2.hardening_modulus, SPS__DEF_REAL, sps__reads_j2),
 /* Its combination rule (sps__combination_rules): the return map needs the stress force. */
 static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
     (void)dim;
@@ -3278,7 +3253,7 @@ static int sps__plastic_without_stress_force(int dim, const sps_body_def* def) {
 /* Its row (sps__material_model; the columns: >>material: linear elastic). The stored energy of a
    J2 body is its elastic part; the return map's share is plastic work. */
 static const sps__material_model sps__j2_material = {SPS_MATERIAL_J2, "J2", 0, SPS__YIELD_VON_MISES, 1, 0, 0, 0, SPS__MIRROR_NONE, 1,
-                                                     SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_HARDENING | SPS__READS_STRESS};
+                                                     SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_STRESS};
 
 /* >>material: Kelvin-Voigt (material damping of solids; DAMPING in the manual)
 
@@ -3327,6 +3302,10 @@ static sps_real sps__kelvin_voigt_dt(const sps_world* w, const sps__body* b) {
     const sps_real nu = b->def.material.viscosity / b->rho0;
     return w->dim / (4 * (w->dim + 2) * nu * sps__viscous_rate_sum(w));
 }
+/* >>material: weakly compressible fluid (UTVF sections 2.1, 3.1.1) */
+
+static sps_real sps__lattice_gradient_moment(const sps_world* w, int hexagonal); /* >>kernel */
+
 /* The longest acoustic step a viscous fluid body b allows: the Newtonian force (2 mu / rho_i)
    sum_j v_ij dW / r_ij V_j (Morris et al. 1997) damps a zigzag (v_ij = 2 v_i) at the rate
    4 nu S, kept below 1 / dt as the Kelvin-Voigt one: dt = 1 / (4 nu S) = h^2 / (14 nu) in 2D
@@ -3335,10 +3314,6 @@ static sps_real sps__kelvin_voigt_dt(const sps_world* w, const sps__body* b) {
 static sps_real sps__newton_dt(const sps_world* w, const sps__body* b) {
     return 1 / (4 * b->def.material.viscosity / b->rho0 * sps__viscous_rate_sum(w));
 }
-
-/* >>material: weakly compressible fluid (UTVF sections 2.1, 3.1.1) */
-
-static sps_real sps__lattice_gradient_moment(const sps_world* w, int hexagonal); /* >>kernel */
 
 /* Its combination rule (sps__combination_rules): a fluid without the Riemann solver's momentum
    dissipation needs the viscosity, the only damping left of its particles' noise (an inviscid
@@ -3376,6 +3351,12 @@ static void sps__fluid_check(const sps_material_def* m, char* msg, size_t msg_si
     }
     *broken_out += broken;
 }
+/* Its rows of the def items (sps__body_def_items: restart fingerprint, unread-field warnings):
+   material.fluid, read by fluids alone. */
+static int sps__reads_fluid(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_FLUID; }
+#define SPS__FLUID_DEF_ITEMS                                                                \
+    SPS__BODY_ITEM_READ_BY(material.fluid.sound_speed, SPS__DEF_REAL, sps__reads_fluid),    \
+    SPS__BODY_ITEM_READ_BY(material.fluid.dissipation, SPS__DEF_INT, sps__reads_fluid),
 /* p^2/(2K): a fluid stores energy in its compression only */
 static sps_real sps__fluid_energy_density(const sps__material_constants* c, sps_real tau_tau, sps_real p) {
     (void)tau_tau;
@@ -3388,7 +3369,7 @@ static const sps__stabilisation sps__no_shear = {(sps_shear)-1, "no shear (fluid
 /* Its row (sps__material_model; the columns: >>material: linear elastic): eta = 3 for fluids
    (UTVF section 3.1.1, after Zhang et al. 2017). */
 static const sps__material_model sps__fluid_material = {SPS_MATERIAL_FLUID, "fluid", 0, SPS__YIELD_NONE, 0, 3, 0, 1, SPS__MIRROR_PRESSURE, 1,
-                                                        SPS__VISCOUS_NEWTON, SPS__READS_SOUND_SPEED};
+                                                        SPS__VISCOUS_NEWTON, 0};
 /* Whether the world has gravity (a fluid then has a hydrostatic state to hold). */
 static int sps__has_gravity(const sps_world* w) {
     const sps_real* g = w->def.gravity;
@@ -3535,7 +3516,6 @@ static sps__yield_cone sps__yield_cone_of(const sps_material_def* m) {
 }
 static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size_t msg_size, int* broken_out) {
     int broken = 0;
-    sps__elastic_check(m, msg, msg_size, &broken);
     SPS__CHECK(m->granular.cohesion >= 0 && sps__finite(m->granular.cohesion), "material.granular.cohesion = %g, allowed finite >= 0 Pa for Drucker-Prager",
                (double)m->granular.cohesion);
     SPS__CHECK(m->granular.friction_angle >= 0 && m->granular.friction_angle < 90, "material.granular.friction_angle = %g, allowed [0, 90) degrees for Drucker-Prager",
@@ -3550,6 +3530,15 @@ static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size
                "material.granular.stress_diffusion = %g, allowed [0, 1] (0: off) for Drucker-Prager", (double)m->granular.stress_diffusion);
     *broken_out += broken;
 }
+/* Its rows of the def items (sps__body_def_items: restart fingerprint, unread-field warnings):
+   material.granular, read by Drucker-Prager bodies alone. */
+static int sps__reads_drucker_prager(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_DRUCKER_PRAGER; }
+#define SPS__GRANULAR_DEF_ITEMS                                                                           \
+    SPS__BODY_ITEM_READ_BY(material.granular.cohesion, SPS__DEF_REAL, sps__reads_drucker_prager),          \
+    SPS__BODY_ITEM_READ_BY(material.granular.friction_angle, SPS__DEF_REAL, sps__reads_drucker_prager),    \
+    SPS__BODY_ITEM_READ_BY(material.granular.dilatancy_angle, SPS__DEF_REAL, sps__reads_drucker_prager),   \
+    SPS__BODY_ITEM_READ_BY(material.granular.yield_cone, SPS__DEF_INT, sps__reads_drucker_prager),         \
+    SPS__BODY_ITEM_READ_BY(material.granular.stress_diffusion, SPS__DEF_REAL, sps__reads_drucker_prager),
 /* A Drucker-Prager body's stabilisation: the divergence of its stress (UTVF eq. 25) and the
    stress diffusion (its def's granular.stress_diffusion), no hourglass penalty (the reference code's). */
 static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular stress", 1, 0, 0, 0, 0, 0, {0.4, 0.4}};
@@ -3558,7 +3547,7 @@ static const sps__stabilisation sps__granular_stress = {SPS_SHEAR_OG, "granular 
    dummy wall particles; no Riemann density term: the density follows the pressure (sps__finish). */
 static const sps__material_model sps__drucker_prager_material = {SPS_MATERIAL_DRUCKER_PRAGER, "Drucker-Prager", 0, SPS__YIELD_DRUCKER_PRAGER, 1,
                                                                   0, 20, 0, SPS__MIRROR_STRESS, 0, SPS__VISCOUS_NONE,
-                                                                  SPS__READS_MODULI | SPS__READS_CONE | SPS__READS_STRESS};
+                                                                  SPS__READS_MODULI | SPS__READS_STRESS};
 /* Its stabilisation (sps__kind_stabilisation): the divergence of its stress, or ANG's penalty
    with it where the def asks GNO or GNO-A (GRANULAR). */
 static const sps__stabilisation* sps__granular_stabilisation(const sps_body_def* def) {
@@ -3690,9 +3679,10 @@ SPS__INLINE void sps__granular_store_diffusion(const sps__body* b, int i, sps_re
 /* The hyperelastic laws of total-Lagrangian bodies take the linear elastic checks; their
    signal speed is the P-wave speed c_p = sqrt((K + 4G/3)/rho0) of the linearised law, since
    the full stress tensor, not only its pressure, carries waves (the time step, chapter
-   >>stepping). Stress and stored energy: sps__tl_law (chapter >>solver: total Lagrangian). */
-static sps__material_constants sps__hyperelastic_constants(const sps_material_def* m) {
-    sps__material_constants c = sps__elastic_constants(m);
+   >>stepping). Stress and stored energy: sps__saint_venant_kirchhoff_law (chapter >>material:
+   Saint Venant-Kirchhoff (continued): its law). */
+static sps__material_constants sps__hyperelastic_constants(const sps_material_def* m, sps__material_constants elastic) {
+    sps__material_constants c = elastic;
     c.c0 = SPS__SQRT((c.K + c.G * 4 / 3) / m->density);
     return c;
 }
@@ -3705,7 +3695,8 @@ static const sps__material_model sps__saint_venant_kirchhoff_material = {SPS_MAT
 /* >>material: Neo-Hookean (total Lagrangian; TL eq. 44) */
 
 /* Its checks and constants are Saint Venant-Kirchhoff's (sps__hyperelastic_constants); its row
-   (sps__material_model; the columns: >>material: linear elastic) as Saint Venant-Kirchhoff's. */
+   (sps__material_model; the columns: >>material: linear elastic) as Saint Venant-Kirchhoff's;
+   its law: sps__neo_hookean_law (chapter >>material: Neo-Hookean (continued): its law). */
 static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_HOOKEAN, "Neo-Hookean", 0, SPS__YIELD_NONE, 1, 0, 0, 0, SPS__MIRROR_NONE, 1,
                                                                SPS__VISCOUS_KELVIN_VOIGT, SPS__READS_MODULI | SPS__READS_STRESS};
 
@@ -3722,16 +3713,31 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
    mirrored walls, the density update, the Riemann terms), resolved once per body into its model
    (sps__resolve_model), and never asks which kind a body is.
 
-   Adding a material touches three places and nothing else:
+   Adding a material touches these places and nothing else (the toy kind of issue 48, a Maxwell
+   material, touched exactly these):
    1. its value in sps_material_kind (>>public), the next one (the def check lists the kinds
       from the rows: sps__material_kinds);
-   2. its chapter (>>material: ...) with its row (sps__material_model), its check, its
-      constants (c0, G, K), its stored energy and, where they differ from an existing kind's,
-      its stress update, return map, setup and combination rules;
-   3. its case in each switch of this chapter: the compiler lists every switch that lacks it
-      (an enum value added without its cases warns in the 11 switches here, and nowhere else).
-   A parameter of its own is a field of sps_material_def with its row in sps__body_def_items
-   (>>defaults: restart and warnings follow) and, if no bit fits, a new SPS__READS_ bit. */
+   2. if it has parameters of its own, their sub-struct in sps_material_def (>>public, one field
+      named for the kind, each parameter with units, range and default), and in
+      sps_default_material_def (>>defaults) those whose default is not zero;
+   3. its chapter (>>material: ...): its row (sps__material_model), its check, its constants
+      (c0, G, K), its stored energy, the rows of its parameters (SPS__<KIND>_DEF_ITEMS and the
+      reads function they name: the restart's fingerprint and the unread-field warnings follow)
+      and, where they differ from an existing kind's, its setup, warnings, combination rules,
+      stress update (a lane update: a "(continued)" chapter after the updated-Lagrangian
+      solver's lane helpers), total-Lagrangian law, pair terms and per-particle state rows;
+   4. its case in each switch over sps_material_kind here and in this chapter's continuations
+      (>>generic (continued): the updated-Lagrangian passes' hooks; ... the laws of
+      total-Lagrangian bodies): the compiler lists every switch that lacks it (an enum value
+      added without its cases warns in the 16 switches of these chapters, and nowhere else),
+      plus its SPS__<KIND>_DEF_ITEMS in sps__body_def_items (>>generic (continued): the body def
+      items) and its rules in sps__combination_rules (>>generic (continued): the combination
+      rules), if it has any.
+   A kind whose stress has a yield surface adds an sps__yield value and its case in
+   sps__stress_update_lanes; a kind whose walls act through mirror particles takes an
+   sps__mirror_kind in its row. The step, the passes and the solvers are not edited:
+   bench/material_census.sh lists, per kind, the functions outside its chapters and this one
+   that name it (its enum value, parameters, hooks or state). */
 
 /* The row of a kind, or NULL for a value outside the enum (sps__body_def_check names it). */
 static const sps__material_model* sps__material_of(sps_material_kind kind) {
@@ -3769,9 +3775,15 @@ static void sps__material_check(const sps_material_def* m, char* msg, size_t msg
     case SPS_MATERIAL_RIGID_DYNAMIC:
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: sps__elastic_check(m, msg, msg_size, broken); return;
-    case SPS_MATERIAL_J2: sps__j2_check(m, msg, msg_size, broken); return;
+    case SPS_MATERIAL_J2: /* the linear elastic law's checks, then its own */
+        sps__elastic_check(m, msg, msg_size, broken);
+        sps__j2_check(m, msg, msg_size, broken);
+        return;
     case SPS_MATERIAL_FLUID: sps__fluid_check(m, msg, msg_size, broken); return;
-    case SPS_MATERIAL_DRUCKER_PRAGER: sps__drucker_prager_check(m, msg, msg_size, broken); return;
+    case SPS_MATERIAL_DRUCKER_PRAGER: /* the same */
+        sps__elastic_check(m, msg, msg_size, broken);
+        sps__drucker_prager_check(m, msg, msg_size, broken);
+        return;
     }
 }
 
@@ -3785,7 +3797,7 @@ static sps__material_constants sps__material_constants_of(const sps_material_def
     case SPS_MATERIAL_DRUCKER_PRAGER: break;
     case SPS_MATERIAL_FLUID: return sps__fluid_constants(m);
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
-    case SPS_MATERIAL_NEO_HOOKEAN: return sps__hyperelastic_constants(m);
+    case SPS_MATERIAL_NEO_HOOKEAN: return sps__hyperelastic_constants(m, sps__elastic_constants(m));
     }
     return sps__elastic_constants(m);
 }
@@ -3806,6 +3818,17 @@ static sps_real sps__material_energy_density(sps_material_kind kind, const sps__
     case SPS_MATERIAL_FLUID: return sps__fluid_energy_density(c, tau_tau, p);
     }
     return sps__elastic_energy_density(c, tau_tau, p);
+}
+
+/* The longest acoustic step body b's viscous force allows (INFINITY: none), by the row's viscous
+   column: the solids' Kelvin-Voigt damping or a fluid's Newtonian viscosity. */
+static sps_real sps__viscous_dt(const sps_world* w, const sps__body* b) {
+    switch (b->model.viscous) {
+    case SPS__VISCOUS_NONE: break;
+    case SPS__VISCOUS_KELVIN_VOIGT: return sps__kelvin_voigt_dt(w, b);
+    case SPS__VISCOUS_NEWTON: return sps__newton_dt(w, b);
+    }
+    return (sps_real)INFINITY;
 }
 
 /* The constants a body of this kind derives from the world when it is added (gravity, the
@@ -3847,7 +3870,10 @@ static void sps__kind_model(const sps_world* w, const sps_body_def* def, sps__mo
     case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
     case SPS_MATERIAL_NEO_HOOKEAN: return;
     case SPS_MATERIAL_RIGID: sps__rigid_model(m); return;
-    case SPS_MATERIAL_RIGID_DYNAMIC: sps__free_rigid_model(m); return;
+    case SPS_MATERIAL_RIGID_DYNAMIC:
+        sps__rigid_model(m);
+        sps__free_rigid_model(m);
+        return;
     case SPS_MATERIAL_FLUID: sps__fluid_model(w, m); return;
     case SPS_MATERIAL_DRUCKER_PRAGER: sps__granular_model(def, m); return;
     }
@@ -3897,6 +3923,21 @@ static int sps__kind_fills_hexagonal(const sps_world* w, const sps_body_def* def
     case SPS_MATERIAL_FLUID: return sps__fluid_fills_hexagonal(w);
     }
     return 0;
+}
+
+/* What a kind is that a periodic world cannot hold (sps__periodic_allows_body), or NULL. */
+static const char* sps__kind_not_periodic(sps_material_kind kind) {
+    switch (kind) {
+    case SPS_MATERIAL_RIGID_DYNAMIC: return sps__free_rigid_not_periodic;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN:
+    case SPS_MATERIAL_DRUCKER_PRAGER: break;
+    }
+    return NULL;
 }
 
 /* The macro that left this body's kind or solver out of the build (CONFIG MACROS), or NULL. */
@@ -3951,6 +3992,41 @@ static int sps__tl_has_law(sps_material_kind kind) {
     }
     return 0; /* a value outside the enum (refused by the def check) */
 }
+
+/* >>generic (continued): the body def items
+
+   The rows of sps_body_def's fields that change results (sps__def_item: the restart's
+   fingerprint, its check and message, the unread-field warning): the fields every body has,
+   then each kind's rows from its chapter (SPS__<KIND>_DEF_ITEMS; a new kind with parameters
+   adds its macro here), the total-Lagrangian solver's, and the rest of the body def. */
+static const sps__def_item sps__body_def_items[] = {
+    SPS__BODY_ITEM(solver, SPS__DEF_INT),
+    SPS__BODY_ITEM(material.kind, SPS__DEF_INT),
+    SPS__BODY_ITEM(material.density, SPS__DEF_REAL),
+    SPS__BODY_ITEM_READ_BY(material.youngs_modulus, SPS__DEF_REAL, sps__reads_elastic_moduli),
+    SPS__BODY_ITEM_READ_BY(material.poisson_ratio, SPS__DEF_REAL, sps__reads_elastic_moduli),
+    SPS__BODY_ITEM(material.viscosity, SPS__DEF_REAL), /* the kinds that do not read it refuse it (sps__combination_rules) */
+    SPS__J2_DEF_ITEMS
+    SPS__FLUID_DEF_ITEMS
+    SPS__GRANULAR_DEF_ITEMS
+    SPS__TL_DEF_ITEMS
+    SPS__BODY_ITEM_READ_BY(shear, SPS__DEF_INT, sps__reads_shear),
+    SPS__BODY_ITEM_READ_BY(rotation, SPS__DEF_INT, sps__reads_rotation),
+    SPS__BODY_ITEM_READ_BY(zeta, SPS__DEF_REAL, sps__reads_zeta),
+    SPS__BODY_ITEM_READ_BY(xi, SPS__DEF_REAL, sps__reads_xi),
+    SPS__BODY_ITEM_READ_BY(penalty_in_pressure_pass, SPS__DEF_INT, sps__reads_xi),
+    SPS__BODY_ITEM_READ_BY(oas_epsilon, SPS__DEF_REAL, sps__reads_oas),
+    SPS__BODY_ITEM_READ_BY(oas_exponent, SPS__DEF_REAL, sps__reads_oas),
+    SPS__BODY_ITEM_READ_BY(track_stress, SPS__DEF_INT, sps__reads_stress),
+    SPS__BODY_ITEM(transport, SPS__DEF_INT),
+    SPS__BODY_ITEM(contact, SPS__DEF_INT),
+    SPS__BODY_ITEM_READ_BY(transport_coefficient, SPS__DEF_REAL, sps__reads_transport_coefficient),
+    SPS__BODY_ITEM(damping, SPS__DEF_REAL),
+    SPS__BODY_ITEM(friction, SPS__DEF_REAL),
+    SPS__BODY_ITEM(contact_damping, SPS__DEF_REAL),
+    SPS__BODY_ITEM_READ_BY(transport_carries_velocity, SPS__DEF_INT, sps__reads_transport_coefficient),
+    SPS__BODY_ITEM(lattice, SPS__DEF_INT)};
+#define SPS__BODY_DEF_ITEMS ((int)(sizeof sps__body_def_items / sizeof sps__body_def_items[0]))
 
 /* >>model (continued): the rows */
 
@@ -4022,13 +4098,17 @@ static int sps__contact_damping_without_contact(int dim, const sps_body_def* def
     return def->contact_damping > 0 && (!def->contact || (material && material->mirrored));
 }
 /* penalty_in_pressure_pass where its pressure pass cannot hold the penalty: a pair force g_ij
-   (rotation = pair), which that pass reads, or a Drucker-Prager body, whose pressure loop is its
-   own (the limiter, the stress diffusion) */
+   (rotation = pair), which that pass reads, or a kind with pressure terms of its own (a
+   Drucker-Prager body's stress diffusion: sps__kind_pressure_terms), whose loops have no penalty */
+static int sps__kind_pressure_terms(sps_material_kind kind); /* >>generic */
 static int sps__penalty_outside_pressure_pass(int dim, const sps_body_def* def) {
     (void)dim;
     return def->penalty_in_pressure_pass == 1 && sps__reads_xi(def) &&
-           (def->material.kind == SPS_MATERIAL_DRUCKER_PRAGER || (def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR)); /* GNO-A's auto: mean */
+           (sps__kind_pressure_terms(def->material.kind) != 0 || (def->shear == SPS_SHEAR_GNO_A && def->rotation == SPS_ROTATION_PAIR)); /* GNO-A's auto: mean */
 }
+/* >>generic (continued): the combination rules, one row each: the kinds' rules are in their
+   chapters, the solver's and the stabilisations' above */
+
 static const sps__combination_rule sps__combination_rules[] = {
     {sps__viscous_wall_or_granular, "material.viscosity > 0 with material.kind = rigid or Drucker-Prager: the Kelvin-Voigt damping is "
                                     "for elastic, J2, Saint Venant-Kirchhoff and Neo-Hookean bodies (a wall body moves as given; a "
@@ -4067,6 +4147,8 @@ static const sps__combination_rule sps__combination_rules[] = {
                                         "Laplacian of velocity, not the divergence of the stress, so the yield surface cannot "
                                         "limit it (ANG 5.2: ENO-A is for elastic materials); use GNO-A (or OG, OAS, GNO)"},
 };
+
+/* >>model (continued) */
 
 static sps_result sps__body_def_check(int dim, const sps_body_def* def, char* msg, size_t msg_size) {
     int broken = 0, k;
@@ -4542,8 +4624,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     w->free_rigid_bodies += b->model.free_rigid;
     /* wall bodies: no waves; a free rigid body: its contact stiffness sqrt(K / rho0) */
     if ((!b->model.material->kinematic || b->model.free_rigid) && b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
-    if (b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT && sps__kelvin_voigt_dt(w, b) < w->viscous_dt) w->viscous_dt = sps__kelvin_voigt_dt(w, b);
-    if (b->model.viscous == SPS__VISCOUS_NEWTON && sps__newton_dt(w, b) < w->viscous_dt) w->viscous_dt = sps__newton_dt(w, b);
+    if (sps__viscous_dt(w, b) < w->viscous_dt) w->viscous_dt = sps__viscous_dt(w, b);
     if (b->model.viscous == SPS__VISCOUS_NEWTON && def->material.viscosity / (b->rho0 * w->h) > w->viscous_speed)
         w->viscous_speed = def->material.viscosity / (b->rho0 * w->h);
     if (!b->model.material->kinematic && w->def.cfl_acoustic > b->model.stabilisation->stable_cfl[w->dim - 2])
@@ -5505,7 +5586,7 @@ static void sps__wrap_positions(sps_world* w) {
    Returns 0 with the world's error set for those. */
 static int sps__periodic_allows_body(sps_world* w, const sps_body_def* def) {
     const char* what = def->solver == SPS_SOLVER_TOTAL_LAGRANGIAN ? "a total-Lagrangian body (its reference configuration has no periodic images)"
-                       : def->material.kind == SPS_MATERIAL_RIGID_DYNAMIC ? "a free rigid body (its pose has no periodic image)" : NULL;
+                                                                   : sps__kind_not_periodic(def->material.kind);
     if (!w->periodic || !what) return 1;
     sps__set_error(w, 0, "sps_world_add_body: body '%s' is %s, and the world has periodic axes (periodic = (%g, %g, %g) m); allowed in a "
                    "periodic world: updated-Lagrangian bodies and wall bodies", def->name ? def->name : "body", what,
@@ -7312,7 +7393,7 @@ static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_
         const sps__wall* corner[3];
         if (!(d_i < w->support)) continue;
         sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
-        if (b->model.mirrored == SPS__MIRROR_STRESS) continue; /* its walls act one by one (sps__grain_wall_force) */
+        if (b->model.mirrored == SPS__MIRROR_STRESS) continue; /* its walls act one by one (sps__stress_images_wall_force) */
         corner[0] = &w->walls[k];
         for (k2 = k + 1; k2 < w->nwalls; ++k2) {
             if (!sps__joins_corner(w, i, corner, 1, &w->walls[k2])) continue;
@@ -7549,7 +7630,7 @@ static void sps__add_backstop(const sps_world* w, const sps__body* b, int i, con
    takes the shear through its images' stress, as much as the particle's stress can carry; a
    Coulomb bound tan(phi) f_n added there stopped C4's free grains but shot a particle out of
    C7 at dp 0.04 (11 m/s at 0.5 s), so it is not applied (bench/VALIDATION.md). */
-static void sps__grain_wall_force(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real dt, sps_real acc[3]) {
+static void sps__stress_images_wall_force(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real dt, sps_real acc[3]) {
     const sps_real d_i = sps__wall_distance(w, wl, i);
     sps_real f[3] = {0, 0, 0}, f_n = 0, v_n = 0, v_t[3] = {0, 0, 0};
     int a;
@@ -7569,12 +7650,12 @@ static void sps__grain_wall_force(sps_world* w, const sps__body* b, int i, const
 
 /* Adds the walls' force to particle i's acc_p (contact pass): its images' pressure (and
    viscous, and stress) force and the backstops; a granular body's wall by wall with each
-   wall's Coulomb bound (sps__grain_wall_force). */
+   wall's Coulomb bound (sps__stress_images_wall_force). */
 static void sps__mirror_force(sps_world* w, const sps__body* b, int i, sps_real dt) {
     sps_real acc[3] = {0, 0, 0};
     int a, k;
     if (b->model.mirrored == SPS__MIRROR_STRESS) { /* wall by wall, for each wall's friction */
-        for (k = 0; k < w->nwalls; ++k) sps__grain_wall_force(w, b, i, &w->walls[k], dt, acc);
+        for (k = 0; k < w->nwalls; ++k) sps__stress_images_wall_force(w, b, i, &w->walls[k], dt, acc);
     } else {
         sps__each_image(w, b, i, sps__image_force, acc);
         for (k = 0; k < w->nwalls; ++k) sps__add_backstop(w, b, i, &w->walls[k], acc);
@@ -12585,7 +12666,7 @@ SPSDEF sps_result sps_world_write_vtk_series(sps_world* w, const char* dir, cons
 
 static const char sps__restart_magic[16] = {'s', 'p', 'h', 's', 'o', 'l', 'i', 'd', '-', 'r', 'e', 's', 't', 'a', 'r', 't'};
 #define SPS__RESTART_BYTE_ORDER 0x01020304u
-#define SPS__RESTART_VERSION 7u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.granular.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity; 7: lattice */
+#define SPS__RESTART_VERSION 8u /* 2: the fingerprint holds every def item (sps__world_def_items); 3: contact_rest and free rigid bodies; 4: the periodic axes; 5: material.yield_cone and open-boundary zones; 6: fluid_dissipation, transport_carries_velocity; 7: lattice; 8: the body items grouped by the material def's sub-structs (material.j2, .fluid, .granular, .tl) */
 #define SPS__FNV_OFFSET 14695981039346656037ULL
 
 /* FNV-1a, 64 bits: the payload's checksum and the scene hash. */

@@ -22,8 +22,8 @@ kinds='elastic|material: linear elastic|SPS_MATERIAL_ELASTIC\>|sps__elastic_
 rigid|material: rigid (wall bodies)|SPS_MATERIAL_RIGID\>|sps__rigid_(energy|model|kind|material)|sps__damped_wall|sps__moving_wall_particles
 free rigid|material: free rigid bodies|SPS_MATERIAL_RIGID_DYNAMIC|sps__free_rigid
 J2|material: J2 plasticity|SPS_MATERIAL_J2|SPS__LAW_J2|[.>]j2\.|sps__j2_|sps__tl_j2|SPS__YIELD_VON_MISES|sps__radial_return
-fluid|material: weakly compressible fluid|SPS_MATERIAL_FLUID\>|[.>]fluid\.(sound_speed|dissipation)|SPS_FLUID_DISSIPATION_|sps__fluid_|sps__newton_|sps__inviscid_
-Drucker-Prager|material: Drucker-Prager|SPS_MATERIAL_DRUCKER_PRAGER|[.>]granular\.|sps__granular_|sps__drucker_prager|sps__grain_|SPS_CONE_|sps__yield_cone|SPS__YIELD_DRUCKER_PRAGER|->cone\>|[.>]geostatic\>|diffusion_rate
+fluid|material: weakly compressible fluid|SPS_MATERIAL_FLUID\>|[.>]fluid\.(sound_speed|dissipation)|SPS_FLUID_DISSIPATION_|sps__fluid_(constants|check|energy|material|model|rest|fills|warnings)|sps__newton_dt|sps__inviscid_
+Drucker-Prager|material: Drucker-Prager|SPS_MATERIAL_DRUCKER_PRAGER|[.>]granular\.|sps__granular_|sps__drucker_prager|SPS_CONE_|sps__yield_cone|SPS__YIELD_DRUCKER_PRAGER|->cone\>|[.>]geostatic\>|diffusion_rate
 Saint Venant-Kirchhoff|material: Saint Venant-Kirchhoff|SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF|SPS__LAW_SAINT_VENANT_KIRCHHOFF|sps__saint_venant_kirchhoff|sps__svk_
 Neo-Hookean|material: Neo-Hookean|SPS_MATERIAL_NEO_HOOKEAN|SPS__LAW_NEO_HOOKEAN|sps__neo_hookean'
 
