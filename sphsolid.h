@@ -2968,6 +2968,8 @@ SPSDEF sps_world_def sps_default_world_def(void) {
     return d;
 }
 
+static void sps__material_defaults(sps_material_def* m); /* >>generic */
+
 SPSDEF sps_material_def sps_default_material_def(void) {
     sps_material_def m;
     memset(&m, 0, sizeof m);
@@ -2975,8 +2977,7 @@ SPSDEF sps_material_def sps_default_material_def(void) {
     m.density = SPS_R(1000.0);
     m.youngs_modulus = SPS_R(1e6);
     m.poisson_ratio = SPS_R(0.3);
-    m.tl.hourglass_alpha = 50;                      /* TL section 4.2, Table 1 */
-    m.granular.stress_diffusion = SPS_R(0.1);       /* Feng et al. 2021, as UTVF section 3.1.3 */
+    sps__material_defaults(&m);
     return m;
 }
 
@@ -3455,8 +3456,10 @@ static void sps__fluid_warnings(const sps_world* w, const sps__body* b) {
    s (eq. 14 gives the constants). The whole stress sigma = tau - p I is integrated (tau the
    deviator, 3 x 3 also in 2D: plane strain has sigma_zz), so the pressure is -I1/3 of the
    stress, not the equation of state. One particle's update is sps__drucker_prager_update; the
-   lane loop that calls it is sps__granular_stress_lanes (chapter >>solver), and the stress
-   diffusion's pair sums are in the pressure pass (sps__pressure). */
+   lane loop that calls it is sps__granular_stress_lanes (chapter >>material: Drucker-Prager
+   (continued)), and the stress diffusion's pair sums and their store are below, which the
+   pressure pass reaches through sps__kind_pressure_pair and sps__kind_pressure_store (chapter
+   >>generic (continued): the updated-Lagrangian passes' hooks). */
 
 /* The cones through Mohr-Coulomb's compression (sign -1) and extension (+1) meridians, for the
    angle theta (phi or psi): alpha = 2 sin / (sqrt3 (3 -+ sin)), k_c = 6 c cos / (sqrt3 (3 -+ sin)). */
@@ -3530,6 +3533,9 @@ static void sps__drucker_prager_check(const sps_material_def* m, char* msg, size
                "material.granular.stress_diffusion = %g, allowed [0, 1] (0: off) for Drucker-Prager", (double)m->granular.stress_diffusion);
     *broken_out += broken;
 }
+/* Its parameters' defaults (sps__material_defaults) other than zero: the stress diffusion's
+   zeta = 0.1 (Feng et al. 2021, as UTVF section 3.1.3). */
+static void sps__granular_defaults(sps_granular_def* granular) { granular->stress_diffusion = SPS_R(0.1); }
 /* Its rows of the def items (sps__body_def_items: restart fingerprint, unread-field warnings):
    material.granular, read by Drucker-Prager bodies alone. */
 static int sps__reads_drucker_prager(const sps_body_def* d) { return d->material.kind == SPS_MATERIAL_DRUCKER_PRAGER; }
@@ -3648,16 +3654,31 @@ SPS__INLINE void sps__drucker_prager_update(sps_real sig[6], const sps_real* L, 
     sps__drucker_prager_return(sig, c);
 }
 
-/* Its pair terms in the pressure pass (SPS__TERM_GRANULAR, sps__pressure_pairs), lane l of the
-   pair (i, j) at distance rij with dW and V_j: the stress diffusion's sum (Feng et al. 2021),
-   (sigma_i - sigma_j - geostatic difference) r dW/(r^2 + 0.01 h^2) V_j (soft2 = 0.01 h^2; dp_ij
-   = p_i - p_j; the lanes' deviators tau_i side by side, j's at tau + tj: an int offset from the
-   array, a gather, which a pointer to j's entries defeats). Unscaled by the lattice moment: a
-   smoothing, not the divergence. */
-SPS__INLINE void sps__granular_diffusion_pair(sps_real (*spread)[SPS__LANES], int l, sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj,
-                                              sps_real rij, sps_real dw, sps_real vol_j, sps_real soft2, const sps_real* gravity, sps_real ex, sps_real ey,
-                                              sps_real ez, sps_real dp_ij, const sps_real* geostatic, const int dim) {
-    const sps_real weight = rij * dw * vol_j / (rij * rij + soft2);
+/* The constants its pair terms in the pressure pass read, loaded once before the pair loop
+   (sps__kind_pressure_constants_of): 0.01 h^2, the world's gravity and the body's geostatic
+   difference tensor. */
+typedef struct sps__granular_pair_constants {
+    sps_real soft2;
+    const sps_real *gravity, *geostatic;
+} sps__granular_pair_constants;
+SPS__INLINE sps__granular_pair_constants sps__granular_pair_constants_of(const sps_world* w, const sps__body* b) {
+    sps__granular_pair_constants c;
+    c.soft2 = SPS_R(0.01) * w->h * w->h;
+    c.gravity = w->def.gravity;
+    c.geostatic = b->geostatic;
+    return c;
+}
+/* Its pair terms in the pressure pass (SPS__TERM_GRANULAR, reached through
+   sps__kind_pressure_pair), lane l of the pair (i, j) at distance rij with dW and V_j: the
+   stress diffusion's sum (Feng et al. 2021), (sigma_i - sigma_j - geostatic difference)
+   r dW/(r^2 + 0.01 h^2) V_j (dp_ij = p_i - p_j; the lanes' deviators tau_i side by side, j's at
+   tau + tj: an int offset from the array, a gather, which a pointer to j's entries defeats).
+   Unscaled by the lattice moment: a smoothing, not the divergence. */
+SPS__INLINE void sps__granular_diffusion_pair(const sps__granular_pair_constants* c, sps_real (*spread)[SPS__LANES], int l,
+                                              sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj, sps_real rij, sps_real dw,
+                                              sps_real vol_j, sps_real ex, sps_real ey, sps_real ez, sps_real dp_ij, const int dim) {
+    const sps_real *gravity = c->gravity, *geostatic = c->geostatic;
+    const sps_real weight = rij * dw * vol_j / (rij * rij + c->soft2);
     const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0));
     spread[0][l] += weight * (tau_i[0][l] - tau[tj] - dp_ij - geostatic[0] * g_x);
     spread[1][l] += weight * (tau_i[1][l] - tau[tj + 1] - geostatic[1] * g_x);
@@ -3668,10 +3689,12 @@ SPS__INLINE void sps__granular_diffusion_pair(sps_real (*spread)[SPS__LANES], in
         spread[4][l] += weight * (tau_i[4][l] - tau[tj + 4] - geostatic[4] * g_x);
     }
 }
-/* ... and the pressure pass's finish: the stress diffusion rate 2 zeta h c0 times those sums. */
-SPS__INLINE void sps__granular_store_diffusion(const sps__body* b, int i, sps_real (*spread)[SPS__LANES], int l) {
-    int a;
-    for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i - b->begin) + a] = b->diffusion_rate * spread[a][l];
+/* ... and the pressure pass's finish (sps__kind_pressure_store): the stress diffusion rate
+   2 zeta h c0 times those sums, for the lanes of the group from particle i0. */
+SPS__INLINE void sps__granular_store_diffusion(const sps__body* b, int i0, sps_real (*spread)[SPS__LANES]) {
+    int l, a;
+    for (l = 0; l < SPS__LANES && i0 + l < b->end; ++l)
+        for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i0 + l - b->begin) + a] = b->diffusion_rate * spread[a][l];
 }
 
 /* >>material: Saint Venant-Kirchhoff (total Lagrangian; TL eqs. 18-20) */
@@ -3718,8 +3741,9 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
    1. its value in sps_material_kind (>>public), the next one (the def check lists the kinds
       from the rows: sps__material_kinds);
    2. if it has parameters of its own, their sub-struct in sps_material_def (>>public, one field
-      named for the kind, each parameter with units, range and default), and in
-      sps_default_material_def (>>defaults) those whose default is not zero;
+      named for the kind, each parameter with units, range and default); if some default is not
+      zero, a function in its chapter that sets them (sps__<kind>_defaults) and its call in
+      sps__material_defaults here;
    3. its chapter (>>material: ...): its row (sps__material_model), its check, its constants
       (c0, G, K), its stored energy, the rows of its parameters (SPS__<KIND>_DEF_ITEMS and the
       reads function they name: the restart's fingerprint and the unread-field warnings follow)
@@ -3735,7 +3759,10 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
       rules), if it has any.
    A kind whose stress has a yield surface adds an sps__yield value and its case in
    sps__stress_update_lanes; a kind whose walls act through mirror particles takes an
-   sps__mirror_kind in its row. The step, the passes and the solvers are not edited:
+   sps__mirror_kind in its row; a kind with pair terms of its own in the pressure pass adds an
+   SPS__TERM_ bit (its case in sps__kind_pressure_terms), its part of
+   sps__kind_pressure_constants and its calls in sps__kind_pressure_pair and
+   sps__kind_pressure_store, and a pressure loop with that bit (SPS__PRESSURE_LOOPS). The step, the passes and the solvers are not edited:
    bench/material_census.sh lists, per kind, the functions outside its chapters and this one
    that name it (its enum value, parameters, hooks or state). */
 
@@ -3785,6 +3812,15 @@ static void sps__material_check(const sps_material_def* m, char* msg, size_t msg
         sps__drucker_prager_check(m, msg, msg_size, broken);
         return;
     }
+}
+
+/* Every parameter sub-struct of a material def at its defaults (sps_default_material_def): the
+   kinds (and the total-Lagrangian solver) whose defaults are not all zero set theirs in their
+   chapters; the others' stay as sps_default_material_def zeroed them. */
+static void sps__tl_defaults(sps_tl_def* tl); /* >>solver: total Lagrangian */
+static void sps__material_defaults(sps_material_def* m) {
+    sps__granular_defaults(&m->granular);
+    sps__tl_defaults(&m->tl);
 }
 
 /* c0, G and K of a checked material def (signal speed, shear and bulk moduli). */
@@ -6457,7 +6493,7 @@ enum {
                                      sum, scaled as its pressure force (sps__continuity_pairs) */
     SPS__TERM_GRANULAR = 1 << 14  /* pressure: a Drucker-Prager body's terms: its stress divergence scaled
                                      as a fluid's pressure force, its stress diffusion's sums
-                                     (sps__granular_diffusion_pair; sps__kind_pressure_terms) */
+                                     (sps__kind_pressure_terms, sps__kind_pressure_pair) */
 };
 
 /* The sums of a pass's pair loop, per lane, that it hands to the pass's finish: lane arrays
@@ -6585,6 +6621,57 @@ SPS__INLINE void sps__add_penalty_term(sps_real (*sum)[SPS__LANES], int l, sps__
     for (a = 0; a < dim; ++a) sum[a][l] += projected ? u * dir[a] : vhat[a];
 }
 
+/* >>generic (continued): the updated-Lagrangian passes' hooks: the pressure pass's terms of a
+   kind's own (its pair terms, their store) */
+
+/* The pressure pass's pair terms of a kind's own (sps__pressure_terms): Drucker-Prager's
+   (SPS__TERM_GRANULAR); 0 for a kind that has none. */
+static int sps__kind_pressure_terms(sps_material_kind kind) {
+    switch (kind) {
+    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__TERM_GRANULAR;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
+    case SPS_MATERIAL_J2:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: return 0;
+    }
+    return 0;
+}
+
+/* The constants of the pair terms of a kind's own, one part per kind that has such terms, loaded
+   by sps__kind_pressure_constants_of once before the pair loop (read in the loop, the loads
+   stay in it and the instance's code changes). */
+typedef struct sps__kind_pressure_constants {
+    sps__granular_pair_constants granular; /* SPS__TERM_GRANULAR */
+} sps__kind_pressure_constants;
+SPS__INLINE sps__kind_pressure_constants sps__kind_pressure_constants_of(const sps_world* w, const sps__body* b) {
+    sps__kind_pressure_constants c;
+    c.granular = sps__granular_pair_constants_of(w, b);
+    return c;
+}
+
+/* The pair terms of a kind's own in the pressure pass (terms: the instance's literal, whose
+   kind bits sps__kind_pressure_terms gives), lane l of the pair (i, j) with geometry e: the
+   lanes' deviators tau_i, j's at tau + tj, V_j and dp_ij = p_i - p_j; into the kind's rows of
+   the sums (SPS__SPREAD). Inlined into the pair loop, so that an instance without the bits has
+   no trace of them. */
+SPS__INLINE void sps__kind_pressure_pair(const sps__kind_pressure_constants* c, sps__lane_sums* sums, int l,
+                                         sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj, sps__pair_geometry e, sps_real vol_j,
+                                         sps_real dp_ij, const int dim, const int terms) {
+    if (terms & SPS__TERM_GRANULAR)
+        sps__granular_diffusion_pair(&c->granular, sums->row + SPS__SPREAD, l, tau_i, tau, tj, e.r, e.dw, vol_j, e.ex, e.ey, e.ez, dp_ij, dim);
+}
+
+/* The pressure pass's finish of a kind's own sums for lane group q, where the body's model
+   stores them: Drucker-Prager's stress diffusion rate (model.diffusion). */
+SPS__INLINE void sps__kind_pressure_store(const sps__body* b, sps__group q, sps__lane_sums* sums) {
+    if (b->model.diffusion) sps__granular_store_diffusion(b, q.i0, sums->row + SPS__SPREAD);
+}
+
+/* >>solver: the updated-Lagrangian passes (continued): the pressure pass */
+
 /* Pressure pass (step 2) for the particles of lane group g: Riemann pressure force with
    beta = 1 and Z = rho0 c0; with stress (OG family) also the divergence of the shear stress
    (ENO eq. 17); with paired (SPS_ROTATION_PAIR) the accumulated shear forces (1/m_i) sum_j g_ij
@@ -6593,7 +6680,8 @@ SPS__INLINE void sps__add_penalty_term(sps_real (*sum)[SPS__LANES], int l, sps__
    a 1/eta of c0 on), and with newton the Newtonian viscous force
    (2 mu / rho_i) sum_j v_ij dW / r_ij V_j (Morris et al. 1997) divided by the lattice moment
    (sps__fluid_rest_gradient; dW/r stays finite as r -> 0 for both kernels). A fluid's pressure force and a granular body's divergence (limited)
-   are scaled (sps__lattice_gradient_moment); a granular body has its stress diffusion summed (stored when its def has it).
+   are scaled (sps__lattice_gradient_moment); a kind's own pair terms are summed by
+   sps__kind_pressure_pair (a granular body's stress diffusion, stored where its def has it).
    The rare terms, which add to sums of their own, have a pair loop of their own
    (sps__rare_pressure_pairs); a Kelvin-Voigt body's Riemann dissipation is among them (kept
    with its viscous force, for its work), so its pressure force here has Z = 0, which leaves
@@ -6612,15 +6700,14 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
     const sps__group q = sps__group_of(w, b, g);
     const sps_real z = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT ? 0 : b->z_riemann, eta_c0 = limited ? b->limiter_eta_c0 : 0;
     const sps_real scale = limited ? b->divergence_scale : 1; /* fluid, granular: sps__lattice_gradient_moment */
-    const sps_real two_mu = b->viscous_coefficient, soft2 = SPS_R(0.01) * w->h * w->h;
-    const sps_real *gravity = w->def.gravity, *geostatic = b->geostatic;
+    const sps_real two_mu = b->viscous_coefficient;
+    const sps__kind_pressure_constants kind_constants = sps__kind_pressure_constants_of(w, b);
     const int begin = b->begin; /* the body's own arrays (tau) hold particle begin + k at k */
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau;
     const sps_real *SPS__RESTRICT vx = w->vel[0], *SPS__RESTRICT vy = w->vel[1], *SPS__RESTRICT vz = w->vel[2];
     const sps_real* SPS__RESTRICT pair_force = w->pair_force;
     sps_real(*acc)[SPS__LANES] = sums->row + SPS__ACC;
     sps_real(*shear)[SPS__LANES] = sums->row + SPS__SHEAR;
-    sps_real(*spread)[SPS__LANES] = sums->row + SPS__SPREAD;
     sps_real(*penalty_sum)[SPS__LANES] = sums->row + SPS__PENALTY_SUMS;
     sps_real tau_i[6][SPS__LANES], L_i[9][SPS__LANES];
     int k, l;
@@ -6628,7 +6715,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
     if (stress) sps__own_lanes(tau, 6, q.i0 - begin, tau_i);
     if (penalty) sps__own_lanes(b->grad, 9, q.i0 - begin, L_i);
     SPS__PAIR_LOOP(w, q, dim, geo, k, l, {
-            const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, rij = e.r;
+            const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw;
             const sps_real u = sps__approach(w, i, j, ex, ey, ez, dim);
             sps_real f2, beta = 1;
             if (limited) beta = sps__riemann_limiter(u, eta_c0);
@@ -6661,7 +6748,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
                     acc[0][l] += (sxx * ex + sxy * ey) * dwv;
                     acc[1][l] += (sxy * ex + syy * ey) * dwv;
                 }
-                if (granular) sps__granular_diffusion_pair(spread, l, tau_i, tau, tj, rij, dw, vol[j], soft2, gravity, ex, ey, ez, p[i] - p[j], geostatic, dim);
+                sps__kind_pressure_pair(&kind_constants, sums, l, tau_i, tau, tj, e, vol[j], p[i] - p[j], dim, terms);
             }
             if (penalty) { /* in the penalty's configuration, before this sub-step's half drift */
                 const sps__pair_geometry e_kicked = sps__pair_before_drift(w, i, s, j, dim, geo, SPS_R(0.5) * dt);
@@ -6721,13 +6808,13 @@ SPS__INLINE void sps__rare_pressure_pairs(sps_world* w, const sps__body* b, int 
 
 /* The pressure pass's finish for lane group q: the acceleration acc/rho_i + Gray's term, then the
    shear forces / m_i, then the Kelvin-Voigt damping / rho_i and its work, in this order (the
-   sums' order of the fused pass, bit for bit); the stress diffusion's rate. The choices are the
-   body's model's. */
+   sums' order of the fused pass, bit for bit); then the kind's own sums (sps__kind_pressure_store:
+   the stress diffusion's rate). The choices are the body's model's. */
 SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__group q, sps_real dt, sps__lane_sums* sums, const int dim) {
     sps_real(*acc)[SPS__LANES] = sums->row + SPS__ACC, (*gray)[SPS__LANES] = sums->row + SPS__GRAY;
-    sps_real(*shear)[SPS__LANES] = sums->row + SPS__SHEAR, (*spread)[SPS__LANES] = sums->row + SPS__SPREAD;
+    sps_real(*shear)[SPS__LANES] = sums->row + SPS__SHEAR;
     sps_real(*damp)[SPS__LANES] = sums->row + SPS__DAMP;
-    const int paired = b->model.paired, diffusion = b->model.diffusion, damping = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT;
+    const int paired = b->model.paired, damping = b->model.viscous == SPS__VISCOUS_KELVIN_VOIGT;
     int l, k, a;
     for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
         const int i = q.i0 + l;
@@ -6736,7 +6823,6 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
         if (dim == 3) w->acc_p[2][i] = acc[2][l] / w->rho[i];
         if (paired)
             for (k = 0; k < dim; ++k) w->acc_p[k][i] += shear[k][l] / w->mass[i];
-        if (diffusion) sps__granular_store_diffusion(b, i, spread, l);
         if (damping) {
             sps_real power = 0; /* of the viscous force, at the velocities it was evaluated with */
             for (a = 0; a < dim; ++a) {
@@ -6746,6 +6832,7 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
             b->viscous_work[i - b->begin] -= w->mass[i] * power * dt;
         }
     }
+    sps__kind_pressure_store(b, q, sums);
 }
 
 /* The pressure pass for lane group g with the pair loop `pairs` (the body's, or the one that also
@@ -7117,24 +7204,8 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
         for (a = 0; a < 6; ++a) b->tau[(size_t)6 * (first + l) + a] = tau[a][l];
 }
 
-/* >>generic (continued): the updated-Lagrangian passes' hooks: a kind's pair terms and the stress
-   update of a lane group, by its yield surface */
-
-/* The pressure pass's pair terms of a kind's own (sps__pressure_terms): Drucker-Prager's
-   (SPS__TERM_GRANULAR); 0 for a kind that has none. */
-static int sps__kind_pressure_terms(sps_material_kind kind) {
-    switch (kind) {
-    case SPS_MATERIAL_DRUCKER_PRAGER: return SPS__TERM_GRANULAR;
-    case SPS_MATERIAL_ELASTIC:
-    case SPS_MATERIAL_RIGID:
-    case SPS_MATERIAL_RIGID_DYNAMIC:
-    case SPS_MATERIAL_J2:
-    case SPS_MATERIAL_FLUID:
-    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
-    case SPS_MATERIAL_NEO_HOOKEAN: return 0;
-    }
-    return 0;
-}
+/* >>generic (continued): the updated-Lagrangian passes' hooks (continued): the stress update of a
+   lane group, by its yield surface */
 
 /* The stress update of lane group q from its velocity gradients L (the continuity pass's
    finish): the return map of the body's yield surface (chapters >>material: J2 plasticity and
@@ -8249,6 +8320,10 @@ static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* ms
    k_ji d^j (p^j - d^j x_ij) (the turn). Phi is invariant under
    rotation and translation, so its gradient conserves both momenta; it is counted with the
    strain energy (sps__tl_energy). SPS_HOURGLASS_PAPER applies TL eq. 32 alone. */
+
+/* Its parameters' defaults (material.tl; sps__material_defaults) other than zero: the hourglass
+   coefficient alpha = 50 (TL section 4.2, Table 1). */
+static void sps__tl_defaults(sps_tl_def* tl) { tl->hourglass_alpha = 50; }
 
 /* The reference geometry of pair (i, j): E_ij, R_ij, W(R_ij) and dW/dR. */
 typedef struct sps__ref_pair {
