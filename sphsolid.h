@@ -117,8 +117,14 @@
       in the last budgeted one, one sub-step's time kept for the neighbour-list rebuild), so a
       frame overruns by about one sub-step at most on an idle core, and a machine too slow for
       the scene shows slow motion (covered < 1/F, one sub-step per frame at least) instead of
-      dropping frames. Every frame starts
-      a fresh advection step (one extra neighbour-list rebuild per frame). The budget is measured
+      dropping frames. A frame continues the advection step the last frame left open, so the
+      neighbour lists are rebuilt where a free-running step would rebuild them (every ~25
+      sub-steps of a jelly), not at every frame's start (every 4-5); a change through the API
+      in between (particles added or moved, velocities, masses, walls, contact; not forces,
+      accelerations or drags, which the next sub-step reads) starts a fresh step, as do
+      sps_world_step and sps_world_advance, and so does a periodic world at every frame (its
+      positions are wrapped into the box between steps). A restart file holds no open step.
+      The budget is measured
       with SPHSOLID_WALL_SECONDS() (CONFIG MACROS). sps_world_advance_substeps runs a fixed
       count of sub-steps instead. sps_body_drag_begin grabs a body for the mouse: a spring of
       the caller's stiffness and damping towards drag.target, spread by the kernel over a
@@ -1783,15 +1789,16 @@ SPSDEF sps_real sps_world_time(const sps_world* w);
 SPSDEF long sps_world_substep_count(const sps_world* w);
 /* One frame of a real-time loop (see REAL-TIME FRAMES): runs max_substeps acoustic sub-steps,
    or fewer when wall_budget_s > 0 and the wall clock runs out first.
-     max_substeps   acoustic sub-steps in the frame, >= 1. The frame runs whole advection steps
-                    and cuts the last one short to end exactly on the count.
+     max_substeps   acoustic sub-steps in the frame, >= 1. The frame continues the advection
+                    step the last frame left open and leaves its last one open when the count
+                    ends it early (REAL-TIME FRAMES).
      wall_budget_s  0: no budget; the frame always runs max_substeps sub-steps, and the state
                     after it depends only on the state before and max_substeps (bit-identical
                     for any thread count). > 0 (finite) [s]: wall time allowed from the call.
                     Between advection steps the frame estimates how many more sub-steps fit
                     (from its cost per sub-step so far), stops when not one does, and cuts the
-                    next advection step to what fits; the first advection step always runs. The
-                    frame then depends on the machine's speed.
+                    next advection step to what fits (the next frame continues it); the first
+                    advection step always runs. The frame then depends on the machine's speed.
      covered        (may be NULL) the simulated time the frame advanced [s], also on error.
    Returns SPS_OK, SPS_ERR_INVALID_ARG (message names the argument, its value and the allowed
    range) or an error of sps_world_step. No allocation (except, like sps_world_step, at the
@@ -2104,6 +2111,7 @@ SPSDEF sps_result sps_body_add_mesh_shell(sps_world* w, sps_body b, const sps_me
 #include <stdarg.h>
 #include <stdio.h>
 #include <time.h>
+#include <limits.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -2457,6 +2465,18 @@ typedef struct sps__observer {
     int body, first, count; /* weights in obs_ids / obs_weights [first, first + count) */
 } sps__observer;
 
+/* The advection step under way (ENO eqs. 25-26): what its sub-steps have used of it. A real-time
+   frame ends where its simulated time does, mid-step, and the next frame continues the step
+   (open = 1) instead of rebuilding the neighbour lists (>>realtime). */
+typedef struct sps__advection_step {
+    int open;         /* 1: the next frame continues this step without a configuration update */
+    int substeps;     /* its acoustic sub-steps so far */
+    int max_substeps; /* its cap: def.max_substeps (1 with single stepping) */
+    sps_real elapsed; /* simulated time it has covered */
+    sps_real travel;  /* the distance its fastest particle may have moved (the sum of vmax dt) */
+    sps_real travel_max, dt_ad; /* its ends: CFL_ad h of travel and ENO eq. 25's dt_ad */
+} sps__advection_step;
+
 struct sps_world {
     sps_world_def def;
     int dim, threads;
@@ -2577,7 +2597,14 @@ struct sps_world {
     long acoustic_steps, advection_steps;
     int allocated_for; /* particles the neighbour storage was sized for (sps__ensure_neighbor_storage) */
     double substep_wall_s; /* wall seconds of one sub-step in the last budgeted frame (>>realtime) */
+    sps__advection_step step; /* the advection step under way, which a frame may leave open (>>stepping) */
 };
+
+/* A change through the API between two frames (particles added or moved, velocities, walls,
+   contact, masses; not forces, accelerations and drags, which the next sub-step's kick reads):
+   the next frame starts a fresh advection step, with the configuration update and the time-step
+   speed of the changed world, instead of continuing the one the last frame left open. */
+static void sps__world_changed(sps_world* w) { w->step.open = 0; }
 
 /* >>fields */
 
@@ -4430,6 +4457,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     sps__body* b;
     int k;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (out) out->id = 0;
     if (!def || !out) { sps__set_error(w, 0, "sps_world_add_body: def and out must not be NULL"); return SPS_ERR_INVALID_ARG; }
     msg[0] = 0;
@@ -4564,6 +4592,7 @@ static sps_result sps__add_one(sps_world* w, int body, const sps_real x[3], sps_
     b->count++;
     w->n++;
     w->needs_sort_by_body = 1;
+    sps__world_changed(w);
     return SPS_OK;
 }
 
@@ -4747,6 +4776,7 @@ static void sps__rigid_take_velocities(sps_world* w, sps__body* b); /* >>materia
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user) {
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_velocity")) < 0) return SPS_ERR_INVALID_ARG;
     if (!fn) { sps__set_error(w, 0, "sps_body_set_velocity: fn must not be NULL"); return SPS_ERR_INVALID_ARG; }
     if (sps__body_is_empty(w, k, "sps_body_set_velocity")) return SPS_ERR_STATE;
@@ -4769,6 +4799,7 @@ SPSDEF sps_result sps_body_set_rigid_motion(sps_world* w, sps_body b, const sps_
     sps_real centre[3] = {0, 0, 0}, mass = 0;
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_rigid_motion")) < 0) return SPS_ERR_INVALID_ARG;
     if (!velocity || !omega) { sps__set_error(w, 0, "sps_body_set_rigid_motion: velocity and omega must not be NULL"); return SPS_ERR_INVALID_ARG; }
     for (a = 0; a < 3; ++a)
@@ -4803,6 +4834,7 @@ SPSDEF sps_result sps_body_set_pressure(sps_world* w, sps_body b, sps_pressure_f
     const sps__body* body;
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_pressure")) < 0) return SPS_ERR_INVALID_ARG;
     if (!fn) { sps__set_error(w, 0, "sps_body_set_pressure: fn must not be NULL"); return SPS_ERR_INVALID_ARG; }
     body = &w->bodies[k];
@@ -4837,6 +4869,7 @@ SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_re
     sps_result r;
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_geostatic_stress")) < 0) return SPS_ERR_INVALID_ARG;
     body = &w->bodies[k];
     if (body->model.pressure_of_density) { /* its whole stress is integrated: the granular kinds */
@@ -4898,6 +4931,7 @@ SPSDEF sps_result sps_body_constrain_box(sps_world* w, sps_body b, const sps_rea
     sps__constraint con;
     if (count) *count = 0;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_constrain_box")) < 0 || !sps__check_box(w, "sps_body_constrain_box", lo, hi)) return SPS_ERR_INVALID_ARG;
     if (mask == 0 || mask > SPS_AXIS_ALL) { sps__set_error(w, 0, "sps_body_constrain_box: mask = %u, allowed 1..7 (SPS_AXIS_X|Y|Z)", mask); return SPS_ERR_INVALID_ARG; }
     if (w->bodies[k].model.free_rigid) { /* its particles move with the body: a held particle would be ignored */
@@ -8758,6 +8792,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
     sps_real len2 = 0;
     int a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__finite_point(w, point) || !sps__finite_point(w, normal)) {
         sps__set_error(w, 0, "sps_world_add_wall: point %s and normal %s, allowed finite", point ? "set" : "NULL", normal ? "set" : "NULL");
         return SPS_ERR_INVALID_ARG;
@@ -8794,6 +8829,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
 SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], const sps_real hi[3], unsigned open_faces, sps_wall_slip slip) {
     int a, side;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__check_box(w, "sps_world_add_box_walls", lo, hi)) return SPS_ERR_INVALID_ARG;
     if (open_faces >= (1u << (2 * w->dim))) {
         sps__set_error(w, 0, "sps_world_add_box_walls: open_faces = %u, allowed a mask of SPS_FACE_* below %u", open_faces, 1u << (2 * w->dim));
@@ -8841,6 +8877,7 @@ SPSDEF sps_result sps_world_set_wall_velocity(sps_world* w, int wall, const sps_
     sps_real vn = 0;
     int a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (wall < 0 || wall >= w->nwalls) {
         sps__set_error(w, 0, "sps_world_set_wall_velocity: wall = %d, allowed 0..%d (the walls added so far, %d)", wall, w->nwalls - 1, w->nwalls);
         return SPS_ERR_INVALID_ARG;
@@ -8874,6 +8911,7 @@ static int sps__bodies_touch(const sps_world* w, int a, int b) {
 SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, int touch) {
     int ka, kb, k;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((ka = sps__check_body(w, a, "sps_world_set_contact")) < 0 || (kb = sps__check_body(w, b, "sps_world_set_contact")) < 0) return SPS_ERR_INVALID_ARG;
     if (ka == kb || (touch != 0 && touch != 1)) {
         sps__set_error(w, 0, "sps_world_set_contact: bodies %d and %d with touch = %d, allowed two different bodies and touch 0 or 1", ka, kb, touch);
@@ -9774,6 +9812,7 @@ SPSDEF sps_result sps_body_set_rigid_pose(sps_world* w, sps_body b, const sps_re
     sps_real RtR[9], det = 1, error = 0;
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__finite_values(position, 3) || (rotation && !sps__finite_values(rotation, 9))) {
         sps__set_error(w, 0, "sps_body_set_rigid_pose: position %s, rotation %s: allowed finite values (rotation may be NULL)",
                        position ? "given" : "NULL", rotation ? "given" : "NULL");
@@ -9807,6 +9846,7 @@ SPSDEF sps_result sps_body_set_mass_properties(sps_world* w, sps_body b, sps_rea
     sps_real I[9], d[3], Q[9], omega[3], Iw[9], scale;
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!(mass > 0) || !sps__finite(mass)) {
         sps__set_error(w, 0, "sps_body_set_mass_properties: mass = %g, allowed finite > 0 kg", (double)mass);
         return SPS_ERR_INVALID_ARG;
@@ -9850,6 +9890,7 @@ SPSDEF sps_result sps_body_apply_impulse(sps_world* w, sps_body b, const sps_rea
     sps_real d[3] = {0, 0, 0}, J[3] = {0, 0, 0}, dL[3];
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__finite_values(impulse, 3) || (point && !sps__finite_values(point, 3))) {
         sps__set_error(w, 0, "sps_body_apply_impulse: impulse %s, point %s: allowed finite values (point may be NULL)", impulse ? "given" : "NULL",
                        point ? "given" : "NULL");
@@ -9900,6 +9941,7 @@ SPSDEF sps_result sps_body_lock_axes(sps_world* w, sps_body b, unsigned translat
     sps__rigid* r;
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (translation > SPS_AXIS_ALL || rotation > SPS_AXIS_ALL) {
         sps__set_error(w, 0, "sps_body_lock_axes: translation = %u, rotation = %u, allowed masks of SPS_AXIS_X|Y|Z (0..7)", translation, rotation);
         return SPS_ERR_INVALID_ARG;
@@ -11121,6 +11163,7 @@ SPSDEF sps_result sps_body_add_zone(sps_world* w, sps_body b, const sps_zone_def
     sps_result r;
     if (zone_id) *zone_id = -1;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!def) { sps__set_error(w, 0, "sps_body_add_zone: def must not be NULL"); return SPS_ERR_INVALID_ARG; }
     if ((k = sps__check_body(w, b, "sps_body_add_zone")) < 0 || !sps__check_zone(w, k, def)) return SPS_ERR_INVALID_ARG;
     if (!w->zone) { /* the zone index and velocity, -1 and 0 for the particles so far */
@@ -11179,6 +11222,7 @@ SPSDEF sps_result sps_world_set_zone_velocity(sps_world* w, int zone, const sps_
     static const char* const name = "sps_world_set_zone_velocity";
     int a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__check_zone_index(w, zone, name)) return SPS_ERR_INVALID_ARG;
     if (w->zones[zone].def.kind != SPS_ZONE_INFLOW) { sps__set_error(w, 0, "%s: zone %d is not an inflow zone (kind = %d), allowed SPS_ZONE_INFLOW", name, zone, (int)w->zones[zone].def.kind); return SPS_ERR_INVALID_ARG; }
     if (!velocity) { sps__set_error(w, 0, "%s: velocity must not be NULL", name); return SPS_ERR_INVALID_ARG; }
@@ -11202,6 +11246,7 @@ SPSDEF sps_result sps_world_zone_counts(const sps_world* w, int zone, long* crea
 
 SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles) {
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (n_particles < 0 || n_particles > SPS__MAX_PARTICLES) {
         sps__set_error(w, 0, "sps_world_reserve: n_particles = %d, allowed [0, %d]", n_particles, SPS__MAX_PARTICLES);
         return SPS_ERR_INVALID_ARG;
@@ -11402,11 +11447,13 @@ static sps_real sps__substep_dt(const sps_world* w, sps_real t, sps_real vmax, i
     return dt;
 }
 
-static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
+/* The start of an advection step: the particle count's change (open boundaries), the
+   configuration update, the time-step speed and the step's ends (ENO eq. 25; the travel bound
+   also ends the step when the speed grows within it, so particles never move more than CFL_ad h
+   between list updates). */
+static sps_result sps__begin_advection_step(sps_world* w) {
+    sps__advection_step* step = &w->step;
     sps_result r;
-    sps_real dt_ad, travel_max;
-    int max_sub, unstable = 0;
-    long steps_before;
     if (w->nzones && (r = sps__open_boundaries(w)) != SPS_OK) return r; /* the count changes only here */
     if ((r = sps__update_configuration(w)) != SPS_OK) return r;
     w->advection_steps++;
@@ -11418,12 +11465,26 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
     }
     if ((r = sps__check_time_step(w)) != SPS_OK) return r;
     if (!w->watch.armed) sps__watch_energy(w); /* the watchdog's start: this step's first state */
-    /* ENO eq. 25 (advection step); the travel bound below also ends the step when the speed
-       grows within it, so particles never move more than CFL_ad h between list updates */
-    travel_max = w->def.cfl_advection * w->h;
-    dt_ad = w->vmax > 0 ? travel_max / w->vmax : (sps_real)INFINITY;
-    if (w->viscous_speed > w->vmax) dt_ad = travel_max / w->viscous_speed; /* momentum diffuses h in h / (nu / h) */
-    max_sub = w->def.stepping == SPS_STEPPING_SINGLE ? 1 : w->def.max_substeps;
+    step->travel_max = w->def.cfl_advection * w->h;
+    step->dt_ad = w->vmax > 0 ? step->travel_max / w->vmax : (sps_real)INFINITY;
+    if (w->viscous_speed > w->vmax) step->dt_ad = step->travel_max / w->viscous_speed; /* momentum diffuses h in h / (nu / h) */
+    step->max_substeps = w->def.stepping == SPS_STEPPING_SINGLE ? 1 : w->def.max_substeps;
+    step->substeps = 0;
+    step->elapsed = step->travel = 0;
+    return SPS_OK;
+}
+
+/* Runs acoustic sub-steps until the advection step ends, or earlier at t_limit or after
+   call_cap sub-steps. may_stay_open: a frame's call (>>realtime), which continues the step a
+   frame left open and leaves one open when it stops early; every other call runs whole steps
+   from a fresh configuration update (a step stopped by t_limit ends there). */
+static sps_result sps__step_until(sps_world* w, sps_real t_limit, int call_cap, int may_stay_open) {
+    sps_result r;
+    int unstable = 0;
+    long steps_before;
+    const int resume = may_stay_open && w->step.open && w->lists_valid && !w->needs_sort_by_body;
+    if (!resume && (r = sps__begin_advection_step(w)) != SPS_OK) return r;
+    w->step.open = 0; /* until the step stops early in a frame's call */
     steps_before = w->acoustic_steps;
     /* One thread team for the whole advection step: the passes are work-shared loops. Every
        thread runs this loop control on its own copies of the time and the maximum speed, which
@@ -11431,10 +11492,11 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
        the loop together and no barrier is spent on shared loop state. */
     SPS__PRAGMA(omp parallel num_threads(w->threads) if (w->n > 512))
     {
-        sps_real elapsed = 0, travel = 0, t = w->time, vmax = w->vmax, dt_last = w->dt, penalty_dt = 0;
-        int sub = 0, done = 0, blew_up = 0;
+        const sps__advection_step step = w->step;
+        sps_real elapsed = step.elapsed, travel = step.travel, t = w->time, vmax = w->vmax, dt_last = w->dt, penalty_dt = 0;
+        int sub = step.substeps, done = 0, blew_up = 0, ended = 0;
         for (;;) {
-            sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, dt_ad, t_limit), vmax2;
+            sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, step.dt_ad, t_limit), vmax2;
             if (!(dt > 0)) break;
             vmax2 = sps__acoustic_substep(w, t, dt, penalty_dt);
             elapsed += dt;
@@ -11448,9 +11510,10 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             vmax = SPS__SQRT(vmax2);
             if (vmax < w->approach) vmax = w->approach;
             travel += vmax * dt;
-            if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || t >= t_limit) break;
+            ended = sub >= step.max_substeps || elapsed >= step.dt_ad || travel >= step.travel_max;
+            if (ended || t >= t_limit || done >= call_cap) break;
         }
-        if (!blew_up && penalty_dt > 0) sps__pending_penalties(w, penalty_dt); /* the step returns complete */
+        if (!blew_up && penalty_dt > 0) sps__pending_penalties(w, penalty_dt); /* the call returns complete */
         SPS__PRAGMA(omp barrier) /* every thread has left the loop before the shared state changes */
         SPS__PRAGMA(omp master)
         {
@@ -11459,6 +11522,10 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             w->vmax = vmax;
             w->dt = dt_last;
             w->acoustic_steps += done;
+            w->step.substeps = sub;
+            w->step.elapsed = elapsed;
+            w->step.travel = travel;
+            w->step.open = may_stay_open && !ended && !blew_up && done > 0;
         }
     }
     if (unstable) {
@@ -11522,7 +11589,7 @@ static void sps__restore_good_state(sps_world* w) {
 /* A step that fails with SPS_ERR_UNSTABLE stops the world for good: the state (or the last
    good one) stays readable, and further steps return the same error instead of going on from
    a state that is broken or (rolled back) incomplete. */
-static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
+static sps_result sps__step_guarded(sps_world* w, sps_real t_limit, int call_cap, int may_stay_open) {
     sps_result r;
     if (w->stopped) {
         sps__set_error(w, 0, "the world stopped at an instability and cannot step further (read or destroy it): %s", w->failure);
@@ -11530,7 +11597,7 @@ static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
     }
     if (w->acoustic_steps == 0 && (r = sps__check_bodies_outside_walls(w)) != SPS_OK) return r;
     if (w->acoustic_steps == 0) sps__warn_slots_at_walls(w);
-    r = sps__step_until(w, t_limit);
+    r = sps__step_until(w, t_limit, call_cap, may_stay_open);
     if (r == SPS_OK && w->periodic) sps__wrap_positions(w); /* outputs read positions in the box */
     if (r == SPS_ERR_UNSTABLE) {
         w->stopped = 1;
@@ -11542,7 +11609,7 @@ static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
 
 SPSDEF sps_result sps_world_step(sps_world* w) {
     if (!w) return SPS_ERR_INVALID_ARG;
-    return sps__step_guarded(w, (sps_real)INFINITY);
+    return sps__step_guarded(w, (sps_real)INFINITY, INT_MAX, 0);
 }
 
 /* A run of more than 1e10 particle sub-steps (hours on a desktop core) gets a one-line hint of
@@ -11566,7 +11633,7 @@ SPSDEF sps_result sps_world_advance(sps_world* w, sps_real t_end, sps_step_fn fn
     }
     sps__hint_run_length(w, t_end);
     while (w->time < t_end) {
-        sps_result r = sps__step_guarded(w, t_end);
+        sps_result r = sps__step_guarded(w, t_end, INT_MAX, 0);
         if (r != SPS_OK) return r;
         if (fn && fn(w, user)) break;
     }
@@ -12061,6 +12128,7 @@ SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_st
 SPSDEF sps_result sps_world_set_particle(sps_world* w, int id, const sps_real position[3], const sps_real velocity[3]) {
     int i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (id < 0 || id >= w->n || (position && !sps__finite_point(w, position)) || (velocity && !sps__finite_point(w, velocity))) {
         sps__set_error(w, 0, "sps_world_set_particle: id = %d, position %s, velocity %s; allowed id in [0, %d) and finite values", id,
                        !position ? "NULL" : sps__finite_point(w, position) ? "finite" : "not finite",
@@ -13317,6 +13385,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path) {
     FILE* f;
     sps_result res;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!path) { sps__set_error(w, 0, "sps_world_restore: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
     f = fopen(path, "rb");
     if (!f) { sps__set_error(w, 0, "sps_world_restore: cannot open '%s' for reading", path); return SPS_ERR_IO; }
@@ -14902,18 +14971,6 @@ static double sps__monotonic_seconds(void) {
 #endif
 #endif
 
-/* The frame reaches its sub-step count through the cap every advection step already has:
-   sps_world_step runs at most def.max_substeps sub-steps, so the frame lowers that cap for its
-   last step and restores it at once. Going through sps_world_step keeps every guard of a step. */
-static sps_result sps__capped_step(sps_world* w, int cap) {
-    const int cap_of_def = w->def.max_substeps;
-    sps_result r;
-    if (cap < cap_of_def) w->def.max_substeps = cap;
-    r = sps_world_step(w);
-    w->def.max_substeps = cap_of_def;
-    return r;
-}
-
 /* Sub-steps that still fit in the budget at the cost per sub-step measured so far in the frame
    (a sub-step's share of the neighbour-list rebuild included); huge when nothing is measured. */
 static double sps__substeps_fitting(double budget_s, double spent_s, int done) {
@@ -14948,7 +15005,7 @@ SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, dou
             if (fitting < 1) break;
             if (fitting < chunk) chunk = fitting;
         }
-        if ((r = sps__capped_step(w, (int)chunk)) != SPS_OK) break;
+        if ((r = sps__step_guarded(w, (sps_real)INFINITY, (int)chunk, !w->periodic)) != SPS_OK) break;
         done += (int)(w->acoustic_steps - before);
     }
     if (covered) *covered = w->time - t0;
@@ -14986,14 +15043,8 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, 
             if (fitting < 1 && done > 0) break;
             if (fitting < 1) fitting = 1;
         }
-        if (fitting < w->def.max_substeps) { /* cut this step to what fits: sps__capped_step's cap */
-            const int cap_of_def = w->def.max_substeps;
-            w->def.max_substeps = (int)fitting;
-            r = sps__step_guarded(w, t_end);
-            w->def.max_substeps = cap_of_def;
-        } else
-            r = sps__step_guarded(w, t_end);
-        if (r != SPS_OK) break;
+        if (fitting > INT_MAX) fitting = INT_MAX;
+        if ((r = sps__step_guarded(w, t_end, (int)fitting, !w->periodic)) != SPS_OK) break;
         done += w->acoustic_steps - before;
     }
     if (wall_budget_s > 0 && done > 0) w->substep_wall_s = (SPHSOLID_WALL_SECONDS() - start) / (double)done;

@@ -1424,8 +1424,8 @@ static void random_velocity_of(const sps_real x[3], sps_real v[3], void* user) {
 
 /* A free 2D block of 16 x 16 particles (default material, c0 = 28.9 m/s) with random velocities
    up to `speed`, the given stepping and sub-step cap per advection step; ca (may be NULL)
-   counts its allocations. */
-static sps_world* frame_world(sps_stepping stepping, int max_substeps, double speed, counting_allocator* ca) {
+   counts its allocations; body (may be NULL) receives the block. */
+static sps_world* frame_world(sps_stepping stepping, int max_substeps, double speed, counting_allocator* ca, sps_body* body) {
     sps_world_def wd = sps_default_world_def();
     sps_world* w;
     sps_body b;
@@ -1441,6 +1441,7 @@ static sps_world* frame_world(sps_stepping stepping, int max_substeps, double sp
     field.amplitude = speed;
     b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
     if (!b.id || n != 256 || sps_body_set_velocity(w, b, random_velocity_of, &field) != SPS_OK) { sps_world_destroy(w); return NULL; }
+    if (body) *body = b;
     return w;
 }
 
@@ -1465,7 +1466,7 @@ static int same_state(const sps_world* a, const sps_world* b) {
 /* Bad arguments are rejected before anything moves, with a message naming the argument, its
    value and the allowed range (every broken one); an empty world reports its state error. */
 static int test_frame_arguments_rejected(void) {
-    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.3, NULL);
+    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.3, NULL, NULL);
     sps_world* empty = new_world(2, 0.01);
     sps_real covered = 5;
     ENSURE(w && empty);
@@ -1495,7 +1496,7 @@ static int test_frame_arguments_rejected(void) {
 /* Single stepping: an advection step is one sub-step, so 10 frames of 3 sub-steps are the same
    30 steps as sps_world_step's, bit for bit. */
 static int test_frame_single_stepping_equals_steps(void) {
-    sps_world *a = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL), *b = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL);
+    sps_world *a = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL, NULL), *b = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL, NULL);
     int k;
     ENSURE(a && b);
     for (k = 0; k < 10; ++k) ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK);
@@ -1518,8 +1519,8 @@ static int test_frame_whole_advection_steps_equal_steps(void) {
     long calls_after_first;
     int k;
     memset(&ca, 0, sizeof ca); /* whatever fields the counting allocator has */
-    a = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, &ca);
-    b = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, NULL);
+    a = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, &ca, NULL);
+    b = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, NULL, NULL);
     ENSURE(a && b);
     ENSURE(sps_world_advance_substeps(a, 8, 0, &covered) == SPS_OK);
     sum += covered;
@@ -1534,6 +1535,48 @@ static int test_frame_whole_advection_steps_equal_steps(void) {
     ENSURE(same_state(a, b) == 0);
     ENSURE(sps_world_get_def(a)->max_substeps == 4);
     ENSURE_NEAR(sum, sps_world_time(a), 1e-12 * sps_world_time(a)); /* rounding of the differences */
+    sps_world_destroy(a);
+    sps_world_destroy(b);
+    return 0;
+}
+
+static long advection_steps_of(sps_world* w) {
+    sps_diagnostics d;
+    sps_world_diagnostics(w, ALL_BODIES, &d);
+    return d.advection_steps;
+}
+static void no_acceleration(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3], void* user) {
+    (void)x; (void)x0; (void)v; (void)t; (void)user;
+    a[0] = a[1] = a[2] = 0;
+}
+
+/* A frame continues the advection step the last one left open (REAL-TIME FRAMES): 10 frames of
+   3 sub-steps in steps of up to 100 (speeds of 1 mm/s: the advection bound allows ~10^4) are
+   one advection step of 30 sub-steps, bit for bit, with one neighbour-list rebuild. A changed
+   acceleration leaves the step open (the next kick reads it); a particle moved through the API
+   closes it: the next frame starts a fresh step from the changed world. */
+static int test_frame_continues_advection_step(void) {
+    sps_body block;
+    sps_world *a = frame_world(SPS_STEPPING_DUAL, 100, 1e-3, NULL, &block), *b = frame_world(SPS_STEPPING_DUAL, 30, 1e-3, NULL, NULL);
+    sps_particle_state p;
+    int k;
+    ENSURE(a && b);
+    for (k = 0; k < 10; ++k) ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK);
+    ENSURE(sps_world_step(b) == SPS_OK);
+    ENSURE(acoustic_steps_of(a) == 30 && acoustic_steps_of(b) == 30);
+    ENSURE(advection_steps_of(a) == 1 && advection_steps_of(b) == 1);
+    ENSURE(same_state(a, b) == 0);
+    /* the first acceleration of a body: the energy account of its work is allocated at a
+       configuration update, so a fresh step; a later one changes only what the kick reads */
+    ENSURE(sps_body_set_acceleration(a, block, no_acceleration, NULL) == SPS_OK);
+    ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK && advection_steps_of(a) == 2);
+    ENSURE(sps_body_set_acceleration(a, block, no_acceleration, &k) == SPS_OK);
+    ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK && advection_steps_of(a) == 2);
+    ENSURE(sps_world_particle(a, 0, &p) == SPS_OK);
+    p.position[0] += 1e-4f;
+    ENSURE(sps_world_set_particle(a, 0, p.position, NULL) == SPS_OK);
+    ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK && advection_steps_of(a) == 3);
+    ENSURE(sps_world_step(a) == SPS_OK && advection_steps_of(a) == 4); /* sps_world_step runs whole steps of its own */
     sps_world_destroy(a);
     sps_world_destroy(b);
     return 0;
@@ -2242,7 +2285,7 @@ static int test_rigid_motion_about_current_centre(void) {
    budget too small for anything the frame runs at most one sub-step (the hard cap's promise:
    never more than one sub-step over). */
 static int test_frame_in_seconds(void) {
-    sps_world *a = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL), *b = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL);
+    sps_world *a = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL, NULL), *b = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL, NULL);
     sps_diagnostics d;
     sps_real covered = 0;
     long before;
@@ -2787,7 +2830,7 @@ static int test_oas_instances_2d_only(void) {
    fail: a frame that trusted the last frame's cost alone ran none, and the world never moved
    again. */
 static int test_frame_budget_always_advances(void) {
-    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL);
+    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL, NULL);
     sps_diagnostics d;
     sps_real covered = 0;
     long before;

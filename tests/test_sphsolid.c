@@ -267,6 +267,7 @@ int main(int argc, char** argv) {
     RUN(test_frame_arguments_rejected);
     RUN(test_frame_single_stepping_equals_steps);
     RUN(test_frame_whole_advection_steps_equal_steps);
+    RUN(test_frame_continues_advection_step);
     RUN(test_frame_cuts_advection_steps);
     RUN(test_frame_wall_budget);
     RUN(test_validation_world_def);
