@@ -2269,12 +2269,14 @@ typedef enum {
 struct sps__body;
 typedef void (*sps__group_kernel)(sps_world* w, const struct sps__body* b, int g, sps_real dt);
 
-/* A pair loop: the neighbour sums of lane group g of body b into its lane arrays (struct
-   sps__lane_sums, chapter >>solver: the updated-Lagrangian passes), compiled once per world
-   mode (dimension x pair geometry) and pair terms (SPS__INSTANCES). A pass's kernel runs its
-   pair loop and then its finish, which is compiled once per dimension only. */
+/* A pair loop: the neighbour sums of lane group g of body b with the pair terms `terms` (an
+   SPS__TERM_ bit set) into its lane arrays (struct sps__lane_sums, chapter >>solver: the
+   updated-Lagrangian passes): an instance compiled for one dimension, pair geometry and set of
+   terms (which ignores `terms`, its own being literals), or a pass's generic loop, which reads
+   the pair geometry and the terms at run time (SPS__INSTANCES). A pass's kernel runs its pair
+   loop and then its finish, which is compiled once per dimension only. */
 struct sps__lane_sums;
-typedef void (*sps__pair_loop)(sps_world* w, const struct sps__body* b, int g, sps_real dt, struct sps__lane_sums* sums);
+typedef void (*sps__pair_loop)(sps_world* w, const struct sps__body* b, int g, sps_real dt, int terms, struct sps__lane_sums* sums);
 
 /* The pass kernels of a body: the kernels the step runs, NULL when the body has no such pass
    (penalty: no penalty; stress, run before the pressure pass: all but total-Lagrangian bodies;
@@ -2285,6 +2287,8 @@ typedef struct sps__passes {
     /* penalty_in_pressure_pass: the pressure pass's pair loop that also sums the previous
        sub-step's penalty (NULL without) */
     sps__pair_loop pressure_penalty_pairs;
+    /* the pair terms each of those loops runs with (SPS__TERM_ bits) */
+    int pressure_terms, continuity_terms, penalty_terms, pressure_penalty_terms;
     /* the pressure pass's rare terms, each a loop of its own, or NULL: OAS's artificial stress, a
        solid's Kelvin-Voigt damping */
     sps__pair_loop art_pairs, damping_pairs;
@@ -6141,9 +6145,12 @@ SPS__INLINE int sps__geo_kernel(const sps_world* w, const int geo) {
 static int sps__plain_geo(const sps_world* w) {
     return w->periodic ? SPS__GEO_PERIODIC : w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
 }
+/* The pair geometry of the world's passes. */
+static int sps__geo(const sps_world* w) {
+    return w->def.frozen_geometry ? SPS__GEO_FROZEN : sps__plain_geo(w); /* frozen is not periodic (sps__periodic_check) */
+}
 static int sps__mode(const sps_world* w) {
-    const int geo = w->def.frozen_geometry ? SPS__GEO_FROZEN : sps__plain_geo(w); /* frozen is not periodic (sps__periodic_check) */
-    return (w->dim == 3) * SPS__GEO_MODES + geo;
+    return (w->dim == 3) * SPS__GEO_MODES + sps__geo(w);
 }
 
 /* Pair geometry of slot s = (i, j) from the offset x_i - x_j = (dx, dy, dz): e_ij, dW/dr,
@@ -6363,43 +6370,62 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
         for (l = 0; l < SPS__LANES; ++l) sums->row[t][l] = 0;
 }
 
-/* The eight instances of a pair loop, one per world mode (sps__mode: dimension x pair geometry),
-   as named functions (they show up in a profiler), each calling the loop's generic body with the
-   dimension, the pair geometry and the pair terms (an SPS__TERM_ bit set) literals, so that its
-   loop carries no branch; and the mode table sps__<loop>_<variant>[mode]. Only the pair loops
-   are instanced: a pass's finish, what it does once per lane group after the loop (the velocity
-   gradient's correction, the stress update and return maps, the rotations, the increments'
-   store), reads the body's model at run time and is compiled once per dimension. 192 pass
-   instances with their finishes inlined were 711 KB of build/impl.o's 864 KB of functions;
-   bench/VALIDATION.md, "Instancing", has the sizes and speeds. */
+/* A pair loop's instances and its mode table sps__<loop>_<variant>[mode] (sps__mode: dimension x
+   pair geometry). The default pair geometry (Wendland C2 recomputed from the positions) has an
+   instance per dimension and set of pair terms, a named function (it shows up in a profiler)
+   that calls the loop's body with the dimension, the pair geometry and the terms (an SPS__TERM_
+   bit set) literals, so that its loop carries no branch. The rare geometries (the cubic spline,
+   frozen_geometry, a periodic world) run the pass's generic loop of the dimension, one function
+   per pass and dimension (SPS__GENERIC_LOOPS) that reads the pair geometry and the terms at run
+   time: the same operations in the same order, so the same results bit for bit, but not
+   vectorised (bench/VALIDATION.md, "Compile cost"); SPHSOLID_ALL_PAIR_LOOPS (CONFIG MACROS)
+   instances them too. Only the pair loops are instanced: a pass's
+   finish, what it does once per lane group after the loop (the velocity gradient's correction,
+   the stress update and return maps, the rotations, the increments' store), reads the body's
+   model at run time and is compiled once per dimension. An instance for every mode and set of
+   terms (248 pair loops) took half of the implementation's compile time. */
 #define SPS__INSTANCE(loop, variant, mode, dim, geo, terms)                                                     \
     static void sps__##loop##_##variant##_##mode(sps_world* w, const sps__body* b, int g, sps_real dt,         \
-                                                 sps__lane_sums* SPS__RESTRICT sums) {                          \
+                                                 int terms_of_call, sps__lane_sums* SPS__RESTRICT sums) {       \
+        (void)terms_of_call; /* the instance's terms are its literal */                                         \
         sps__##loop(w, b, g, dt, sums, dim, geo, terms);                                                        \
     }
-#define SPS__INSTANCES_2D(loop, variant, terms)                                                                 \
-    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
-    SPS__INSTANCE(loop, variant, 2d_spline, 2, SPS__GEO_SPLINE, terms)                                          \
-    SPS__INSTANCE(loop, variant, 2d_frozen, 2, SPS__GEO_FROZEN, terms)                                          \
-    SPS__INSTANCE(loop, variant, 2d_periodic, 2, SPS__GEO_PERIODIC, terms)
+/* The rare modes of dimension dim in a mode table: their instances with SPHSOLID_ALL_PAIR_LOOPS,
+   else the pass's generic loop of the dimension, defined once per pass (SPS__GENERIC_LOOPS). */
+#ifdef SPHSOLID_ALL_PAIR_LOOPS
+#define SPS__GENERIC_LOOPS(loop)
+#define SPS__RARE_INSTANCES(loop, variant, dim, terms)                                                          \
+    SPS__INSTANCE(loop, variant, dim##d_spline, dim, SPS__GEO_SPLINE, terms)                                    \
+    SPS__INSTANCE(loop, variant, dim##d_frozen, dim, SPS__GEO_FROZEN, terms)                                    \
+    SPS__INSTANCE(loop, variant, dim##d_periodic, dim, SPS__GEO_PERIODIC, terms)
+#define SPS__RARE_MODES(loop, variant, dim)                                                                     \
+    sps__##loop##_##variant##_##dim##d_spline, sps__##loop##_##variant##_##dim##d_frozen,                       \
+        sps__##loop##_##variant##_##dim##d_periodic
+#else
+#define SPS__GENERIC_LOOP(loop, dim)                                                                            \
+    static void sps__##loop##_generic_##dim##d(sps_world* w, const sps__body* b, int g, sps_real dt, int terms, \
+                                               sps__lane_sums* SPS__RESTRICT sums) {                            \
+        sps__##loop(w, b, g, dt, sums, dim, sps__geo(w), terms);                                                \
+    }
+#define SPS__GENERIC_LOOPS(loop) SPS__GENERIC_LOOP(loop, 2) SPS__GENERIC_LOOP(loop, 3)
+#define SPS__RARE_INSTANCES(loop, variant, dim, terms)
+#define SPS__RARE_MODES(loop, variant, dim) sps__##loop##_generic_##dim##d, sps__##loop##_generic_##dim##d, sps__##loop##_generic_##dim##d
+#endif
 #define SPS__INSTANCES(loop, variant, terms)                                                                    \
-    SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
+    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
     SPS__INSTANCE(loop, variant, 3d_wendland, 3, SPS__GEO_WENDLAND, terms)                                      \
-    SPS__INSTANCE(loop, variant, 3d_spline, 3, SPS__GEO_SPLINE, terms)                                          \
-    SPS__INSTANCE(loop, variant, 3d_frozen, 3, SPS__GEO_FROZEN, terms)                                          \
-    SPS__INSTANCE(loop, variant, 3d_periodic, 3, SPS__GEO_PERIODIC, terms)                                      \
+    SPS__RARE_INSTANCES(loop, variant, 2, terms)                                                                \
+    SPS__RARE_INSTANCES(loop, variant, 3, terms)                                                                \
     static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
-        sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
-        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_2d_periodic,                             \
-        sps__##loop##_##variant##_3d_wendland, sps__##loop##_##variant##_3d_spline,                             \
-        sps__##loop##_##variant##_3d_frozen, sps__##loop##_##variant##_3d_periodic};
+        sps__##loop##_##variant##_2d_wendland, SPS__RARE_MODES(loop, variant, 2),                               \
+        sps__##loop##_##variant##_3d_wendland, SPS__RARE_MODES(loop, variant, 3)};
 /* The instances of a 2D-only term (OAS's: a combination rule refuses it in 3D): none in 3D, where
    the mode table holds NULL (sps__missing_pass would name the combination). */
 #define SPS__INSTANCES_2D_ONLY(loop, variant, terms)                                                            \
-    SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
+    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
+    SPS__RARE_INSTANCES(loop, variant, 2, terms)                                                                \
     static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
-        sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
-        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_2d_periodic, NULL, NULL, NULL, NULL};
+        sps__##loop##_##variant##_2d_wendland, SPS__RARE_MODES(loop, variant, 2), NULL, NULL, NULL, NULL};
 
 /* The dissipation limiter of a pair approaching at -u (u = v_ij . e_ij), eta_c0 = eta / c0:
    beta = min(eta max(-u / c0, 0), 1) (UTVF eq. 20). Branch-free for the lane loops. */
@@ -6638,13 +6664,15 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
     }
 }
 
-/* The pressure pass for lane group g with the pair loop `pairs` (the body's, or the one that also
-   sums the penalty) into the cleared sums: that loop, the rare terms' loops, the finish. */
-static void sps__pressure_sums(sps_world* w, const sps__body* b, int g, sps_real dt, sps__pair_loop pairs, sps__lane_sums* sums) {
+/* The pressure pass for lane group g with the pair loop `pairs` and its terms (the body's, or the
+   one that also sums the penalty) into the cleared sums: that loop, the rare terms' loops, the
+   finish. */
+static void sps__pressure_sums(sps_world* w, const sps__body* b, int g, sps_real dt, sps__pair_loop pairs, int terms,
+                               sps__lane_sums* sums) {
     const sps__group q = sps__group_of(w, b, g);
-    pairs(w, b, g, dt, sums);
-    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, sums);
-    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, sums);
+    pairs(w, b, g, dt, terms, sums);
+    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, SPS__TERM_ART, sums);
+    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, SPS__TERM_DAMPING, sums);
     if (w->dim == 2) sps__pressure_finish(w, b, q, dt, sums, 2);
     else sps__pressure_finish(w, b, q, dt, sums, 3);
 }
@@ -6653,7 +6681,7 @@ static void sps__pressure_sums(sps_world* w, const sps__body* b, int g, sps_real
 static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
     sps__clear_sums(&sums, SPS__PRESSURE_SUMS);
-    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_pairs, &sums);
+    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_pairs, b->model.pass.pressure_terms, &sums);
 }
 
 /* The pressure pass's pair loops: (name, pair terms). */
@@ -6690,8 +6718,10 @@ static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) 
     SPS__PRESSURE_FLUID_LOOPS(X)                           \
     SPS__PRESSURE_GRANULAR_LOOPS(X)
 #define SPS__PRESSURE_INSTANCES(variant, terms) SPS__INSTANCES(pressure_pairs, variant, terms)
+SPS__GENERIC_LOOPS(pressure_pairs)
 SPS__PRESSURE_LOOPS(SPS__PRESSURE_INSTANCES)
 /* The rare terms' loops; OAS's in 2D only. */
+SPS__GENERIC_LOOPS(rare_pressure_pairs)
 SPS__INSTANCES(rare_pressure_pairs, damping, SPS__TERM_DAMPING)
 SPS__INSTANCES_2D_ONLY(rare_pressure_pairs, art, SPS__TERM_ART)
 
@@ -7789,7 +7819,7 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, SPS__NSUM);
-    b->model.pass.continuity_pairs(w, b, g, dt, &sums);
+    b->model.pass.continuity_pairs(w, b, g, dt, b->model.pass.continuity_terms, &sums);
     if (w->dim == 2) sps__continuity_finish(w, b, q, g, dt, &sums, 2);
     else sps__continuity_finish(w, b, q, g, dt, &sums, 3);
 }
@@ -7814,6 +7844,7 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
     SPS__CONTINUITY_FLUID_LOOPS(X)                                \
     SPS__CONTINUITY_RIEMANN_GRADIENT_LOOPS(X)
 #define SPS__CONTINUITY_INSTANCES(variant, terms) SPS__INSTANCES(continuity_pairs, variant, terms)
+SPS__GENERIC_LOOPS(continuity_pairs)
 SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_INSTANCES)
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
@@ -7908,7 +7939,7 @@ static void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 3);
-    b->model.pass.penalty_pairs(w, b, g, dt, &sums);
+    b->model.pass.penalty_pairs(w, b, g, dt, b->model.pass.penalty_terms, &sums);
     if (b->model.paired) return; /* the pair loop added to the pair forces */
     if (w->dim == 2) sps__penalty_finish(w, b, q, dt, sums.row, 2);
     else sps__penalty_finish(w, b, q, dt, sums.row, 3);
@@ -7940,7 +7971,7 @@ static void sps__pressure_and_penalty(sps_world* w, const sps__body* b, int g, s
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, SPS__PENALTY_SUMS + 3);
-    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_penalty_pairs, &sums);
+    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_penalty_pairs, b->model.pass.pressure_penalty_terms, &sums);
     if (w->dim == 2) sps__penalty_finish(w, b, q, penalty_dt, sums.row + SPS__PENALTY_SUMS, 2);
     else sps__penalty_finish(w, b, q, penalty_dt, sums.row + SPS__PENALTY_SUMS, 3);
 }
@@ -7983,6 +8014,7 @@ static void sps__pending_penalties(sps_world* w, sps_real dt) {
     X(gno_a_pairs_j2, SPS__TERM_PROJECTED | SPS__TERM_PAIRED | SPS__TERM_SCALED)
 #endif
 #define SPS__PENALTY_INSTANCES(variant, terms) SPS__INSTANCES(penalty_pairs, variant, terms)
+SPS__GENERIC_LOOPS(penalty_pairs)
 SPS__PENALTY_LOOPS(SPS__PENALTY_INSTANCES)
 
 /* The pass kernels of a model in the world's mode: each pass's rows searched for the one whose
@@ -8039,15 +8071,17 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     memset(&p, 0, sizeof p);
     if (m->material->kinematic) return p;
     if (m->total_lagrangian) return sps__tl_passes(w, m);
-    p.pressure_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), sps__pressure_terms(m), mode);
+    p.pressure_terms = sps__pressure_terms(m);
+    p.continuity_terms = sps__continuity_terms(m);
+    p.penalty_terms = sps__penalty_terms(m);
+    p.pressure_penalty_terms = p.pressure_terms | SPS__TERM_PENALTY | p.penalty_terms;
+    p.pressure_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), p.pressure_terms, mode);
     if (m->stabilisation->artificial_stress) p.art_pairs = sps__rare_pressure_pairs_art[mode];
     if (m->viscous == SPS__VISCOUS_KELVIN_VOIGT) p.damping_pairs = sps__rare_pressure_pairs_damping[mode];
-    p.continuity_pairs = sps__find_loop(sps__continuity_rows, SPS__NROWS(sps__continuity_rows), sps__continuity_terms(m), mode);
-    if (m->stabilisation->penalty)
-        p.penalty_pairs = sps__find_loop(sps__penalty_rows, SPS__NROWS(sps__penalty_rows), sps__penalty_terms(m), mode);
+    p.continuity_pairs = sps__find_loop(sps__continuity_rows, SPS__NROWS(sps__continuity_rows), p.continuity_terms, mode);
+    if (m->stabilisation->penalty) p.penalty_pairs = sps__find_loop(sps__penalty_rows, SPS__NROWS(sps__penalty_rows), p.penalty_terms, mode);
     if (m->penalty_in_pressure)
-        p.pressure_penalty_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows),
-                                                  sps__pressure_terms(m) | SPS__TERM_PENALTY | sps__penalty_terms(m), mode);
+        p.pressure_penalty_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), p.pressure_penalty_terms, mode);
     p.pressure = p.pressure_pairs && (p.art_pairs || !m->stabilisation->artificial_stress) ? sps__pressure : NULL;
     p.continuity = p.continuity_pairs ? sps__continuity : NULL;
     p.penalty = p.penalty_pairs ? sps__penalty : NULL;
@@ -10750,6 +10784,8 @@ SPS__INLINE void sps__transport_shift_finish(sps_world* w, const sps__body* b, s
         }
     }
 }
+SPS__GENERIC_LOOPS(transport_sum_pairs)
+SPS__GENERIC_LOOPS(transport_surface_pairs)
 SPS__INSTANCES(transport_sum_pairs, plain, 0)
 SPS__INSTANCES(transport_surface_pairs, plain, 0)
 
@@ -10791,7 +10827,7 @@ static void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_rea
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 9);
-    sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, 0, &sums);
     if ((b->model.transport == SPS_TRANSPORT_TVF || b->def.transport_carries_velocity) && ((b->model.mirrored && w->nwalls > 0) || b->coupled))
         sps__transport_wall_sums(w, b, q, &sums);
     if (w->dim == 2) sps__transport_sums_finish(b, q, &sums, 2);
@@ -10801,7 +10837,7 @@ static void sps__transport_shift(sps_world* w, const sps__body* b, int g, sps_re
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 1);
-    sps__transport_surface_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    sps__transport_surface_pairs_plain[sps__mode(w)](w, b, g, dt, 0, &sums);
     if (w->dim == 2) sps__transport_shift_finish(w, b, q, &sums, 2);
     else sps__transport_shift_finish(w, b, q, &sums, 3);
 }
