@@ -100,19 +100,30 @@ EX_UNUSED static void opt_fail(const char* prog, const char* fmt, const char* a,
 
 /* ---- library errors: one line on stderr, exit status 2 ---- */
 static const char* g_prog = "example"; /* argv[0], set by opt_parse */
-static char g_create_error[1024];      /* sps_world_create's message: there is no world to keep it */
+static int g_advancing;                /* 1 from output_open to output_close: the world is being run */
+static char g_run_error[1024];         /* an error logged while the world is run, for ex_check_step */
 
-/* The examples' log callback: errors are kept for ex_check to print (once), the rest printed. */
+/* The examples' log callback (ex_options puts it in the world def): a library error ends the
+   program, "prog: message" on stderr and exit status 2, so a scene calls the library without
+   checking each result, as the README's quick start does. While the world is run (output_open
+   to output_close) an error is kept instead: a failed step is reported by ex_check_step, which
+   first writes the state it failed in, and an error of a step callback's own calls by the next
+   output_tick. Warnings are printed. */
 EX_UNUSED static void ex_log(int level, const char* message, void* user) {
     (void)user;
-    if (level == 0) snprintf(g_create_error, sizeof g_create_error, "%s", message);
-    else fprintf(stderr, "%s: %s\n", g_prog, message);
+    if (level == 0 && g_advancing) {
+        if (!g_run_error[0]) snprintf(g_run_error, sizeof g_run_error, "%s", message);
+        return;
+    }
+    fprintf(stderr, "%s: %s\n", g_prog, message);
+    if (level == 0) exit(2);
 }
 
-/* Ends the program on a library error: "prog: message" on stderr, exit status 2. */
+/* Ends the program on an error the example finds itself (the library's own end it in ex_log):
+   "prog: result: the world's last message" on stderr, exit status 2. */
 EX_UNUSED static void ex_check(const sps_world* w, sps_result r) {
     if (r == SPS_OK) return;
-    fprintf(stderr, "%s: %s: %s\n", g_prog, sps_result_string(r), w ? sps_world_last_error(w) : g_create_error);
+    fprintf(stderr, "%s: %s: %s\n", g_prog, sps_result_string(r), w ? sps_world_last_error(w) : "");
     exit(2);
 }
 
@@ -359,6 +370,20 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
+/* An example's one call for its options: sets the short OpenMP spin (ex_short_openmp_spin),
+   parses argv against the table opts (opt_parse: --help, a bad value ends the program with
+   status 2), copies the shared options into the world and body defs (apply_common; bd NULL:
+   the example applies them to its bodies itself) and puts the examples' log callback in the
+   world def (ex_log: a library error ends the program). */
+#define ex_options(argc, argv, about, opts, c, wd, bd) ex_parse_options(argc, argv, about, opts, (int)(sizeof(opts) / sizeof *(opts)), c, wd, bd)
+EX_UNUSED static void ex_parse_options(int argc, char** argv, const char* about, const opt_spec* opts, int n, const common_options* c,
+                                       sps_world_def* wd, sps_body_def* bd) {
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, about, opts, n);
+    if (bd) apply_common(c, wd, bd);
+    wd->log = ex_log;
+}
+
 /* The shared options set an updated-Lagrangian solid's formulation (shear, rotation, zeta, xi,
    penalty_in_pressure_pass, track_stress) on every body; a body that does not read one of them (a fluid; a total-Lagrangian
    body; Drucker-Prager without GNO's penalty; rotation outside the -A variants) would be warned
@@ -481,6 +506,7 @@ typedef struct {
     const char *dir, *name;
     double csv_every, vtk_every, png_every, next_csv, next_vtk, next_png, hourglass_max, min_spacing;
     double wall0; /* wall_seconds() when it was opened: the run's start (progress's ETA, output_close) */
+    double t_end; /* the world's time at the run's end (--tend; the progress line's 100 %) */
     int frames, pictures, svg;
     int quiet; /* --quiet: no progress line */
     sps_vtk_options vtk;
@@ -497,6 +523,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     o->dir = c->out; o->name = name; o->csv_every = c->csv_every; o->vtk_every = c->vtk_every; o->png_every = c->png_every;
     o->svg = c->svg;
     o->quiet = c->quiet;
+    o->t_end = c->t_end;
     o->vtk = sps_default_vtk_options();
     o->vtk.binary = c->vtk_binary;
     o->vtk.single_precision = c->vtk_single;
@@ -511,6 +538,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     o->csv = open_out(o->dir, file);
     fprintf(o->csv, "%s%s\n", sps_diagnostics_csv_header(), extra_header);
     o->wall0 = wall_seconds();
+    g_advancing = 1; /* the run starts: a failed step is reported by ex_check_step */
 }
 
 /* Writes a picture of w to dir/name_suffix.png (or .svg); exits with a message if it cannot. */
@@ -520,12 +548,16 @@ EX_UNUSED static void output_picture(const sps_world* w, const output_plan* o, c
     if (render_world(w, &o->picture, format, path) != 0) { fprintf(stderr, "%s: cannot write %s\n", g_prog, path); exit(1); }
 }
 
-/* Writes what is due at the world's time: a CSV row (diagnostics, then extra, the case's own
-   columns starting with a comma), a VTK snapshot and a PNG picture (numbered like the VTK
-   files). Returns 1 and fills d when a row was written. */
+/* A step callback's one call: writes what is due at the world's time, a CSV row (diagnostics,
+   then extra, the case's own columns starting with a comma), a VTK snapshot and a PNG picture
+   (numbered like the VTK files), and shows the progress line (to o->t_end). Ends the program
+   on an error the step callback's own calls logged (ex_log). Returns 1 and fills d when a row
+   was written. */
 EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra, sps_diagnostics* d) {
     double t = sps_world_time(w);
     int wrote = 0;
+    if (g_run_error[0]) { fprintf(stderr, "%s: %s\n", g_prog, g_run_error); exit(2); }
+    progress(t, o->t_end, o->wall0, o->quiet);
     if (t >= o->next_csv - 1e-12) {
         char row[512];
         sps_body all = {0};
@@ -549,17 +581,11 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
     }
     return wrote;
 }
-/* The state of a run whose steps only write the output due and the progress line. */
-typedef struct {
-    output_plan output;
-    double t_end;
-} ex_plain_run;
-/* sps_world_advance's step callback for an ex_plain_run (user). */
+/* sps_world_advance's step callback for a run whose steps only write the output due and show
+   the progress line: user is its output_plan. */
 EX_UNUSED static int ex_plain_step(sps_world* w, void* user) {
-    ex_plain_run* s = (ex_plain_run*)user;
     sps_diagnostics d;
-    output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
+    output_tick(w, (output_plan*)user, "", &d);
     return 0;
 }
 
@@ -568,6 +594,8 @@ EX_UNUSED static int ex_plain_step(sps_world* w, void* user) {
    output_open, the closing left out. */
 EX_UNUSED static double output_close(const sps_world* w, output_plan* o) {
     const double wall = wall_seconds() - o->wall0;
+    if (g_run_error[0]) { fprintf(stderr, "%s: %s\n", g_prog, g_run_error); exit(2); }
+    g_advancing = 0; /* the run is over: an error ends the program at once again */
     fclose(o->csv);
     if (o->png_every < 0) output_picture(w, o, "final", RENDER_PNG);
     if (o->svg) output_picture(w, o, "final", RENDER_SVG);
@@ -579,7 +607,7 @@ EX_UNUSED static double output_close(const sps_world* w, output_plan* o) {
    one line naming both. */
 EX_UNUSED static void ex_check_step(sps_world* w, sps_result r, const output_plan* o) {
     char path[1200], failure[1024];
-    if (r == SPS_OK) return;
+    if (r == SPS_OK && !g_run_error[0]) return;
     snprintf(failure, sizeof failure, "%s", sps_world_last_error(w));
     snprintf(path, sizeof path, "%s/%s_failed.vtk", o->dir, o->name);
     if (sps_world_write_vtk_ex(w, path, &o->vtk) != SPS_OK) snprintf(path, sizeof path, "(not written)");

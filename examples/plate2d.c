@@ -38,9 +38,9 @@ typedef struct {
     sps_observer tip;
     period_detector period;
     output_plan output;
-    double amp_first, amp_last, amp_cur, t_end; /* amplitudes: max |deflection| per cycle */
+    double amp_first, amp_last, amp_cur; /* amplitudes: max |deflection| per cycle */
     double amp[64];       /* every cycle's (--viscosity: the decay fit) */
-    int quiet, cycles;
+    int cycles;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -49,7 +49,7 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d;
     char extra[64];
     double t = sps_world_time(w);
-    ex_check(w, sps_observer_read(w, s->tip, u, NULL));
+    sps_observer_read(w, s->tip, u, NULL);
     if (fabs(u[1]) > s->amp_cur) s->amp_cur = fabs(u[1]);
     if (period_feed(&s->period, t, u[1])) { /* a cycle ended */
         if (s->amp_first == 0) s->amp_first = s->amp_cur;
@@ -59,7 +59,6 @@ static int on_step(sps_world* w, void* user) {
     }
     snprintf(extra, sizeof extra, ",%.9g", (double)u[1]);
     output_tick(w, &s->output, extra, &d);
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -110,9 +109,7 @@ int main(int argc, char** argv) {
     run_state s;
     double analytical, paper, period, wall;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D oscillating plate (benchmark A1, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
+    ex_options(argc, argv, "2D oscillating plate (benchmark A1, bench/VALIDATION.md)", opts, &c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     if (solver == 1) {
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
@@ -125,11 +122,9 @@ int main(int argc, char** argv) {
     ex_unset_unread(&bd); /* --solver tl: no shear formulation */
     p.jitter = c.jitter;
     p.seed = c.seed;
-    wd.log = ex_log;
     memset(&s, 0, sizeof s);
-    ex_check(NULL, plate2d_create(wd, &bd, &p, &w, &plate, &s.tip));
+    plate2d_create(wd, &bd, &p, &w, &plate, &s.tip);
 
-    s.quiet = c.quiet; s.t_end = c.t_end;
     output_open(&s.output, &c, "plate2d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",deflection");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
     ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
@@ -141,7 +136,7 @@ int main(int argc, char** argv) {
     {
         sps_diagnostics d;
         sps_body all = {0};
-        ex_check(w, sps_world_diagnostics(w, all, &d));
+        sps_world_diagnostics(w, all, &d);
         printf("RESULT case=plate2d solver=%s alpha=%g hourglass=%s artificial_viscosity=%g shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
                "analytical=%.6f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
                "hourglass_end=%.3g min_spacing=%.3f viscosity=%g zeta=%.5f zeta_kv_theory=%.5f %s particles=%d steps=%ld advection_steps=%ld "
