@@ -106,9 +106,9 @@ static char g_run_error[1024];         /* an error logged while the world is run
 /* The examples' log callback (ex_options puts it in the world def): a library error ends the
    program, "prog: message" on stderr and exit status 2, so a scene calls the library without
    checking each result, as the README's quick start does. While the world is run (output_open
-   to output_close) an error is kept instead: a failed step is reported by ex_check_step, which
-   first writes the state it failed in, and an error of a step callback's own calls by the next
-   output_tick. Warnings are printed. */
+   to output_close) an error is kept instead: a failed step is reported by output_close (or
+   ex_check_step), which first writes the state it failed in, and an error of a step callback's
+   own calls by the next output_tick. Warnings are printed. */
 EX_UNUSED static void ex_log(int level, const char* message, void* user) {
     (void)user;
     if (level == 0 && g_advancing) {
@@ -538,7 +538,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     o->csv = open_out(o->dir, file);
     fprintf(o->csv, "%s%s\n", sps_diagnostics_csv_header(), extra_header);
     o->wall0 = wall_seconds();
-    g_advancing = 1; /* the run starts: a failed step is reported by ex_check_step */
+    g_advancing = 1; /* the run starts: a failed step is reported by output_close */
 }
 
 /* Writes a picture of w to dir/name_suffix.png (or .svg); exits with a message if it cannot. */
@@ -589,30 +589,34 @@ EX_UNUSED static int ex_plain_step(sps_world* w, void* user) {
     return 0;
 }
 
-/* The end of the run: closes the CSV, writes the final picture dir/name_final.png when
+/* Returns if the run is well (r is SPS_OK and no error was logged while the world ran);
+   otherwise a step failed (or a step callback's call): writes the world to dir/name_failed.vtk
+   (rolled back to its last good state if the example set keep_last_good_state), then exits
+   with one line naming both. output_close calls it; a loop of sps_world_advance calls checks
+   each (a failed step would fail again at once). */
+EX_UNUSED static void ex_check_step(sps_world* w, sps_result r, const output_plan* o) {
+    char path[1200], failure[1200];
+    if (r == SPS_OK && !g_run_error[0]) return;
+    snprintf(failure, sizeof failure, "%s%s%s", r != SPS_OK ? sps_result_string(r) : "", r != SPS_OK ? ": " : "",
+             r != SPS_OK ? sps_world_last_error(w) : g_run_error);
+    snprintf(path, sizeof path, "%s/%s_failed.vtk", o->dir, o->name);
+    if (sps_world_write_vtk_ex(w, path, &o->vtk) != SPS_OK) snprintf(path, sizeof path, "(not written)");
+    fprintf(stderr, "%s: %s (state at t = %g written to %s)\n", g_prog, failure, (double)sps_world_time(w), path);
+    exit(2);
+}
+
+/* The end of the run: a run that failed is reported (ex_check_step: its state written, the
+   program ended); else closes the CSV, writes the final picture dir/name_final.png when
    --png-every < 0, and dir/name_final.svg with --svg. Returns the run's wall time [s] since
    output_open, the closing left out. */
-EX_UNUSED static double output_close(const sps_world* w, output_plan* o) {
+EX_UNUSED static double output_close(sps_world* w, output_plan* o) {
     const double wall = wall_seconds() - o->wall0;
-    if (g_run_error[0]) { fprintf(stderr, "%s: %s\n", g_prog, g_run_error); exit(2); }
+    ex_check_step(w, SPS_OK, o);
     g_advancing = 0; /* the run is over: an error ends the program at once again */
     fclose(o->csv);
     if (o->png_every < 0) output_picture(w, o, "final", RENDER_PNG);
     if (o->svg) output_picture(w, o, "final", RENDER_SVG);
     return wall;
-}
-
-/* Returns if r is SPS_OK; otherwise the step failed: writes the world to dir/name_failed.vtk
-   (rolled back to its last good state if the example set keep_last_good_state), then exits with
-   one line naming both. */
-EX_UNUSED static void ex_check_step(sps_world* w, sps_result r, const output_plan* o) {
-    char path[1200], failure[1024];
-    if (r == SPS_OK && !g_run_error[0]) return;
-    snprintf(failure, sizeof failure, "%s", sps_world_last_error(w));
-    snprintf(path, sizeof path, "%s/%s_failed.vtk", o->dir, o->name);
-    if (sps_world_write_vtk_ex(w, path, &o->vtk) != SPS_OK) snprintf(path, sizeof path, "(not written)");
-    fprintf(stderr, "%s: %s: %s (state at t = %g written to %s)\n", g_prog, sps_result_string(r), failure, (double)sps_world_time(w), path);
-    exit(2);
 }
 
 /* The mean pressure of the particles within 2.5 dp of the origin (2D; one particle's is noisy):

@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
     int columns, k, peak = 0, soil_count, first, strays = 0, clustered, k0, k1;
 
     ex_options(argc, argv, "2D angle of repose of a heap poured from a hopper", opts, &c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     h.orifice_y = drop;
     h.dp = dp;
@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
     if (!s.shot) return 1;
     output_open(&s.output, &c, "heap_pour2d", "velocity", "");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     sps_world_diagnostics(w, all, &d);
 

@@ -125,7 +125,7 @@ int main(int argc, char** argv) {
     theta = angle * PI / 180;
     g_t = G * sin(theta);
     g_n = G * cos(theta);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     wd.dim = dim;
     wd.dp = (sps_real)dp;
     wd.gravity[0] = (sps_real)g_t;
@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end; s.settle = settle; s.quiet = c.quiet; s.dim = dim; s.g_t = g_t;
     output_open(&s.output, &c, "incline", "velocity", ",centre_x,spin_omega_R");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     accel = ex_fitted_acceleration(s.sum, s.sum_x);
     spin = (s.sum[0] * s.sum_s[1] - s.sum[1] * s.sum_s[0]) / (s.sum[0] * s.sum[2] - s.sum[1] * s.sum[1]); /* the slope of a line fit */

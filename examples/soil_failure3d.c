@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     double wall, dp;
 
     ex_options(argc, argv, "3D failure of a cube of cohesive soil (C6, UTVF 5.3): Drucker-Prager with none, TVF or UTVF", opts, &c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     dp = EDGE / res;
     bd.name = "soil";
@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
     s.next_report = 0.25;
     output_open(&s.output, &c, "soil_failure3d", "plastic-strain", "");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     sps_world_diagnostics(w, all, &d);
     printf("RESULT case=soil_failure3d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g clustered=%d min_spacing=%.3f surface_particles=%d "
