@@ -139,7 +139,6 @@ int main(int argc, char** argv) {
         {"fill", OPT_CHOICE, &fill, "ball particles: body-fitted (sps_body_add_sdf_relaxed) or the lattice", 0, 0, "relaxed|lattice"},
         {"relax-iterations", OPT_INT, &relax_iterations, "shifting steps of the relaxed fill, 0 = the library's 300", 0, 100000, NULL},
         DAMPING_OPTION_SPECS(k),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -119,7 +119,6 @@ int main(int argc, char** argv) {
         {"v0", OPT_REAL, &v0_c0, "speed of each ball / c0", 0, 1, NULL},
         {"fill", OPT_CHOICE, &fill, "particles of the shells", 0, 0, "relaxed|lattice"},
         {"iterations", OPT_INT, &iterations, "relaxation steps, 0 = the library's default (300)", 0, 100000, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

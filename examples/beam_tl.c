@@ -68,7 +68,6 @@ int main(int argc, char** argv) {
         {"u", OPT_REAL, &u, "tip displacement [m] (0.1 mm; 8 mm: the large deflection)", 1e-9, 0.02, NULL},
         {"periods", OPT_REAL, &periods, "run time in first-mode periods (--ramp of them to push, the rest to settle)", 2, 1000, NULL},
         {"ramp", OPT_REAL, &ramp, "time of the push in first-mode periods", 0.1, 1000, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -140,7 +140,6 @@ int main(int argc, char** argv) {
         {"angle", OPT_REAL, &angle, "throw angle below the horizontal [degrees]", 0, 90, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.001, 0.025, NULL},
         {"rigid", OPT_FLAG, &rigid, "a free rigid body (no viscosity)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -57,7 +57,6 @@ int main(int argc, char** argv) {
         {"g", OPT_REAL, &g, "load: acceleration downwards [m/s^2]", 0, 1e4, NULL},
         {"damping", OPT_REAL, &damping, "damping c [1/s], 0 = 2 omega_1 (thin-plate first mode: critical)", 0, 1e6, NULL},
         {"load", OPT_CHOICE, &load, "how the load acts: the world's gravity or sps_body_set_acceleration", 0, 0, "gravity|callback"},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

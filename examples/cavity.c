@@ -91,7 +91,6 @@ int main(int argc, char** argv) {
         {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"ghia", OPT_STRING, &ghia_path, "Ghia et al.'s table (CSV)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

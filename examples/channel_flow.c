@@ -87,7 +87,6 @@ int main(int argc, char** argv) {
         {"re", OPT_REAL, &g_re, "Reynolds number U H / nu (U the peak speed)", 0.01, 1000, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
         {"p-out", OPT_REAL, &p_out, "outlet pressure [Pa]", -1e4, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -84,7 +84,6 @@ int main(int argc, char** argv) {
         {"floor", OPT_CHOICE, &floor_kind, "the floor: no-slip (the paper's), or free-slip with Coulomb friction tan(phi)", 0, 0,
          "no-slip|coulomb"},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

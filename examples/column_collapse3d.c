@@ -75,7 +75,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m]: r0/dp whole (0.00625: 8 particles a radius; 0.0041666667: 12)", 1e-3, 0.0125, NULL},
         {"floor", OPT_CHOICE, &floor_kind, "the floor: free-slip with Coulomb friction tan(phi), or no-slip", 0, 0, "coulomb|no-slip"},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

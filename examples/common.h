@@ -371,15 +371,23 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
 }
 
 /* An example's one call for its options: sets the short OpenMP spin (ex_short_openmp_spin),
-   parses argv against the table opts (opt_parse: --help, a bad value ends the program with
-   status 2), copies the shared options into the world and body defs (apply_common; bd NULL:
-   the example applies them to its bodies itself) and puts the examples' log callback in the
-   world def (ex_log: a library error ends the program). */
+   parses argv against the example's table opts followed by the shared options of c
+   (COMMON_OPTION_SPECS; opt_parse: --help, a bad value ends the program with status 2), copies
+   the shared options into the world and body defs (apply_common; bd NULL: the example applies
+   them itself) and puts the examples' log callback in the world def (ex_log: a library error
+   ends the program). */
 #define ex_options(argc, argv, about, opts, c, wd, bd) ex_parse_options(argc, argv, about, opts, (int)(sizeof(opts) / sizeof *(opts)), c, wd, bd)
-EX_UNUSED static void ex_parse_options(int argc, char** argv, const char* about, const opt_spec* opts, int n, const common_options* c,
+EX_UNUSED static void ex_parse_options(int argc, char** argv, const char* about, const opt_spec* opts, int n, common_options* c,
                                        sps_world_def* wd, sps_body_def* bd) {
+    const opt_spec shared[] = {COMMON_OPTION_SPECS(*c)};
+    const int n_shared = (int)(sizeof shared / sizeof *shared);
+    opt_spec all[96];
+    int k;
+    if (n + n_shared > (int)(sizeof all / sizeof *all)) { fprintf(stderr, "%s: %d options: at most %d\n", argv[0], n, (int)(sizeof all / sizeof *all) - n_shared); exit(2); }
+    for (k = 0; k < n; ++k) all[k] = opts[k];
+    for (k = 0; k < n_shared; ++k) all[n + k] = shared[k];
     ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, about, opts, n);
+    opt_parse(argc, argv, about, all, n + n_shared);
     if (bd) apply_common(c, wd, bd);
     wd->log = ex_log;
 }

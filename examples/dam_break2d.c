@@ -234,7 +234,6 @@ int main(int argc, char** argv) {
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed over sqrt(2 g n^2 a), the fastest free fall's speed", 5, 100, NULL},
         {"zero-pressure", OPT_FLAG, &start_at_rest, "start at p = 0 (else hydrostatic)", 0, 0, NULL},
         {"lobovsky", OPT_FLAG, &lobovsky, "Lobovsky et al. 2014's tank and sensors (H = 300 mm; sets --height, --tank)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -110,7 +110,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.05, 0.5, NULL},
         {"distance", OPT_REAL, &distance, "from the release gate to the barrier, along the slope [m]", 1, 50, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     const double a = SLOPE_DEG * PI / 180, t_x = cos(a), t_y = -sin(a), n_x = sin(a), n_y = cos(a);
     sps_world_def wd = sps_default_world_def();

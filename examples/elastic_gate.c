@@ -141,7 +141,6 @@ int main(int argc, char** argv) {
         {"res", OPT_INT, &res, "resolution: particles across the gate (0.005 m thick)", 2, 20, NULL},
         {"solver", OPT_CHOICE, &solver, "the gate: ul, updated Lagrangian (--shear); tl, total Lagrangian, Saint Venant-Kirchhoff", 0, 0, "ul|tl"},
         {"exp", OPT_STRING, &exp_path, "the experiment's points (CSV: component,time,displacement)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), gate_def = sps_default_body_def(), floor_def = sps_default_body_def();

@@ -124,7 +124,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (the paper: 0.1, 0.05, 0.02)", 1e-3, 0.25, NULL},
         {"c0", OPT_REAL, &c0, "artificial sound speed [m/s]", 1, 1e5, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -164,7 +164,6 @@ int main(int argc, char** argv) {
         {"width", OPT_REAL, &WIDTH, "tank width [m] (and breadth in 3D)", 0.05, 10, NULL},
         {"depth", OPT_REAL, &DEPTH, "water depth [m]", 0.02, 10, NULL},
         {"size", OPT_REAL, &SIZE, "block side [m]", 0.01, 5, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), block_def = sps_default_body_def();

@@ -82,7 +82,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.005, 0.25, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     const double a = SLOPE_DEG * PI / 180;
     sps_world_def wd = sps_default_world_def();

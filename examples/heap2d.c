@@ -82,7 +82,6 @@ int main(int argc, char** argv) {
         {"damping", OPT_REAL, &damping, "velocity damping c [1/s] that keeps the collapse quasi-static (0: the fast collapse)", 0, 1e3, NULL},
         {"pour", OPT_FLAG, &pouring, "pour the column's volume from POUR_HEIGHT = 0.15 m instead of releasing it", 0, 0, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -36,7 +36,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.02, NULL},
         {"damping", OPT_REAL, &damping, "velocity damping c [1/s] that keeps the collapse quasi-static (0: the fast collapse)", 0, 1e3, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -103,7 +103,6 @@ int main(int argc, char** argv) {
         {"floor", OPT_CHOICE, &rough_floor, "the floor and side walls: no-slip, or free-slip with Coulomb friction mu = tan(phi)", 0, 0, "no-slip|friction"},
         {"damping", OPT_REAL, &damping, "the soil's velocity damping c [1/s] (0: free fall)", 0, 1e3, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def(), wall_def;

@@ -108,7 +108,6 @@ int main(int argc, char** argv) {
         {"breadth", OPT_INT, &breadth, "3D: the breadth along z in particle layers (periodic: at least 8, three supports)", 1, 1000, NULL},
         {"sides", OPT_CHOICE, &walls_sides, "3D: what bounds the breadth: a periodic z axis (plane strain), or free-slip walls at z = 0 and z = breadth", 0, 0,
          "periodic|walls"},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), plate_def = sps_default_body_def(), wall_def = sps_default_body_def();

@@ -110,7 +110,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 2e-4)", 2e-5, 1e-3, NULL},
         {"yield", OPT_REAL, &yield, "yield stress sigma_Y [Pa]", 1, 1e12, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -107,7 +107,6 @@ int main(int argc, char** argv) {
         {"lift", OPT_REAL, &lift, "gap between the body's surface and the slope at the start [dp] (0: flush, the contact's rest)", 0, 10, NULL},
         {"settle", OPT_REAL, &settle, "kinetic relaxation before the release [s]: the body comes to rest on the slope", 0, 100, NULL},
         {"viscosity", OPT_REAL, &viscosity, "Kelvin-Voigt viscosity eta of the body [Pa s]", 0, 1e9, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -53,7 +53,6 @@ int main(int argc, char** argv) {
         {"psi", OPT_REAL, &p.psi, "dilatancy angle [degrees], at most phi", 0, 89, NULL},
         {"res", OPT_INT, &p.res, "particles across the layer, D/dp", 4, 200, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

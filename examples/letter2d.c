@@ -57,7 +57,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (the letter 0.14 m high, its legs 0.04 m wide)", 1e-3, 0.01, NULL},
         {"height", OPT_REAL, &height, "height of the letter's feet above the floor at the start [m]", 0, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

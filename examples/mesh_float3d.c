@@ -95,7 +95,6 @@ int main(int argc, char** argv) {
         {"drop", OPT_REAL, &drop, "height of the torus's bottom above the water at the start [m]", 0, 1, NULL},
         {"damping", OPT_REAL, &damping, "damping of the torus only [1/s]", 0, 1e4, NULL},
         {"window", OPT_REAL, &window, "the height is averaged over the last window seconds", 1e-3, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), torus_def = sps_default_body_def();

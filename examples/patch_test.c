@@ -140,7 +140,6 @@ int main(int argc, char** argv) {
         {"periods", OPT_INT, &periods, "breathing periods to run (the end time is periods x the period estimate)", 1, 100000, NULL},
         {"h", OPT_REAL, &h_over_dp, "smoothing length / dp (1: support 2 dp, about 12 neighbours)", 0.8, 3, NULL},
         {"fail", OPT_REAL, &fail, "stop when the hourglass indicator exceeds this", 1e-6, 10, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

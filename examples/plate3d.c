@@ -78,7 +78,6 @@ int main(int argc, char** argv) {
         {"mode", OPT_PAIR, md_arg, "vibration mode m,n", 1, 20, NULL},
         {"support", OPT_CHOICE, &p.support, "simple support: mid-plane edge particles | mid-plane ring outside | full-thickness ring outside", 0, 0, "edge|ring|thick"},
         {"full", OPT_FLAG, &full, "with --tend, run to the end even after the period is found", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

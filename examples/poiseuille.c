@@ -72,7 +72,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles across the channel, H/dp", 4, 400, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / u_max", 2, 1000, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -97,7 +97,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 0.1 and 0.05)", 0.005, 0.25, NULL},
         {"vpunch", OPT_REAL, &v_punch, "punch speed [m/s], downwards", 0, 1e4, NULL},
         {"shape-every", OPT_REAL, &shape_every, "interval of the shape and pressure report [s]", 1e-6, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -84,7 +84,6 @@ int main(int argc, char** argv) {
         {"v", OPT_REAL, &v, "speed of each tool [m/s]", 1e-6, 1000, NULL},
         {"compression", OPT_REAL, &compression, "final compression (closure / height)", 0.01, 0.9, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.005, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def(), td = sps_default_body_def();

@@ -130,7 +130,6 @@ int main(int argc, char** argv) {
         {"damping", OPT_REAL, &damping, "damping of the box's motion [1/s] (0: none)", 0, 1e4, NULL},
         {"lock", OPT_FLAG, &lock, "lock its rotation (sps_body_lock_axes): it only heaves and sways", 0, 0, NULL},
         {"window", OPT_REAL, &window, "the draft and tilt are averaged over the last window seconds", 1e-3, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), box_def = sps_default_body_def();

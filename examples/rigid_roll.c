@@ -89,7 +89,6 @@ int main(int argc, char** argv) {
         {"lift", OPT_REAL, &lift, "gap between the body's surface and the slope at the start [dp] (0: flush, the contact's rest)", 0, 10, NULL},
         {"settle", OPT_REAL, &settle, "kinetic relaxation before the release [s]", 0, 100, NULL},
         {"damping", OPT_REAL, &damping, "contact_damping of the body", 0, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     const char* shape_names[] = {"disc", "ball", "box"};
     sps_world_def wd = sps_default_world_def();

@@ -90,7 +90,6 @@ int main(int argc, char** argv) {
         {"eps", OPT_REAL, &eps, "perturbation: omega's components off the axis relative to omega0", 1e-6, 0.5, NULL},
         {"turns", OPT_REAL, &turns, "turns of the run at omega0", 0.1, 10000, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.002, 0.03, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     const char* axis_names = "xyz";
     spin_run runs[3];

@@ -74,7 +74,6 @@ int main(int argc, char** argv) {
         {"fill", OPT_CHOICE, &fill, "particles: body-fitted (sps_body_add_sdf_relaxed) or lattice", 0, 0, "relaxed|lattice"},
         {"iterations", OPT_INT, &p.iterations, "relaxation iterations, 0 = the library's default", 0, 100000, NULL},
         DAMPING_OPTION_SPECS(k),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

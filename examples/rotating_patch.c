@@ -66,7 +66,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (the paper: L/100)", 1e-3, 0.1, NULL},
         {"c0", OPT_REAL, &c0, "artificial sound speed [m/s]", 1e-3, 1e5, NULL},
         {"omega", OPT_REAL, &g_omega, "angular velocity [rad/s]", 1e-3, 1e3, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     static const double reference_ke[2] = {0.083325, 0.082972}; /* the reference code at rho0 = 1, omega = 1 */
     sps_world_def wd = sps_default_world_def();

@@ -48,7 +48,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"res", OPT_REAL, &res, "resolution L/dp (the paper: 100 and 200)", 10, 800, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -64,7 +64,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"res", OPT_REAL, &res, "resolution edge/dp (the paper: 50, dp = 0.04 m)", 5, 200, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

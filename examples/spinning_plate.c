@@ -43,7 +43,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &p.dp, "particle spacing [m]", 1e-3, 0.25, NULL},
         {"omega", OPT_REAL, &p.omega, "angular velocity [rad/s]", 0, 1e4, NULL},
         {"drift", OPT_REAL, &p.drift, "uniform velocity along x added (Galilean check: the same steps as at rest) [m/s]", -1e4, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -90,7 +90,6 @@ int main(int argc, char** argv) {
         {"periods", OPT_REAL, &periods, "run length in periods of linear theory (--tend overrides)", 0.01, 1000, NULL},
         {"viscosity", OPT_REAL, &viscosity, "dynamic viscosity mu [Pa s] (0: inviscid)", 0, 1e3, NULL},
         {"mach-factor", OPT_REAL, &mach, "c0 = factor sqrt(g H)", 2, 100, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def();

@@ -46,7 +46,6 @@ int main(int argc, char** argv) {
         {"length", OPT_REAL, &length, "final length [m] (12 mm: +500 %)", 2.1e-3, 0.1, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.005, 1, NULL},
         {"h", OPT_REAL, &h_over_dp, "smoothing length / dp (1: kernel support 2 dp, the paper's)", 0.8, 3, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

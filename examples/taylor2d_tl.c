@@ -49,7 +49,6 @@ int main(int argc, char** argv) {
         {"yield", OPT_REAL, &yield, "yield stress sigma_Y [Pa]", 1e3, 1e12, NULL},
         {"v0", OPT_REAL, &v0, "impact speed [m/s]", 0, 1e4, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.02, 2, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -139,7 +139,6 @@ int main(int argc, char** argv) {
         {"yield", OPT_REAL, &yield, "yield stress sigma_Y [Pa]", 1, 1e12, NULL},
         {"hardening", OPT_REAL, &hardening, "linear hardening modulus kappa [Pa]", 0, 1e13, NULL},
         {"material", OPT_CHOICE, &material, "the bar's material (elastic: the same scene for ENO-A, e.g. to compare costs)", 0, 0, "j2|elastic"},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -79,7 +79,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m], rounded to L/n (paper: 1/15 = 0.0666667 and 0.025)", 0.002, 0.25, NULL},
         {"vpull", OPT_REAL, &v_pull, "velocity of the top edge [m/s]", 0, 1e4, NULL},
         {"report-every", OPT_REAL, &report_every, "interval of the extents in the RESULT line [s]", 1e-6, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

@@ -117,7 +117,6 @@ int main(int argc, char** argv) {
         {"v", OPT_REAL, &v, "speed of each grip [m/s]", 1e-3, 1000, NULL},
         {"law", OPT_CHOICE, &law, "elastic law: J2 that never yields (Hencky, in log strains) or Saint Venant-Kirchhoff", 0, 0, "hencky|svk"},
         {"eps-max", OPT_REAL, &eps_max, "damage threshold: principal Green-Lagrange strain (TL eq. 45)", 1e-4, 10, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();

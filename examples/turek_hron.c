@@ -149,7 +149,6 @@ int main(int argc, char** argv) {
          "riemann|density|none"},
         {"p-out", OPT_REAL, &p_out, "the outlet pressure [Pa], < 0: the default rho_f (2 U)^2", -1, 1e6, NULL},
         {"window", OPT_REAL, &window, "the last seconds over which amplitude and frequency are measured, 0: the last third", 0, 100, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def fluid_def = sps_default_body_def(), flag_def = sps_default_body_def(), cylinder_def = sps_default_body_def();
