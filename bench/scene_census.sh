@@ -4,7 +4,10 @@
 # options, output, RESULT lines, pictures, fits) and of the shared scenes (examples/scenes/*.h,
 # shown apart: the set-up they hold is library calls the example does not show). An example
 # reads as a scene when the library's calls outnumber the harness's.
-#   sh bench/scene_census.sh [examples/NAME.c ...]     (default: every example but impl.c)
+#   sh bench/scene_census.sh [-v] [examples/NAME.c ...]  (-v lists each example's harness calls)
+# By default every examples/*.c but impl.c (the implementation's translation unit) and demo.c (the
+# terminal renderer and keyboard loop around the play of scenes/demo_play.h, which the web page
+# shares); name them to count them too.
 # Comments and string literals are left out (gcc -fpreprocessed strips the comments; the macros
 # are not expanded, so a macro counts as one call). Prints the table, then the examples where
 # the harness's calls are as many or more.
@@ -22,19 +25,25 @@ names() {
 }
 { names examples/common.h; names examples/render.h; } | sort -u > "$tmp/harness"
 for h in examples/scenes/*.h; do names "$h"; done | sort -u | grep -v -x -F -f "$tmp/harness" > "$tmp/scene" || true
-count() { # count FILE NAMELIST: calls of the listed names in FILE
-    grep -o -E '(^|[^A-Za-z0-9_])[A-Za-z_][A-Za-z0-9_]*[[:space:]]*\(' "$1" | sed 's/^[^A-Za-z_]//; s/[[:space:](]*$//' | grep -c -x -F -f "$2" || true
-}
-if [ $# -eq 0 ]; then set -- $(ls examples/*.c | grep -v -x 'examples/impl.c'); fi
+# the names called in FILE, one a line (a match starts at an identifier's first character: grep
+# takes the leftmost match)
+calls() { grep -o -E '[A-Za-z_][A-Za-z0-9_]*[[:space:]]*\(' "$1" | sed 's/[[:space:](]*$//'; }
+verbose=0
+if [ "$1" = -v ]; then verbose=1; shift; fi
+if [ $# -eq 0 ]; then set -- $(ls examples/*.c | grep -v -x -e 'examples/impl.c' -e 'examples/demo.c'); fi
 printf '%-22s %8s %8s %8s\n' example library harness scenes
 leading=0; total=0; list=
 for f in "$@"; do
     clean "$f" > "$tmp/src"
-    lib=$(grep -o -E '(^|[^A-Za-z0-9_])sps_[a-z0-9_]+[[:space:]]*\(' "$tmp/src" | wc -l)
-    har=$(count "$tmp/src" "$tmp/harness")
-    sce=$(count "$tmp/src" "$tmp/scene")
+    calls "$tmp/src" > "$tmp/calls"
+    lib=$(grep -c '^sps_[a-z0-9_]*$' "$tmp/calls" || true)
+    har=$(grep -c -x -F -f "$tmp/harness" "$tmp/calls" || true)
+    sce=$(grep -c -x -F -f "$tmp/scene" "$tmp/calls" || true)
     name=$(basename "$f" .c)
     printf '%-22s %8d %8d %8d\n' "$name" "$lib" "$har" "$sce"
+    if [ $verbose = 1 ]; then
+        grep -x -F -f "$tmp/harness" "$tmp/calls" | sort | uniq -c | awk '{printf "    %s x%s\n", $2, $1}'
+    fi
     total=$((total + 1))
     if [ "$har" -ge "$lib" ]; then leading=$((leading + 1)); list="$list $name"; fi
 done

@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
     sps_body_set_velocity(w, left, balls3d_velocity, &speed_left);
     sps_body_set_velocity(w, right, balls3d_velocity, &speed_right);
 
-    output_open(&output, &c, CASE, ex_tracks_stress(&c) ? "von-mises" : "velocity",
+    output_open(&output, &c, CASE, "von-mises-or-velocity",
                 ",kinetic_left,kinetic_right,strain_left,strain_right,total_left,total_right,gap_dp");
     sps_world_diagnostics(w, left, &dl0);
     sps_world_diagnostics(w, right, &dr0);

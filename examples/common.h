@@ -523,7 +523,9 @@ typedef struct {
 
 /* Creates dir, opens dir/name.csv and writes the header: the diagnostics' columns, then the
    case's own (extra_header starts with a comma). Pictures show c's --png-field, or
-   default_field (a render.h field name) for auto. Exits with a message if it cannot. */
+   default_field for auto: a render.h field name, or "von-mises-or-velocity", the von Mises
+   stress when the bodies track it (ex_tracks_stress), else the speed. Exits with a message if
+   it cannot. */
 EX_UNUSED static void output_open(output_plan* o, const common_options* c, const char* name, const char* default_field,
                                   const char* extra_header) {
     char file[256];
@@ -539,6 +541,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     o->picture.width = c->png_size[0];
     o->picture.height = c->png_size[1];
     o->picture.view = (render_view)c->png_view;
+    if (strcmp(default_field, "von-mises-or-velocity") == 0) default_field = ex_tracks_stress(c) ? "von-mises" : "velocity";
     o->picture.field = c->png_field ? &render_fields[c->png_field - 1] : render_field_by_name(default_field);
     o->picture.decorations = 1;
     if (make_dirs(o->dir) != 0) { fprintf(stderr, "cannot create %s\n", o->dir); exit(1); }

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
         fprintf(stderr, "infinite_slope: --psi %g above --phi %g: the dilatancy angle is at most the friction angle\n", p.psi, g.phi);
         return 2;
     }
-    apply_granular(&g, &bd);
+    bd.stress_diffusion = (sps_real)g.diffusion; /* the soil's angles and cone are p's (slope_create): */
     p.phi = g.phi;
     p.cone = (sps_yield_cone)g.cone;
     /* a granular body's energy account holds no deviatoric strain energy: the geostatic start

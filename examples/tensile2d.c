@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     }
     memset(&s, 0, sizeof s);
 
-    output_open(&s.output, &c, "tensile2d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",width_mid,height,neck");
+    output_open(&s.output, &c, "tensile2d", "von-mises-or-velocity", ",width_mid,height,neck");
     on_step(w, &s);
     for (k = 1; k <= TENSILE2D_MAX_REPORTS && (t_next = k * report_every) <= c.t_end * (1 + 1e-9); ++k) {
         double width, height, neck;
