@@ -6,6 +6,16 @@
    bodies, walls, the time loop) is in each example's own file, or in examples/scenes/ where the
    tests, the bench or the demo share it.
 
+   An example calls the harness at four places around its scene, and the library everywhere else:
+       ex_options(argc, argv, about, opts, &c, &wd, &bd);   options: its table, then the shared ones
+       ... the world, bodies and walls: sps_world_create, sps_world_add_body, ... (unchecked: a
+           library error ends the program in ex_log, the log callback ex_options sets)
+       output_open(&out, &c, name, picture_field, extra_csv_header);
+       sps_world_advance(w, t_end, on_step, &state);        on_step calls output_tick once
+       wall = output_close(w, &out);                        a failed run: its state written, exit 2
+       printf("RESULT case=NAME ... %s ...", ..., common_result_fields(&c), ...);
+   bench/scene_census.sh counts each example's library calls against these.
+
    Adding an example: write examples/NAME.c (the contract in the README's "Examples") with a line
    "Smoke: NAME OPTIONS" in its head comment (its brief run in make examples-smoke). The Makefile
    builds every .c file in examples/ but those it lists as not benchmarks; the README's table gets a row. */
