@@ -68,7 +68,8 @@ int main(int argc, char** argv) {
     run_state s;
     double sag, x_end, theory, wall;
 
-    ex_options(argc, argv, "2D cantilever sagging under its own weight, damped to rest, against Timoshenko beam theory", opts, &c, &wd, &bd);
+    ex_options(argc, argv, "2D cantilever sagging under its own weight, damped to rest, against Timoshenko beam theory",
+               opts, &c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     if (damping == 0) damping = 2 * (2 * PI / plate2d_analytical_period(c.E, c.nu, c.rho0));
     bd.damping = damping;

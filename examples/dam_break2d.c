@@ -245,7 +245,7 @@ int main(int argc, char** argv) {
     int k;
 
     ex_options(argc, argv, "2D dam break: a water column collapsing in a tank, against Martin and Moyce (1952), Koshizuka and Oka (1996), Lobovsky et al. (2014)",
-              opts, &c, &wd, &bd);
+               opts, &c, &wd, &bd);
     if (!s) { fprintf(stderr, "%s: out of memory\n", g_prog); return 1; }
     s->sc.width = lobovsky ? 0.6 : 1;
     s->sc.height = (lobovsky ? 0.5 : aspect) * s->sc.width;

@@ -154,7 +154,8 @@ int main(int argc, char** argv) {
     int component, k, compared = 0;
     FILE* table;
 
-    ex_options(argc, argv, "2D dam break through a rubber gate clamped at its top (Antoci et al. 2007): the free end's displacement", opts, &c, &wd, &gate_def);
+    ex_options(argc, argv, "2D dam break through a rubber gate clamped at its top (Antoci et al. 2007): the free end's displacement",
+               opts, &c, &wd, &gate_def);
     memset(&s, 0, sizeof s);
     read_experiment(exp_path, &s.exp);
     dp = GATE_THICK / res;

@@ -117,7 +117,8 @@ int main(int argc, char** argv) {
     run_state s;
     double dp, clamp, breadth_m, D, kappa_G_t, q, bending, shear, theory, deflection, omega1, wall;
 
-    ex_options(argc, argv, "water column on a clamped-clamped elastic plate: static deflection against beam theory", opts, &c, &wd, &plate_def);
+    ex_options(argc, argv, "water column on a clamped-clamped elastic plate: static deflection against beam theory",
+               opts, &c, &wd, &plate_def);
     memset(&s, 0, sizeof s);
     dp = THICK / res;
     clamp = CLAMP_LAYERS * dp;

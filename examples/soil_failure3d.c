@@ -74,7 +74,8 @@ int main(int argc, char** argv) {
     run_state s;
     double wall, dp;
 
-    ex_options(argc, argv, "3D failure of a cube of cohesive soil (C6, UTVF 5.3): Drucker-Prager with none, TVF or UTVF", opts, &c, &wd, &bd);
+    ex_options(argc, argv, "3D failure of a cube of cohesive soil (C6, UTVF 5.3): Drucker-Prager with none, TVF or UTVF",
+               opts, &c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     dp = EDGE / res;
