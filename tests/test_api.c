@@ -1,5 +1,5 @@
 /* test_api.c - the API: handles, instability, memory, reliability and the watchdog, output, observers, real time, restart, user scenes, defaults, pass instances.
-   Included by tests/test_sphsolid.c (the runner, its helpers and the RUN list). */
+   Included by tests/test_sphsolid.c (the runner and its helpers); its list of tests is run_api_tests at its end. */
 
 /* ============================================================================================ */
 /* >>handles: BUG exposure                                                                      */
@@ -2907,4 +2907,68 @@ static int test_penalty_in_pressure_pass_def(void) {
                     ENSURE(add_penalty_body(&bd, 2 + mode / 3, mode % 3 == 2, mode % 3 == 1 ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2) == SPS_OK);
                 }
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_api_tests). */
+static void run_api_tests(void) {
+    RUN(test_uniform_translation);
+    RUN(test_damping_decays_velocity_exactly);
+    RUN(test_external_acceleration);
+    RUN(test_add_after_step_and_constraints);
+    RUN(test_frame_arguments_rejected);
+    RUN(test_frame_single_stepping_equals_steps);
+    RUN(test_frame_whole_advection_steps_equal_steps);
+    RUN(test_frame_continues_advection_step);
+    RUN(test_frame_cuts_advection_steps);
+    RUN(test_frame_wall_budget);
+    RUN(test_handle_foreign_world_same_tag);
+    RUN(test_unstable_run_reported);
+    RUN(test_unstable_huge_velocity);
+    RUN(test_memory_runaway_particle);
+    RUN(test_null_world_arguments);
+    RUN(test_bad_arguments_named);
+    RUN(test_field_by_name);
+    RUN(test_set_particle);
+    RUN(test_warnings_for_silent_cases);
+    RUN(test_energy_watchdog);
+    RUN(test_energy_account_driven);
+    RUN(test_foreign_and_destroyed_handles);
+    RUN(test_flat_box_is_empty);
+    RUN(test_step_empty_body);
+    RUN(test_add_after_step_stress_output);
+    RUN(test_guard_escape);
+    RUN(test_guard_time_step_collapse);
+    RUN(test_guard_nonfinite_state);
+    RUN(test_last_good_state);
+    RUN(test_world_validate);
+    RUN(test_memory_no_allocation_in_steps);
+    RUN(test_memory_out_of_memory_everywhere);
+    RUN(test_determinism_repeated_runs);
+    RUN(test_vtk_writer);
+    RUN(test_vtk_series);
+    RUN(test_restart_round_trip);
+    RUN(test_restart_last_good_state);
+    RUN(test_restart_refused);
+    RUN(test_restart_crafted);
+    RUN(test_csv_row);
+    /* the scenes users write */
+    RUN(test_user_scene_tumbling_default);
+    RUN(test_watchdog_names_rotation);
+    RUN(test_setup_body_behind_wall);
+    RUN(test_setup_quiet_mistakes_warn);
+    RUN(test_warnings_print_once);
+    RUN(test_setup_mistakes_named);
+    RUN(test_rigid_motion_about_current_centre);
+    RUN(test_frame_in_seconds);
+    RUN(test_user_scene_dragged_jelly);
+    RUN(test_restart_every_def_field);
+    RUN(test_restart_ul_j2_into_tl_j2);
+    RUN(test_unread_parameter_warned);
+    RUN(test_missing_pass_instance);
+    RUN(test_zigzag_tells_zigzag_from_flow);
+    RUN(test_generic_dispatch_per_kind);
+    RUN(test_oas_instances_2d_only);
+    RUN(test_frame_budget_always_advances);
+    RUN(test_penalty_in_pressure_pass_def);
 }
