@@ -117,8 +117,14 @@
       in the last budgeted one, one sub-step's time kept for the neighbour-list rebuild), so a
       frame overruns by about one sub-step at most on an idle core, and a machine too slow for
       the scene shows slow motion (covered < 1/F, one sub-step per frame at least) instead of
-      dropping frames. Every frame starts
-      a fresh advection step (one extra neighbour-list rebuild per frame). The budget is measured
+      dropping frames. A frame continues the advection step the last frame left open, so the
+      neighbour lists are rebuilt where a free-running step would rebuild them (every ~25
+      sub-steps of a jelly), not at every frame's start (every 4-5); a change through the API
+      in between (particles added or moved, velocities, masses, walls, contact; not forces,
+      accelerations or drags, which the next sub-step reads) starts a fresh step, as do
+      sps_world_step and sps_world_advance, and so does a periodic world at every frame (its
+      positions are wrapped into the box between steps). A restart file holds no open step.
+      The budget is measured
       with SPHSOLID_WALL_SECONDS() (CONFIG MACROS). sps_world_advance_substeps runs a fixed
       count of sub-steps instead. sps_body_drag_begin grabs a body for the mouse: a spring of
       the caller's stiffness and damping towards drag.target, spread by the kernel over a
@@ -1813,15 +1819,16 @@ SPSDEF sps_real sps_world_time(const sps_world* w);
 SPSDEF long sps_world_substep_count(const sps_world* w);
 /* One frame of a real-time loop (see REAL-TIME FRAMES): runs max_substeps acoustic sub-steps,
    or fewer when wall_budget_s > 0 and the wall clock runs out first.
-     max_substeps   acoustic sub-steps in the frame, >= 1. The frame runs whole advection steps
-                    and cuts the last one short to end exactly on the count.
+     max_substeps   acoustic sub-steps in the frame, >= 1. The frame continues the advection
+                    step the last frame left open and leaves its last one open when the count
+                    ends it early (REAL-TIME FRAMES).
      wall_budget_s  0: no budget; the frame always runs max_substeps sub-steps, and the state
                     after it depends only on the state before and max_substeps (bit-identical
                     for any thread count). > 0 (finite) [s]: wall time allowed from the call.
                     Between advection steps the frame estimates how many more sub-steps fit
                     (from its cost per sub-step so far), stops when not one does, and cuts the
-                    next advection step to what fits; the first advection step always runs. The
-                    frame then depends on the machine's speed.
+                    next advection step to what fits (the next frame continues it); the first
+                    advection step always runs. The frame then depends on the machine's speed.
      covered        (may be NULL) the simulated time the frame advanced [s], also on error.
    Returns SPS_OK, SPS_ERR_INVALID_ARG (message names the argument, its value and the allowed
    range) or an error of sps_world_step. No allocation (except, like sps_world_step, at the
@@ -2134,6 +2141,7 @@ SPSDEF sps_result sps_body_add_mesh_shell(sps_world* w, sps_body b, const sps_me
 #include <stdarg.h>
 #include <stdio.h>
 #include <time.h>
+#include <limits.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -2298,12 +2306,14 @@ typedef enum {
 struct sps__body;
 typedef void (*sps__group_kernel)(sps_world* w, const struct sps__body* b, int g, sps_real dt);
 
-/* A pair loop: the neighbour sums of lane group g of body b into its lane arrays (struct
-   sps__lane_sums, chapter >>solver: the updated-Lagrangian passes), compiled once per world
-   mode (dimension x pair geometry) and pair terms (SPS__INSTANCES). A pass's kernel runs its
-   pair loop and then its finish, which is compiled once per dimension only. */
+/* A pair loop: the neighbour sums of lane group g of body b with the pair terms `terms` (an
+   SPS__TERM_ bit set) into its lane arrays (struct sps__lane_sums, chapter >>solver: the
+   updated-Lagrangian passes): an instance compiled for one dimension, pair geometry and set of
+   terms (which ignores `terms`, its own being literals), or a pass's generic loop, which reads
+   the pair geometry and the terms at run time (SPS__INSTANCES). A pass's kernel runs its pair
+   loop and then its finish, which is compiled once per dimension only. */
 struct sps__lane_sums;
-typedef void (*sps__pair_loop)(sps_world* w, const struct sps__body* b, int g, sps_real dt, struct sps__lane_sums* sums);
+typedef void (*sps__pair_loop)(sps_world* w, const struct sps__body* b, int g, sps_real dt, int terms, struct sps__lane_sums* sums);
 
 /* The pass kernels of a body: the kernels the step runs, NULL when the body has no such pass
    (penalty: no penalty; stress, run before the pressure pass: all but total-Lagrangian bodies;
@@ -2314,6 +2324,8 @@ typedef struct sps__passes {
     /* penalty_in_pressure_pass: the pressure pass's pair loop that also sums the previous
        sub-step's penalty (NULL without) */
     sps__pair_loop pressure_penalty_pairs;
+    /* the pair terms each of those loops runs with (SPS__TERM_ bits) */
+    int pressure_terms, continuity_terms, penalty_terms, pressure_penalty_terms;
     /* the pressure pass's rare terms, each a loop of its own, or NULL: OAS's artificial stress, a
        solid's Kelvin-Voigt damping */
     sps__pair_loop art_pairs, damping_pairs;
@@ -2494,6 +2506,18 @@ typedef struct sps__observer {
     int body, first, count; /* weights in obs_ids / obs_weights [first, first + count) */
 } sps__observer;
 
+/* The advection step under way (ENO eqs. 25-26): what its sub-steps have used of it. A real-time
+   frame ends where its simulated time does, mid-step, and the next frame continues the step
+   (open = 1) instead of rebuilding the neighbour lists (>>realtime). */
+typedef struct sps__advection_step {
+    int open;         /* 1: the next frame continues this step without a configuration update */
+    int substeps;     /* its acoustic sub-steps so far */
+    int max_substeps; /* its cap: def.max_substeps (1 with single stepping) */
+    sps_real elapsed; /* simulated time it has covered */
+    sps_real travel;  /* the distance its fastest particle may have moved (the sum of vmax dt) */
+    sps_real travel_max, dt_ad; /* its ends: CFL_ad h of travel and ENO eq. 25's dt_ad */
+} sps__advection_step;
+
 struct sps_world {
     sps_world_def def;
     int dim, threads;
@@ -2614,7 +2638,14 @@ struct sps_world {
     long acoustic_steps, advection_steps;
     int allocated_for; /* particles the neighbour storage was sized for (sps__ensure_neighbor_storage) */
     double substep_wall_s; /* wall seconds of one sub-step in the last budgeted frame (>>realtime) */
+    sps__advection_step step; /* the advection step under way, which a frame may leave open (>>stepping) */
 };
+
+/* A change through the API between two frames (particles added or moved, velocities, walls,
+   contact, masses; not forces, accelerations and drags, which the next sub-step's kick reads):
+   the next frame starts a fresh advection step, with the configuration update and the time-step
+   speed of the changed world, instead of continuing the one the last frame left open. */
+static void sps__world_changed(sps_world* w) { w->step.open = 0; }
 
 /* >>fields */
 
@@ -3762,9 +3793,10 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
    sps__mirror_kind in its row; a kind with pair terms of its own in the pressure pass adds an
    SPS__TERM_ bit (its case in sps__kind_pressure_terms), its part of
    sps__kind_pressure_constants and its calls in sps__kind_pressure_pair and
-   sps__kind_pressure_store, and a pressure loop with that bit (SPS__PRESSURE_LOOPS). The step, the passes and the solvers are not edited:
-   bench/material_census.sh lists, per kind, the functions outside its chapters and this one
-   that name it (its enum value, parameters, hooks or state). */
+   sps__kind_pressure_store, and a pressure loop with that bit (SPS__PRESSURE_LOOPS). The step,
+   the passes and the solvers are not edited otherwise: bench/material_census.sh lists, per
+   kind, the functions outside its chapters and this one that name it (its enum value,
+   parameters, hooks or state). */
 
 /* The row of a kind, or NULL for a value outside the enum (sps__body_def_check names it). */
 static const sps__material_model* sps__material_of(sps_material_kind kind) {
@@ -4607,6 +4639,7 @@ SPSDEF sps_result sps_world_add_body(sps_world* w, const sps_body_def* def, sps_
     sps__body* b;
     int k;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (out) out->id = 0;
     if (!def || !out) { sps__set_error(w, 0, "sps_world_add_body: def and out must not be NULL"); return SPS_ERR_INVALID_ARG; }
     msg[0] = 0;
@@ -4740,6 +4773,7 @@ static sps_result sps__add_one(sps_world* w, int body, const sps_real x[3], sps_
     b->count++;
     w->n++;
     w->needs_sort_by_body = 1;
+    sps__world_changed(w);
     return SPS_OK;
 }
 
@@ -4923,6 +4957,7 @@ static void sps__rigid_take_velocities(sps_world* w, sps__body* b); /* >>materia
 SPSDEF sps_result sps_body_set_velocity(sps_world* w, sps_body b, sps_velocity_fn fn, void* user) {
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_velocity")) < 0) return SPS_ERR_INVALID_ARG;
     if (!fn) { sps__set_error(w, 0, "sps_body_set_velocity: fn must not be NULL"); return SPS_ERR_INVALID_ARG; }
     if (sps__body_is_empty(w, k, "sps_body_set_velocity")) return SPS_ERR_STATE;
@@ -4945,6 +4980,7 @@ SPSDEF sps_result sps_body_set_rigid_motion(sps_world* w, sps_body b, const sps_
     sps_real centre[3] = {0, 0, 0}, mass = 0;
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_rigid_motion")) < 0) return SPS_ERR_INVALID_ARG;
     if (!velocity || !omega) { sps__set_error(w, 0, "sps_body_set_rigid_motion: velocity and omega must not be NULL"); return SPS_ERR_INVALID_ARG; }
     for (a = 0; a < 3; ++a)
@@ -4979,6 +5015,7 @@ SPSDEF sps_result sps_body_set_pressure(sps_world* w, sps_body b, sps_pressure_f
     const sps__body* body;
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_pressure")) < 0) return SPS_ERR_INVALID_ARG;
     if (!fn) { sps__set_error(w, 0, "sps_body_set_pressure: fn must not be NULL"); return SPS_ERR_INVALID_ARG; }
     body = &w->bodies[k];
@@ -5013,6 +5050,7 @@ SPSDEF sps_result sps_body_set_geostatic_stress(sps_world* w, sps_body b, sps_re
     sps_result r;
     int k, i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_set_geostatic_stress")) < 0) return SPS_ERR_INVALID_ARG;
     body = &w->bodies[k];
     if (body->model.pressure_of_density) { /* its whole stress is integrated: the granular kinds */
@@ -5074,6 +5112,7 @@ SPSDEF sps_result sps_body_constrain_box(sps_world* w, sps_body b, const sps_rea
     sps__constraint con;
     if (count) *count = 0;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((k = sps__check_body(w, b, "sps_body_constrain_box")) < 0 || !sps__check_box(w, "sps_body_constrain_box", lo, hi)) return SPS_ERR_INVALID_ARG;
     if (mask == 0 || mask > SPS_AXIS_ALL) { sps__set_error(w, 0, "sps_body_constrain_box: mask = %u, allowed 1..7 (SPS_AXIS_X|Y|Z)", mask); return SPS_ERR_INVALID_ARG; }
     if (w->bodies[k].model.free_rigid) { /* its particles move with the body: a held particle would be ignored */
@@ -6297,9 +6336,12 @@ SPS__INLINE int sps__geo_kernel(const sps_world* w, const int geo) {
 static int sps__plain_geo(const sps_world* w) {
     return w->periodic ? SPS__GEO_PERIODIC : w->def.kernel == SPS_KERNEL_CUBIC_SPLINE ? SPS__GEO_SPLINE : SPS__GEO_WENDLAND;
 }
+/* The pair geometry of the world's passes. */
+static int sps__geo(const sps_world* w) {
+    return w->def.frozen_geometry ? SPS__GEO_FROZEN : sps__plain_geo(w); /* frozen is not periodic (sps__periodic_check) */
+}
 static int sps__mode(const sps_world* w) {
-    const int geo = w->def.frozen_geometry ? SPS__GEO_FROZEN : sps__plain_geo(w); /* frozen is not periodic (sps__periodic_check) */
-    return (w->dim == 3) * SPS__GEO_MODES + geo;
+    return (w->dim == 3) * SPS__GEO_MODES + sps__geo(w);
 }
 
 /* Pair geometry of slot s = (i, j) from the offset x_i - x_j = (dx, dy, dz): e_ij, dW/dr,
@@ -6521,43 +6563,62 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
         for (l = 0; l < SPS__LANES; ++l) sums->row[t][l] = 0;
 }
 
-/* The eight instances of a pair loop, one per world mode (sps__mode: dimension x pair geometry),
-   as named functions (they show up in a profiler), each calling the loop's generic body with the
-   dimension, the pair geometry and the pair terms (an SPS__TERM_ bit set) literals, so that its
-   loop carries no branch; and the mode table sps__<loop>_<variant>[mode]. Only the pair loops
-   are instanced: a pass's finish, what it does once per lane group after the loop (the velocity
-   gradient's correction, the stress update and return maps, the rotations, the increments'
-   store), reads the body's model at run time and is compiled once per dimension. 192 pass
-   instances with their finishes inlined were 711 KB of build/impl.o's 864 KB of functions;
-   bench/VALIDATION.md, "Instancing", has the sizes and speeds. */
+/* A pair loop's instances and its mode table sps__<loop>_<variant>[mode] (sps__mode: dimension x
+   pair geometry). The default pair geometry (Wendland C2 recomputed from the positions) has an
+   instance per dimension and set of pair terms, a named function (it shows up in a profiler)
+   that calls the loop's body with the dimension, the pair geometry and the terms (an SPS__TERM_
+   bit set) literals, so that its loop carries no branch. The rare geometries (the cubic spline,
+   frozen_geometry, a periodic world) run the pass's generic loop of the dimension, one function
+   per pass and dimension (SPS__GENERIC_LOOPS) that reads the pair geometry and the terms at run
+   time: the same operations in the same order, so the same results bit for bit, but not
+   vectorised (bench/VALIDATION.md, "Compile cost"); SPHSOLID_ALL_PAIR_LOOPS (CONFIG MACROS)
+   instances them too. Only the pair loops are instanced: a pass's
+   finish, what it does once per lane group after the loop (the velocity gradient's correction,
+   the stress update and return maps, the rotations, the increments' store), reads the body's
+   model at run time and is compiled once per dimension. An instance for every mode and set of
+   terms (248 pair loops) took half of the implementation's compile time. */
 #define SPS__INSTANCE(loop, variant, mode, dim, geo, terms)                                                     \
     static void sps__##loop##_##variant##_##mode(sps_world* w, const sps__body* b, int g, sps_real dt,         \
-                                                 sps__lane_sums* SPS__RESTRICT sums) {                          \
+                                                 int terms_of_call, sps__lane_sums* SPS__RESTRICT sums) {       \
+        (void)terms_of_call; /* the instance's terms are its literal */                                         \
         sps__##loop(w, b, g, dt, sums, dim, geo, terms);                                                        \
     }
-#define SPS__INSTANCES_2D(loop, variant, terms)                                                                 \
-    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
-    SPS__INSTANCE(loop, variant, 2d_spline, 2, SPS__GEO_SPLINE, terms)                                          \
-    SPS__INSTANCE(loop, variant, 2d_frozen, 2, SPS__GEO_FROZEN, terms)                                          \
-    SPS__INSTANCE(loop, variant, 2d_periodic, 2, SPS__GEO_PERIODIC, terms)
+/* The rare modes of dimension dim in a mode table: their instances with SPHSOLID_ALL_PAIR_LOOPS,
+   else the pass's generic loop of the dimension, defined once per pass (SPS__GENERIC_LOOPS). */
+#ifdef SPHSOLID_ALL_PAIR_LOOPS
+#define SPS__GENERIC_LOOPS(loop)
+#define SPS__RARE_INSTANCES(loop, variant, dim, terms)                                                          \
+    SPS__INSTANCE(loop, variant, dim##d_spline, dim, SPS__GEO_SPLINE, terms)                                    \
+    SPS__INSTANCE(loop, variant, dim##d_frozen, dim, SPS__GEO_FROZEN, terms)                                    \
+    SPS__INSTANCE(loop, variant, dim##d_periodic, dim, SPS__GEO_PERIODIC, terms)
+#define SPS__RARE_MODES(loop, variant, dim)                                                                     \
+    sps__##loop##_##variant##_##dim##d_spline, sps__##loop##_##variant##_##dim##d_frozen,                       \
+        sps__##loop##_##variant##_##dim##d_periodic
+#else
+#define SPS__GENERIC_LOOP(loop, dim)                                                                            \
+    static void sps__##loop##_generic_##dim##d(sps_world* w, const sps__body* b, int g, sps_real dt, int terms, \
+                                               sps__lane_sums* SPS__RESTRICT sums) {                            \
+        sps__##loop(w, b, g, dt, sums, dim, sps__geo(w), terms);                                                \
+    }
+#define SPS__GENERIC_LOOPS(loop) SPS__GENERIC_LOOP(loop, 2) SPS__GENERIC_LOOP(loop, 3)
+#define SPS__RARE_INSTANCES(loop, variant, dim, terms)
+#define SPS__RARE_MODES(loop, variant, dim) sps__##loop##_generic_##dim##d, sps__##loop##_generic_##dim##d, sps__##loop##_generic_##dim##d
+#endif
 #define SPS__INSTANCES(loop, variant, terms)                                                                    \
-    SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
+    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
     SPS__INSTANCE(loop, variant, 3d_wendland, 3, SPS__GEO_WENDLAND, terms)                                      \
-    SPS__INSTANCE(loop, variant, 3d_spline, 3, SPS__GEO_SPLINE, terms)                                          \
-    SPS__INSTANCE(loop, variant, 3d_frozen, 3, SPS__GEO_FROZEN, terms)                                          \
-    SPS__INSTANCE(loop, variant, 3d_periodic, 3, SPS__GEO_PERIODIC, terms)                                      \
+    SPS__RARE_INSTANCES(loop, variant, 2, terms)                                                                \
+    SPS__RARE_INSTANCES(loop, variant, 3, terms)                                                                \
     static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
-        sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
-        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_2d_periodic,                             \
-        sps__##loop##_##variant##_3d_wendland, sps__##loop##_##variant##_3d_spline,                             \
-        sps__##loop##_##variant##_3d_frozen, sps__##loop##_##variant##_3d_periodic};
+        sps__##loop##_##variant##_2d_wendland, SPS__RARE_MODES(loop, variant, 2),                               \
+        sps__##loop##_##variant##_3d_wendland, SPS__RARE_MODES(loop, variant, 3)};
 /* The instances of a 2D-only term (OAS's: a combination rule refuses it in 3D): none in 3D, where
    the mode table holds NULL (sps__missing_pass would name the combination). */
 #define SPS__INSTANCES_2D_ONLY(loop, variant, terms)                                                            \
-    SPS__INSTANCES_2D(loop, variant, terms)                                                                     \
+    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
+    SPS__RARE_INSTANCES(loop, variant, 2, terms)                                                                \
     static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
-        sps__##loop##_##variant##_2d_wendland, sps__##loop##_##variant##_2d_spline,                             \
-        sps__##loop##_##variant##_2d_frozen, sps__##loop##_##variant##_2d_periodic, NULL, NULL, NULL, NULL};
+        sps__##loop##_##variant##_2d_wendland, SPS__RARE_MODES(loop, variant, 2), NULL, NULL, NULL, NULL};
 
 /* The dissipation limiter of a pair approaching at -u (u = v_ij . e_ij), eta_c0 = eta / c0:
    beta = min(eta max(-u / c0, 0), 1) (UTVF eq. 20). Branch-free for the lane loops. */
@@ -6835,13 +6896,15 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
     sps__kind_pressure_store(b, q, sums);
 }
 
-/* The pressure pass for lane group g with the pair loop `pairs` (the body's, or the one that also
-   sums the penalty) into the cleared sums: that loop, the rare terms' loops, the finish. */
-static void sps__pressure_sums(sps_world* w, const sps__body* b, int g, sps_real dt, sps__pair_loop pairs, sps__lane_sums* sums) {
+/* The pressure pass for lane group g with the pair loop `pairs` and its terms (the body's, or the
+   one that also sums the penalty) into the cleared sums: that loop, the rare terms' loops, the
+   finish. */
+static void sps__pressure_sums(sps_world* w, const sps__body* b, int g, sps_real dt, sps__pair_loop pairs, int terms,
+                               sps__lane_sums* sums) {
     const sps__group q = sps__group_of(w, b, g);
-    pairs(w, b, g, dt, sums);
-    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, sums);
-    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, sums);
+    pairs(w, b, g, dt, terms, sums);
+    if (b->model.pass.art_pairs) b->model.pass.art_pairs(w, b, g, dt, SPS__TERM_ART, sums);
+    if (b->model.pass.damping_pairs) b->model.pass.damping_pairs(w, b, g, dt, SPS__TERM_DAMPING, sums);
     if (w->dim == 2) sps__pressure_finish(w, b, q, dt, sums, 2);
     else sps__pressure_finish(w, b, q, dt, sums, 3);
 }
@@ -6850,7 +6913,7 @@ static void sps__pressure_sums(sps_world* w, const sps__body* b, int g, sps_real
 static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
     sps__clear_sums(&sums, SPS__PRESSURE_SUMS);
-    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_pairs, &sums);
+    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_pairs, b->model.pass.pressure_terms, &sums);
 }
 
 /* The pressure pass's pair loops: (name, pair terms). */
@@ -6887,8 +6950,10 @@ static void sps__pressure(sps_world* w, const sps__body* b, int g, sps_real dt) 
     SPS__PRESSURE_FLUID_LOOPS(X)                           \
     SPS__PRESSURE_GRANULAR_LOOPS(X)
 #define SPS__PRESSURE_INSTANCES(variant, terms) SPS__INSTANCES(pressure_pairs, variant, terms)
+SPS__GENERIC_LOOPS(pressure_pairs)
 SPS__PRESSURE_LOOPS(SPS__PRESSURE_INSTANCES)
 /* The rare terms' loops; OAS's in 2D only. */
+SPS__GENERIC_LOOPS(rare_pressure_pairs)
 SPS__INSTANCES(rare_pressure_pairs, damping, SPS__TERM_DAMPING)
 SPS__INSTANCES_2D_ONLY(rare_pressure_pairs, art, SPS__TERM_ART)
 
@@ -7997,7 +8062,7 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, SPS__NSUM);
-    b->model.pass.continuity_pairs(w, b, g, dt, &sums);
+    b->model.pass.continuity_pairs(w, b, g, dt, b->model.pass.continuity_terms, &sums);
     if (w->dim == 2) sps__continuity_finish(w, b, q, g, dt, &sums, 2);
     else sps__continuity_finish(w, b, q, g, dt, &sums, 3);
 }
@@ -8022,6 +8087,7 @@ static void sps__continuity(sps_world* w, const sps__body* b, int g, sps_real dt
     SPS__CONTINUITY_FLUID_LOOPS(X)                                \
     SPS__CONTINUITY_RIEMANN_GRADIENT_LOOPS(X)
 #define SPS__CONTINUITY_INSTANCES(variant, terms) SPS__INSTANCES(continuity_pairs, variant, terms)
+SPS__GENERIC_LOOPS(continuity_pairs)
 SPS__CONTINUITY_LOOPS(SPS__CONTINUITY_INSTANCES)
 
 static void sps__continuity_pass(sps_world* w, sps__body* b, sps_real dt) {
@@ -8116,7 +8182,7 @@ static void sps__penalty(sps_world* w, const sps__body* b, int g, sps_real dt) {
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 3);
-    b->model.pass.penalty_pairs(w, b, g, dt, &sums);
+    b->model.pass.penalty_pairs(w, b, g, dt, b->model.pass.penalty_terms, &sums);
     if (b->model.paired) return; /* the pair loop added to the pair forces */
     if (w->dim == 2) sps__penalty_finish(w, b, q, dt, sums.row, 2);
     else sps__penalty_finish(w, b, q, dt, sums.row, 3);
@@ -8148,7 +8214,7 @@ static void sps__pressure_and_penalty(sps_world* w, const sps__body* b, int g, s
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, SPS__PENALTY_SUMS + 3);
-    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_penalty_pairs, &sums);
+    sps__pressure_sums(w, b, g, dt, b->model.pass.pressure_penalty_pairs, b->model.pass.pressure_penalty_terms, &sums);
     if (w->dim == 2) sps__penalty_finish(w, b, q, penalty_dt, sums.row + SPS__PENALTY_SUMS, 2);
     else sps__penalty_finish(w, b, q, penalty_dt, sums.row + SPS__PENALTY_SUMS, 3);
 }
@@ -8191,6 +8257,7 @@ static void sps__pending_penalties(sps_world* w, sps_real dt) {
     X(gno_a_pairs_j2, SPS__TERM_PROJECTED | SPS__TERM_PAIRED | SPS__TERM_SCALED)
 #endif
 #define SPS__PENALTY_INSTANCES(variant, terms) SPS__INSTANCES(penalty_pairs, variant, terms)
+SPS__GENERIC_LOOPS(penalty_pairs)
 SPS__PENALTY_LOOPS(SPS__PENALTY_INSTANCES)
 
 /* The pass kernels of a model in the world's mode: each pass's rows searched for the one whose
@@ -8247,15 +8314,17 @@ static sps__passes sps__choose_passes(const sps_world* w, const sps__model* m) {
     memset(&p, 0, sizeof p);
     if (m->material->kinematic) return p;
     if (m->total_lagrangian) return sps__tl_passes(w, m);
-    p.pressure_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), sps__pressure_terms(m), mode);
+    p.pressure_terms = sps__pressure_terms(m);
+    p.continuity_terms = sps__continuity_terms(m);
+    p.penalty_terms = sps__penalty_terms(m);
+    p.pressure_penalty_terms = p.pressure_terms | SPS__TERM_PENALTY | p.penalty_terms;
+    p.pressure_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), p.pressure_terms, mode);
     if (m->stabilisation->artificial_stress) p.art_pairs = sps__rare_pressure_pairs_art[mode];
     if (m->viscous == SPS__VISCOUS_KELVIN_VOIGT) p.damping_pairs = sps__rare_pressure_pairs_damping[mode];
-    p.continuity_pairs = sps__find_loop(sps__continuity_rows, SPS__NROWS(sps__continuity_rows), sps__continuity_terms(m), mode);
-    if (m->stabilisation->penalty)
-        p.penalty_pairs = sps__find_loop(sps__penalty_rows, SPS__NROWS(sps__penalty_rows), sps__penalty_terms(m), mode);
+    p.continuity_pairs = sps__find_loop(sps__continuity_rows, SPS__NROWS(sps__continuity_rows), p.continuity_terms, mode);
+    if (m->stabilisation->penalty) p.penalty_pairs = sps__find_loop(sps__penalty_rows, SPS__NROWS(sps__penalty_rows), p.penalty_terms, mode);
     if (m->penalty_in_pressure)
-        p.pressure_penalty_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows),
-                                                  sps__pressure_terms(m) | SPS__TERM_PENALTY | sps__penalty_terms(m), mode);
+        p.pressure_penalty_pairs = sps__find_loop(sps__pressure_rows, SPS__NROWS(sps__pressure_rows), p.pressure_penalty_terms, mode);
     p.pressure = p.pressure_pairs && (p.art_pairs || !m->stabilisation->artificial_stress) ? sps__pressure : NULL;
     p.continuity = p.continuity_pairs ? sps__continuity : NULL;
     p.penalty = p.penalty_pairs ? sps__penalty : NULL;
@@ -9063,6 +9132,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
     sps_real len2 = 0;
     int a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__finite_point(w, point) || !sps__finite_point(w, normal)) {
         sps__set_error(w, 0, "sps_world_add_wall: point %s and normal %s, allowed finite", point ? "set" : "NULL", normal ? "set" : "NULL");
         return SPS_ERR_INVALID_ARG;
@@ -9099,6 +9169,7 @@ SPSDEF sps_result sps_world_add_wall(sps_world* w, const sps_real point[3], cons
 SPSDEF sps_result sps_world_add_box_walls(sps_world* w, const sps_real lo[3], const sps_real hi[3], unsigned open_faces, sps_wall_slip slip) {
     int a, side;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__check_box(w, "sps_world_add_box_walls", lo, hi)) return SPS_ERR_INVALID_ARG;
     if (open_faces >= (1u << (2 * w->dim))) {
         sps__set_error(w, 0, "sps_world_add_box_walls: open_faces = %u, allowed a mask of SPS_FACE_* below %u", open_faces, 1u << (2 * w->dim));
@@ -9146,6 +9217,7 @@ SPSDEF sps_result sps_world_set_wall_velocity(sps_world* w, int wall, const sps_
     sps_real vn = 0;
     int a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (wall < 0 || wall >= w->nwalls) {
         sps__set_error(w, 0, "sps_world_set_wall_velocity: wall = %d, allowed 0..%d (the walls added so far, %d)", wall, w->nwalls - 1, w->nwalls);
         return SPS_ERR_INVALID_ARG;
@@ -9179,6 +9251,7 @@ static int sps__bodies_touch(const sps_world* w, int a, int b) {
 SPSDEF sps_result sps_world_set_contact(sps_world* w, sps_body a, sps_body b, int touch) {
     int ka, kb, k;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if ((ka = sps__check_body(w, a, "sps_world_set_contact")) < 0 || (kb = sps__check_body(w, b, "sps_world_set_contact")) < 0) return SPS_ERR_INVALID_ARG;
     if (ka == kb || (touch != 0 && touch != 1)) {
         sps__set_error(w, 0, "sps_world_set_contact: bodies %d and %d with touch = %d, allowed two different bodies and touch 0 or 1", ka, kb, touch);
@@ -10079,6 +10152,7 @@ SPSDEF sps_result sps_body_set_rigid_pose(sps_world* w, sps_body b, const sps_re
     sps_real RtR[9], det = 1, error = 0;
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__finite_values(position, 3) || (rotation && !sps__finite_values(rotation, 9))) {
         sps__set_error(w, 0, "sps_body_set_rigid_pose: position %s, rotation %s: allowed finite values (rotation may be NULL)",
                        position ? "given" : "NULL", rotation ? "given" : "NULL");
@@ -10112,6 +10186,7 @@ SPSDEF sps_result sps_body_set_mass_properties(sps_world* w, sps_body b, sps_rea
     sps_real I[9], d[3], Q[9], omega[3], Iw[9], scale;
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!(mass > 0) || !sps__finite(mass)) {
         sps__set_error(w, 0, "sps_body_set_mass_properties: mass = %g, allowed finite > 0 kg", (double)mass);
         return SPS_ERR_INVALID_ARG;
@@ -10155,6 +10230,7 @@ SPSDEF sps_result sps_body_apply_impulse(sps_world* w, sps_body b, const sps_rea
     sps_real d[3] = {0, 0, 0}, J[3] = {0, 0, 0}, dL[3];
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__finite_values(impulse, 3) || (point && !sps__finite_values(point, 3))) {
         sps__set_error(w, 0, "sps_body_apply_impulse: impulse %s, point %s: allowed finite values (point may be NULL)", impulse ? "given" : "NULL",
                        point ? "given" : "NULL");
@@ -10205,6 +10281,7 @@ SPSDEF sps_result sps_body_lock_axes(sps_world* w, sps_body b, unsigned translat
     sps__rigid* r;
     int k, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (translation > SPS_AXIS_ALL || rotation > SPS_AXIS_ALL) {
         sps__set_error(w, 0, "sps_body_lock_axes: translation = %u, rotation = %u, allowed masks of SPS_AXIS_X|Y|Z (0..7)", translation, rotation);
         return SPS_ERR_INVALID_ARG;
@@ -11013,6 +11090,8 @@ SPS__INLINE void sps__transport_shift_finish(sps_world* w, const sps__body* b, s
         }
     }
 }
+SPS__GENERIC_LOOPS(transport_sum_pairs)
+SPS__GENERIC_LOOPS(transport_surface_pairs)
 SPS__INSTANCES(transport_sum_pairs, plain, 0)
 SPS__INSTANCES(transport_surface_pairs, plain, 0)
 
@@ -11054,7 +11133,7 @@ static void sps__transport_sums(sps_world* w, const sps__body* b, int g, sps_rea
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 9);
-    sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    sps__transport_sum_pairs_plain[sps__mode(w)](w, b, g, dt, 0, &sums);
     if ((b->model.transport == SPS_TRANSPORT_TVF || b->def.transport_carries_velocity) && ((b->model.mirrored && w->nwalls > 0) || b->coupled))
         sps__transport_wall_sums(w, b, q, &sums);
     if (w->dim == 2) sps__transport_sums_finish(b, q, &sums, 2);
@@ -11064,7 +11143,7 @@ static void sps__transport_shift(sps_world* w, const sps__body* b, int g, sps_re
     sps__lane_sums sums;
     const sps__group q = sps__group_of(w, b, g);
     sps__clear_sums(&sums, 1);
-    sps__transport_surface_pairs_plain[sps__mode(w)](w, b, g, dt, &sums);
+    sps__transport_surface_pairs_plain[sps__mode(w)](w, b, g, dt, 0, &sums);
     if (w->dim == 2) sps__transport_shift_finish(w, b, q, &sums, 2);
     else sps__transport_shift_finish(w, b, q, &sums, 3);
 }
@@ -11426,6 +11505,7 @@ SPSDEF sps_result sps_body_add_zone(sps_world* w, sps_body b, const sps_zone_def
     sps_result r;
     if (zone_id) *zone_id = -1;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!def) { sps__set_error(w, 0, "sps_body_add_zone: def must not be NULL"); return SPS_ERR_INVALID_ARG; }
     if ((k = sps__check_body(w, b, "sps_body_add_zone")) < 0 || !sps__check_zone(w, k, def)) return SPS_ERR_INVALID_ARG;
     if (!w->zone) { /* the zone index and velocity, -1 and 0 for the particles so far */
@@ -11484,6 +11564,7 @@ SPSDEF sps_result sps_world_set_zone_velocity(sps_world* w, int zone, const sps_
     static const char* const name = "sps_world_set_zone_velocity";
     int a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!sps__check_zone_index(w, zone, name)) return SPS_ERR_INVALID_ARG;
     if (w->zones[zone].def.kind != SPS_ZONE_INFLOW) { sps__set_error(w, 0, "%s: zone %d is not an inflow zone (kind = %d), allowed SPS_ZONE_INFLOW", name, zone, (int)w->zones[zone].def.kind); return SPS_ERR_INVALID_ARG; }
     if (!velocity) { sps__set_error(w, 0, "%s: velocity must not be NULL", name); return SPS_ERR_INVALID_ARG; }
@@ -11507,6 +11588,7 @@ SPSDEF sps_result sps_world_zone_counts(const sps_world* w, int zone, long* crea
 
 SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles) {
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (n_particles < 0 || n_particles > SPS__MAX_PARTICLES) {
         sps__set_error(w, 0, "sps_world_reserve: n_particles = %d, allowed [0, %d]", n_particles, SPS__MAX_PARTICLES);
         return SPS_ERR_INVALID_ARG;
@@ -11707,11 +11789,13 @@ static sps_real sps__substep_dt(const sps_world* w, sps_real t, sps_real vmax, i
     return dt;
 }
 
-static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
+/* The start of an advection step: the particle count's change (open boundaries), the
+   configuration update, the time-step speed and the step's ends (ENO eq. 25; the travel bound
+   also ends the step when the speed grows within it, so particles never move more than CFL_ad h
+   between list updates). */
+static sps_result sps__begin_advection_step(sps_world* w) {
+    sps__advection_step* step = &w->step;
     sps_result r;
-    sps_real dt_ad, travel_max;
-    int max_sub, unstable = 0;
-    long steps_before;
     if (w->nzones && (r = sps__open_boundaries(w)) != SPS_OK) return r; /* the count changes only here */
     if ((r = sps__update_configuration(w)) != SPS_OK) return r;
     w->advection_steps++;
@@ -11723,12 +11807,26 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
     }
     if ((r = sps__check_time_step(w)) != SPS_OK) return r;
     if (!w->watch.armed) sps__watch_energy(w); /* the watchdog's start: this step's first state */
-    /* ENO eq. 25 (advection step); the travel bound below also ends the step when the speed
-       grows within it, so particles never move more than CFL_ad h between list updates */
-    travel_max = w->def.cfl_advection * w->h;
-    dt_ad = w->vmax > 0 ? travel_max / w->vmax : (sps_real)INFINITY;
-    if (w->viscous_speed > w->vmax) dt_ad = travel_max / w->viscous_speed; /* momentum diffuses h in h / (nu / h) */
-    max_sub = w->def.stepping == SPS_STEPPING_SINGLE ? 1 : w->def.max_substeps;
+    step->travel_max = w->def.cfl_advection * w->h;
+    step->dt_ad = w->vmax > 0 ? step->travel_max / w->vmax : (sps_real)INFINITY;
+    if (w->viscous_speed > w->vmax) step->dt_ad = step->travel_max / w->viscous_speed; /* momentum diffuses h in h / (nu / h) */
+    step->max_substeps = w->def.stepping == SPS_STEPPING_SINGLE ? 1 : w->def.max_substeps;
+    step->substeps = 0;
+    step->elapsed = step->travel = 0;
+    return SPS_OK;
+}
+
+/* Runs acoustic sub-steps until the advection step ends, or earlier at t_limit or after
+   call_cap sub-steps. may_stay_open: a frame's call (>>realtime), which continues the step a
+   frame left open and leaves one open when it stops early; every other call runs whole steps
+   from a fresh configuration update (a step stopped by t_limit ends there). */
+static sps_result sps__step_until(sps_world* w, sps_real t_limit, int call_cap, int may_stay_open) {
+    sps_result r;
+    int unstable = 0;
+    long steps_before;
+    const int resume = may_stay_open && w->step.open && w->lists_valid && !w->needs_sort_by_body;
+    if (!resume && (r = sps__begin_advection_step(w)) != SPS_OK) return r;
+    w->step.open = 0; /* until the step stops early in a frame's call */
     steps_before = w->acoustic_steps;
     /* One thread team for the whole advection step: the passes are work-shared loops. Every
        thread runs this loop control on its own copies of the time and the maximum speed, which
@@ -11736,10 +11834,11 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
        the loop together and no barrier is spent on shared loop state. */
     SPS__PRAGMA(omp parallel num_threads(w->threads) if (w->n > 512))
     {
-        sps_real elapsed = 0, travel = 0, t = w->time, vmax = w->vmax, dt_last = w->dt, penalty_dt = 0;
-        int sub = 0, done = 0, blew_up = 0;
+        const sps__advection_step step = w->step;
+        sps_real elapsed = step.elapsed, travel = step.travel, t = w->time, vmax = w->vmax, dt_last = w->dt, penalty_dt = 0;
+        int sub = step.substeps, done = 0, blew_up = 0, ended = 0;
         for (;;) {
-            sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, dt_ad, t_limit), vmax2;
+            sps_real dt = sps__substep_dt(w, t, vmax, sub, elapsed, step.dt_ad, t_limit), vmax2;
             if (!(dt > 0)) break;
             vmax2 = sps__acoustic_substep(w, t, dt, penalty_dt);
             elapsed += dt;
@@ -11753,9 +11852,10 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             vmax = SPS__SQRT(vmax2);
             if (vmax < w->approach) vmax = w->approach;
             travel += vmax * dt;
-            if (sub >= max_sub || elapsed >= dt_ad || travel >= travel_max || t >= t_limit) break;
+            ended = sub >= step.max_substeps || elapsed >= step.dt_ad || travel >= step.travel_max;
+            if (ended || t >= t_limit || done >= call_cap) break;
         }
-        if (!blew_up && penalty_dt > 0) sps__pending_penalties(w, penalty_dt); /* the step returns complete */
+        if (!blew_up && penalty_dt > 0) sps__pending_penalties(w, penalty_dt); /* the call returns complete */
         SPS__PRAGMA(omp barrier) /* every thread has left the loop before the shared state changes */
         SPS__PRAGMA(omp master)
         {
@@ -11764,6 +11864,10 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit) {
             w->vmax = vmax;
             w->dt = dt_last;
             w->acoustic_steps += done;
+            w->step.substeps = sub;
+            w->step.elapsed = elapsed;
+            w->step.travel = travel;
+            w->step.open = may_stay_open && !ended && !blew_up && done > 0;
         }
     }
     if (unstable) {
@@ -11827,7 +11931,7 @@ static void sps__restore_good_state(sps_world* w) {
 /* A step that fails with SPS_ERR_UNSTABLE stops the world for good: the state (or the last
    good one) stays readable, and further steps return the same error instead of going on from
    a state that is broken or (rolled back) incomplete. */
-static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
+static sps_result sps__step_guarded(sps_world* w, sps_real t_limit, int call_cap, int may_stay_open) {
     sps_result r;
     if (w->stopped) {
         sps__set_error(w, 0, "the world stopped at an instability and cannot step further (read or destroy it): %s", w->failure);
@@ -11835,7 +11939,7 @@ static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
     }
     if (w->acoustic_steps == 0 && (r = sps__check_bodies_outside_walls(w)) != SPS_OK) return r;
     if (w->acoustic_steps == 0) sps__warn_slots_at_walls(w);
-    r = sps__step_until(w, t_limit);
+    r = sps__step_until(w, t_limit, call_cap, may_stay_open);
     if (r == SPS_OK && w->periodic) sps__wrap_positions(w); /* outputs read positions in the box */
     if (r == SPS_ERR_UNSTABLE) {
         w->stopped = 1;
@@ -11847,7 +11951,7 @@ static sps_result sps__step_guarded(sps_world* w, sps_real t_limit) {
 
 SPSDEF sps_result sps_world_step(sps_world* w) {
     if (!w) return SPS_ERR_INVALID_ARG;
-    return sps__step_guarded(w, (sps_real)INFINITY);
+    return sps__step_guarded(w, (sps_real)INFINITY, INT_MAX, 0);
 }
 
 /* A run of more than 1e10 particle sub-steps (hours on a desktop core) gets a one-line hint of
@@ -11871,7 +11975,7 @@ SPSDEF sps_result sps_world_advance(sps_world* w, sps_real t_end, sps_step_fn fn
     }
     sps__hint_run_length(w, t_end);
     while (w->time < t_end) {
-        sps_result r = sps__step_guarded(w, t_end);
+        sps_result r = sps__step_guarded(w, t_end, INT_MAX, 0);
         if (r != SPS_OK) return r;
         if (fn && fn(w, user)) break;
     }
@@ -12366,6 +12470,7 @@ SPSDEF sps_result sps_world_particle(const sps_world* w, int id, sps_particle_st
 SPSDEF sps_result sps_world_set_particle(sps_world* w, int id, const sps_real position[3], const sps_real velocity[3]) {
     int i, a;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (id < 0 || id >= w->n || (position && !sps__finite_point(w, position)) || (velocity && !sps__finite_point(w, velocity))) {
         sps__set_error(w, 0, "sps_world_set_particle: id = %d, position %s, velocity %s; allowed id in [0, %d) and finite values", id,
                        !position ? "NULL" : sps__finite_point(w, position) ? "finite" : "not finite",
@@ -13622,6 +13727,7 @@ SPSDEF sps_result sps_world_restore(sps_world* w, const char* path) {
     FILE* f;
     sps_result res;
     if (!w) return SPS_ERR_INVALID_ARG;
+    sps__world_changed(w);
     if (!path) { sps__set_error(w, 0, "sps_world_restore: path must not be NULL"); return SPS_ERR_INVALID_ARG; }
     f = fopen(path, "rb");
     if (!f) { sps__set_error(w, 0, "sps_world_restore: cannot open '%s' for reading", path); return SPS_ERR_IO; }
@@ -15207,18 +15313,6 @@ static double sps__monotonic_seconds(void) {
 #endif
 #endif
 
-/* The frame reaches its sub-step count through the cap every advection step already has:
-   sps_world_step runs at most def.max_substeps sub-steps, so the frame lowers that cap for its
-   last step and restores it at once. Going through sps_world_step keeps every guard of a step. */
-static sps_result sps__capped_step(sps_world* w, int cap) {
-    const int cap_of_def = w->def.max_substeps;
-    sps_result r;
-    if (cap < cap_of_def) w->def.max_substeps = cap;
-    r = sps_world_step(w);
-    w->def.max_substeps = cap_of_def;
-    return r;
-}
-
 /* Sub-steps that still fit in the budget at the cost per sub-step measured so far in the frame
    (a sub-step's share of the neighbour-list rebuild included); huge when nothing is measured. */
 static double sps__substeps_fitting(double budget_s, double spent_s, int done) {
@@ -15253,7 +15347,7 @@ SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, dou
             if (fitting < 1) break;
             if (fitting < chunk) chunk = fitting;
         }
-        if ((r = sps__capped_step(w, (int)chunk)) != SPS_OK) break;
+        if ((r = sps__step_guarded(w, (sps_real)INFINITY, (int)chunk, !w->periodic)) != SPS_OK) break;
         done += (int)(w->acoustic_steps - before);
     }
     if (covered) *covered = w->time - t0;
@@ -15291,14 +15385,8 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, 
             if (fitting < 1 && done > 0) break;
             if (fitting < 1) fitting = 1;
         }
-        if (fitting < w->def.max_substeps) { /* cut this step to what fits: sps__capped_step's cap */
-            const int cap_of_def = w->def.max_substeps;
-            w->def.max_substeps = (int)fitting;
-            r = sps__step_guarded(w, t_end);
-            w->def.max_substeps = cap_of_def;
-        } else
-            r = sps__step_guarded(w, t_end);
-        if (r != SPS_OK) break;
+        if (fitting > INT_MAX) fitting = INT_MAX;
+        if ((r = sps__step_guarded(w, t_end, (int)fitting, !w->periodic)) != SPS_OK) break;
         done += w->acoustic_steps - before;
     }
     if (wall_budget_s > 0 && done > 0) w->substep_wall_s = (SPHSOLID_WALL_SECONDS() - start) / (double)done;

@@ -96,10 +96,10 @@ int main(int argc, char** argv) {
     printf("RESULT case=realtime dim=%d shear=%s dp=%g fps=%g budget=%g substeps_per_frame=%d frames=%ld sim_s=%.4f wall_s=%.2f "
            "sim_per_wall=%.3f mean_substeps=%.1f physics_ms_mean=%.2f physics_ms_max=%.2f frames_over_budget=%ld "
            "frames_over_budget_plus_one_substep=%ld "
-           "max_angmom_err=%.4g%% %s particles=%d steps=%ld out=%s\n",
+           "max_angmom_err=%.4g%% %s particles=%d steps=%ld advection_steps=%ld out=%s\n",
            p.dim, shear_name(c.shear), p.dp, fps, budget, substeps, frames, (double)sps_world_time(w), wall_seconds() - start,
            sps_world_time(w) / (wall_seconds() - start), (double)d.acoustic_steps / frames, 1e3 * physics / frames, 1e3 * physics_max,
-           over_budget, over_one_substep, 100 * max_err, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, c.out);
+           over_budget, over_one_substep, 100 * max_err, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, c.out);
     sps_world_destroy(w);
     return 0;
 }

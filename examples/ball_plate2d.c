@@ -98,8 +98,8 @@ static int on_step(sps_world* w, void* user) {
     char extra[256] = "";
     double t = sps_world_time(w), gap;
     if (t < s->output.next_csv - 1e-12) { progress(t, s->t_end, s->output.wall0, s->quiet); return 0; }
-    ex_check(w, sps_world_diagnostics(w, s->ball, &db));
-    ex_check(w, sps_world_diagnostics(w, s->plate, &dpl));
+    sps_world_diagnostics(w, s->ball, &db);
+    sps_world_diagnostics(w, s->plate, &dpl);
     gap = ball_plate_min_gap(w, s->ball, s->plate);
     if (gap >= 0 && gap < s->gap_min) { s->gap_min = gap; s->t_gap_min = t; }
     if (gap >= 0 && gap < 2.6 && s->t_contact < 0) s->t_contact = t; /* first pair within the support 2h = 2.6 dp */
@@ -113,7 +113,6 @@ static int on_step(sps_world* w, void* user) {
         if (e > s->e_max) s->e_max = e;
         if (d.kinetic_energy > s->ke_max) s->ke_max = d.kinetic_energy;
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -140,7 +139,6 @@ int main(int argc, char** argv) {
         {"fill", OPT_CHOICE, &fill, "ball particles: body-fitted (sps_body_add_sdf_relaxed) or the lattice", 0, 0, "relaxed|lattice"},
         {"relax-iterations", OPT_INT, &relax_iterations, "shifting steps of the relaxed fill, 0 = the library's 300", 0, 100000, NULL},
         DAMPING_OPTION_SPECS(k),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -150,37 +148,34 @@ int main(int argc, char** argv) {
     double wall, setup, c0, v0_ms, py0;
     sps_real c0r;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, BP_ABOUT, opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, BP_ABOUT, opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     apply_damping(&k, &bd);
     memset(&s, 0, sizeof s);
     /* c0 of the material, for v0 in units of c0: K = E / (3 (1 - 2 nu)) */
     c0 = sqrt(c.E / (3 * (1 - 2 * c.nu)) / c.rho0);
     v0_ms = v0 * c0;
     setup = wall_seconds();
-    wd.log = ex_log;
     {
         ball_plate_params p = {.dim = BALL_PLATE_DIM, .dp = dp, .v0 = v0_ms, .relaxed = fill == 0, .relax_iterations = relax_iterations};
-        ex_check(NULL, ball_plate_create(wd, &bd, &p, &w, &s.ball, &s.plate));
+        ball_plate_create(wd, &bd, &p, &w, &s.ball, &s.plate);
     }
     setup = wall_seconds() - setup;
-    ex_check(w, sps_body_material_constants(w, s.ball, &c0r, NULL, NULL));
+    sps_body_material_constants(w, s.ball, &c0r, NULL, NULL);
     s.quiet = c.quiet; s.t_end = c.t_end; s.gap_min = 1e30; s.t_contact = -1;
-    output_open(&s.output, &c, BP_NAME, ex_tracks_stress(&c) ? "von-mises" : "velocity",
+    output_open(&s.output, &c, BP_NAME, "von-mises-or-velocity",
                 ",ball_kinetic,ball_strain,ball_total,plate_kinetic,plate_strain,plate_total,min_gap_dp,ball_momentum_y");
-    ex_check(w, sps_world_diagnostics(w, s.ball, &db0));
+    sps_world_diagnostics(w, s.ball, &db0);
     py0 = db0.linear_momentum[1];
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     {
         sps_body all = {0};
         double e_end;
-        ex_check(w, sps_world_diagnostics(w, all, &d));
-        ex_check(w, sps_world_diagnostics(w, s.ball, &db));
-        ex_check(w, sps_world_diagnostics(w, s.plate, &dpl));
+        sps_world_diagnostics(w, all, &d);
+        sps_world_diagnostics(w, s.ball, &db);
+        sps_world_diagnostics(w, s.plate, &dpl);
         e_end = d.kinetic_energy + d.strain_energy;
         printf("RESULT case=%s shear=%s v0=%g v0_ms=%.4f c0=%.2f dp=%g fill=%s tend=%g hourglass_max=%.3g hourglass_end=%.3g "
                "plate_hourglass_max=%.3g plate_hourglass_end=%.3g min_spacing=%.3f min_spacing_end=%.3f energy_start=%.6g "

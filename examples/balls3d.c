@@ -52,10 +52,10 @@ static sps_real* left_ball_points(const sps_world_def* wd, const sps_body_def* b
     const sps_real* f[3];
     sps_real* xyz;
     int i, a;
-    ex_check(NULL, sps_world_create(wd, &scratch));
-    ex_check(scratch, sps_world_add_body(scratch, bd, &ball));
-    if (relaxed) ex_check(scratch, sps_body_add_sdf_relaxed(scratch, ball, lo, hi, balls3d_shell_sdf, &cx, iterations, n));
-    else ex_check(scratch, sps_body_add_sdf(scratch, ball, lo, hi, balls3d_shell_sdf, &cx, n));
+    sps_world_create(wd, &scratch);
+    sps_world_add_body(scratch, bd, &ball);
+    if (relaxed) sps_body_add_sdf_relaxed(scratch, ball, lo, hi, balls3d_shell_sdf, &cx, iterations, n);
+    else sps_body_add_sdf(scratch, ball, lo, hi, balls3d_shell_sdf, &cx, n);
     *n = sps_world_particle_count(scratch);
     f[0] = sps_world_field(scratch, SPS_FIELD_POSITION_X);
     f[1] = sps_world_field(scratch, SPS_FIELD_POSITION_Y);
@@ -64,7 +64,7 @@ static sps_real* left_ball_points(const sps_world_def* wd, const sps_body_def* b
     for (i = 0; i < *n; ++i)
         for (a = 0; a < 3; ++a) xyz[3 * i + a] = f[a][i];
     *fill_s = wall_seconds() - t0;
-    ex_check(scratch, sps_measure_fill(scratch, *n, xyz, lo, hi, balls3d_shell_sdf, &cx, quality));
+    sps_measure_fill(scratch, *n, xyz, lo, hi, balls3d_shell_sdf, &cx, quality);
     sps_world_destroy(scratch);
     return xyz;
 }
@@ -119,7 +119,6 @@ int main(int argc, char** argv) {
         {"v0", OPT_REAL, &v0_c0, "speed of each ball / c0", 0, 1, NULL},
         {"fill", OPT_CHOICE, &fill, "particles of the shells", 0, 0, "relaxed|lattice"},
         {"iterations", OPT_INT, &iterations, "relaxation steps, 0 = the library's default (300)", 0, 100000, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -132,45 +131,42 @@ int main(int argc, char** argv) {
     int k = 0;
     sps_real c0r;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D colliding hollow rubber balls (benchmark A6, ENO 6.4)", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "3D colliding hollow rubber balls (benchmark A6, ENO 6.4)", opts, &c, &wd, &bd);
     if (c.shear == SPS_SHEAR_OAS) opt_fail(argv[0], "--shear %s: %s", "oas", "is 2D only");
-    apply_common(&c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     wd.dim = 3;
     wd.dp = (sps_real)dp;
-    wd.log = ex_log;
     xyz = left_ball_points(&wd, &bd, dp, fill == 0, iterations, &per_ball, &quality, &fill_s);
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     bd.name = "left";
-    ex_check(w, sps_world_add_body(w, &bd, &left));
-    ex_check(w, sps_body_add_particles(w, left, per_ball, xyz, NULL));
+    sps_world_add_body(w, &bd, &left);
+    sps_body_add_particles(w, left, per_ball, xyz, NULL);
     for (i = 0; i < per_ball; ++i) xyz[3 * i] = -xyz[3 * i]; /* the right ball: the left one's mirror image x -> -x */
     bd.name = "right";
-    ex_check(w, sps_world_add_body(w, &bd, &right));
-    ex_check(w, sps_body_add_particles(w, right, per_ball, xyz, NULL));
+    sps_world_add_body(w, &bd, &right);
+    sps_body_add_particles(w, right, per_ball, xyz, NULL);
     free(xyz);
-    ex_check(w, sps_body_material_constants(w, left, &c0r, NULL, NULL));
+    sps_body_material_constants(w, left, &c0r, NULL, NULL);
     c0 = c0r;
     speed_left = v0_c0 * c0r; /* towards each other */
     speed_right = -speed_left;
-    ex_check(w, sps_body_set_velocity(w, left, balls3d_velocity, &speed_left));
-    ex_check(w, sps_body_set_velocity(w, right, balls3d_velocity, &speed_right));
+    sps_body_set_velocity(w, left, balls3d_velocity, &speed_left);
+    sps_body_set_velocity(w, right, balls3d_velocity, &speed_right);
 
-    output_open(&output, &c, CASE, ex_tracks_stress(&c) ? "von-mises" : "velocity",
+    output_open(&output, &c, CASE, "von-mises-or-velocity",
                 ",kinetic_left,kinetic_right,strain_left,strain_right,total_left,total_right,gap_dp");
-    ex_check(w, sps_world_diagnostics(w, left, &dl0));
-    ex_check(w, sps_world_diagnostics(w, right, &dr0));
-    ex_check(w, sps_world_diagnostics(w, all, &da0));
+    sps_world_diagnostics(w, left, &dl0);
+    sps_world_diagnostics(w, right, &dr0);
+    sps_world_diagnostics(w, all, &da0);
     e0 = da0.kinetic_energy + da0.strain_energy;
     e_max = e0;
     p_scale = 2 * dl0.linear_momentum[0]; /* sum m |v| */
     for (;;) {
         double t = sps_world_time(w), el, er, gap = sps_world_time(w) > 0 ? balls3d_min_gap(w, left, right) : -1;
         char extra[256];
-        ex_check(w, sps_world_diagnostics(w, left, &dl));
-        ex_check(w, sps_world_diagnostics(w, right, &dr));
-        ex_check(w, sps_world_diagnostics(w, all, &da));
+        sps_world_diagnostics(w, left, &dl);
+        sps_world_diagnostics(w, right, &dr);
+        sps_world_diagnostics(w, all, &da);
         el = dl.kinetic_energy + dl.strain_energy;
         er = dr.kinetic_energy + dr.strain_energy;
         if (dl.kinetic_energy < ke_min) { ke_min = dl.kinetic_energy; t_ke_min = t; }
@@ -185,7 +181,6 @@ int main(int argc, char** argv) {
         output_tick(w, &output, extra, &da);
         if (t >= (sps_real)c.t_end) break; /* the world's clock is an sps_real: a float 2e-4 is below the double */
         ex_check_step(w, sps_world_advance(w, (sps_real)fmin(++k * c.csv_every, c.t_end), NULL, NULL), &output); /* to the next CSV row */
-        progress(sps_world_time(w), c.t_end, output.wall0, c.quiet);
     }
     wall = output_close(w, &output);
     printf("RESULT case=%s shear=%s dp=%g paper_dp=0.001 fill=%s v0=%g*c0 c0=%.4g per_ball=%d fill_s=%.2f fill_surface_rms=%.3f "

@@ -43,8 +43,8 @@
 typedef struct {
     output_plan output;
     sps_body body;
-    double t_end, e_fall, account0, account_error, t_rest, t_below, v_t, omega_r, v_y_before, v_in, v_out;
-    int quiet, dim, bounces, touching, thrown;
+    double e_fall, account0, account_error, t_rest, t_below, v_t, omega_r, v_y_before, v_in, v_out;
+    int dim, bounces, touching, thrown;
 } run_state;
 
 typedef struct {
@@ -97,7 +97,7 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d;
     double t = sps_world_time(w), account, v_t, v_y, omega_r;
     int touching;
-    ex_check(w, sps_world_diagnostics(w, s->body, &d));
+    sps_world_diagnostics(w, s->body, &d);
     touching = d.contact_energy > 0;
     slide_and_spin(w, &v_t, &v_y, &omega_r);
     if (touching && !s->touching && s->bounces == 0) s->v_in = -s->v_y_before; /* the first impact: the speed of the fall */
@@ -118,7 +118,6 @@ static int on_step(sps_world* w, void* user) {
         snprintf(extra, sizeof extra, ",%.9g", account);
         output_tick(w, &s->output, extra, &d);
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -141,7 +140,6 @@ int main(int argc, char** argv) {
         {"angle", OPT_REAL, &angle, "throw angle below the horizontal [degrees]", 0, 90, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.001, 0.025, NULL},
         {"rigid", OPT_FLAG, &rigid, "a free rigid body (no viscosity)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -151,10 +149,8 @@ int main(int argc, char** argv) {
     ball_shape ball;
     double wall, mass, gap;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "a rubber disc or ball dropped on, or thrown at, a floor", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "a rubber disc or ball dropped on, or thrown at, a floor", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     wd.dim = dim;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G;
@@ -171,25 +167,24 @@ int main(int argc, char** argv) {
         bd.shear = defaults.shear;
         bd.rotation = defaults.rotation;
     }
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     memset(&s, 0, sizeof s);
-    ex_check(w, sps_world_add_body(w, &bd, &s.body));
+    sps_world_add_body(w, &bd, &s.body);
     gap = speed > 0 ? 3 * dp : height; /* thrown: just outside the contact's reach (2h = 2.6 dp) */
     ball.dim = dim;
     ball.centre_y = RADIUS + gap;
     {
         const sps_real lo[3] = {-RADIUS, (sps_real)gap, -RADIUS}, hi[3] = {RADIUS, (sps_real)(2 * RADIUS + gap), RADIUS};
         const sps_real point[3] = {0, 0, 0}, normal[3] = {0, 1, 0};
-        ex_check(w, sps_body_add_sdf_relaxed(w, s.body, lo, hi, ball_sdf, &ball, 0, NULL));
-        ex_check(w, sps_world_add_wall(w, point, normal, SPS_WALL_FREE_SLIP));
-        if (mu > 0) ex_check(w, sps_world_set_wall_friction(w, 0, (sps_real)mu));
+        sps_body_add_sdf_relaxed(w, s.body, lo, hi, ball_sdf, &ball, 0, NULL);
+        sps_world_add_wall(w, point, normal, SPS_WALL_FREE_SLIP);
+        if (mu > 0) sps_world_set_wall_friction(w, 0, (sps_real)mu);
     }
     if (speed > 0) {
         launch l = {{speed * cos(angle * PI / 180), -speed * sin(angle * PI / 180)}};
-        ex_check(w, sps_body_set_velocity(w, s.body, launch_velocity, &l));
+        sps_body_set_velocity(w, s.body, launch_velocity, &l);
     }
-    ex_check(w, sps_world_diagnostics(w, s.body, &d));
+    sps_world_diagnostics(w, s.body, &d);
     mass = 0;
     {
         const sps_real* m = sps_world_field(w, SPS_FIELD_MASS);
@@ -197,12 +192,12 @@ int main(int argc, char** argv) {
         for (i = 0; i < sps_world_particle_count(w); ++i) mass += m[i];
     }
     s.e_fall = speed > 0 ? 0.5 * mass * speed * speed : mass * G * height;
-    s.t_end = c.t_end; s.quiet = c.quiet; s.dim = dim; s.thrown = speed > 0; s.t_below = -1;
+    s.dim = dim; s.thrown = speed > 0; s.t_below = -1;
     output_open(&s.output, &c, "bounce", "velocity", ",account");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, s.body, &d));
+    sps_world_diagnostics(w, s.body, &d);
     if (s.thrown) {
         const double ideal = dim == 2 ? 2.0 / 3 : 5.0 / 7;
         printf("RESULT case=bounce dim=%d kind=%s thrown speed=%g angle=%g mu=%g viscosity=%g dp=%g v_t_out=%.5g omega_R_out=%.5g rolling_ratio=%.4f "

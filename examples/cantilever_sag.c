@@ -22,8 +22,8 @@
 
 typedef struct {
     output_plan output;
-    double dp, t_end, drift_from, sag_then; /* sag_then: the sag at the first row after drift_from */
-    int quiet, sag_then_set;
+    double dp, drift_from, sag_then; /* sag_then: the sag at the first row after drift_from */
+    int sag_then_set;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -36,7 +36,6 @@ static int on_step(sps_world* w, void* user) {
         s->sag_then = sag;
         s->sag_then_set = 1;
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -58,7 +57,6 @@ int main(int argc, char** argv) {
         {"g", OPT_REAL, &g, "load: acceleration downwards [m/s^2]", 0, 1e4, NULL},
         {"damping", OPT_REAL, &damping, "damping c [1/s], 0 = 2 omega_1 (thin-plate first mode: critical)", 0, 1e6, NULL},
         {"load", OPT_CHOICE, &load, "how the load acts: the world's gravity or sps_body_set_acceleration", 0, 0, "gravity|callback"},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -70,34 +68,29 @@ int main(int argc, char** argv) {
     run_state s;
     double sag, x_end, theory, wall;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D cantilever sagging under its own weight, damped to rest, against Timoshenko beam theory", opts,
-              (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "2D cantilever sagging under its own weight, damped to rest, against Timoshenko beam theory",
+               opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     if (damping == 0) damping = 2 * (2 * PI / plate2d_analytical_period(c.E, c.nu, c.rho0));
     bd.damping = damping;
     if (load == 0) wd.gravity[1] = -g;
     p.jitter = c.jitter;
     p.seed = c.seed;
-    wd.log = ex_log;
     memset(&s, 0, sizeof s);
-    ex_check(NULL, plate2d_create(wd, &bd, &p, &w, &plate, &tip));
-    if (load == 1) ex_check(w, sps_body_set_acceleration(w, plate, uniform_load, &g));
+    plate2d_create(wd, &bd, &p, &w, &plate, &tip);
+    if (load == 1) sps_body_set_acceleration(w, plate, uniform_load, &g);
 
     s.dp = PLATE2D_H / p.res;
-    s.quiet = c.quiet;
-    s.t_end = c.t_end;
     s.drift_from = c.t_end - 0.1;
     output_open(&s.output, &c, "cantilever_sag", "displacement", ",sag");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
 
     sag = plate2d_end_sag(w, s.dp);
     x_end = PLATE2D_L - s.dp / 2;
     theory = plate2d_timoshenko_sag(x_end, g, c.E, c.nu, c.rho0, 1, 1);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
     printf("RESULT case=cantilever_sag shear=%s res=%d g=%g load=%s damping=%g sag=%.6e timoshenko=%.6e err=%+.2f%% "
            "euler_bernoulli=%.6e shear_part=%.6e x=%.5f timoshenko_tip=%.6e sag_over_L=%.4f drift_last_0.1s=%.2e ke_end=%.3e %s "
            "particles=%d steps=%ld advection_steps=%ld wall_s=%.2f out=%s\n",

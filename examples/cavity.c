@@ -68,15 +68,12 @@ static double velocity_on_line(const sps_world* w, int line, double p, double dp
 
 typedef struct {
     output_plan output;
-    double t_end;
-    int quiet;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
     output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -94,7 +91,6 @@ int main(int argc, char** argv) {
         {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"ghia", OPT_STRING, &ghia_path, "Ghia et al.'s table (CSV)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -106,13 +102,10 @@ int main(int argc, char** argv) {
     run_state s;
     FILE* profiles;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "lid-driven cavity against Ghia, Ghia and Shin 1982", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "lid-driven cavity against Ghia, Ghia and Shin 1982", opts, &c, &wd, &bd);
     read_ghia(ghia_path, re, &gu, &gv);
-    apply_common(&c, &wd, &bd);
     wd.dim = 2;
     wd.dp = (sps_real)(1.0 / res);
-    wd.log = ex_log;
     wd.energy_growth_limit = (sps_real)INFINITY; /* the lid's work is not in the energy account */
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
@@ -120,22 +113,20 @@ int main(int argc, char** argv) {
     bd.material.fluid.dissipation = (sps_fluid_dissipation)dissipation;
     bd.transport_carries_velocity = carry_velocity;
     bd.material.viscosity = (sps_real)(c.rho0 * LID / re);
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &fluid));
-    ex_check(w, sps_body_add_box(w, fluid, lo, hi, NULL));
-    ex_check(w, sps_world_add_box_walls(w, lo, hi, 0, SPS_WALL_NO_SLIP));
-    ex_check(w, sps_world_set_wall_velocity(w, 3, lid)); /* the faces: x lo, x hi, y lo, y hi */
+    sps_world_add_body(w, &bd, &fluid);
+    sps_body_add_box(w, fluid, lo, hi, NULL);
+    sps_world_add_box_walls(w, lo, hi, 0, SPS_WALL_NO_SLIP);
+    sps_world_set_wall_velocity(w, 3, lid); /* the faces: x lo, x hi, y lo, y hi */
 
     memset(&s, 0, sizeof s);
-    s.t_end = c.t_end;
-    s.quiet = c.quiet;
     output_open(&s.output, &c, "cavity", "velocity", "");
     printf("cavity: L/dp = %d, %d particles, Re = %g, c0 = %g m/s, h = %g dp, transport %s, dissipation %s, to t = %g s\n", res,
            sps_world_particle_count(w), re, c0_factor * LID, c.h_over_dp, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF",
            dissipation_name(dissipation), c.t_end);
     on_step(w, &s);
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     profiles = open_out(c.out, "profiles.csv");
     fprintf(profiles, "component,position,ours,ghia\n");
@@ -153,7 +144,7 @@ int main(int argc, char** argv) {
         }
     }
     fclose(profiles);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("RESULT case=cavity res=%d Re=%g c0_factor=%g t=%.4g max_dev=%.4f max_dev_at=%s%.4f paper=Ghia1982 %s h_over_dp=%g dissipation=%s carry_velocity=%d "
            "particles=%d "
            "steps=%ld wall_s=%.2f out=%s\n", res, re, c0_factor, (double)sps_world_time(w), max_dev, dev_at >= 10 ? "v:" : "u:", fmod(dev_at, 10),

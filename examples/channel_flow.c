@@ -37,7 +37,7 @@ static void inflow_velocity(const sps_real x[3], sps_real t, void* user, sps_rea
 typedef struct {
     output_plan output;
     double t_end, dp, rho0, flux_sum, l2_sum;
-    int quiet, samples, n_lo, n_hi;
+    int samples, n_lo, n_hi;
 } run_state;
 
 /* The flux through the slab |x - 2H| < dp per unit depth [m^2/s], as its mass flux over rho0
@@ -74,7 +74,6 @@ static int on_step(sps_world* w, void* user) {
         if (n < s->n_lo) s->n_lo = n;
         if (n > s->n_hi) s->n_hi = n;
     }
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -88,7 +87,6 @@ int main(int argc, char** argv) {
         {"re", OPT_REAL, &g_re, "Reynolds number U H / nu (U the peak speed)", 0.01, 1000, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
         {"p-out", OPT_REAL, &p_out, "outlet pressure [Pa]", -1e4, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -103,43 +101,38 @@ int main(int argc, char** argv) {
     long created, removed;
     int n;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "a 2D channel with a parabolic inflow and an outlet at fixed pressure (open boundaries)", opts,
-              (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
+    ex_options(argc, argv, "a 2D channel with a parabolic inflow and an outlet at fixed pressure (open boundaries)", opts, &c, &wd, &bd);
     dp = H / res;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
-    wd.log = ex_log;
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.fluid.sound_speed = (sps_real)(c0_factor * U_MAX);
     bd.material.viscosity = (sps_real)(NU * c.rho0);
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &fluid));
+    sps_world_add_body(w, &bd, &fluid);
     {
         const sps_real lo[3] = {0, 0, 0}, hi[3] = {(sps_real)LENGTH, (sps_real)H, 0};
-        ex_check(w, sps_body_add_box(w, fluid, lo, hi, NULL));
+        sps_body_add_box(w, fluid, lo, hi, NULL);
     }
-    ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
-    ex_check(w, sps_world_add_wall(w, roof_point, down, SPS_WALL_NO_SLIP));
+    sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP);
+    sps_world_add_wall(w, roof_point, down, SPS_WALL_NO_SLIP);
     in.kind = SPS_ZONE_INFLOW; /* x in [-4 dp, 0): its lattice joins the channel's */
     in.lo[0] = (sps_real)(-BUFFER_DP * dp); in.hi[0] = 0; in.hi[1] = (sps_real)H;
     in.velocity_fn = inflow_velocity;
-    ex_check(w, sps_body_add_zone(w, fluid, &in, &inflow));
+    sps_body_add_zone(w, fluid, &in, &inflow);
     out.kind = SPS_ZONE_OUTFLOW; /* the channel's last 4 dp */
     out.lo[0] = (sps_real)(LENGTH - BUFFER_DP * dp); out.hi[0] = (sps_real)LENGTH; out.hi[1] = (sps_real)H;
     out.pressure = (sps_real)p_out;
-    ex_check(w, sps_body_add_zone(w, fluid, &out, &outflow));
+    sps_body_add_zone(w, fluid, &out, &outflow);
     lattice = sps_world_particle_count(w);
-    ex_check(w, sps_world_reserve(w, 2 * lattice)); /* the count varies by a few %: no allocation in a step */
+    sps_world_reserve(w, 2 * lattice); /* the count varies by a few %: no allocation in a step */
 
     memset(&s, 0, sizeof s);
     s.t_end = c.t_end;
     s.dp = dp;
     s.rho0 = c.rho0;
-    s.quiet = c.quiet;
     s.n_lo = 1 << 30;
     output_open(&s.output, &c, "channel_flow", "velocity", ",flux,l2_error,particles");
     printf("channel_flow: H/dp = %d, %d particles (lattice of the channel and its buffers), Re = %g, U = %g m/s, nu = %g m^2/s, "
@@ -165,9 +158,9 @@ int main(int argc, char** argv) {
     if (s.samples == 0) measure(w, dp, c.rho0, &s.flux_sum, &s.l2_sum), s.samples = 1, s.n_lo = s.n_hi = sps_world_particle_count(w);
     flux = s.flux_sum / s.samples;
     l2 = s.l2_sum / s.samples;
-    ex_check(w, sps_world_zone_counts(w, inflow, &created, NULL));
-    ex_check(w, sps_world_zone_counts(w, outflow, NULL, &removed));
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_zone_counts(w, inflow, &created, NULL);
+    sps_world_zone_counts(w, outflow, NULL, &removed);
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("RESULT case=channel_flow res=%d Re=%g c0_factor=%g p_out=%g t=%.4g flux=%.6e flux_inflow=%.6e flux_ratio=%.4f l2_error=%.4e "
            "l2_error_pct=%.2f%% count_min=%d count_max=%d lattice=%d created=%ld removed=%ld %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
            res, g_re, c0_factor, p_out, (double)sps_world_time(w), flux, 2.0 / 3 * U_MAX * H, flux / (2.0 / 3 * U_MAX * H), l2, 100 * l2,

@@ -28,7 +28,7 @@
 
 typedef struct {
     output_plan output;
-    double t_end, dp, energy_half, energy_end, zigzag_max;
+    double dp, energy_half, energy_end, zigzag_max;
 } run_state;
 
 static double mechanical_energy(const sps_diagnostics* d) { return (double)(d->kinetic_energy + d->potential_energy); }
@@ -69,7 +69,6 @@ static int on_step(sps_world* w, void* user) {
         s->energy_end = mechanical_energy(&d);
         if (d.zigzag > s->zigzag_max) s->zigzag_max = d.zigzag;
     }
-    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 
@@ -85,7 +84,6 @@ int main(int argc, char** argv) {
         {"floor", OPT_CHOICE, &floor_kind, "the floor: no-slip (the paper's), or free-slip with Coulomb friction tan(phi)", 0, 0,
          "no-slip|coulomb"},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -98,11 +96,8 @@ int main(int argc, char** argv) {
     double wall, toe, farthest, wall_height, a, toe_expected;
     sps_real c0;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D granular column collapse (C4, UTVF 5.1): Drucker-Prager soil released in a tank", opts,
-              (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "2D granular column collapse (C4, UTVF 5.1): Drucker-Prager soil released in a tank", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     hi[0] = (sps_real)length;
     bd.name = "soil";
@@ -111,28 +106,26 @@ int main(int argc, char** argv) {
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     if (floor_kind == 0) {
-        ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+        sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP);
     } else { /* the side walls no-slip; the floor resists sliding by Coulomb's tan(phi) times its normal force */
-        ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP));
-        ex_check(w, sps_world_set_wall_friction(w, 0, (sps_real)tan(g.phi * 3.14159265358979323846 / 180)));
-        ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI | SPS_FACE_Y_LO, SPS_WALL_NO_SLIP));
+        sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP);
+        sps_world_set_wall_friction(w, 0, (sps_real)tan(g.phi * 3.14159265358979323846 / 180));
+        sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI | SPS_FACE_Y_LO, SPS_WALL_NO_SLIP);
     }
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &soil));
-    ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
-    ex_check(w, sps_world_diagnostics(w, all, &d0));
+    sps_world_add_body(w, &bd, &soil);
+    sps_body_add_box(w, soil, lo, hi, NULL);
+    sps_world_diagnostics(w, all, &d0);
 
     s.dp = dp;
-    s.t_end = c.t_end;
     output_open(&s.output, &c, "column_collapse2d", "velocity", "");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
-    ex_check(w, sps_body_material_constants(w, soil, &c0, NULL, NULL));
+    sps_world_diagnostics(w, all, &d);
+    sps_body_material_constants(w, soil, &c0, NULL, NULL);
     profile(w, dp, &toe, &farthest, &wall_height);
     a = COLUMN_HEIGHT / length;
     toe_expected = length * (1 + 1.2 * a);

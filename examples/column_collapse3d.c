@@ -75,7 +75,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m]: r0/dp whole (0.00625: 8 particles a radius; 0.0041666667: 12)", 1e-3, 0.0125, NULL},
         {"floor", OPT_CHOICE, &floor_kind, "the floor: free-slip with Coulomb friction tan(phi), or no-slip", 0, 0, "coulomb|no-slip"},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -86,14 +85,11 @@ int main(int argc, char** argv) {
     const sps_real floor_point[3] = {0, 0, 0}, up[3] = {0, 1, 0};
     const double axis[2] = {0, 0}; /* x and z of the cylinder's axis */
     const sps_real *x, *z;
-    ex_plain_run s;
+    output_plan output;
     int rings, k, i, n, clustered, *counts;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D axisymmetric granular column collapse against Lube et al. 2004's scalings", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
-    memset(&s, 0, sizeof s);
+    ex_options(argc, argv, "3D axisymmetric granular column collapse against Lube et al. 2004's scalings", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     hi[1] = (sps_real)(aspect * COLUMN_RADIUS);
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
@@ -101,23 +97,21 @@ int main(int argc, char** argv) {
     wd.dim = 3;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     mu = floor_kind == 0 ? tan(g.phi * PI / 180) : 0;
-    ex_check(w, sps_world_add_wall(w, floor_point, up, floor_kind == 0 ? SPS_WALL_FREE_SLIP : SPS_WALL_NO_SLIP));
-    if (floor_kind == 0) ex_check(w, sps_world_set_wall_friction(w, 0, (sps_real)mu));
+    sps_world_add_wall(w, floor_point, up, floor_kind == 0 ? SPS_WALL_FREE_SLIP : SPS_WALL_NO_SLIP);
+    if (floor_kind == 0) sps_world_set_wall_friction(w, 0, (sps_real)mu);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &soil));
-    ex_check(w, sps_body_add_sdf(w, soil, lo, hi, cylinder_sdf, NULL, NULL));
+    sps_world_add_body(w, &bd, &soil);
+    sps_body_add_sdf(w, soil, lo, hi, cylinder_sdf, NULL, NULL);
     lattice_column(w, dp, &height, &radius);
     a = height / radius;
 
-    s.t_end = c.t_end;
-    output_open(&s.output, &c, "column_collapse3d", "velocity", "");
-    ex_plain_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &s), &s.output);
-    wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    output_open(&output, &c, "column_collapse3d", "velocity", "");
+    ex_plain_step(w, &output); /* t = 0: the first CSV row and snapshot */
+    sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &output);
+    wall = output_close(w, &output);
+    sps_world_diagnostics(w, all, &d);
 
     rings = (int)(FLOOR_RADIUS / dp);
     top = (double*)calloc((size_t)rings, sizeof(double));

@@ -6,6 +6,16 @@
    bodies, walls, the time loop) is in each example's own file, or in examples/scenes/ where the
    tests, the bench or the demo share it.
 
+   An example calls the harness at four places around its scene, and the library everywhere else:
+       ex_options(argc, argv, about, opts, &c, &wd, &bd);   options: its table, then the shared ones
+       ... the world, bodies and walls: sps_world_create, sps_world_add_body, ... (unchecked: a
+           library error ends the program in ex_log, the log callback ex_options sets)
+       output_open(&out, &c, name, picture_field, extra_csv_header);
+       sps_world_advance(w, t_end, on_step, &state);        on_step calls output_tick once
+       wall = output_close(w, &out);                        a failed run: its state written, exit 2
+       printf("RESULT case=NAME ... %s ...", ..., common_result_fields(&c), ...);
+   bench/scene_census.sh counts each example's library calls against these.
+
    Adding an example: write examples/NAME.c (the contract in the README's "Examples") with a line
    "Smoke: NAME OPTIONS" in its head comment (its brief run in make examples-smoke). The Makefile
    builds every .c file in examples/ but those it lists as not benchmarks; the README's table gets a row. */
@@ -100,19 +110,30 @@ EX_UNUSED static void opt_fail(const char* prog, const char* fmt, const char* a,
 
 /* ---- library errors: one line on stderr, exit status 2 ---- */
 static const char* g_prog = "example"; /* argv[0], set by opt_parse */
-static char g_create_error[1024];      /* sps_world_create's message: there is no world to keep it */
+static int g_advancing;                /* 1 from output_open to output_close: the world is being run */
+static char g_run_error[1024];         /* an error logged while the world is run, for ex_check_step */
 
-/* The examples' log callback: errors are kept for ex_check to print (once), the rest printed. */
+/* The examples' log callback (ex_options puts it in the world def): a library error ends the
+   program, "prog: message" on stderr and exit status 2, so a scene calls the library without
+   checking each result, as the README's quick start does. While the world is run (output_open
+   to output_close) an error is kept instead: a failed step is reported by output_close (or
+   ex_check_step), which first writes the state it failed in, and an error of a step callback's
+   own calls by the next output_tick. Warnings are printed. */
 EX_UNUSED static void ex_log(int level, const char* message, void* user) {
     (void)user;
-    if (level == 0) snprintf(g_create_error, sizeof g_create_error, "%s", message);
-    else fprintf(stderr, "%s: %s\n", g_prog, message);
+    if (level == 0 && g_advancing) {
+        if (!g_run_error[0]) snprintf(g_run_error, sizeof g_run_error, "%s", message);
+        return;
+    }
+    fprintf(stderr, "%s: %s\n", g_prog, message);
+    if (level == 0) exit(2);
 }
 
-/* Ends the program on a library error: "prog: message" on stderr, exit status 2. */
+/* Ends the program on an error the example finds itself (the library's own end it in ex_log):
+   "prog: result: the world's last message" on stderr, exit status 2. */
 EX_UNUSED static void ex_check(const sps_world* w, sps_result r) {
     if (r == SPS_OK) return;
-    fprintf(stderr, "%s: %s: %s\n", g_prog, sps_result_string(r), w ? sps_world_last_error(w) : g_create_error);
+    fprintf(stderr, "%s: %s: %s\n", g_prog, sps_result_string(r), w ? sps_world_last_error(w) : "");
     exit(2);
 }
 
@@ -359,6 +380,28 @@ EX_UNUSED static void apply_common(const common_options* c, sps_world_def* wd, s
     bd->track_stress = c->stress == 0; /* von Mises output and the shear part of the strain energy */
 }
 
+/* An example's one call for its options: sets the short OpenMP spin (ex_short_openmp_spin),
+   parses argv against the example's table opts followed by the shared options of c
+   (COMMON_OPTION_SPECS; opt_parse: --help, a bad value ends the program with status 2), copies
+   the shared options into the world and body defs (apply_common; bd NULL: the example applies
+   them itself) and puts the examples' log callback in the world def (ex_log: a library error
+   ends the program). */
+#define ex_options(argc, argv, about, opts, c, wd, bd) ex_parse_options(argc, argv, about, opts, (int)(sizeof(opts) / sizeof *(opts)), c, wd, bd)
+EX_UNUSED static void ex_parse_options(int argc, char** argv, const char* about, const opt_spec* opts, int n, common_options* c,
+                                       sps_world_def* wd, sps_body_def* bd) {
+    const opt_spec shared[] = {COMMON_OPTION_SPECS(*c)};
+    const int n_shared = (int)(sizeof shared / sizeof *shared);
+    opt_spec all[96];
+    int k;
+    if (n + n_shared > (int)(sizeof all / sizeof *all)) { fprintf(stderr, "%s: %d options: at most %d\n", argv[0], n, (int)(sizeof all / sizeof *all) - n_shared); exit(2); }
+    for (k = 0; k < n; ++k) all[k] = opts[k];
+    for (k = 0; k < n_shared; ++k) all[n + k] = shared[k];
+    ex_short_openmp_spin(argv);
+    opt_parse(argc, argv, about, all, n + n_shared);
+    if (bd) apply_common(c, wd, bd);
+    wd->log = ex_log;
+}
+
 /* The shared options set an updated-Lagrangian solid's formulation (shear, rotation, zeta, xi,
    penalty_in_pressure_pass, track_stress) on every body; a body that does not read one of them (a fluid; a total-Lagrangian
    body; Drucker-Prager without GNO's penalty; rotation outside the -A variants) would be warned
@@ -481,6 +524,7 @@ typedef struct {
     const char *dir, *name;
     double csv_every, vtk_every, png_every, next_csv, next_vtk, next_png, hourglass_max, min_spacing;
     double wall0; /* wall_seconds() when it was opened: the run's start (progress's ETA, output_close) */
+    double t_end; /* the world's time at the run's end (--tend; the progress line's 100 %) */
     int frames, pictures, svg;
     int quiet; /* --quiet: no progress line */
     sps_vtk_options vtk;
@@ -489,7 +533,9 @@ typedef struct {
 
 /* Creates dir, opens dir/name.csv and writes the header: the diagnostics' columns, then the
    case's own (extra_header starts with a comma). Pictures show c's --png-field, or
-   default_field (a render.h field name) for auto. Exits with a message if it cannot. */
+   default_field for auto: a render.h field name, or "von-mises-or-velocity", the von Mises
+   stress when the bodies track it (ex_tracks_stress), else the speed. Exits with a message if
+   it cannot. */
 EX_UNUSED static void output_open(output_plan* o, const common_options* c, const char* name, const char* default_field,
                                   const char* extra_header) {
     char file[256];
@@ -497,6 +543,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     o->dir = c->out; o->name = name; o->csv_every = c->csv_every; o->vtk_every = c->vtk_every; o->png_every = c->png_every;
     o->svg = c->svg;
     o->quiet = c->quiet;
+    o->t_end = c->t_end;
     o->vtk = sps_default_vtk_options();
     o->vtk.binary = c->vtk_binary;
     o->vtk.single_precision = c->vtk_single;
@@ -504,6 +551,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     o->picture.width = c->png_size[0];
     o->picture.height = c->png_size[1];
     o->picture.view = (render_view)c->png_view;
+    if (strcmp(default_field, "von-mises-or-velocity") == 0) default_field = ex_tracks_stress(c) ? "von-mises" : "velocity";
     o->picture.field = c->png_field ? &render_fields[c->png_field - 1] : render_field_by_name(default_field);
     o->picture.decorations = 1;
     if (make_dirs(o->dir) != 0) { fprintf(stderr, "cannot create %s\n", o->dir); exit(1); }
@@ -511,6 +559,7 @@ EX_UNUSED static void output_open(output_plan* o, const common_options* c, const
     o->csv = open_out(o->dir, file);
     fprintf(o->csv, "%s%s\n", sps_diagnostics_csv_header(), extra_header);
     o->wall0 = wall_seconds();
+    g_advancing = 1; /* the run starts: a failed step is reported by output_close */
 }
 
 /* Writes a picture of w to dir/name_suffix.png (or .svg); exits with a message if it cannot. */
@@ -520,12 +569,16 @@ EX_UNUSED static void output_picture(const sps_world* w, const output_plan* o, c
     if (render_world(w, &o->picture, format, path) != 0) { fprintf(stderr, "%s: cannot write %s\n", g_prog, path); exit(1); }
 }
 
-/* Writes what is due at the world's time: a CSV row (diagnostics, then extra, the case's own
-   columns starting with a comma), a VTK snapshot and a PNG picture (numbered like the VTK
-   files). Returns 1 and fills d when a row was written. */
+/* A step callback's one call: writes what is due at the world's time, a CSV row (diagnostics,
+   then extra, the case's own columns starting with a comma), a VTK snapshot and a PNG picture
+   (numbered like the VTK files), and shows the progress line (to o->t_end). Ends the program
+   on an error the step callback's own calls logged (ex_log). Returns 1 and fills d when a row
+   was written. */
 EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra, sps_diagnostics* d) {
     double t = sps_world_time(w);
     int wrote = 0;
+    if (g_run_error[0]) { fprintf(stderr, "%s: %s\n", g_prog, g_run_error); exit(2); }
+    progress(t, o->t_end, o->wall0, o->quiet);
     if (t >= o->next_csv - 1e-12) {
         char row[512];
         sps_body all = {0};
@@ -549,42 +602,42 @@ EX_UNUSED static int output_tick(sps_world* w, output_plan* o, const char* extra
     }
     return wrote;
 }
-/* The state of a run whose steps only write the output due and the progress line. */
-typedef struct {
-    output_plan output;
-    double t_end;
-} ex_plain_run;
-/* sps_world_advance's step callback for an ex_plain_run (user). */
+/* sps_world_advance's step callback for a run whose steps only write the output due and show
+   the progress line: user is its output_plan. */
 EX_UNUSED static int ex_plain_step(sps_world* w, void* user) {
-    ex_plain_run* s = (ex_plain_run*)user;
     sps_diagnostics d;
-    output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
+    output_tick(w, (output_plan*)user, "", &d);
     return 0;
 }
 
-/* The end of the run: closes the CSV, writes the final picture dir/name_final.png when
+/* Returns if the run is well (r is SPS_OK and no error was logged while the world ran);
+   otherwise a step failed (or a step callback's call): writes the world to dir/name_failed.vtk
+   (rolled back to its last good state if the example set keep_last_good_state), then exits
+   with one line naming both. output_close calls it; a loop of sps_world_advance calls checks
+   each (a failed step would fail again at once). */
+EX_UNUSED static void ex_check_step(sps_world* w, sps_result r, const output_plan* o) {
+    char path[1200], failure[1200];
+    if (r == SPS_OK && !g_run_error[0]) return;
+    snprintf(failure, sizeof failure, "%s%s%s", r != SPS_OK ? sps_result_string(r) : "", r != SPS_OK ? ": " : "",
+             r != SPS_OK ? sps_world_last_error(w) : g_run_error);
+    snprintf(path, sizeof path, "%s/%s_failed.vtk", o->dir, o->name);
+    if (sps_world_write_vtk_ex(w, path, &o->vtk) != SPS_OK) snprintf(path, sizeof path, "(not written)");
+    fprintf(stderr, "%s: %s (state at t = %g written to %s)\n", g_prog, failure, (double)sps_world_time(w), path);
+    exit(2);
+}
+
+/* The end of the run: a run that failed is reported (ex_check_step: its state written, the
+   program ended); else closes the CSV, writes the final picture dir/name_final.png when
    --png-every < 0, and dir/name_final.svg with --svg. Returns the run's wall time [s] since
    output_open, the closing left out. */
-EX_UNUSED static double output_close(const sps_world* w, output_plan* o) {
+EX_UNUSED static double output_close(sps_world* w, output_plan* o) {
     const double wall = wall_seconds() - o->wall0;
+    ex_check_step(w, SPS_OK, o);
+    g_advancing = 0; /* the run is over: an error ends the program at once again */
     fclose(o->csv);
     if (o->png_every < 0) output_picture(w, o, "final", RENDER_PNG);
     if (o->svg) output_picture(w, o, "final", RENDER_SVG);
     return wall;
-}
-
-/* Returns if r is SPS_OK; otherwise the step failed: writes the world to dir/name_failed.vtk
-   (rolled back to its last good state if the example set keep_last_good_state), then exits with
-   one line naming both. */
-EX_UNUSED static void ex_check_step(sps_world* w, sps_result r, const output_plan* o) {
-    char path[1200], failure[1024];
-    if (r == SPS_OK) return;
-    snprintf(failure, sizeof failure, "%s", sps_world_last_error(w));
-    snprintf(path, sizeof path, "%s/%s_failed.vtk", o->dir, o->name);
-    if (sps_world_write_vtk_ex(w, path, &o->vtk) != SPS_OK) snprintf(path, sizeof path, "(not written)");
-    fprintf(stderr, "%s: %s: %s (state at t = %g written to %s)\n", g_prog, sps_result_string(r), failure, (double)sps_world_time(w), path);
-    exit(2);
 }
 
 /* The mean pressure of the particles within 2.5 dp of the origin (2D; one particle's is noisy):

@@ -75,9 +75,9 @@ typedef struct {
 typedef struct {
     output_plan output;
     scene sc;
-    double t_end, T[MAX_ROWS], Z[MAX_ROWS], H[MAX_ROWS], p[MAX_ROWS][SENSORS];
+    double T[MAX_ROWS], Z[MAX_ROWS], H[MAX_ROWS], p[MAX_ROWS][SENSORS];
     double sensor_y[SENSORS];
-    int n, quiet, to_the_far_wall;
+    int n, to_the_far_wall;
 } run_state;
 
 /* The hydrostatic pressure of the column at rest (user: the scene). */
@@ -133,7 +133,6 @@ static int on_step(sps_world* w, void* user) {
         s->H[s->n] = H;
         memcpy(s->p[s->n++], p, sizeof p);
     }
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     /* the front at the far wall ends the front's comparison (the pressure record goes on) */
     return s->to_the_far_wall && Z * s->sc.width >= s->sc.tank - 0.5 * s->sc.dp;
 }
@@ -235,7 +234,6 @@ int main(int argc, char** argv) {
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed over sqrt(2 g n^2 a), the fastest free fall's speed", 5, 100, NULL},
         {"zero-pressure", OPT_FLAG, &start_at_rest, "start at p = 0 (else hydrostatic)", 0, 0, NULL},
         {"lobovsky", OPT_FLAG, &lobovsky, "Lobovsky et al. 2014's tank and sensors (H = 300 mm; sets --height, --tank)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -246,9 +244,8 @@ int main(int argc, char** argv) {
     double wall, c0, worst_raw = 0, worst_shifted = 0;
     int k;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D dam break: a water column collapsing in a tank, against Martin and Moyce (1952), Koshizuka and Oka (1996), Lobovsky et al. (2014)",
-              opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D dam break: a water column collapsing in a tank, against Martin and Moyce (1952), Koshizuka and Oka (1996), Lobovsky et al. (2014)",
+               opts, &c, &wd, &bd);
     if (!s) { fprintf(stderr, "%s: out of memory\n", g_prog); return 1; }
     s->sc.width = lobovsky ? 0.6 : 1;
     s->sc.height = (lobovsky ? 0.5 : aspect) * s->sc.width;
@@ -257,8 +254,7 @@ int main(int argc, char** argv) {
     s->sc.dp = dp;
     for (k = 0; k < SENSORS; ++k) s->sensor_y[k] = 1e-3 * lob_height_mm[k] * s->sc.width / 0.6;
     s->to_the_far_wall = !lobovsky;
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     c0 = c0_factor * sqrt(2 * G_ACC * s->sc.height);
     wd.dim = 2;
     wd.dp = (sps_real)dp;
@@ -267,25 +263,22 @@ int main(int argc, char** argv) {
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.fluid.sound_speed = (sps_real)c0;
     bd.material.viscosity = (sps_real)viscosity;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     {
         const sps_real lo[3] = {0, 0, 0}, hi[3] = {(sps_real)s->sc.width, (sps_real)s->sc.height, 0};
         const sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3] = {(sps_real)s->sc.tank, (sps_real)(1.5 * s->sc.height), 0};
-        ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, no_slip ? SPS_WALL_NO_SLIP : SPS_WALL_FREE_SLIP));
+        sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, no_slip ? SPS_WALL_NO_SLIP : SPS_WALL_FREE_SLIP);
         ex_unset_unread(&bd); /* a fluid reads no shear formulation */
-        ex_check(w, sps_world_add_body(w, &bd, &water));
-        ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
+        sps_world_add_body(w, &bd, &water);
+        sps_body_add_box(w, water, lo, hi, NULL);
     }
-    if (!start_at_rest) ex_check(w, sps_body_set_pressure(w, water, hydrostatic, &s->sc));
+    if (!start_at_rest) sps_body_set_pressure(w, water, hydrostatic, &s->sc);
 
-    s->t_end = c.t_end;
-    s->quiet = c.quiet;
     output_open(&s->output, &c, "dam_break2d", "velocity", ",T,front_Z,wall_height_H,p_3mm,p_15mm,p_30mm,p_80mm");
     on_step(w, s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, s), &s->output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, s);
     wall = output_close(w, &s->output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
     printf("dam break: a = %g m, n^2 = %g, tank %g a, dp = %g (a/dp = %g), %d particles, c0 = %g m/s, %s walls, mu = %g Pa s, transport %s\n",
            s->sc.width, s->sc.height / s->sc.width, s->sc.tank / s->sc.width, dp, s->sc.width / dp, sps_world_particle_count(w), c0,
            no_slip ? "no-slip" : "free-slip", viscosity, c.transport == 0 ? "none" : c.transport == 1 ? "TVF" : "UTVF");

@@ -35,7 +35,7 @@ static sps_real sphere_sdf(const sps_real x[3], void* user) {
 
 typedef struct {
     output_plan output;
-    double t_end, dp, barrier_x, impact_t, impact_speed, max_deflection, max_t;
+    double dp, barrier_x, impact_t, impact_speed, max_deflection, max_t;
     sps_body barrier, boulders[NBOULDERS];
     int done;
 } run_state;
@@ -98,7 +98,6 @@ static int on_step(sps_world* w, void* user) {
         if (deflection > s->max_deflection) { s->max_deflection = deflection; s->max_t = t; }
         if (s->max_deflection > 0.05 * s->dp && deflection < 0.75 * s->max_deflection) s->done = 1; /* swung back: the maximum is behind us */
     }
-    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return s->done;
 }
 
@@ -111,7 +110,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.05, 0.5, NULL},
         {"distance", OPT_REAL, &distance, "from the release gate to the barrier, along the slope [m]", 1, 50, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     const double a = SLOPE_DEG * PI / 180, t_x = cos(a), t_y = -sin(a), n_x = sin(a), n_y = cos(a);
     sps_world_def wd = sps_default_world_def();
@@ -124,10 +122,8 @@ int main(int argc, char** argv) {
     double wall, base_y;
     int k;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D boulders against a flexible barrier on a 30-degree slope (A11, ENO 6.9)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "3D boulders against a flexible barrier on a 30-degree slope (A11, ENO 6.9)", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     s.impact_t = -1;
     wd.dim = 3;
@@ -136,9 +132,8 @@ int main(int argc, char** argv) {
     plate_normal[0] = (sps_real)n_x;
     plate_normal[1] = (sps_real)n_y;
     plate_normal[2] = 0;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_wall(w, origin, plate_normal, SPS_WALL_FREE_SLIP)); /* the baseplate through the gate at the origin */
+    sps_world_create(&wd, &w);
+    sps_world_add_wall(w, origin, plate_normal, SPS_WALL_FREE_SLIP); /* the baseplate through the gate at the origin */
     bd.name = "boulder";
     for (k = 0; k < NBOULDERS; ++k) { /* each just above the plate: its particles beyond the wall's contact range 2h */
         const double r = radius[k], along = place[k][0], gap = r + 2 * (double)wd.h_over_dp * dp;
@@ -146,11 +141,11 @@ int main(int argc, char** argv) {
         balls[k].centre[1] = along * t_y + gap * n_y;
         balls[k].centre[2] = place[k][1];
         balls[k].radius = r;
-        ex_check(w, sps_world_add_body(w, &bd, &s.boulders[k]));
+        sps_world_add_body(w, &bd, &s.boulders[k]);
         lo[0] = (sps_real)(balls[k].centre[0] - r); hi[0] = (sps_real)(balls[k].centre[0] + r);
         lo[1] = (sps_real)(balls[k].centre[1] - r); hi[1] = (sps_real)(balls[k].centre[1] + r);
         lo[2] = (sps_real)(balls[k].centre[2] - r); hi[2] = (sps_real)(balls[k].centre[2] + r);
-        ex_check(w, sps_body_add_sdf(w, s.boulders[k], lo, hi, sphere_sdf, &balls[k], NULL));
+        sps_body_add_sdf(w, s.boulders[k], lo, hi, sphere_sdf, &balls[k], NULL);
     }
     /* the barrier: a vertical plate across the slope, its upstream face at barrier_x, its foot
        level with the baseplate under that face (so none of its particles starts inside the
@@ -162,33 +157,32 @@ int main(int argc, char** argv) {
     fd.material.density = 1200;
     fd.material.youngs_modulus = 1e7;
     fd.material.poisson_ratio = 0.47;
-    ex_check(w, sps_world_add_body(w, &fd, &s.barrier));
+    sps_world_add_body(w, &fd, &s.barrier);
     lo[0] = (sps_real)s.barrier_x; hi[0] = (sps_real)(s.barrier_x + BARRIER_THICKNESS);
     lo[1] = (sps_real)base_y; hi[1] = (sps_real)(base_y + BARRIER_SIZE);
     lo[2] = (sps_real)(-BARRIER_SIZE / 2); hi[2] = (sps_real)(BARRIER_SIZE / 2);
-    ex_check(w, sps_body_add_box(w, s.barrier, lo, hi, NULL));
+    sps_body_add_box(w, s.barrier, lo, hi, NULL);
     { /* clamped: its bottom edge and its two side edges, 2 dp deep */
         sps_real clo[3], chi[3];
         clo[0] = lo[0]; chi[0] = hi[0];
         clo[1] = lo[1]; chi[1] = (sps_real)(lo[1] + 2 * dp);
         clo[2] = lo[2]; chi[2] = hi[2];
-        ex_check(w, sps_body_constrain_box(w, s.barrier, clo, chi, SPS_AXIS_ALL, NULL, NULL));
+        sps_body_constrain_box(w, s.barrier, clo, chi, SPS_AXIS_ALL, NULL, NULL);
         chi[1] = hi[1];
         chi[2] = (sps_real)(lo[2] + 2 * dp);
-        ex_check(w, sps_body_constrain_box(w, s.barrier, clo, chi, SPS_AXIS_ALL, NULL, NULL));
+        sps_body_constrain_box(w, s.barrier, clo, chi, SPS_AXIS_ALL, NULL, NULL);
         clo[2] = (sps_real)(hi[2] - 2 * dp);
         chi[2] = hi[2];
-        ex_check(w, sps_body_constrain_box(w, s.barrier, clo, chi, SPS_AXIS_ALL, NULL, NULL));
+        sps_body_constrain_box(w, s.barrier, clo, chi, SPS_AXIS_ALL, NULL, NULL);
     }
     printf("debris against a flexible barrier: slope %g deg, gate-barrier %g m, dp = %g m, %d particles, %d boulders\n", SLOPE_DEG,
            distance, dp, sps_world_particle_count(w), NBOULDERS);
-    s.t_end = c.t_end;
     s.dp = dp;
     output_open(&s.output, &c, "debris_barrier3d", "velocity", "");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     if (s.impact_t < 0) printf("  no impact by t = %.3g s\n", (double)d.time);
     else
         printf("  barrier's largest deflection %.3f m (%.1f dp) at t = %.3f s, %.3f s after the impact\n", s.max_deflection,

@@ -94,15 +94,14 @@ typedef struct {
     output_plan output;
     int tip;         /* stable id of the free-end particle */
     sps_real x0[3];  /* its start */
-    double t_end, peak_dx, peak_t, dy_at_peak;
+    double peak_dx, peak_t, dy_at_peak;
     double t_prev, d_prev[2]; /* the previous step's time and displacement */
     experiment exp;
-    int quiet;
 } run_state;
 
 static void tip_displacement(const sps_world* w, const run_state* s, double d[2]) {
     sps_particle_state p;
-    ex_check(w, sps_world_particle(w, s->tip, &p));
+    sps_world_particle(w, s->tip, &p);
     d[0] = p.position[0] - s->x0[0];
     d[1] = p.position[1] - s->x0[1];
 }
@@ -123,7 +122,6 @@ static int on_step(sps_world* w, void* user) {
     memcpy(s->d_prev, disp, sizeof disp);
     snprintf(extra, sizeof extra, ",%.9g,%.9g", disp[0], disp[1]);
     output_tick(w, &s->output, extra, &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -143,7 +141,6 @@ int main(int argc, char** argv) {
         {"res", OPT_INT, &res, "resolution: particles across the gate (0.005 m thick)", 2, 20, NULL},
         {"solver", OPT_CHOICE, &solver, "the gate: ul, updated Lagrangian (--shear); tl, total Lagrangian, Saint Venant-Kirchhoff", 0, 0, "ul|tl"},
         {"exp", OPT_STRING, &exp_path, "the experiment's points (CSV: component,time,displacement)", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), gate_def = sps_default_body_def(), floor_def = sps_default_body_def();
@@ -157,18 +154,15 @@ int main(int argc, char** argv) {
     int component, k, compared = 0;
     FILE* table;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D dam break through a rubber gate clamped at its top (Antoci et al. 2007): the free end's displacement", opts,
-              (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D dam break through a rubber gate clamped at its top (Antoci et al. 2007): the free end's displacement",
+               opts, &c, &wd, &gate_def);
     memset(&s, 0, sizeof s);
     read_experiment(exp_path, &s.exp);
     dp = GATE_THICK / res;
-    apply_common(&c, &wd, &gate_def);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G_ACC;
-    wd.log = ex_log;
     wd.neighbor_capacity = 64; /* the jet piles up against the far wall from 0.25 s: more than the default's 41 */
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
@@ -181,42 +175,39 @@ int main(int argc, char** argv) {
     }
     floor_def.name = "floor";
     floor_def.material.kind = SPS_MATERIAL_RIGID;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     {
         const double gate_x = TANK_LENGTH - WATER_WIDTH; /* the gate's wet face */
         sps_real left[3] = {0, 0, 0}, right[3] = {TANK_LENGTH, 0, 0}, inwards[3] = {1, 0, 0}, outwards[3] = {-1, 0, 0};
         sps_real lo[3] = {(sps_real)gate_x, 0, 0}, hi[3] = {TANK_LENGTH, WATER_HEIGHT, 0};
         sps_real held_lo[3] = {-1, GATE_FREE, 0}, held_hi[3] = {1, 1, 0}, corner[3] = {(sps_real)(gate_x - GATE_THICK), 0, 0};
-        ex_check(w, sps_world_add_wall(w, left, inwards, SPS_WALL_FREE_SLIP));
-        ex_check(w, sps_world_add_wall(w, right, outwards, SPS_WALL_FREE_SLIP));
-        ex_check(w, sps_world_add_body(w, &floor_def, &floor));
+        sps_world_add_wall(w, left, inwards, SPS_WALL_FREE_SLIP);
+        sps_world_add_wall(w, right, outwards, SPS_WALL_FREE_SLIP);
+        sps_world_add_body(w, &floor_def, &floor);
         lo[0] = 0; lo[1] = (sps_real)(-FLOOR_LAYERS * dp); hi[1] = 0;
-        ex_check(w, sps_body_add_box(w, floor, lo, hi, NULL));
+        sps_body_add_box(w, floor, lo, hi, NULL);
         lo[0] = (sps_real)gate_x; lo[1] = 0; hi[1] = WATER_HEIGHT;
-        ex_check(w, sps_world_add_body(w, &water_def, &water));
-        ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
-        ex_check(w, sps_body_set_pressure(w, water, hydrostatic, NULL));
+        sps_world_add_body(w, &water_def, &water);
+        sps_body_add_box(w, water, lo, hi, NULL);
+        sps_body_set_pressure(w, water, hydrostatic, NULL);
         ex_unset_unread(&gate_def); /* --solver tl: no shear formulation */
-        ex_check(w, sps_world_add_body(w, &gate_def, &gate));
+        sps_world_add_body(w, &gate_def, &gate);
         lo[0] = (sps_real)(gate_x - GATE_THICK); hi[0] = (sps_real)gate_x; hi[1] = GATE_TOP;
-        ex_check(w, sps_body_add_box(w, gate, lo, hi, NULL));
-        ex_check(w, sps_body_constrain_box(w, gate, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL));
-        ex_check(w, sps_world_set_contact(w, floor, gate, 0)); /* the gate's end swings free just above the floor */
+        sps_body_add_box(w, gate, lo, hi, NULL);
+        sps_body_constrain_box(w, gate, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL);
+        sps_world_set_contact(w, floor, gate, 0); /* the gate's end swings free just above the floor */
         s.tip = sps_world_nearest_particle(w, gate, corner);
-        ex_check(w, sps_world_particle(w, s.tip, &tip));
+        sps_world_particle(w, s.tip, &tip);
         memcpy(s.x0, tip.position, sizeof s.x0);
     }
 
-    s.quiet = c.quiet;
-    s.t_end = c.t_end;
     output_open(&s.output, &c, "elastic_gate", "velocity", ",dx,dy");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
 
     tip_displacement(w, &s, disp);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
     /* ours next to the experiment at its points within the run: its peak (the largest measured
        dx, at its frame's time) and the largest and RMS differences over the points reached */
     table = open_out(c.out, "experiment.csv");

@@ -93,8 +93,7 @@ static drop_shape measure(const sps_world* w, double dp) {
 
 typedef struct {
     output_plan output;
-    double t_end, dp, p_scale, l_scale, p0[2], l0, max_dp, max_dl;
-    int quiet;
+    double dp, p_scale, l_scale, p0[2], l0, max_dp, max_dl;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -112,7 +111,6 @@ static int on_step(sps_world* w, void* user) {
         if (fmax(dpx, dpy) / s->p_scale > s->max_dp) s->max_dp = fmax(dpx, dpy) / s->p_scale;
         if (dl / s->l_scale > s->max_dl) s->max_dl = dl / s->l_scale;
     }
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -126,7 +124,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (the paper: 0.1, 0.05, 0.02)", 1e-3, 0.25, NULL},
         {"c0", OPT_REAL, &c0, "artificial sound speed [m/s]", 1, 1e5, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -139,28 +136,23 @@ int main(int argc, char** argv) {
     double a, b, wall, t_prev = 0;
     int k, i, n;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "elliptical water drop (benchmark C1, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
+    ex_options(argc, argv, "elliptical water drop (benchmark C1, bench/VALIDATION.md)", opts, &c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     bd.name = "drop";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.fluid.sound_speed = (sps_real)c0;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     ex_unset_unread(&bd); /* a fluid reads no shear formulation */
-    ex_check(w, sps_world_add_body(w, &bd, &drop));
-    ex_check(w, sps_body_add_sdf(w, drop, lo, hi, disc_sdf, NULL, NULL));
-    ex_check(w, sps_body_set_velocity(w, drop, initial_velocity, NULL));
-    ex_check(w, sps_body_set_pressure(w, drop, initial_pressure, &c.rho0));
+    sps_world_add_body(w, &bd, &drop);
+    sps_body_add_sdf(w, drop, lo, hi, disc_sdf, NULL, NULL);
+    sps_body_set_velocity(w, drop, initial_velocity, NULL);
+    sps_body_set_pressure(w, drop, initial_pressure, &c.rho0);
 
     memset(&s, 0, sizeof s);
     s.dp = dp;
-    s.t_end = c.t_end;
-    s.quiet = c.quiet;
-    ex_check(w, sps_world_diagnostics(w, all, &d0));
+    sps_world_diagnostics(w, all, &d0);
     s.p0[0] = d0.linear_momentum[0];
     s.p0[1] = d0.linear_momentum[1];
     s.l0 = d0.angular_momentum[2];
@@ -196,7 +188,7 @@ int main(int argc, char** argv) {
         ex_check_step(w, r, &s.output);
     }
     output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
     sh = measure(w, dp);
     drop_axes(sps_world_time(w), &a, &b);
     printf("RESULT case=elliptical_drop dp=%g c0=%g t=%.6g a=%.6f b=%.6f a_exact=%.6f b_exact=%.6f err_a=%+.3f%% err_b=%+.3f%% "

@@ -74,7 +74,6 @@ typedef struct {
     window_mean early, late;
     double t_end, window, drop, mass_start, dp;
     double water_ke_first, water_ke_last, last_second_start; /* the water's largest kinetic energy in the first and last second */
-    int quiet;
 } run_state;
 
 /* The block's bottom: its particles' mean height less SIZE/2. */
@@ -149,7 +148,6 @@ static int on_step(sps_world* w, void* user) {
             if (t >= s->last_second_start && dw.kinetic_energy > s->water_ke_last) s->water_ke_last = dw.kinetic_energy;
         }
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -166,7 +164,6 @@ int main(int argc, char** argv) {
         {"width", OPT_REAL, &WIDTH, "tank width [m] (and breadth in 3D)", 0.05, 10, NULL},
         {"depth", OPT_REAL, &DEPTH, "water depth [m]", 0.02, 10, NULL},
         {"size", OPT_REAL, &SIZE, "block side [m]", 0.01, 5, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), block_def = sps_default_body_def();
@@ -178,36 +175,31 @@ int main(int argc, char** argv) {
     sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3], lo[3] = {0, 0, 0}, hi[3];
     double wall, draft, draft_volume, archimedes, early_draft, early_draft_volume, early_pressure, late_pressure, mass_end;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D jelly block dropped into a water tank: its floating draft against Archimedes", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D jelly block dropped into a water tank: its floating draft against Archimedes", opts, &c, &wd, &block_def);
     memset(&s, 0, sizeof s);
-    apply_common(&c, &wd, &block_def);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     wd.dim = DIM;
     wd.dp = (sps_real)dp;
     tank_hi[0] = tank_hi[2] = (sps_real)WIDTH; tank_hi[1] = (sps_real)(DEPTH + 4 * SIZE);
     hi[0] = hi[2] = (sps_real)WIDTH; hi[1] = (sps_real)DEPTH;
     wd.gravity[1] = (sps_real)-G_ACC;
-    wd.log = ex_log;
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
     water_def.material.fluid.sound_speed = (sps_real)(10 * sqrt(2 * G_ACC * DEPTH));
     block_def.name = "block";
     block_def.damping = (sps_real)damping;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP));
-    ex_check(w, sps_world_add_body(w, &water_def, &s.water));
-    ex_check(w, sps_body_add_box(w, s.water, lo, hi, NULL));
-    ex_check(w, sps_body_set_pressure(w, s.water, hydrostatic, NULL));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP);
+    sps_world_add_body(w, &water_def, &s.water);
+    sps_body_add_box(w, s.water, lo, hi, NULL);
+    sps_body_set_pressure(w, s.water, hydrostatic, NULL);
     water_count = sps_world_particle_count(w);
-    ex_check(w, sps_world_add_body(w, &block_def, &s.block));
+    sps_world_add_body(w, &block_def, &s.block);
     lo[0] = lo[2] = (sps_real)(0.5 * (WIDTH - SIZE)); hi[0] = hi[2] = (sps_real)(lo[0] + SIZE);
     lo[1] = DEPTH + drop; hi[1] = lo[1] + SIZE;
-    ex_check(w, sps_body_add_box(w, s.block, lo, hi, NULL));
+    sps_body_add_box(w, s.block, lo, hi, NULL);
 
-    s.quiet = c.quiet;
     s.t_end = c.t_end;
     s.window = window;
     s.drop = drop;
@@ -220,7 +212,7 @@ int main(int argc, char** argv) {
         int i;
         for (i = 0; i < water_count; ++i) s.mass_start += m[i]; /* the water's particles come first */
     }
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
 
     draft = s.late.rows ? s.late.draft / s.late.rows : draft_of(w, s.water, s.block, dp);
@@ -231,7 +223,7 @@ int main(int argc, char** argv) {
     water_state(w, s.water, &late_pressure, &mass_end);
     if (s.late.rows) late_pressure = s.late.pressure / s.late.rows;
     archimedes = c.rho0 / RHO_WATER * SIZE;
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
     printf("RESULT case=floating_block dim=%d dp=%g rho_block=%g damping=%g drop=%g window=%g draft=%.5f archimedes=%.5f rel_error=%+.2f%% "
            "draft_2s=%.5f rel_error_2s=%+.2f%% draft_volume=%.5f rel_error_volume=%+.2f%% rel_error_volume_2s=%+.2f%% pressure_drift=%+.3f%% "
            "water_mass_ratio=%.12f "

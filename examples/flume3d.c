@@ -43,7 +43,7 @@ static sps_real block_sdf(const sps_real x[3], void* user) {
 
 typedef struct {
     output_plan output;
-    double t_end, next_report, dp;
+    double next_report, dp;
     sps_body soil;
 } run_state;
 
@@ -63,7 +63,7 @@ static int on_step(sps_world* w, void* user) {
     const double t = sps_world_time(w);
     output_tick(w, &s->output, "", &d);
     if (t >= s->next_report - 1e-9) {
-        ex_check(w, sps_world_diagnostics(w, s->soil, &d));
+        sps_world_diagnostics(w, s->soil, &d);
         printf("  t = %.2f s: front x = %.3f m, max speed %.3f m/s, %d particles closer than 0.5 dp to another (smallest spacing %.3f dp), "
                "surface particles %d, wall %.0f s\n",
                t, front(w, s->soil, s->dp), (double)d.max_speed, ex_clustered_particles(w, s->dp, 0.5), (double)d.min_spacing,
@@ -71,7 +71,6 @@ static int on_step(sps_world* w, void* user) {
         fflush(stdout);
         s->next_report += 0.5;
     }
-    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 
@@ -83,7 +82,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.005, 0.25, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     const double a = SLOPE_DEG * PI / 180;
     sps_world_def wd = sps_default_world_def();
@@ -98,11 +96,8 @@ int main(int argc, char** argv) {
     double wall, held = 0;
     int i, first, count;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D cohesive granular flow in a 50-degree flume against a barrier (C7, UTVF 5.4)", opts,
-              (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "3D cohesive granular flow in a 50-degree flume against a barrier (C7, UTVF 5.4)", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     bed_normal[0] = (sps_real)sin(a);
     bed_normal[1] = (sps_real)cos(a);
@@ -115,45 +110,43 @@ int main(int argc, char** argv) {
     wd.dim = 3;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_wall(w, origin, bed_normal, SPS_WALL_NO_SLIP)); /* the bed: solid below y = -tan(a) x */
-    ex_check(w, sps_world_add_wall(w, origin, up, SPS_WALL_NO_SLIP));         /* the run-out floor, beyond the foot */
+    sps_world_create(&wd, &w);
+    sps_world_add_wall(w, origin, bed_normal, SPS_WALL_NO_SLIP); /* the bed: solid below y = -tan(a) x */
+    sps_world_add_wall(w, origin, up, SPS_WALL_NO_SLIP);         /* the run-out floor, beyond the foot */
     /* smooth side walls (a flume's glass): no-slip ones held the whole mass by its cohesion,
        2 x 1.6 m^2 x 5 kPa against its 7.8 kN weight */
-    ex_check(w, sps_world_add_wall(w, side_lo, plus_z, SPS_WALL_FREE_SLIP));
-    ex_check(w, sps_world_add_wall(w, side_hi, minus_z, SPS_WALL_FREE_SLIP));
+    sps_world_add_wall(w, side_lo, plus_z, SPS_WALL_FREE_SLIP);
+    sps_world_add_wall(w, side_hi, minus_z, SPS_WALL_FREE_SLIP);
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
     apply_granular(&g, &bd);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &soil));
+    sps_world_add_body(w, &bd, &soil);
     lo[0] = (sps_real)shape.x0; hi[0] = (sps_real)shape.x1;
     lo[1] = (sps_real)(-tan(a) * shape.x1); hi[1] = (sps_real)shape.y_top;
     lo[2] = 0; hi[2] = (sps_real)WIDTH;
-    ex_check(w, sps_body_add_sdf(w, soil, lo, hi, block_sdf, &shape, NULL));
+    sps_body_add_sdf(w, soil, lo, hi, block_sdf, &shape, NULL);
     rd.name = "barrier";
     rd.material.kind = SPS_MATERIAL_RIGID;
     rd.material.density = 2500;
     rd.material.youngs_modulus = 1e8; /* its contact stiffness: the soil's own K sets the harmonic mean */
-    ex_check(w, sps_world_add_body(w, &rd, &barrier));
+    sps_world_add_body(w, &rd, &barrier);
     blo[0] = (sps_real)BARRIER_X; bhi[0] = (sps_real)(BARRIER_X + 4 * dp);
     blo[1] = 0; bhi[1] = (sps_real)BARRIER_HEIGHT;
     blo[2] = 0; bhi[2] = (sps_real)WIDTH;
-    ex_check(w, sps_body_add_box(w, barrier, blo, bhi, NULL));
+    sps_body_add_box(w, barrier, blo, bhi, NULL);
 
     printf("granular flume: slope %g deg, dp = %g m, %d particles (soil and barrier), c = %g Pa, phi = %g deg, zeta = %g, transport %s\n",
            SLOPE_DEG, dp, sps_world_particle_count(w), g.cohesion, g.phi, g.diffusion,
            transport_name(c.transport));
-    s.t_end = c.t_end;
     s.next_report = 0.5;
     s.dp = dp;
     s.soil = soil;
     output_open(&s.output, &c, "flume3d", "velocity", "");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, soil, &d));
+    sps_world_diagnostics(w, soil, &d);
     {
         const sps_real* x = sps_body_field(w, soil, "position_x", NULL, &first, &count);
         for (i = 0; x && i < count; ++i) held += x[i] < BARRIER_X;

@@ -32,7 +32,7 @@
 
 typedef struct {
     output_plan output;
-    double t_end, zigzag_max;
+    double zigzag_max;
 } run_state;
 
 /* At every CSV row: the largest zigzag indicator (DIAGNOSTICS: near 0 while the soil flows
@@ -41,12 +41,12 @@ static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
     if (output_tick(w, &s->output, "", &d) && d.zigzag > s->zigzag_max) s->zigzag_max = d.zigzag;
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 
 /* Pours the column's volume: one row at the inlet every sqrt(2 dp / g), each added between steps
-   (sps_body_add_box), then advances to t_end; a library error ends the program. */
+   (sps_body_add_box), then advances to t_end; a failed step ends the program (ex_check_step, or
+   output_close for the last). */
 static void pour(sps_world* w, sps_body soil, double dp, double t_end, run_state* s) {
     const double interval = sqrt(2 * dp / 9.8);
     const int rows = (int)(COLUMN_HEIGHT / dp + 0.5);
@@ -54,9 +54,9 @@ static void pour(sps_world* w, sps_body soil, double dp, double t_end, run_state
     int k;
     for (k = 0; k < rows && k * interval < t_end; ++k) {
         if (k > 0) ex_check_step(w, sps_world_advance(w, (sps_real)(k * interval), on_step, s), &s->output);
-        ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
+        sps_body_add_box(w, soil, lo, hi, NULL);
     }
-    ex_check_step(w, sps_world_advance(w, (sps_real)t_end, on_step, s), &s->output);
+    sps_world_advance(w, (sps_real)t_end, on_step, s); /* a failed step: output_close reports it */
 }
 
 /* Why a pour is refused (NULL: it is not), measured (bench/VALIDATION.md, "Granular media that
@@ -83,7 +83,6 @@ int main(int argc, char** argv) {
         {"damping", OPT_REAL, &damping, "velocity damping c [1/s] that keeps the collapse quasi-static (0: the fast collapse)", 0, 1e3, NULL},
         {"pour", OPT_FLAG, &pouring, "pour the column's volume from POUR_HEIGHT = 0.15 m instead of releasing it", 0, 0, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -96,14 +95,12 @@ int main(int argc, char** argv) {
     double wall, height = 0, left, right, angle, *top;
     int columns, k, peak = 0;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D angle of repose: a cohesionless column lifted slowly slumps into a heap", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D angle of repose: a cohesionless column lifted slowly slumps into a heap", opts, &c, &wd, &bd);
     if (pouring && pour_refusal(damping, c.transport)) {
         fprintf(stderr, "heap2d: %s\n", pour_refusal(damping, c.transport));
         return 2;
     }
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
@@ -112,22 +109,20 @@ int main(int argc, char** argv) {
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &soil));
-    if (!pouring) ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
+    sps_world_add_body(w, &bd, &soil);
+    if (!pouring) sps_body_add_box(w, soil, lo, hi, NULL);
 
-    s.t_end = c.t_end;
     output_open(&s.output, &c, "heap2d", "velocity", "");
     if (pouring) pour(w, soil, dp, c.t_end, &s);
     else {
         on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-        ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+        sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     }
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
 
     columns = (int)(FLOOR_LENGTH / dp) + 1;
     top = (double*)calloc((size_t)columns, sizeof(double));

@@ -36,7 +36,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 1e-3, 0.02, NULL},
         {"damping", OPT_REAL, &damping, "velocity damping c [1/s] that keeps the collapse quasi-static (0: the fast collapse)", 0, 1e3, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -46,15 +45,12 @@ int main(int argc, char** argv) {
     const sps_real lo[3] = {0.5 * FLOOR_LENGTH - COLUMN_RADIUS, 0, 0.5 * FLOOR_LENGTH - COLUMN_RADIUS},
                    hi[3] = {0.5 * FLOOR_LENGTH + COLUMN_RADIUS, COLUMN_HEIGHT, 0.5 * FLOOR_LENGTH + COLUMN_RADIUS};
     const sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3] = {FLOOR_LENGTH, 2 * COLUMN_HEIGHT, FLOOR_LENGTH};
-    ex_plain_run s;
+    output_plan output;
     double axis[2]; /* x and z of the cylinder's axis */
     int rings, k;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D angle of repose: a cohesionless cylinder lifted slowly slumps into a cone", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
-    memset(&s, 0, sizeof s);
+    ex_options(argc, argv, "3D angle of repose: a cohesionless cylinder lifted slowly slumps into a cone", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
     apply_granular(&g, &bd);
@@ -62,19 +58,17 @@ int main(int argc, char** argv) {
     wd.dim = 3;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &soil));
-    ex_check(w, sps_body_add_sdf(w, soil, lo, hi, cylinder_sdf, NULL, NULL));
+    sps_world_add_body(w, &bd, &soil);
+    sps_body_add_sdf(w, soil, lo, hi, cylinder_sdf, NULL, NULL);
 
-    s.t_end = c.t_end;
-    output_open(&s.output, &c, "heap3d", "velocity", "");
-    ex_plain_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &s), &s.output);
-    wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    output_open(&output, &c, "heap3d", "velocity", "");
+    ex_plain_step(w, &output); /* t = 0: the first CSV row and snapshot */
+    sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &output);
+    wall = output_close(w, &output);
+    sps_world_diagnostics(w, all, &d);
 
     rings = (int)(0.5 * FLOOR_LENGTH / dp);
     axis[0] = axis[1] = 0.5 * FLOOR_LENGTH;

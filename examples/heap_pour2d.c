@@ -63,7 +63,7 @@ static sps_real soil_sdf(const sps_real x[3], void* user) {
 typedef struct {
     output_plan output;
     sps_body soil;
-    double t_end, speed_bound, max_speed, max_speed_at[3]; /* the largest speed, and its time and place (t, x, y) */
+    double speed_bound, max_speed, max_speed_at[3]; /* the largest speed, and its time and place (t, x, y) */
     unsigned char* shot; /* per particle id: its speed exceeded speed_bound */
     int shot_out;
 } run_state;
@@ -75,7 +75,7 @@ static int on_step(sps_world* w, void* user) {
     const int* id = sps_world_particle_ids(w);
     sps_diagnostics d;
     int i, first, count;
-    if (sps_body_field(w, s->soil, "velocity_x", NULL, &first, &count))
+    if (sps_world_time(w) > 0 && sps_body_field(w, s->soil, "velocity_x", NULL, &first, &count)) /* the body's range: after the first step */
         for (i = first; i < first + count; ++i) {
             const double speed = sqrt(vx[i] * vx[i] + vy[i] * vy[i]);
             if (speed > s->max_speed) {
@@ -88,7 +88,6 @@ static int on_step(sps_world* w, void* user) {
             if (speed > s->speed_bound && !s->shot[id[i]]) { s->shot[id[i]] = 1; ++s->shot_out; }
         }
     output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 
@@ -104,7 +103,6 @@ int main(int argc, char** argv) {
         {"floor", OPT_CHOICE, &rough_floor, "the floor and side walls: no-slip, or free-slip with Coulomb friction mu = tan(phi)", 0, 0, "no-slip|friction"},
         {"damping", OPT_REAL, &damping, "the soil's velocity damping c [1/s] (0: free fall)", 0, 1e3, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def(), wall_def;
@@ -118,47 +116,43 @@ int main(int argc, char** argv) {
     double wall, height = 0, left, right, angle, left_toe, right_toe, *top;
     int columns, k, peak = 0, soil_count, first, strays = 0, clustered, k0, k1;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D angle of repose of a heap poured from a hopper", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "2D angle of repose of a heap poured from a hopper", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     h.orifice_y = drop;
     h.dp = dp;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, rough_floor ? SPS_WALL_FREE_SLIP : SPS_WALL_NO_SLIP));
-    if (rough_floor) ex_check(w, sps_world_set_wall_friction(w, -1, (sps_real)tan(g.phi * PI / 180)));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, rough_floor ? SPS_WALL_FREE_SLIP : SPS_WALL_NO_SLIP);
+    if (rough_floor) sps_world_set_wall_friction(w, -1, (sps_real)tan(g.phi * PI / 180));
 
     wall_def = sps_default_body_def(); /* the plates: a wall body with the soil's stiffness (the contact's modulus) */
     wall_def.name = "hopper";
     wall_def.material = bd.material;
     wall_def.material.kind = SPS_MATERIAL_RIGID;
-    ex_check(w, sps_world_add_body(w, &wall_def, &plates));
+    sps_world_add_body(w, &wall_def, &plates);
     lo[0] = 0; lo[1] = (sps_real)drop; lo[2] = 0; /* one lattice for plates and soil: filled flush */
     hi[0] = FLOOR_LENGTH; hi[1] = (sps_real)(drop + HOPPER_HEIGHT + dp); hi[2] = 0;
-    ex_check(w, sps_body_add_sdf(w, plates, lo, hi, plate_sdf, &h, NULL));
+    sps_body_add_sdf(w, plates, lo, hi, plate_sdf, &h, NULL);
 
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
     apply_granular(&g, &bd);
     bd.damping = (sps_real)damping;
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &s.soil));
-    ex_check(w, sps_body_add_sdf(w, s.soil, lo, hi, soil_sdf, &h, &soil_count));
+    sps_world_add_body(w, &bd, &s.soil);
+    sps_body_add_sdf(w, s.soil, lo, hi, soil_sdf, &h, &soil_count);
 
-    s.t_end = c.t_end;
     s.speed_bound = 1.5 * sqrt(2 * GRANULAR_GRAVITY * (drop + fill_height()));
     s.shot = (unsigned char*)calloc((size_t)sps_world_particle_count(w), 1);
     if (!s.shot) return 1;
     output_open(&s.output, &c, "heap_pour2d", "velocity", "");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
 
     /* the heap: the soil's columns holding 2 particles or more, contiguous about the highest
        within PEAK_RANGE of the orifice's axis (grains spread to a side wall are not its top) */

@@ -61,7 +61,7 @@ typedef struct {
     output_plan output;
     sps_body plate;
     double dp, t_end, window, sum;
-    int quiet, rows;
+    int rows;
 } run_state;
 
 /* The downward displacement at mid-span: the mean over the plate's particles whose reference x
@@ -91,7 +91,6 @@ static int on_step(sps_world* w, void* user) {
         s->sum += deflection;
         s->rows++;
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -109,7 +108,6 @@ int main(int argc, char** argv) {
         {"breadth", OPT_INT, &breadth, "3D: the breadth along z in particle layers (periodic: at least 8, three supports)", 1, 1000, NULL},
         {"sides", OPT_CHOICE, &walls_sides, "3D: what bounds the breadth: a periodic z axis (plane strain), or free-slip walls at z = 0 and z = breadth", 0, 0,
          "periodic|walls"},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), plate_def = sps_default_body_def(), wall_def = sps_default_body_def();
@@ -119,15 +117,13 @@ int main(int argc, char** argv) {
     run_state s;
     double dp, clamp, breadth_m, D, kappa_G_t, q, bending, shear, theory, deflection, omega1, wall;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "water column on a clamped-clamped elastic plate: static deflection against beam theory", opts,
-              (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "water column on a clamped-clamped elastic plate: static deflection against beam theory",
+               opts, &c, &wd, &plate_def);
     memset(&s, 0, sizeof s);
     dp = THICK / res;
     clamp = CLAMP_LAYERS * dp;
     breadth_m = dim == 3 ? breadth * dp : 0;
-    apply_common(&c, &wd, &plate_def);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     D = c.E * THICK * THICK * THICK / (12 * (1 - c.nu * c.nu));
     omega1 = 4.730 * 4.730 * sqrt(D / (c.rho0 * THICK)) / (SPAN * SPAN); /* clamped-clamped Euler-Bernoulli beam */
     if (damping == 0) damping = 2 * omega1;
@@ -135,7 +131,6 @@ int main(int argc, char** argv) {
     wd.dp = (sps_real)dp;
     if (dim == 3 && !walls_sides) wd.periodic[2] = (sps_real)breadth_m;
     wd.gravity[1] = (sps_real)-G_ACC;
-    wd.log = ex_log;
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
@@ -144,42 +139,40 @@ int main(int argc, char** argv) {
     plate_def.damping = (sps_real)damping;
     wall_def.name = "side walls";
     wall_def.material.kind = SPS_MATERIAL_RIGID;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     {
         sps_real lo[3] = {0, 0, 0}, hi[3] = {SPAN, DEPTH, (sps_real)breadth_m}, held_lo[3] = {-1, -1, -1}, held_hi[3] = {0, 1, (sps_real)(breadth_m + 1)};
         if (dim == 3 && walls_sides) { /* free slip: they push the plate's fibres that widen, never pull those that narrow */
             const sps_real z_lo[3] = {0, 0, 0}, z_hi[3] = {0, 0, (sps_real)breadth_m}, up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
-            ex_check(w, sps_world_add_wall(w, z_lo, up, SPS_WALL_FREE_SLIP));
-            ex_check(w, sps_world_add_wall(w, z_hi, down, SPS_WALL_FREE_SLIP));
+            sps_world_add_wall(w, z_lo, up, SPS_WALL_FREE_SLIP);
+            sps_world_add_wall(w, z_hi, down, SPS_WALL_FREE_SLIP);
         }
         if (!body_load) {
-            ex_check(w, sps_world_add_body(w, &water_def, &water));
-            ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
-            ex_check(w, sps_body_set_pressure(w, water, hydrostatic, NULL));
+            sps_world_add_body(w, &water_def, &water);
+            sps_body_add_box(w, water, lo, hi, NULL);
+            sps_body_set_pressure(w, water, hydrostatic, NULL);
         } else load_acceleration = -RHO_WATER * G_ACC * DEPTH / (c.rho0 * THICK);
-        ex_check(w, sps_world_add_body(w, &plate_def, &s.plate));
+        sps_world_add_body(w, &plate_def, &s.plate);
         lo[0] = (sps_real)-clamp; lo[1] = -THICK; hi[0] = (sps_real)(SPAN + clamp); hi[1] = 0;
-        ex_check(w, sps_body_add_box(w, s.plate, lo, hi, NULL));
-        ex_check(w, sps_body_constrain_box(w, s.plate, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL)); /* x < 0 */
+        sps_body_add_box(w, s.plate, lo, hi, NULL);
+        sps_body_constrain_box(w, s.plate, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL); /* x < 0 */
         held_lo[0] = SPAN; held_hi[0] = 2 * SPAN;
-        ex_check(w, sps_body_constrain_box(w, s.plate, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL)); /* x > L */
-        ex_check(w, sps_body_set_acceleration(w, s.plate, plate_load, &load_acceleration));
-        ex_check(w, sps_world_add_body(w, &wall_def, &walls));
+        sps_body_constrain_box(w, s.plate, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL); /* x > L */
+        sps_body_set_acceleration(w, s.plate, plate_load, &load_acceleration);
+        sps_world_add_body(w, &wall_def, &walls);
         lo[0] = (sps_real)-clamp; lo[1] = 0; hi[0] = 0; hi[1] = (sps_real)(1.5 * DEPTH);
-        ex_check(w, sps_body_add_box(w, walls, lo, hi, NULL));
+        sps_body_add_box(w, walls, lo, hi, NULL);
         lo[0] = SPAN; hi[0] = (sps_real)(SPAN + clamp);
-        ex_check(w, sps_body_add_box(w, walls, lo, hi, NULL));
-        ex_check(w, sps_world_set_contact(w, walls, s.plate, 0)); /* they meet only over the held ends */
+        sps_body_add_box(w, walls, lo, hi, NULL);
+        sps_world_set_contact(w, walls, s.plate, 0); /* they meet only over the held ends */
     }
 
     s.dp = dp;
-    s.quiet = c.quiet;
     s.t_end = c.t_end;
     s.window = window;
     output_open(&s.output, &c, "hydrostatic_fsi", "pressure", ",deflection");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
 
     deflection = s.rows ? s.sum / s.rows : mid_deflection(w, s.plate, dp);
@@ -188,7 +181,7 @@ int main(int argc, char** argv) {
     bending = q * pow(SPAN, 4) / (384 * D);
     shear = q * SPAN * SPAN / (8 * kappa_G_t);
     theory = bending + shear;
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
     printf("RESULT case=hydrostatic_fsi load=%s dim=%d breadth=%d sides=%s res=%d dp=%g E=%g nu=%g rho_s=%g damping=%g window=%g deflection=%.6e theory=%.6e "
            "rel_error=%+.2f%% bending=%.6e shear=%.6e w_over_t=%.4f ke_end=%.3e %s particles=%d steps=%ld advection_steps=%ld "
            "wall_s=%.2f out=%s\n",

@@ -76,7 +76,7 @@ static int on_step(sps_world* w, void* user) {
     int k;
     if (t < s->output.next_csv - 1e-12) { progress(t, s->t_end, s->output.wall0, s->quiet); return 0; }
     centre_and_spin(w, s->dim, &x, &spin);
-    if (t < s->settle - 1e-12) ex_check(w, sps_body_set_velocity(w, s->body, at_rest, NULL)); /* kinetic relaxation */
+    if (t < s->settle - 1e-12) sps_body_set_velocity(w, s->body, at_rest, NULL); /* kinetic relaxation */
     if (t >= s->settle - 1e-12) {
         if (s->sum[0] == 0) s->x_start = x;
         for (k = 0; k < 5; ++k, tt *= t) {
@@ -90,7 +90,6 @@ static int on_step(sps_world* w, void* user) {
         snprintf(extra, sizeof extra, ",%.9g,%.9g", x, spin);
         output_tick(w, &s->output, extra, &d);
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -108,7 +107,6 @@ int main(int argc, char** argv) {
         {"lift", OPT_REAL, &lift, "gap between the body's surface and the slope at the start [dp] (0: flush, the contact's rest)", 0, 10, NULL},
         {"settle", OPT_REAL, &settle, "kinetic relaxation before the release [s]: the body comes to rest on the slope", 0, 100, NULL},
         {"viscosity", OPT_REAL, &viscosity, "Kelvin-Voigt viscosity eta of the body [Pa s]", 0, 1e9, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -119,16 +117,14 @@ int main(int argc, char** argv) {
     double theta, g_t, g_n, inertia_ratio = 0, theory, spin_theory = 0, accel, spin, rel, wall;
     int rolls = 0;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "a block, disc or ball released on a slope with Coulomb friction", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "a block, disc or ball released on a slope with Coulomb friction", opts, &c, &wd, &bd);
     if (shape == 1 && dim != 2) opt_fail("incline", "--shape %s needs --dim 2%s", "disc", "");
     if (shape == 2 && dim != 3) opt_fail("incline", "--shape %s needs --dim 3%s", "ball", "");
     if (!(settle < c.t_end)) opt_fail("incline", "--settle must be below --tend%s%s", "", "");
     theta = angle * PI / 180;
     g_t = G * sin(theta);
     g_n = G * cos(theta);
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     wd.dim = dim;
     wd.dp = (sps_real)dp;
     wd.gravity[0] = (sps_real)g_t;
@@ -136,11 +132,10 @@ int main(int argc, char** argv) {
     bd.name = shape_names[shape];
     bd.friction = (sps_real)mu;
     bd.material.viscosity = (sps_real)viscosity;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     memset(&s, 0, sizeof s);
-    ex_check(w, sps_world_add_body(w, &bd, &s.body));
-    ex_check(w, ex_add_slope_body(w, s.body, shape == 0, dim, SIZE, lift * dp, mu));
+    sps_world_add_body(w, &bd, &s.body);
+    ex_add_slope_body(w, s.body, shape == 0, dim, SIZE, lift * dp, mu);
     if (shape != 0) inertia_ratio = shape == 1 ? 0.5 : 0.4; /* I / (m R^2) */
     /* the closed forms */
     if (shape == 0) theory = tan(theta) > mu ? g_t - mu * g_n : 0;
@@ -152,12 +147,12 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end; s.settle = settle; s.quiet = c.quiet; s.dim = dim; s.g_t = g_t;
     output_open(&s.output, &c, "incline", "velocity", ",centre_x,spin_omega_R");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     accel = ex_fitted_acceleration(s.sum, s.sum_x);
     spin = (s.sum[0] * s.sum_s[1] - s.sum[1] * s.sum_s[0]) / (s.sum[0] * s.sum[2] - s.sum[1] * s.sum[1]); /* the slope of a line fit */
     rel = fabs(accel - theory) / (theory > 0 ? theory : g_t);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("RESULT case=incline dim=%d shape=%s mu=%g angle=%g dp=%g viscosity=%g accel=%.5g theory=%.5g rel_error=%.2f%% motion=%s "
            "spin=%.5g spin_theory=%.5g creep=%.3f%% shear=%s %s particles=%d steps=%ld wall_s=%.2f out=%s\n",
            dim, shape_names[shape], mu, angle, dp, viscosity, accel, theory, 100 * rel,

@@ -42,14 +42,11 @@ static void write_outline(const char* path) {
 
 typedef struct {
     output_plan output;
-    double t_end;
-    int quiet;
 } run_state;
 static int on_step(sps_world* w, void* user) {
     run_state* s = (run_state*)user;
     sps_diagnostics d;
     output_tick(w, &s->output, "", &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -60,7 +57,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (the letter 0.14 m high, its legs 0.04 m wide)", 1e-3, 0.01, NULL},
         {"height", OPT_REAL, &height, "height of the letter's feet above the floor at the start [m]", 0, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -76,8 +72,7 @@ int main(int argc, char** argv) {
     double wall, polygon, top = -1e30, bottom = 1e30;
     int n, i;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D rubber letter A from an outline file dropped on a floor", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D rubber letter A from an outline file dropped on a floor", opts, &c, &wd, &bd);
     memset(&s, 0, sizeof s);
     make_dirs(c.out);
     snprintf(path, sizeof path, "%s/letter_A.txt", c.out);
@@ -88,23 +83,20 @@ int main(int argc, char** argv) {
     info = sps_mesh_get_info(mesh);
     polygon = 1e-4 * (shoelace(outer, 8) - shoelace(hole, 3));
 
-    apply_common(&c, &wd, &bd);
     wd.keep_last_good_state = 1;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G_ACC;
-    wd.log = ex_log;
     bd.name = "letter";
     bd.contact_damping = 1;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP));
-    ex_check(w, sps_world_add_body(w, &bd, &letter));
-    ex_check(w, sps_body_add_mesh(w, letter, mesh, NULL, NULL, 0, &n));
+    sps_world_create(&wd, &w);
+    sps_world_add_wall(w, floor_point, up, SPS_WALL_FREE_SLIP);
+    sps_world_add_body(w, &bd, &letter);
+    sps_body_add_mesh(w, letter, mesh, NULL, NULL, 0, &n);
 
-    s.quiet = c.quiet; s.t_end = c.t_end;
     output_open(&s.output, &c, "letter2d", "von-mises", "");
     on_step(w, &s);
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     y = sps_world_field(w, SPS_FIELD_POSITION_Y);
     for (i = 0; i < sps_world_particle_count(w); ++i) {

@@ -58,7 +58,7 @@ typedef struct {
     output_plan output;
     sps_body water, torus;
     double t_end, window, sum, torus_volume;
-    int quiet, rows;
+    int rows;
 } run_state;
 
 /* The torus's centre of mass height minus the water level. */
@@ -81,7 +81,6 @@ static int on_step(sps_world* w, void* user) {
     const double t = sps_world_time(w), h = t > 0 ? height_over_level(w, s) : 0;
     snprintf(extra, sizeof extra, ",%.9g", h);
     if (output_tick(w, &s->output, extra, &d) && t > 0 && t >= s->t_end - s->window - 1e-12) { s->sum += h; s->rows++; }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -96,7 +95,6 @@ int main(int argc, char** argv) {
         {"drop", OPT_REAL, &drop, "height of the torus's bottom above the water at the start [m]", 0, 1, NULL},
         {"damping", OPT_REAL, &damping, "damping of the torus only [1/s]", 0, 1e4, NULL},
         {"window", OPT_REAL, &window, "the height is averaged over the last window seconds", 1e-3, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), torus_def = sps_default_body_def();
@@ -110,8 +108,7 @@ int main(int argc, char** argv) {
     double wall, exact;
     int n_torus;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D jelly torus from an STL file floating in a water tank", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "3D jelly torus from an STL file floating in a water tank", opts, &c, &wd, &torus_def);
     memset(&s, 0, sizeof s);
     make_dirs(c.out);
     snprintf(path, sizeof path, "%s/torus.stl", c.out);
@@ -122,31 +119,29 @@ int main(int argc, char** argv) {
     if (sps_mesh_load(path, &md, &mesh, msg, sizeof msg) != SPS_OK) { fprintf(stderr, "%s\n", msg); return 1; }
     info = sps_mesh_get_info(mesh);
 
-    apply_common(&c, &wd, &torus_def);
     wd.keep_last_good_state = 1;
     wd.dim = 3;
     wd.dp = (sps_real)dp;
     wd.gravity[2] = (sps_real)-G_ACC;
-    wd.log = ex_log;
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
     water_def.material.fluid.sound_speed = (sps_real)(10 * sqrt(2 * G_ACC * DEPTH));
     torus_def.name = "torus";
     torus_def.damping = (sps_real)damping;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Z_HI, SPS_WALL_FREE_SLIP));
-    ex_check(w, sps_world_add_body(w, &water_def, &s.water));
-    ex_check(w, sps_body_add_box(w, s.water, tank_lo, water_hi, NULL));
-    ex_check(w, sps_body_set_pressure(w, s.water, hydrostatic, NULL));
-    ex_check(w, sps_world_add_body(w, &torus_def, &s.torus));
-    ex_check(w, sps_body_add_mesh(w, s.torus, mesh, NULL, NULL, (int)iterations, &n_torus));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Z_HI, SPS_WALL_FREE_SLIP);
+    sps_world_add_body(w, &water_def, &s.water);
+    sps_body_add_box(w, s.water, tank_lo, water_hi, NULL);
+    sps_body_set_pressure(w, s.water, hydrostatic, NULL);
+    sps_world_add_body(w, &torus_def, &s.torus);
+    sps_body_add_mesh(w, s.torus, mesh, NULL, NULL, (int)iterations, &n_torus);
     s.torus_volume = n_torus * dp * dp * dp;
 
-    s.quiet = c.quiet; s.t_end = c.t_end; s.window = window;
+    s.t_end = c.t_end; s.window = window;
     output_open(&s.output, &c, "mesh_float3d", "pressure", ",height_over_level");
     on_step(w, &s);
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
 
     exact = 2 * PI * PI * RING * TUBE * TUBE;

@@ -23,8 +23,8 @@
 
 typedef struct {
     output_plan output;
-    double t_end, fail, hourglass_max, last_s, last_t, t_fail, crossing_first, crossing_last;
-    int quiet, crossings, failed;
+    double fail, hourglass_max, last_s, last_t, t_fail, crossing_first, crossing_last;
+    int crossings, failed;
     const int* ids;
 } run_state;
 
@@ -68,7 +68,6 @@ static int on_step(sps_world* w, void* user) {
             return 1; /* no longer coherent: stop */
         }
     }
-    progress(t, st->t_end, st->output.wall0, st->quiet);
     return 0;
 }
 
@@ -99,14 +98,13 @@ static void add_patch(sps_world* w, sps_body patch, int n, double jitter, int se
     int i, j, m;
     if (jitter == 0) {
         sps_real lo[3] = {0, 0, 0}, hi[3] = {1, 1, 0};
-        ex_check(w, sps_body_add_box(w, patch, lo, hi, NULL));
+        sps_body_add_box(w, patch, lo, hi, NULL);
         return;
     }
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &probe)); /* the jittered points, from scene_add_box */
+    sps_world_create(&wd, &probe); /* the jittered points, from scene_add_box */
     ex_unset_unread(&bd);
-    ex_check(probe, sps_world_add_body(probe, &bd, &b));
-    ex_check(probe, scene_add_box(probe, b, lo, hi, jitter, seed));
+    sps_world_add_body(probe, &bd, &b);
+    scene_add_box(probe, b, lo, hi, jitter, seed);
     m = sps_world_particle_count(probe);
     x[0] = sps_world_field_by_name(probe, "position_x", NULL);
     x[1] = sps_world_field_by_name(probe, "position_y", NULL);
@@ -122,7 +120,7 @@ static void add_patch(sps_world* w, sps_body patch, int n, double jitter, int se
         total += vol[i];
     }
     for (i = 0; i < m; ++i) vol[i] = (sps_real)(vol[i] / total);
-    ex_check(w, sps_body_add_particles(w, patch, m, xyz, vol));
+    sps_body_add_particles(w, patch, m, xyz, vol);
     free(xyz);
     free(vol);
     sps_world_destroy(probe);
@@ -142,7 +140,6 @@ int main(int argc, char** argv) {
         {"periods", OPT_INT, &periods, "breathing periods to run (the end time is periods x the period estimate)", 1, 100000, NULL},
         {"h", OPT_REAL, &h_over_dp, "smoothing length / dp (1: support 2 dp, about 12 neighbours)", 0.8, 3, NULL},
         {"fail", OPT_REAL, &fail, "stop when the hourglass indicator exceeds this", 1e-6, 10, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -152,15 +149,12 @@ int main(int argc, char** argv) {
     run_state st;
     double wall, period = 0, estimate;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "patch test stability (benchmark D1, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "patch test stability (benchmark D1, bench/VALIDATION.md)", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     wd.dim = 2;
     wd.dp = (sps_real)(1.0 / n);
     wd.h_over_dp = (sps_real)h_over_dp; /* 1: support 2 dp, about 12 neighbours, as the paper's */
     wd.max_substeps = 4; /* a sample of s(t) every 4 sub-steps (about 1/150 of a period) for the crossings */
-    wd.log = ex_log;
     wd.energy_growth_limit = (sps_real)INFINITY; /* the hourglass force is not in the energy account */
     bd.name = "patch";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
@@ -168,21 +162,21 @@ int main(int argc, char** argv) {
     bd.material.tl.hourglass_alpha = (sps_real)alpha;
     bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
     bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &patch));
+    sps_world_add_body(w, &bd, &patch);
     add_patch(w, patch, n, c.jitter, c.seed);
     stretch(w, 1.1);
-    ex_check(w, sps_body_material_constants(w, patch, &c0, &G, &K));
+    sps_body_material_constants(w, patch, &c0, &G, &K);
     /* the breathing period is of order the time a P wave needs to cross the patch and back */
     estimate = 2.0 / sqrt((K + 4 * G / 3) / c.rho0);
     if (c.t_end <= 0) c.t_end = periods * estimate * 1.2;
 
     memset(&st, 0, sizeof st);
-    st.quiet = c.quiet; st.t_end = c.t_end; st.fail = fail; st.last_s = 0.1;
+    st.fail = fail; st.last_s = 0.1;
     output_open(&st.output, &c, "patch_test", "velocity", ",radial_strain");
     on_step(w, &st); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &st), &st.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &st);
     wall = output_close(w, &st.output);
     if (st.crossings >= 3) period = 2 * (st.crossing_last - st.crossing_first) / (st.crossings - 1);
     printf("RESULT case=patch_test alpha=%g hourglass=%s artificial_viscosity=%g n=%d jitter=%g particles=%d period=%.6f periods_run=%.1f failed=%d t_fail=%.4g "

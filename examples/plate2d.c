@@ -1,10 +1,11 @@
 /* plate2d.c - 2D oscillating plate (cantilever), benchmark A1 (bench/VALIDATION.md) (ENO 6.1, ANG 5.1.1).
 
    A plate L = 0.2 x H = 0.02 (rho0 1000, E 2e6, nu 0.3975, plane strain) continues into a
-   holder for x < 0 whose particles are clamped (set-up: scenes/plate2d.h). It starts from the
-   first bending mode, v_y(x) = v_f c0 f(x)/f(L), and swings freely. We measure the first period at the free end
+   holder for x < 0 whose particles are clamped. It starts from the first bending mode,
+   v_y(x) = v_f c0 f(x)/f(L), and swings freely. We measure the first period at the free end
    (x = L, y = 0) and compare it with the papers' (ANG Table 1, H/dp = 30) and with thin-plate
-   theory (0.254 s). With --viscosity eta (Kelvin-Voigt material damping) the amplitude decays:
+   theory (0.254 s). The scene (world, plate, clamp, start, run) is main; the plate's dimensions,
+   mode shape and theory are in scenes/plate2d.h, which the tests and cantilever_sag.c share. With --viscosity eta (Kelvin-Voigt material damping) the amplitude decays:
    zeta is the damping ratio fitted to the cycles' amplitudes (ln A_k = c - 2 pi zeta k; the
    Riemann dissipation's share is what eta = 0 gives), zeta_kv_theory the share of eta,
    omega E'_v / (2 E') of a viscoelastic plane-strain beam (kelvin_voigt_ratio).
@@ -38,9 +39,9 @@ typedef struct {
     sps_observer tip;
     period_detector period;
     output_plan output;
-    double amp_first, amp_last, amp_cur, t_end; /* amplitudes: max |deflection| per cycle */
+    double amp_first, amp_last, amp_cur; /* amplitudes: max |deflection| per cycle */
     double amp[64];       /* every cycle's (--viscosity: the decay fit) */
-    int quiet, cycles;
+    int cycles;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -49,7 +50,7 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d;
     char extra[64];
     double t = sps_world_time(w);
-    ex_check(w, sps_observer_read(w, s->tip, u, NULL));
+    sps_observer_read(w, s->tip, u, NULL);
     if (fabs(u[1]) > s->amp_cur) s->amp_cur = fabs(u[1]);
     if (period_feed(&s->period, t, u[1])) { /* a cycle ended */
         if (s->amp_first == 0) s->amp_first = s->amp_cur;
@@ -59,7 +60,6 @@ static int on_step(sps_world* w, void* user) {
     }
     snprintf(extra, sizeof extra, ",%.9g", (double)u[1]);
     output_tick(w, &s->output, extra, &d);
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -85,7 +85,8 @@ static double kelvin_voigt_ratio(double E, double nu, double eta, double omega) 
 }
 
 int main(int argc, char** argv) {
-    plate2d_params p = {.res = 10, .vf = 0.05};
+    int res = 10;         /* H/dp */
+    double vf = 0.05;     /* initial velocity factor v_f */
     int solver = 0;       /* ul | tl */
     double alpha = 50;    /* TL eq. 32 */
     double artificial_viscosity = 0; /* TL artificial viscosity q1 (none: the paper's) */
@@ -95,25 +96,35 @@ int main(int argc, char** argv) {
                         .E = PLATE2D_E, .nu = PLATE2D_NU, .rho0 = PLATE2D_RHO0, .out = "out/plate2d", .jitter = 0, .seed = 1,
                         PNG_DEFAULTS};
     opt_spec opts[] = {
-        {"res", OPT_INT, &p.res, "resolution H/dp", 2, 200, NULL},
-        {"vf", OPT_REAL, &p.vf, "initial velocity factor v_f", 0, 1, NULL},
+        {"res", OPT_INT, &res, "resolution H/dp", 2, 200, NULL},
+        {"vf", OPT_REAL, &vf, "initial velocity factor v_f", 0, 1, NULL},
         {"solver", OPT_CHOICE, &solver, "ul: updated Lagrangian (--shear); tl: total Lagrangian, Saint Venant-Kirchhoff", 0, 0, "ul|tl"},
         {"alpha", OPT_REAL, &alpha, "tl: hourglass coefficient alpha (TL eq. 32)", 0, 1000, NULL},
         EX_HOURGLASS_OPTIONS(hourglass_form, artificial_viscosity),
         {"viscosity", OPT_REAL, &viscosity, "Kelvin-Voigt viscosity eta [Pa s]: material damping (prints the decay ratio)", 0, 1e9, NULL},
-        COMMON_OPTION_SPECS(c),
     };
-    sps_world_def wd = sps_default_world_def();
-    sps_body_def bd = sps_default_body_def();
+    sps_world_def wd = sps_default_world_def(); /* the shared options (--cfl, --kernel, ...) are applied by ex_options */
+    sps_body_def bd = sps_default_body_def();   /* and --E, --nu, --rho0, --shear, ... */
     sps_world* w;
     sps_body plate;
+    sps_real K;
+    plate2d_start start;
+    sps_diagnostics d;
     run_state s;
-    double analytical, paper, period, wall;
+    double dp, analytical, paper, period, wall;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D oscillating plate (benchmark A1, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "2D oscillating plate (benchmark A1, bench/VALIDATION.md)", opts, &c, &wd, &bd);
+    memset(&s, 0, sizeof s);
+
+    /* the world: 2D, H/dp = res */
+    dp = PLATE2D_H / res;
+    wd.dim = 2;
+    wd.dp = dp;
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
+    sps_world_create(&wd, &w);
+
+    /* the plate, L x H, and its holder for x < 0, clamped (more layers than the kernel reaches) */
+    bd.name = "plate";
     if (solver == 1) {
         bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
         bd.material.kind = SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF;
@@ -123,35 +134,41 @@ int main(int argc, char** argv) {
     }
     bd.material.viscosity = viscosity;
     ex_unset_unread(&bd); /* --solver tl: no shear formulation */
-    p.jitter = c.jitter;
-    p.seed = c.seed;
-    wd.log = ex_log;
-    memset(&s, 0, sizeof s);
-    ex_check(NULL, plate2d_create(wd, &bd, &p, &w, &plate, &s.tip));
+    sps_world_add_body(w, &bd, &plate);
+    {
+        const sps_real lo[3] = {-PLATE2D_HOLDER_LAYERS * dp, -PLATE2D_H / 2, 0}, hi[3] = {PLATE2D_L, PLATE2D_H / 2, 0};
+        const sps_real holder_lo[3] = {-1, -1, -1}, holder_hi[3] = {0, 1, 1}, free_end[3] = {PLATE2D_L, 0, 0};
+        scene_add_box(w, plate, lo, hi, c.jitter, c.seed); /* sps_body_add_box, or the lattice jittered (--jitter) */
+        sps_body_constrain_box(w, plate, holder_lo, holder_hi, SPS_AXIS_ALL, NULL, NULL);
+        /* the first bending mode, v_y(x) = v_f c0 f(x)/f(L) with the papers' c0 = sqrt(K/rho0) (a
+           total-Lagrangian body's own signal speed is the P-wave speed) */
+        sps_body_material_constants(w, plate, NULL, NULL, &K);
+        start.vf = vf;
+        start.c0 = (sps_real)sqrt(K / bd.material.density);
+        sps_body_set_velocity(w, plate, plate2d_initial_velocity, &start);
+        sps_world_add_observer(w, plate, free_end, &s.tip); /* the deflection at the free end */
+    }
 
-    s.quiet = c.quiet; s.t_end = c.t_end;
-    output_open(&s.output, &c, "plate2d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",deflection");
+    /* the run: on_step writes the CSV row, snapshots and pictures due, and follows the free end */
+    output_open(&s.output, &c, "plate2d", "von-mises-or-velocity", ",deflection");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
 
     analytical = plate2d_analytical_period(c.E, c.nu, c.rho0);
-    paper = solver == 1 ? -1 : paper_period(c.shear, c.transport, p.vf);
+    paper = solver == 1 ? -1 : paper_period(c.shear, c.transport, vf);
     period = period_first(&s.period);
-    {
-        sps_diagnostics d;
-        sps_body all = {0};
-        ex_check(w, sps_world_diagnostics(w, all, &d));
-        printf("RESULT case=plate2d solver=%s alpha=%g hourglass=%s artificial_viscosity=%g shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
-               "analytical=%.6f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
-               "hourglass_end=%.3g min_spacing=%.3f viscosity=%g zeta=%.5f zeta_kv_theory=%.5f %s particles=%d steps=%ld advection_steps=%ld "
-               "wall_s=%.2f out=%s\n",
-               solver ? "tl" : "ul", solver ? alpha : 0, solver ? ex_hourglass_name(hourglass_form) : "-", solver ? artificial_viscosity : 0,
-               solver ? "-" : shear_name(c.shear), p.res, p.vf, c.stepping ? "single" : "dual", c.nu, c.jitter, period, paper, analytical,
-               period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
-               s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing, viscosity,
-               decay_ratio(s.amp, s.cycles), period > 0 ? kelvin_voigt_ratio(c.E, c.nu, viscosity, 2 * PI / period) : 0, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
-    }
+    sps_world_diagnostics(w, (sps_body){0}, &d);
+    printf("RESULT case=plate2d solver=%s alpha=%g hourglass=%s artificial_viscosity=%g shear=%s res=%d vf=%g stepping=%s nu=%g jitter=%g period=%.6f paper=%.3f paper_res=30 "
+           "analytical=%.6f err_analytical=%.1f%% err_paper=%.1f%% cycles=%d amp_first=%.5f amp_last=%.5f hourglass_max=%.3g "
+           "hourglass_end=%.3g min_spacing=%.3f viscosity=%g zeta=%.5f zeta_kv_theory=%.5f %s particles=%d steps=%ld advection_steps=%ld "
+           "wall_s=%.2f out=%s\n",
+           solver ? "tl" : "ul", solver ? alpha : 0, solver ? ex_hourglass_name(hourglass_form) : "-", solver ? artificial_viscosity : 0,
+           solver ? "-" : shear_name(c.shear), res, vf, c.stepping ? "single" : "dual", c.nu, c.jitter, period, paper, analytical,
+           period > 0 ? 100 * (period - analytical) / analytical : 0, period > 0 && paper > 0 ? 100 * (period - paper) / paper : 0,
+           s.period.n / 2, s.amp_first, s.amp_last, s.output.hourglass_max, (double)d.hourglass, s.output.min_spacing, viscosity,
+           decay_ratio(s.amp, s.cycles), period > 0 ? kelvin_voigt_ratio(c.E, c.nu, viscosity, 2 * PI / period) : 0, common_result_fields(&c),
+           sps_world_particle_count(w), d.acoustic_steps, d.advection_steps, wall, c.out);
     sps_world_destroy(w);
     return 0;
 }

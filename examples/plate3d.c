@@ -51,8 +51,7 @@ typedef struct {
     sps_observer probe;
     period_detector period;
     output_plan output;
-    double t_end;
-    int quiet, stop_at_period;
+    int stop_at_period;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -60,11 +59,10 @@ static int on_step(sps_world* w, void* user) {
     sps_real u[3];
     sps_diagnostics d;
     char extra[64];
-    ex_check(w, sps_observer_read(w, s->probe, u, NULL));
+    sps_observer_read(w, s->probe, u, NULL);
     period_feed(&s->period, sps_world_time(w), u[2]);
     snprintf(extra, sizeof extra, ",%.9g", (double)u[2]);
     output_tick(w, &s->output, extra, &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return s->stop_at_period && s->period.n >= 2;
 }
 
@@ -80,7 +78,6 @@ int main(int argc, char** argv) {
         {"mode", OPT_PAIR, md_arg, "vibration mode m,n", 1, 20, NULL},
         {"support", OPT_CHOICE, &p.support, "simple support: mid-plane edge particles | mid-plane ring outside | full-thickness ring outside", 0, 0, "edge|ring|thick"},
         {"full", OPT_FLAG, &full, "with --tend, run to the end even after the period is found", 0, 0, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -89,34 +86,30 @@ int main(int argc, char** argv) {
     run_state s;
     double D, analytical, mindlin, paper, period, wall;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D oscillating plate (benchmark A2, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "3D oscillating plate (benchmark A2, bench/VALIDATION.md)", opts, &c, &wd, &bd);
     p.mode.m = md_arg[0];
     p.mode.n = md_arg[1];
     D = c.E * pow(PLATE3D_H, 3) / (12 * (1 - c.nu * c.nu));                                                            /* ANG eq. 55 */
     analytical = 2 / PI / (pow(p.mode.m / PLATE3D_L, 2) + pow(p.mode.n / PLATE3D_W, 2)) * sqrt(c.rho0 * PLATE3D_H / D); /* ANG eq. 54 */
     mindlin = mindlin_period(c.E, c.nu, D, c.rho0, p.mode);
     if (c.t_end == 0) c.t_end = 1.6 * analytical; /* stops earlier, at the second zero crossing */
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     p.jitter = c.jitter;
     p.seed = c.seed;
-    wd.log = ex_log;
     memset(&s, 0, sizeof s);
-    ex_check(NULL, plate3d_create(wd, &bd, &p, &w, &plate, &s.probe));
+    plate3d_create(wd, &bd, &p, &w, &plate, &s.probe);
 
-    s.quiet = c.quiet; s.t_end = c.t_end;
     s.stop_at_period = !full;
-    output_open(&s.output, &c, "plate3d", ex_tracks_stress(&c) ? "von-mises" : "velocity", ",deflection");
+    output_open(&s.output, &c, "plate3d", "von-mises-or-velocity", ",deflection");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     paper = paper_period(c.shear, p.mode, p.res);
     period = period_first(&s.period);
     {
         sps_diagnostics d;
         sps_body all = {0};
-        ex_check(w, sps_world_diagnostics(w, all, &d));
+        sps_world_diagnostics(w, all, &d);
         char paper_text[32] = "none", err_paper[16] = "none", err_analytical[16] = "none", err_mindlin[16] = "none"; /* none: no value */
         if (paper > 0) snprintf(paper_text, sizeof paper_text, "%.4f", paper);
         if (paper > 0 && period > 0) snprintf(err_paper, sizeof err_paper, "%.1f%%", 100 * (period - paper) / paper);

@@ -50,8 +50,7 @@ static double l2_error(const sps_world* w) {
 
 typedef struct {
     output_plan output;
-    double t_end, worst, worst_t;
-    int quiet;
+    double worst, worst_t;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -62,7 +61,6 @@ static int on_step(sps_world* w, void* user) {
     if (e > s->worst) { s->worst = e; s->worst_t = sps_world_time(w); }
     snprintf(extra, sizeof extra, ",%.6e,%.9g", e, poiseuille_u(H / 2, sps_world_time(w)));
     output_tick(w, &s->output, extra, &d);
-    progress(sps_world_time(w), s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -74,7 +72,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"res", OPT_INT, &res, "particles across the channel, H/dp", 4, 400, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / u_max", 2, 1000, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -87,32 +84,27 @@ int main(int argc, char** argv) {
     double dp, e, centre = 0, wall;
     int i, n, near = 0;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "plane Poiseuille flow in a periodic channel (Morris et al. 1997)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
+    ex_options(argc, argv, "plane Poiseuille flow in a periodic channel (Morris et al. 1997)", opts, &c, &wd, &bd);
     dp = H / res;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[0] = (sps_real)FORCE; /* the driving body force */
     wd.periodic[0] = (sps_real)(LENGTH_DP * dp);
-    wd.log = ex_log;
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.fluid.sound_speed = (sps_real)(c0_factor * U_MAX);
     bd.material.viscosity = (sps_real)(NU * c.rho0);
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &fluid));
+    sps_world_add_body(w, &bd, &fluid);
     {
         const sps_real lo[3] = {0, 0, 0}, hi[3] = {(sps_real)(LENGTH_DP * dp), (sps_real)H, 0};
-        ex_check(w, sps_body_add_box(w, fluid, lo, hi, NULL));
+        sps_body_add_box(w, fluid, lo, hi, NULL);
     }
-    ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
-    ex_check(w, sps_world_add_wall(w, roof_point, down, SPS_WALL_NO_SLIP));
+    sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP);
+    sps_world_add_wall(w, roof_point, down, SPS_WALL_NO_SLIP);
 
     memset(&s, 0, sizeof s);
-    s.t_end = c.t_end;
-    s.quiet = c.quiet;
     output_open(&s.output, &c, "poiseuille", "velocity", ",l2_error,u_centre_exact");
     printf("poiseuille: H/dp = %d, %d particles, Re = %g, u_max = %g m/s, nu = %g m^2/s, F = %g m/s^2, c0 = %g m/s\n", res,
            sps_world_particle_count(w), RE, U_MAX, NU, FORCE, c0_factor * U_MAX);
@@ -139,7 +131,7 @@ int main(int argc, char** argv) {
     }
     fclose(profile);
     e = l2_error(w);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("RESULT case=poiseuille res=%d Re=%g c0_factor=%g t=%.4g l2_error=%.4e l2_error_pct=%.3f%% transient_max=%.4e transient_max_t=%.3g "
            "%s particles=%d steps=%ld wall_s=%.2f out=%s\n", res, RE, c0_factor, (double)sps_world_time(w), e, 100 * e, s.worst,
            s.worst_t, common_result_fields(&c), sps_world_particle_count(w), d.acoustic_steps, wall, c.out);

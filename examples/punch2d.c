@@ -77,10 +77,10 @@ static shape_row measure(const sps_world* w, int corner_id, const int* punch_ids
         s.min_y = fmin(s.min_y, y[i]); s.max_y = fmax(s.max_y, y[i]);
         s.pmax = fmax(s.pmax, p[i]); s.pmin = fmin(s.pmin, p[i]);
     }
-    ex_check(w, sps_world_particle(w, corner_id, &ps));
+    sps_world_particle(w, corner_id, &ps);
     s.corner_y = ps.displacement[1];
     for (i = 0; i < npunch; ++i) {
-        ex_check(w, sps_world_particle(w, punch_ids[i], &ps));
+        sps_world_particle(w, punch_ids[i], &ps);
         s.depth += -ps.displacement[1] / npunch;
     }
     s.rough = punch2d_pressure_roughness(w);
@@ -97,7 +97,6 @@ int main(int argc, char** argv) {
         {"dp", OPT_REAL, &dp, "particle spacing [m] (paper: 0.1 and 0.05)", 0.005, 0.25, NULL},
         {"vpunch", OPT_REAL, &v_punch, "punch speed [m/s], downwards", 0, 1e4, NULL},
         {"shape-every", OPT_REAL, &shape_every, "interval of the shape and pressure report [s]", 1e-6, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -111,16 +110,13 @@ int main(int argc, char** argv) {
     char fields[4096];
     size_t len = 0;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D punch test (benchmark A8, ENO 6.6)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
+    ex_options(argc, argv, "2D punch test (benchmark A8, ENO 6.6)", opts, &c, &wd, &bd);
     wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
     wd.dim = 2;
     wd.dp = (sps_real)dp;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     bd.name = "plate";
-    ex_check(w, sps_world_add_body(w, &bd, &plate));
+    sps_world_add_body(w, &bd, &plate);
     { /* the plate [0, L]^2 on rollers, pressed by the punch; an edge layer: reference centre within dp/2 + e of the edge */
         const double L = PUNCH2D_L, e = 0.5 * dp;
         sps_real lo[3] = {0, 0, 0}, hi[3] = {L, L, 0}, down[3] = {0, 0, 0};
@@ -132,17 +128,17 @@ int main(int argc, char** argv) {
         sps_real corner2_lo[3] = {L - dp / 2 - e, -1, -1}, corner2_hi[3] = {2, dp / 2 + e, 1};
         sps_real corner3_lo[3] = {L - dp / 2 - e, L - dp / 2 - e, -1}, corner3_hi[3] = {2, 2, 1};
         down[1] = -v_punch;
-        ex_check(w, scene_add_box(w, plate, lo, hi, c.jitter, c.seed));
+        scene_add_box(w, plate, lo, hi, c.jitter, c.seed);
         /* rollers: the bottom layer's v_y and the left and right layers' v_x held at 0 */
-        ex_check(w, sps_body_constrain_box(w, plate, bottom_lo, bottom_hi, SPS_AXIS_Y, NULL, NULL));
-        ex_check(w, sps_body_constrain_box(w, plate, left_lo, left_hi, SPS_AXIS_X, NULL, NULL));
-        ex_check(w, sps_body_constrain_box(w, plate, right_lo, right_hi, SPS_AXIS_X, NULL, NULL));
+        sps_body_constrain_box(w, plate, bottom_lo, bottom_hi, SPS_AXIS_Y, NULL, NULL);
+        sps_body_constrain_box(w, plate, left_lo, left_hi, SPS_AXIS_X, NULL, NULL);
+        sps_body_constrain_box(w, plate, right_lo, right_hi, SPS_AXIS_X, NULL, NULL);
         /* the punch: the top layer of the right half moves down at v_punch (horizontally free) */
-        ex_check(w, sps_body_constrain_box(w, plate, punch_lo, punch_hi, SPS_AXIS_Y, down, NULL));
+        sps_body_constrain_box(w, plate, punch_lo, punch_hi, SPS_AXIS_Y, down, NULL);
         /* the corners on two constraints: the bottom two clamped, the top-right one moving with the punch */
-        ex_check(w, sps_body_constrain_box(w, plate, corner1_lo, corner1_hi, SPS_AXIS_ALL, NULL, NULL));
-        ex_check(w, sps_body_constrain_box(w, plate, corner2_lo, corner2_hi, SPS_AXIS_ALL, NULL, NULL));
-        ex_check(w, sps_body_constrain_box(w, plate, corner3_lo, corner3_hi, SPS_AXIS_ALL, down, NULL));
+        sps_body_constrain_box(w, plate, corner1_lo, corner1_hi, SPS_AXIS_ALL, NULL, NULL);
+        sps_body_constrain_box(w, plate, corner2_lo, corner2_hi, SPS_AXIS_ALL, NULL, NULL);
+        sps_body_constrain_box(w, plate, corner3_lo, corner3_hi, SPS_AXIS_ALL, down, NULL);
     }
     { /* the free top-left corner and the punch particles (top layer, x > 1/2), by reference position */
         sps_real corner[3] = {0.5 * dp, PUNCH2D_L - 0.5 * dp, 0};
@@ -167,7 +163,6 @@ int main(int argc, char** argv) {
         if (t >= kshape * shape_every - 1e-12 && nshapes < MAX_SHAPES) { shapes[nshapes++] = last; ++kshape; }
         if (t >= (sps_real)c.t_end) break; /* the world's clock is an sps_real: a float 2e-4 is below the double */
         ex_check_step(w, sps_world_advance(w, (sps_real)fmin(++k * c.csv_every, c.t_end), NULL, NULL), &output); /* to the next CSV row */
-        progress(sps_world_time(w), c.t_end, output.wall0, c.quiet);
     }
     wall = output_close(w, &output);
     for (i = 0; i < nshapes && len < sizeof fields - 200; ++i)

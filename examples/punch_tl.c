@@ -24,9 +24,8 @@
 
 typedef struct {
     output_plan output;
-    double t_end, v, H, W0, last_work, last_s, hourglass_max, next_report, mu, lambda;
+    double v, H, W0, last_work, last_s, hourglass_max, next_report, mu, lambda;
     double report_work, report_s; /* at the last report: the mean force over each 10 % is the secant */
-    int quiet;
 } run_state;
 
 /* Homogeneous plane-strain compression of the Neo-Hookean block: height stretch s, width stretch
@@ -48,7 +47,7 @@ static int on_step(sps_world* w, void* user) {
     char extra[128];
     const double t = sps_world_time(w), s = 2 * st->v * t; /* closure of the two tools */
     double force = 0;
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     if (s > st->last_s) force = (d.prescribed_work - st->last_work) / (s - st->last_s); /* per tool: both do the same work */
     if (d.hourglass > st->hourglass_max) st->hourglass_max = d.hourglass;
     snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g", s / st->H, force, -homogeneous_force(st, 1 - s / st->H));
@@ -64,7 +63,6 @@ static int on_step(sps_world* w, void* user) {
     }
     st->last_work = d.prescribed_work;
     st->last_s = s;
-    progress(t, st->t_end, st->output.wall0, st->quiet);
     return 0;
 }
 
@@ -86,7 +84,6 @@ int main(int argc, char** argv) {
         {"v", OPT_REAL, &v, "speed of each tool [m/s]", 1e-6, 1000, NULL},
         {"compression", OPT_REAL, &compression, "final compression (closure / height)", 0.01, 0.9, NULL},
         {"dp", OPT_REAL, &dp_mm, "particle spacing [mm]", 0.005, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def(), td = sps_default_body_def();
@@ -98,14 +95,11 @@ int main(int argc, char** argv) {
     sps_real lo[3] = {0, 0, 0}, hi[3] = {(sps_real)W0, (sps_real)H, 0}, tlo[3], thi[3], vdown, vup;
     int id, n;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "rubber block between rigid tools (benchmark D3, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "rubber block between rigid tools (benchmark D3, bench/VALIDATION.md)", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     dp = dp_mm * 1e-3;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
-    wd.log = ex_log;
     bd.name = "rubber";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = SPS_MATERIAL_NEO_HOOKEAN;
@@ -121,27 +115,26 @@ int main(int argc, char** argv) {
     if (c.t_end <= 0) c.t_end = compression * H / (2 * v);
     if (c.csv_every <= 0) c.csv_every = c.t_end / 200;
     if (c.vtk_every == 0) c.vtk_every = c.t_end / 5;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &block));
-    ex_check(w, sps_body_add_box(w, block, lo, hi, NULL));
+    sps_world_add_body(w, &bd, &block);
+    sps_body_add_box(w, block, lo, hi, NULL);
     td.name = "top tool";
-    ex_check(w, sps_world_add_body(w, &td, &top));
+    sps_world_add_body(w, &td, &top);
     tlo[0] = 0; thi[0] = (sps_real)W0; tlo[2] = thi[2] = 0;
     tlo[1] = (sps_real)H; thi[1] = (sps_real)(H + 3 * dp);
-    ex_check(w, sps_body_add_box(w, top, tlo, thi, NULL));
+    sps_body_add_box(w, top, tlo, thi, NULL);
     td.name = "bottom tool";
-    ex_check(w, sps_world_add_body(w, &td, &bottom));
+    sps_world_add_body(w, &td, &bottom);
     tlo[1] = (sps_real)(-3 * dp); thi[1] = 0;
-    ex_check(w, sps_body_add_box(w, bottom, tlo, thi, NULL));
+    sps_body_add_box(w, bottom, tlo, thi, NULL);
     vdown = (sps_real)-v;
     vup = (sps_real)v;
-    ex_check(w, sps_body_set_velocity(w, top, tool_velocity, &vdown));
-    ex_check(w, sps_body_set_velocity(w, bottom, tool_velocity, &vup));
-    st.quiet = c.quiet; st.t_end = c.t_end;
+    sps_body_set_velocity(w, top, tool_velocity, &vdown);
+    sps_body_set_velocity(w, bottom, tool_velocity, &vup);
     output_open(&st.output, &c, "punch_tl", "displacement", ",compression,force,homogeneous_force");
     on_step(w, &st); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &st), &st.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &st);
     wall = output_close(w, &st.output);
     n = sps_world_particle_count(w);
     for (id = 0; id < n; ++id) {

@@ -71,7 +71,7 @@ typedef struct {
     sps_body water, box;
     box_pose pose;
     double t_end, window, draft_sum, archimedes_sum, tilt_sum, ratio;
-    int quiet, rows;
+    int rows;
 } run_state;
 
 /* The box's pose, the water level (the water's area at rho0 plus the box's part below the level
@@ -81,7 +81,7 @@ static void measure(sps_world* w, run_state* s, double* draft, double* archimede
     sps_rigid_state st;
     double water = 0, lo = 0, hi = 2, bottom;
     int i, first, count, components, k;
-    ex_check(w, sps_body_rigid_state(w, s->box, &st));
+    sps_body_rigid_state(w, s->box, &st);
     s->pose.centre[0] = st.position[0];
     s->pose.centre[1] = st.position[1];
     s->pose.angle = atan2(st.rotation[3], st.rotation[0]);
@@ -114,7 +114,6 @@ static int on_step(sps_world* w, void* user) {
         s->tilt_sum += fabs(s->pose.angle);
         s->rows++;
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -131,7 +130,6 @@ int main(int argc, char** argv) {
         {"damping", OPT_REAL, &damping, "damping of the box's motion [1/s] (0: none)", 0, 1e4, NULL},
         {"lock", OPT_FLAG, &lock, "lock its rotation (sps_body_lock_axes): it only heaves and sways", 0, 0, NULL},
         {"window", OPT_REAL, &window, "the draft and tilt are averaged over the last window seconds", 1e-3, 1e4, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def(), box_def = sps_default_body_def();
@@ -141,17 +139,14 @@ int main(int argc, char** argv) {
     sps_real tank_lo[3] = {0, 0, 0}, tank_hi[3] = {WIDTH, 2, 0}, lo[3] = {0, 0, 0}, hi[3] = {WIDTH, DEPTH, 0};
     double wall, draft, archimedes, upright_draft, gm, tilt_mean;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D free rigid box floating in a water tank: draft and metacentric stability", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D free rigid box floating in a water tank: draft and metacentric stability", opts, &c, &wd, &box_def);
     memset(&s, 0, sizeof s);
-    apply_common(&c, &wd, &box_def);
     box_def.rotation = SPS_ROTATION_AUTO; /* a rigid body has no shear formulation */
     box_def.track_stress = 0;
     wd.keep_last_good_state = 1;
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G_ACC;
-    wd.log = ex_log;
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
@@ -159,31 +154,30 @@ int main(int argc, char** argv) {
     box_def.name = "box";
     box_def.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
     box_def.damping = (sps_real)damping;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP));
-    ex_check(w, sps_world_add_body(w, &water_def, &s.water));
-    ex_check(w, sps_body_add_box(w, s.water, lo, hi, NULL));
-    ex_check(w, sps_body_set_pressure(w, s.water, hydrostatic, NULL));
-    ex_check(w, sps_world_add_body(w, &box_def, &s.box));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP);
+    sps_world_add_body(w, &water_def, &s.water);
+    sps_body_add_box(w, s.water, lo, hi, NULL);
+    sps_body_set_pressure(w, s.water, hydrostatic, NULL);
+    sps_world_add_body(w, &box_def, &s.box);
     lo[0] = 0.5 * (WIDTH - width); hi[0] = lo[0] + width;
     lo[1] = DEPTH + 0.5 * dp; hi[1] = lo[1] + height;
-    ex_check(w, sps_body_add_box(w, s.box, lo, hi, NULL));
+    sps_body_add_box(w, s.box, lo, hi, NULL);
     {
         const double a = tilt * PI / 180, half_extent = 0.5 * (fabs(sin(a)) * width + fabs(cos(a)) * height);
         const sps_real centre[3] = {(sps_real)(0.5 * WIDTH), (sps_real)(DEPTH + 0.5 * dp + half_extent), 0};
         const sps_real rotation[9] = {(sps_real)cos(a), (sps_real)-sin(a), 0, (sps_real)sin(a), (sps_real)cos(a), 0, 0, 0, 1};
-        ex_check(w, sps_body_set_rigid_pose(w, s.box, centre, rotation)); /* its lowest corner on the water */
-        if (lock) ex_check(w, sps_body_lock_axes(w, s.box, 0, SPS_AXIS_ALL));
+        sps_body_set_rigid_pose(w, s.box, centre, rotation); /* its lowest corner on the water */
+        if (lock) sps_body_lock_axes(w, s.box, 0, SPS_AXIS_ALL);
     }
     s.pose.half[0] = 0.5 * width;
     s.pose.half[1] = 0.5 * height;
     s.ratio = c.rho0 / RHO_WATER;
-    s.quiet = c.quiet;
     s.t_end = c.t_end;
     s.window = window;
     output_open(&s.output, &c, "rigid_float", "pressure", ",draft,archimedes,tilt_degrees");
     on_step(w, &s);
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
 
     if (!s.rows) measure(w, &s, &s.draft_sum, &s.archimedes_sum), s.tilt_sum = fabs(s.pose.angle), s.rows = 1;
@@ -192,7 +186,7 @@ int main(int argc, char** argv) {
     tilt_mean = s.tilt_sum / s.rows * 180 / PI;
     upright_draft = s.ratio * height;
     gm = width * width / (12 * upright_draft) - 0.5 * (height - upright_draft);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("RESULT case=rigid_float dp=%g rho_box=%g width=%g height=%g tilt0=%g damping=%g window=%g draft=%.5f archimedes=%.5f "
            "rel_error=%+.2f%% tilt=%.2f upright=%d predicted_upright=%d GM=%.4f upright_draft=%.5f particles=%d steps=%ld wall_s=%.2f out=%s\n",
            dp, c.rho0, width, height, tilt, damping, window, draft, archimedes, 100 * (draft / archimedes - 1), tilt_mean,

@@ -56,9 +56,9 @@ static int on_step(sps_world* w, void* user) {
     double t = sps_world_time(w), x, tt = 1;
     int k;
     if (t < s->output.next_csv - 1e-12) { progress(t, s->t_end, s->output.wall0, s->quiet); return 0; }
-    ex_check(w, sps_body_rigid_state(w, s->body, &st));
+    sps_body_rigid_state(w, s->body, &st);
     x = st.position[0];
-    if (t < s->settle - 1e-12) ex_check(w, sps_body_set_rigid_motion(w, s->body, zero, zero)); /* kinetic relaxation */
+    if (t < s->settle - 1e-12) sps_body_set_rigid_motion(w, s->body, zero, zero); /* kinetic relaxation */
     else {
         if (s->sum[0] == 0) { s->x_start = x; s->radius = rolling_radius(w, st.position[1], s->dp); }
         for (k = 0; k < 5; ++k, tt *= t) {
@@ -73,7 +73,6 @@ static int on_step(sps_world* w, void* user) {
         snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g", x, (double)st.velocity[0], (double)st.angular_velocity[2]);
         output_tick(w, &s->output, extra, &d);
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -90,7 +89,6 @@ int main(int argc, char** argv) {
         {"lift", OPT_REAL, &lift, "gap between the body's surface and the slope at the start [dp] (0: flush, the contact's rest)", 0, 10, NULL},
         {"settle", OPT_REAL, &settle, "kinetic relaxation before the release [s]", 0, 100, NULL},
         {"damping", OPT_REAL, &damping, "contact_damping of the body", 0, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     const char* shape_names[] = {"disc", "ball", "box"};
     sps_world_def wd = sps_default_world_def();
@@ -102,29 +100,26 @@ int main(int argc, char** argv) {
     double theta, g_t, g_n, k = 0, theory, theory_set, accel, rel, wall, inertia;
     int rolls = 0;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "a free rigid disc, ball or box released on a slope with Coulomb friction", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "a free rigid disc, ball or box released on a slope with Coulomb friction", opts, &c, &wd, &bd);
     if (!(settle < c.t_end)) opt_fail("rigid_roll", "--settle must be below --tend%s%s", "", "");
     dim = shape == 1 ? 3 : 2;
     theta = angle * PI / 180;
     g_t = G * sin(theta);
     g_n = G * cos(theta);
-    apply_common(&c, &wd, &bd);
     bd.rotation = SPS_ROTATION_AUTO; /* a rigid body has no shear formulation */
     bd.track_stress = 0;
     wd.dim = dim;
     wd.dp = (sps_real)dp;
     wd.gravity[0] = (sps_real)g_t;
     wd.gravity[1] = (sps_real)-g_n;
-    wd.log = ex_log;
     bd.name = shape_names[shape];
     bd.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
     bd.friction = (sps_real)mu;
     bd.contact_damping = (sps_real)damping;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     memset(&s, 0, sizeof s);
-    ex_check(w, sps_world_add_body(w, &bd, &s.body));
-    ex_check(w, ex_add_slope_body(w, s.body, shape == 2, dim, SIZE, lift * dp, mu));
+    sps_world_add_body(w, &bd, &s.body);
+    ex_add_slope_body(w, s.body, shape == 2, dim, SIZE, lift * dp, mu);
     if (shape != 2) k = shape == 0 ? 0.5 : 0.4; /* I / (m R^2) */
     if (shape == 2) theory = tan(theta) > mu ? g_t - mu * g_n : 0;
     else {
@@ -134,14 +129,14 @@ int main(int argc, char** argv) {
     s.t_end = c.t_end; s.settle = settle; s.quiet = c.quiet; s.dp = dp;
     output_open(&s.output, &c, "rigid_roll", "velocity", ",centre_x,velocity_x,omega_z");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
-    ex_check(w, sps_body_rigid_state(w, s.body, &st));
+    sps_body_rigid_state(w, s.body, &st);
     inertia = dim == 2 ? st.inertia[8] : st.inertia[8]; /* about the rolling axis z */
     theory_set = shape == 2 ? theory : rolls ? g_t / (1 + inertia / (st.mass * s.radius * s.radius)) : theory;
     accel = ex_fitted_acceleration(s.sum, s.sum_x);
     rel = fabs(accel - theory) / (theory > 0 ? theory : g_t);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("RESULT case=rigid_roll shape=%s mu=%g angle=%g dp=%g accel=%.5g theory=%.5g theory_set=%.5g rel_error=%.2f%% "
            "rel_error_set=%.2f%% motion=%s spin_ratio=%.4f inertia_ratio=%.4f creep=%.3f%% particles=%d steps=%ld wall_s=%.2f out=%s\n",
            shape_names[shape], mu, angle, dp, accel, theory, theory_set, 100 * rel,

@@ -62,7 +62,7 @@ static void record(sps_world* w, spin_run* r) {
     sps_rigid_state st;
     double wb[3], e = 0, l = 0, along;
     int a;
-    ex_check(w, sps_body_rigid_state(w, r->body, &st));
+    sps_body_rigid_state(w, r->body, &st);
     for (a = 0; a < 3; ++a) {
         wb[a] = st.rotation[a] * st.angular_velocity[0] + st.rotation[3 + a] * st.angular_velocity[1] + st.rotation[6 + a] * st.angular_velocity[2];
         e += 0.5 * st.angular_velocity[a] * st.angular_momentum[a];
@@ -90,7 +90,6 @@ int main(int argc, char** argv) {
         {"eps", OPT_REAL, &eps, "perturbation: omega's components off the axis relative to omega0", 1e-6, 0.5, NULL},
         {"turns", OPT_REAL, &turns, "turns of the run at omega0", 0.1, 10000, NULL},
         {"dp", OPT_REAL, &dp, "particle spacing [m]", 0.002, 0.03, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     const char* axis_names = "xyz";
     spin_run runs[3];
@@ -98,14 +97,19 @@ int main(int argc, char** argv) {
     int axis, particles = 0, intermediate = 1, stable[3];
     double moments[3] = {0, 0, 0};
     output_plan output;
+    sps_world_def world_def = sps_default_world_def();
+    sps_body_def box_def = sps_default_body_def();
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "a free rigid box spun about each principal axis: the intermediate one flips", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "a free rigid box spun about each principal axis: the intermediate one flips", opts, &c, &world_def, &box_def);
+    world_def.dim = 3;
+    world_def.dp = (sps_real)dp;
+    box_def.name = "box";
+    box_def.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
+    box_def.rotation = SPS_ROTATION_AUTO; /* a rigid body has no shear formulation */
+    box_def.track_stress = 0;
     memset(runs, 0, sizeof runs);
     wall0 = wall_seconds();
     for (axis = 0; axis < 3; ++axis) {
-        sps_world_def wd = sps_default_world_def();
-        sps_body_def bd = sps_default_body_def();
         const sps_real lo[3] = {-0.045, -0.03, -0.015}, hi[3] = {0.045, 0.03, 0.015}, v[3] = {0, 0, 0};
         sps_real omega[3];
         sps_rigid_state st;
@@ -114,20 +118,12 @@ int main(int argc, char** argv) {
         char name[32], extra[128];
         spin_run* r = &runs[axis];
         int a;
-        apply_common(&c, &wd, &bd);
-    bd.rotation = SPS_ROTATION_AUTO; /* a rigid body has no shear formulation */
-    bd.track_stress = 0;
-        wd.dim = 3;
-        wd.dp = (sps_real)dp;
-        wd.log = ex_log;
-        bd.material.kind = SPS_MATERIAL_RIGID_DYNAMIC;
-        bd.name = "box";
-        ex_check(NULL, sps_world_create(&wd, &w));
-        ex_check(w, sps_world_add_body(w, &bd, &r->body));
-        ex_check(w, sps_body_add_box(w, r->body, lo, hi, NULL));
+        sps_world_create(&world_def, &w);
+        sps_world_add_body(w, &box_def, &r->body);
+        sps_body_add_box(w, r->body, lo, hi, NULL);
         for (a = 0; a < 3; ++a) omega[a] = (sps_real)(omega0 * (a == axis ? 1 : eps));
-        ex_check(w, sps_body_set_rigid_motion(w, r->body, v, omega));
-        ex_check(w, sps_body_rigid_state(w, r->body, &st));
+        sps_body_set_rigid_motion(w, r->body, v, omega);
+        sps_body_rigid_state(w, r->body, &st);
         for (a = 0; a < 3; ++a) moments[a] = st.inertia[4 * a]; /* the box's axes are principal */
         r->axis = axis;
         if (axis == intermediate) snprintf(name, sizeof name, "rigid_spin"); /* the run that flips: the example's own files */
@@ -139,15 +135,14 @@ int main(int argc, char** argv) {
             double wb[3];
             ex_check_step(w, sps_world_advance(w, sps_world_time(w) + (sps_real)c.csv_every, NULL, NULL), &output);
             record(w, r);
-            ex_check(w, sps_body_rigid_state(w, r->body, &st));
+            sps_body_rigid_state(w, r->body, &st);
             for (a = 0; a < 3; ++a)
                 wb[a] = st.rotation[a] * st.angular_velocity[0] + st.rotation[3 + a] * st.angular_velocity[1] + st.rotation[6 + a] * st.angular_velocity[2];
             snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g", wb[0], wb[1], wb[2]);
             output_tick(w, &output, extra, &d);
-            progress(sps_world_time(w) + axis * c.t_end, 3 * c.t_end, output.wall0, c.quiet);
         }
         output_close(w, &output);
-        ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+        sps_world_diagnostics(w, (sps_body){0}, &d);
         steps += d.acoustic_steps;
         particles = sps_world_particle_count(w);
         stable[axis] = r->flips == 0;

@@ -18,9 +18,8 @@
 typedef struct {
     sps_body left, right;
     output_plan output;
-    double t_end, dp;
+    double dp;
     double ke0, energy0, energy_max, kinetic_min, kinetic_min_t, mirror_err, gap_min;
-    int quiet;
 } run_state;
 
 /* The smallest distance between the rings [dp], from the particles near the plane of symmetry. */
@@ -46,8 +45,8 @@ static int on_step(sps_world* w, void* user) {
     sps_diagnostics d, dl, dr;
     char extra[160];
     double t = sps_world_time(w), e, el, er, gap;
-    ex_check(w, sps_world_diagnostics(w, s->left, &dl));
-    ex_check(w, sps_world_diagnostics(w, s->right, &dr));
+    sps_world_diagnostics(w, s->left, &dl);
+    sps_world_diagnostics(w, s->right, &dr);
     el = dl.kinetic_energy + dl.strain_energy;
     er = dr.kinetic_energy + dr.strain_energy;
     e = el + er;
@@ -60,7 +59,6 @@ static int on_step(sps_world* w, void* user) {
     snprintf(extra, sizeof extra, ",%.9g,%.9g,%.9g,%.9g,%.5g", (double)dl.kinetic_energy, (double)dl.strain_energy,
              (double)dr.kinetic_energy, (double)dr.strain_energy, gap);
     output_tick(w, &s->output, extra, &d);
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -76,7 +74,6 @@ int main(int argc, char** argv) {
         {"fill", OPT_CHOICE, &fill, "particles: body-fitted (sps_body_add_sdf_relaxed) or lattice", 0, 0, "relaxed|lattice"},
         {"iterations", OPT_INT, &p.iterations, "relaxation iterations, 0 = the library's default", 0, 100000, NULL},
         DAMPING_OPTION_SPECS(k),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -85,31 +82,27 @@ int main(int argc, char** argv) {
     sps_real c0;
     double ke_analytical, wall, e_end;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "two rubber rings colliding (benchmark A5, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "two rubber rings colliding (benchmark A5, bench/VALIDATION.md)", opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     apply_damping(&k, &bd);
     p.relaxed = fill == 0;
-    wd.log = ex_log;
     memset(&s, 0, sizeof s);
     s.kinetic_min = -1;
     s.gap_min = 1e30;
     s.dp = p.dp;
-    ex_check(NULL, rings2d_create(wd, &bd, &p, &w, &s.left, &s.right));
-    ex_check(w, sps_body_material_constants(w, s.left, &c0, NULL, NULL));
+    rings2d_create(wd, &bd, &p, &w, &s.left, &s.right);
+    sps_body_material_constants(w, s.left, &c0, NULL, NULL);
     ke_analytical = rings2d_kinetic_energy(p.v0_c0 * c0);
 
-    s.quiet = c.quiet; s.t_end = c.t_end;
     output_open(&s.output, &c, "rings2d", "velocity", ",kinetic_left,strain_left,kinetic_right,strain_right,gap_dp");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     {
         sps_diagnostics d, dl;
         sps_body all = {0};
-        ex_check(w, sps_world_diagnostics(w, all, &d));
-        ex_check(w, sps_world_diagnostics(w, s.left, &dl));
+        sps_world_diagnostics(w, all, &d);
+        sps_world_diagnostics(w, s.left, &dl);
         e_end = dl.kinetic_energy + dl.strain_energy;
         printf("RESULT case=rings2d shear=%s dp=%g v0=%g fill=%s ke0=%.4f ke0_analytical=%.4f energy_ring_start=%.4f energy_ring_end=%.4f "
                "paper_start=65.88 paper_end=55.61 energy_rise_max=%.3g%% mirror_err=%.3g ke_min=%.4f ke_min_t=%.5f paper_ke_min_t=0.005 "

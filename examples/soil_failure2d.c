@@ -48,7 +48,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"res", OPT_REAL, &res, "resolution L/dp (the paper: 100 and 200)", 10, 800, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -56,18 +55,14 @@ int main(int argc, char** argv) {
     sps_body soil, all = {0};
     sps_diagnostics d;
     sps_real lo[3] = {0, 0, 0}, hi[3] = {BLOCK_LENGTH, BLOCK_HEIGHT, 0}, box_hi[3] = {5, 2.5, 0};
-    ex_plain_run s;
+    output_plan output;
     surface_profile* sp = (surface_profile*)calloc(1, sizeof(surface_profile));
     double wall, dp, crest = -1, toe = 0, rise = 0, rise_at = 0, lowest = 1e30, lowest_at = 0, low_x = 0;
     int k, n, surface0, clustered;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D failure of a cohesive soil block (C5, UTVF 5.2): Drucker-Prager with none, TVF or UTVF", opts,
-              (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D failure of a cohesive soil block (C5, UTVF 5.2): Drucker-Prager with none, TVF or UTVF", opts, &c, &wd, &bd);
     if (!sp) { fprintf(stderr, "%s: out of memory\n", g_prog); return 1; }
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
-    memset(&s, 0, sizeof s);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     dp = BLOCK_LENGTH / res;
     bd.name = "soil";
     bd.material.kind = SPS_MATERIAL_DRUCKER_PRAGER;
@@ -75,22 +70,20 @@ int main(int argc, char** argv) {
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, lo, box_hi, SPS_FACE_Y_HI, SPS_WALL_NO_SLIP);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &soil));
-    ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
-    ex_check(w, sps_body_set_geostatic_stress(w, soil, (sps_real)BLOCK_HEIGHT, 0));
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_add_body(w, &bd, &soil);
+    sps_body_add_box(w, soil, lo, hi, NULL);
+    sps_body_set_geostatic_stress(w, soil, (sps_real)BLOCK_HEIGHT, 0);
+    sps_world_diagnostics(w, all, &d);
     surface0 = d.surface_particles;
 
-    s.t_end = c.t_end;
-    output_open(&s.output, &c, "soil_failure2d", "plastic-strain", "");
-    ex_plain_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &s), &s.output);
-    wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    output_open(&output, &c, "soil_failure2d", "plastic-strain", "");
+    ex_plain_step(w, &output); /* t = 0: the first CSV row and snapshot */
+    sps_world_advance(w, (sps_real)c.t_end, ex_plain_step, &output);
+    wall = output_close(w, &output);
+    sps_world_diagnostics(w, all, &d);
     surface_of(w, dp, sp);
     n = sp->columns;
     for (k = 0; k < n; ++k) {

@@ -20,7 +20,7 @@
 
 typedef struct {
     output_plan output;
-    double t_end, next_report;
+    double next_report;
 } run_state;
 
 /* The top of the soil and the largest horizontal distance of a particle from the cube's axis. */
@@ -44,7 +44,7 @@ static int on_step(sps_world* w, void* user) {
     output_tick(w, &s->output, "", &d);
     if (t >= s->next_report - 1e-9) {
         double top, half_width;
-        ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+        sps_world_diagnostics(w, (sps_body){0}, &d);
         extent(w, (double)sps_world_get_def(w)->dp, &top, &half_width);
         printf("  t = %.3f s: top %.3f m, half width %.3f m (1 at the start), %d particles closer than 0.5 dp to another (smallest "
                "spacing %.3f dp), surface particles %d, max speed %.3f m/s, wall %.0f s\n",
@@ -53,7 +53,6 @@ static int on_step(sps_world* w, void* user) {
         fflush(stdout);
         s->next_report += 0.25;
     }
-    progress(t, s->t_end, s->output.wall0, s->output.quiet);
     return 0;
 }
 
@@ -65,7 +64,6 @@ int main(int argc, char** argv) {
     opt_spec opts[] = {
         {"res", OPT_REAL, &res, "resolution edge/dp (the paper: 50, dp = 0.04 m)", 5, 200, NULL},
         GRANULAR_OPTION_SPECS(g),
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -76,11 +74,9 @@ int main(int argc, char** argv) {
     run_state s;
     double wall, dp;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "3D failure of a cube of cohesive soil (C6, UTVF 5.3): Drucker-Prager with none, TVF or UTVF", opts,
-              (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    ex_options(argc, argv, "3D failure of a cube of cohesive soil (C6, UTVF 5.3): Drucker-Prager with none, TVF or UTVF",
+               opts, &c, &wd, &bd);
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     memset(&s, 0, sizeof s);
     dp = EDGE / res;
     bd.name = "soil";
@@ -89,23 +85,21 @@ int main(int argc, char** argv) {
     wd.dim = 3;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-GRANULAR_GRAVITY;
-    wd.log = ex_log;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
+    sps_world_create(&wd, &w);
+    sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &soil));
-    ex_check(w, sps_body_add_box(w, soil, lo, hi, NULL));
-    ex_check(w, sps_body_set_geostatic_stress(w, soil, (sps_real)EDGE, 0));
+    sps_world_add_body(w, &bd, &soil);
+    sps_body_add_box(w, soil, lo, hi, NULL);
+    sps_body_set_geostatic_stress(w, soil, (sps_real)EDGE, 0);
 
     printf("3D cohesive soil failure: edge/dp = %g (dp = %g m), %d particles, c = %g Pa, phi = %g deg, zeta = %g, transport %s\n", res,
            dp, sps_world_particle_count(w), g.cohesion, g.phi, g.diffusion, transport_name(c.transport));
-    s.t_end = c.t_end;
     s.next_report = 0.25;
     output_open(&s.output, &c, "soil_failure3d", "plastic-strain", "");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, all, &d));
+    sps_world_diagnostics(w, all, &d);
     printf("RESULT case=soil_failure3d res=%g dp=%g cohesion=%g phi=%g zeta=%g t=%.4g clustered=%d min_spacing=%.3f surface_particles=%d "
            "max_plastic_strain=%.3f %s particles=%d steps=%ld advection_steps=%ld wall_s=%.2f ns_per_particle_step=%.1f out=%s\n",
            res, dp, g.cohesion, g.phi, g.diffusion, (double)d.time, ex_clustered_particles(w, dp, 0.5), (double)d.min_spacing, d.surface_particles, (double)d.max_plastic_strain,

@@ -42,8 +42,8 @@ typedef struct {
     int* surface_ids;   /* the particles of the top layer at the start */
     double* surface_y0; /* their heights then */
     int* slot_of_id;
-    int nsurface, quiet;
-    double t_end, amplitude_now, peak, first_peak, last_peak;
+    int nsurface;
+    double amplitude_now, peak, first_peak, last_peak;
     int peaks;
 } run_state;
 
@@ -77,7 +77,6 @@ static void on_step(sps_world* w, run_state* s) {
     s->amplitude_now = a;
     snprintf(extra, sizeof extra, ",%.9g", a);
     output_tick(w, &s->output, extra, &d);
-    progress(t, s->t_end, s->output.wall0, s->quiet);
 }
 
 int main(int argc, char** argv) {
@@ -91,7 +90,6 @@ int main(int argc, char** argv) {
         {"periods", OPT_REAL, &periods, "run length in periods of linear theory (--tend overrides)", 0.01, 1000, NULL},
         {"viscosity", OPT_REAL, &viscosity, "dynamic viscosity mu [Pa s] (0: inviscid)", 0, 1e3, NULL},
         {"mach-factor", OPT_REAL, &mach, "c0 = factor sqrt(g H)", 2, 100, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def water_def = sps_default_body_def();
@@ -102,8 +100,7 @@ int main(int argc, char** argv) {
     double dp, length, period_theory, period = -1, decay = 1, lamb = 1, wall;
     const sps_real* y;
     int i, n, k, samples;
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "2D standing gravity wave in a tank: period and decay against linear theory", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "2D standing gravity wave in a tank: period and decay against linear theory", opts, &c, &wd, &water_def);
     memset(&s, 0, sizeof s);
     dp = DEPTH / res;
     length = dp * floor(PI / kh * DEPTH / dp + 0.5); /* whole columns of particles: the walls dp/2 from the water's outer columns */
@@ -113,12 +110,10 @@ int main(int argc, char** argv) {
     s.theory.amplitude = amplitude * DEPTH;
     period_theory = 2 * PI / s.theory.omega;
     if (c.t_end <= 0) c.t_end = periods * period_theory;
-    apply_common(&c, &wd, &water_def);
     water_def.material = sps_default_material_def(); /* the shared options' solid parameters are not the water's */
     wd.dim = 2;
     wd.dp = (sps_real)dp;
     wd.gravity[1] = (sps_real)-G_ACC;
-    wd.log = ex_log;
     water_def.name = "water";
     water_def.material.kind = SPS_MATERIAL_FLUID;
     water_def.material.density = RHO_WATER;
@@ -129,12 +124,12 @@ int main(int argc, char** argv) {
     tank_hi[1] = 4 * DEPTH;
     hi[1] = DEPTH;
     tank_hi[2] = hi[2] = 0;
-    ex_check(NULL, sps_world_create(&wd, &w));
-    ex_check(w, sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP));
-    ex_check(w, sps_world_add_body(w, &water_def, &water));
-    ex_check(w, sps_body_add_box(w, water, lo, hi, NULL));
-    ex_check(w, sps_body_set_pressure(w, water, hydrostatic, NULL));
-    ex_check(w, sps_body_set_velocity(w, water, wave_velocity, &s.theory));
+    sps_world_create(&wd, &w);
+    sps_world_add_box_walls(w, tank_lo, tank_hi, SPS_FACE_Y_HI, SPS_WALL_FREE_SLIP);
+    sps_world_add_body(w, &water_def, &water);
+    sps_body_add_box(w, water, lo, hi, NULL);
+    sps_body_set_pressure(w, water, hydrostatic, NULL);
+    sps_body_set_velocity(w, water, wave_velocity, &s.theory);
     /* the top layer: its particles' ids and heights */
     n = sps_world_particle_count(w);
     y = sps_world_field(w, SPS_FIELD_POSITION_Y);
@@ -147,8 +142,6 @@ int main(int argc, char** argv) {
             s.surface_ids[s.nsurface] = sps_world_particle_ids(w)[i];
             s.surface_y0[s.nsurface++] = y[i];
         }
-    s.t_end = c.t_end;
-    s.quiet = c.quiet;
     output_open(&s.output, &c, "standing_wave", "velocity", ",amplitude");
     on_step(w, &s);
     samples = (int)ceil(c.t_end / period_theory * 200); /* 200 samples a period for the crossings and peaks */

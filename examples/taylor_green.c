@@ -39,8 +39,7 @@ static sps_real tg_pressure(const sps_real x[3], void* user) {
 
 typedef struct {
     output_plan output;
-    double t_end, re, e0, worst, worst_t;
-    int quiet;
+    double re, e0, worst, worst_t;
 } run_state;
 
 static int on_step(sps_world* w, void* user) {
@@ -49,12 +48,11 @@ static int on_step(sps_world* w, void* user) {
     char extra[96] = "";
     const double t = sps_world_time(w), exact = exp(-16 * PI * PI * t / s->re);
     if (t >= s->output.next_csv - 1e-12) { /* a row is due: the energy against the closed form */
-        ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+        sps_world_diagnostics(w, (sps_body){0}, &d);
         if (fabs(d.kinetic_energy / s->e0 / exact - 1) > s->worst) { s->worst = fabs(d.kinetic_energy / s->e0 / exact - 1); s->worst_t = t; }
         snprintf(extra, sizeof extra, ",%.9g,%.9g", d.kinetic_energy / s->e0, exact);
     }
     output_tick(w, &s->output, extra, &d);
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -73,7 +71,6 @@ int main(int argc, char** argv) {
         {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"tvf-alpha", OPT_REAL, &alpha, "transport_coefficient alpha of TVF, 0: the library's (0.2)", 0, 1, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -86,14 +83,11 @@ int main(int argc, char** argv) {
     int i;
 
     tc.re = 100;
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "Taylor-Green vortex in a periodic box", opts, (int)(sizeof opts / sizeof *opts));
-    apply_common(&c, &wd, &bd);
+    ex_options(argc, argv, "Taylor-Green vortex in a periodic box", opts, &c, &wd, &bd);
     tc.rho0 = c.rho0;
     wd.dim = 2;
     wd.dp = (sps_real)(1.0 / res);
     wd.periodic[0] = wd.periodic[1] = 1;
-    wd.log = ex_log;
     bd.name = "fluid";
     bd.material.kind = SPS_MATERIAL_FLUID;
     bd.material.fluid.sound_speed = (sps_real)(c0_factor * U0);
@@ -101,18 +95,16 @@ int main(int argc, char** argv) {
     bd.transport_carries_velocity = carry_velocity;
     bd.material.viscosity = (sps_real)(c.rho0 * U0 * 1.0 / tc.re);
     bd.transport_coefficient = (sps_real)alpha;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &fluid));
-    ex_check(w, sps_body_add_box(w, fluid, lo, hi, NULL));
-    ex_check(w, sps_body_set_velocity(w, fluid, tg_velocity, NULL));
-    ex_check(w, sps_body_set_pressure(w, fluid, tg_pressure, &tc));
+    sps_world_add_body(w, &bd, &fluid);
+    sps_body_add_box(w, fluid, lo, hi, NULL);
+    sps_body_set_velocity(w, fluid, tg_velocity, NULL);
+    sps_body_set_pressure(w, fluid, tg_pressure, &tc);
 
     memset(&s, 0, sizeof s);
-    s.t_end = c.t_end;
     s.re = tc.re;
-    s.quiet = c.quiet;
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     s.e0 = d.kinetic_energy;
     output_open(&s.output, &c, "taylor_green", "velocity", ",energy_ratio,energy_ratio_exact");
     printf("taylor_green: 1/dp = %d, %d particles, Re = %g, c0 = %g m/s, h = %g dp, transport %s, dissipation %s\n", res,
@@ -123,11 +115,11 @@ int main(int argc, char** argv) {
     for (i = 1; i <= 4; ++i) {
         const double t = c.t_end * i / 4, exact = exp(-16 * PI * PI * t / tc.re);
         ex_check_step(w, sps_world_advance(w, (sps_real)t, on_step, &s), &s.output);
-        ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+        sps_world_diagnostics(w, (sps_body){0}, &d);
         printf("  %8.4f   %9.6f   %9.6f              %+.3f%%\n", t, d.kinetic_energy / s.e0, exact, 100 * (d.kinetic_energy / s.e0 / exact - 1));
     }
     wall = output_close(w, &s.output);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("RESULT case=taylor_green res=%d Re=%g c0_factor=%g t=%.4g decay_error=%.4e decay_error_pct=%.3f%% worst_t=%.3g "
            "energy_ratio=%.6f exact=%.6f min_spacing=%.3f %s h_over_dp=%g dissipation=%s carry_velocity=%d particles=%d steps=%ld wall_s=%.2f out=%s\n", res, tc.re, c0_factor,
            (double)sps_world_time(w), s.worst, 100 * s.worst, s.worst_t, d.kinetic_energy / s.e0,

@@ -38,8 +38,8 @@
 
 typedef struct {
     output_plan output;
-    double t_end, v, peak, peak_at, break_lo, break_hi, break_mean_abs; /* the first broken particles' reference x */
-    int quiet, broken_at_first;
+    double v, peak, peak_at, break_lo, break_hi, break_mean_abs; /* the first broken particles' reference x */
+    int broken_at_first;
     sps_body body;
 } run_state;
 
@@ -100,7 +100,6 @@ static int on_step(sps_world* w, void* user) {
     if (force > s->peak) { s->peak = force; s->peak_at = displacement; }
     snprintf(extra, sizeof extra, ",%.9g,%.9g,%.6g,%d", 1e3 * displacement, 1e-3 * force, max_damage, broken);
     output_tick(w, &s->output, extra, &d);
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return broken > 0 && force < 0.05 * s->peak; /* failed: stop */
 }
 
@@ -118,7 +117,6 @@ int main(int argc, char** argv) {
         {"v", OPT_REAL, &v, "speed of each grip [m/s]", 1e-3, 1000, NULL},
         {"law", OPT_CHOICE, &law, "elastic law: J2 that never yields (Hencky, in log strains) or Saint Venant-Kirchhoff", 0, 0, "hencky|svk"},
         {"eps-max", OPT_REAL, &eps_max, "damage threshold: principal Green-Lagrange strain (TL eq. 45)", 1e-4, 10, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
@@ -130,16 +128,13 @@ int main(int argc, char** argv) {
     sps_real v_left[3] = {0, 0, 0}, v_right[3] = {0, 0, 0};
     int n;
 
-    ex_short_openmp_spin(argv);
     c.png_view = RENDER_VIEW_ISO;
-    opt_parse(argc, argv, "3D tensile specimen pulled to failure (benchmark D6, bench/VALIDATION.md)", opts, (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "3D tensile specimen pulled to failure (benchmark D6, bench/VALIDATION.md)", opts, &c, &wd, &bd);
     if (res % 2) { fprintf(stderr, "%s: --res %d: allowed an even number (the gauge width holds 1.5 res particles)\n", g_prog, res); exit(2); }
-    apply_common(&c, &wd, &bd);
-    wd.keep_last_good_state = 1; /* a failed step writes the last good state (ex_check_step) */
+    wd.keep_last_good_state = 1; /* a failed step writes the last good state (output_close) */
     wd.dim = 3;
     wd.dp = (sps_real)(10e-3 / res);
     wd.max_substeps = 5; /* the force sampled every 5 sub-steps (a tenth of a wave's transit of the gauge) */
-    wd.log = ex_log;
     bd.name = "specimen";
     bd.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
     bd.material.kind = law ? SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF : SPS_MATERIAL_J2;
@@ -148,19 +143,19 @@ int main(int argc, char** argv) {
     bd.material.tl.hourglass = (sps_hourglass)hourglass_form;
     bd.material.tl.artificial_viscosity = (sps_real)artificial_viscosity;
     bd.material.tl.damage_strain = (sps_real)eps_max;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     memset(&s, 0, sizeof s);
     ex_unset_unread(&bd);
-    ex_check(w, sps_world_add_body(w, &bd, &s.body));
-    ex_check(w, sps_body_add_sdf(w, s.body, lo, hi, specimen, NULL, &n));
+    sps_world_add_body(w, &bd, &s.body);
+    sps_body_add_sdf(w, s.body, lo, hi, specimen, NULL, &n);
     v_left[0] = (sps_real)-v;
     v_right[0] = (sps_real)v;
-    ex_check(w, sps_body_constrain_box(w, s.body, far_lo, left_hi, SPS_AXIS_ALL, v_left, NULL));
-    ex_check(w, sps_body_constrain_box(w, s.body, right_lo, far_hi, SPS_AXIS_ALL, v_right, NULL));
-    s.quiet = c.quiet; s.t_end = c.t_end; s.v = v;
+    sps_body_constrain_box(w, s.body, far_lo, left_hi, SPS_AXIS_ALL, v_left, NULL);
+    sps_body_constrain_box(w, s.body, right_lo, far_hi, SPS_AXIS_ALL, v_right, NULL);
+    s.v = v;
     output_open(&s.output, &c, "tensile3d", "damage", ",displacement_mm,force_kN,max_damage,broken_particles");
     on_step(w, &s); /* t = 0: the first CSV row and snapshot */
-    ex_check_step(w, sps_world_advance(w, (sps_real)c.t_end, on_step, &s), &s.output);
+    sps_world_advance(w, (sps_real)c.t_end, on_step, &s);
     wall = output_close(w, &s.output);
     printf("peak force %.1f kN at %.2f mm: FEM 110.1 kN at 4.04 mm (%+.1f %%, %+.1f %%), stabilised SPH 108.7 kN at 3.82 mm, "
            "unstabilised 91.0 kN at 3.32 mm\n", 1e-3 * s.peak, 1e3 * s.peak_at, 100 * (1e-3 * s.peak / 110.1 - 1),

@@ -93,7 +93,7 @@ static sps_real fluid_sdf(const sps_real x[3], void* user) { /* the channel with
 typedef struct {
     output_plan output;
     double t_end, window, tip0[2];
-    int tip, quiet, samples, capacity;
+    int tip, samples, capacity;
     double *t, *y; /* the tip's history over the window */
 } run_state;
 
@@ -103,13 +103,12 @@ static int on_step(sps_world* w, void* user) {
     sps_particle_state tip;
     char extra[96];
     const double t = sps_world_time(w);
-    ex_check(w, sps_world_particle(w, s->tip, &tip));
+    sps_world_particle(w, s->tip, &tip);
     snprintf(extra, sizeof extra, ",%.6e,%.6e,%d", tip.position[0] - s->tip0[0], tip.position[1] - s->tip0[1], sps_world_particle_count(w));
     if (output_tick(w, &s->output, extra, &d) && t >= s->t_end - s->window - 1e-12 && s->samples < s->capacity) {
         s->t[s->samples] = t;
         s->y[s->samples++] = tip.position[1] - s->tip0[1];
     }
-    progress(t, s->t_end, s->output.wall0, s->quiet);
     return 0;
 }
 
@@ -150,7 +149,6 @@ int main(int argc, char** argv) {
          "riemann|density|none"},
         {"p-out", OPT_REAL, &p_out, "the outlet pressure [Pa], < 0: the default rho_f (2 U)^2", -1, 1e6, NULL},
         {"window", OPT_REAL, &window, "the last seconds over which amplitude and frequency are measured, 0: the last third", 0, 100, NULL},
-        COMMON_OPTION_SPECS(c),
     };
     sps_world_def wd = sps_default_world_def();
     sps_body_def fluid_def = sps_default_body_def(), flag_def = sps_default_body_def(), cylinder_def = sps_default_body_def();
@@ -164,18 +162,15 @@ int main(int argc, char** argv) {
     const th_case* tc;
     int lattice, flag_count, n;
 
-    ex_short_openmp_spin(argv);
-    opt_parse(argc, argv, "Turek and Hron's FSI benchmark: an elastic flag behind a cylinder in a channel flow", opts,
-              (int)(sizeof opts / sizeof *opts));
+    ex_options(argc, argv, "Turek and Hron's FSI benchmark: an elastic flag behind a cylinder in a channel flow", opts, &c, &wd, NULL);
     tc = &th_cases[which];
     if (c.rho0 == 0) c.rho0 = tc->rho_s;
     if (c.E == 0) c.E = 2 * tc->mu_s * (1 + c.nu); /* E = 2 mu (1 + nu) */
     dp = FLAG_THICK / res;
     if (p_out < 0) p_out = RHO_FLUID * 4 * tc->u_mean * tc->u_mean; /* above the suction of the cylinder's flanks and the vortices */
-    apply_common(&c, &wd, &flag_def);
+    apply_common(&c, &wd, &flag_def); /* the case's density and modulus are the defaults */
     wd.dim = 2;
     wd.dp = (sps_real)dp;
-    wd.log = ex_log;
     flag_def.name = "flag";
     if (solver == 1) {
         flag_def.solver = SPS_SOLVER_TOTAL_LAGRANGIAN;
@@ -191,50 +186,49 @@ int main(int argc, char** argv) {
     fluid_def.material.fluid.dissipation = (sps_fluid_dissipation)dissipation;
     fluid_def.transport = flag_def.transport; /* the common --transport is for the fluid */
     flag_def.transport = SPS_TRANSPORT_NONE;
-    ex_check(NULL, sps_world_create(&wd, &w));
+    sps_world_create(&wd, &w);
     { /* the solids first: their particle ids then stay put while the zones renumber the fluid's */
         const sps_real lo[3] = {(sps_real)(CYLINDER_X - CYLINDER_R - dp), (sps_real)(CYLINDER_Y - CYLINDER_R - dp), 0};
         const sps_real hi[3] = {(sps_real)(CYLINDER_X + CYLINDER_R + dp), (sps_real)(CYLINDER_Y + CYLINDER_R + dp), 0};
         const sps_real flag_lo[3] = {CYLINDER_X, (sps_real)(CYLINDER_Y - FLAG_THICK / 2), 0}, flag_hi[3] = {FLAG_END, (sps_real)(CYLINDER_Y + FLAG_THICK / 2), 0};
         const sps_real held_lo[3] = {0, 0, 0}, held_hi[3] = {(sps_real)(CYLINDER_X + sqrt(CYLINDER_R * CYLINDER_R - FLAG_THICK * FLAG_THICK / 4)), 1, 0};
         const sps_real tip_at[3] = {(sps_real)(FLAG_END - dp / 2), CYLINDER_Y, 0};
-        ex_check(w, sps_world_add_body(w, &cylinder_def, &cylinder));
-        ex_check(w, sps_body_add_sdf(w, cylinder, lo, hi, cylinder_sdf, NULL, NULL));
+        sps_world_add_body(w, &cylinder_def, &cylinder);
+        sps_body_add_sdf(w, cylinder, lo, hi, cylinder_sdf, NULL, NULL);
         ex_unset_unread(&flag_def);
-        ex_check(w, sps_world_add_body(w, &flag_def, &flag));
-        ex_check(w, sps_body_add_box(w, flag, flag_lo, flag_hi, &flag_count));
-        ex_check(w, sps_body_constrain_box(w, flag, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL)); /* the root, inside the cylinder */
-        ex_check(w, sps_world_set_contact(w, cylinder, flag, 0)); /* joined at the root, not held apart */
+        sps_world_add_body(w, &flag_def, &flag);
+        sps_body_add_box(w, flag, flag_lo, flag_hi, &flag_count);
+        sps_body_constrain_box(w, flag, held_lo, held_hi, SPS_AXIS_ALL, NULL, NULL); /* the root, inside the cylinder */
+        sps_world_set_contact(w, cylinder, flag, 0); /* joined at the root, not held apart */
         s.tip = sps_world_nearest_particle(w, flag, tip_at);
-        ex_check(w, sps_world_particle(w, s.tip, &tip));
+        sps_world_particle(w, s.tip, &tip);
         s.tip0[0] = tip.position[0];
         s.tip0[1] = tip.position[1];
     }
     {
         const sps_real lo[3] = {0, 0, 0}, hi[3] = {(sps_real)length, CHANNEL_HEIGHT, 0};
         ex_unset_unread(&fluid_def);
-        ex_check(w, sps_world_add_body(w, &fluid_def, &fluid));
-        ex_check(w, sps_body_add_sdf(w, fluid, lo, hi, fluid_sdf, NULL, NULL));
-        ex_check(w, sps_body_set_pressure(w, fluid, uniform_pressure, &p_out));
+        sps_world_add_body(w, &fluid_def, &fluid);
+        sps_body_add_sdf(w, fluid, lo, hi, fluid_sdf, NULL, NULL);
+        sps_body_set_pressure(w, fluid, uniform_pressure, &p_out);
     }
-    ex_check(w, sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP));
-    ex_check(w, sps_world_add_wall(w, roof_point, down, SPS_WALL_NO_SLIP));
+    sps_world_add_wall(w, floor_point, up, SPS_WALL_NO_SLIP);
+    sps_world_add_wall(w, roof_point, down, SPS_WALL_NO_SLIP);
     in.kind = SPS_ZONE_INFLOW; /* x in [-4 dp, 0): its lattice joins the channel's */
     in.lo[0] = (sps_real)(-BUFFER_DP * dp); in.hi[0] = 0; in.hi[1] = CHANNEL_HEIGHT;
     in.velocity_fn = inflow_velocity;
     in.velocity_user = (void*)tc;
-    ex_check(w, sps_body_add_zone(w, fluid, &in, &inflow));
+    sps_body_add_zone(w, fluid, &in, &inflow);
     out.kind = SPS_ZONE_OUTFLOW; /* the channel's last 4 dp, at p_out */
     out.pressure = (sps_real)p_out;
     out.lo[0] = (sps_real)(length - BUFFER_DP * dp); out.hi[0] = (sps_real)length; out.hi[1] = CHANNEL_HEIGHT;
-    ex_check(w, sps_body_add_zone(w, fluid, &out, &outflow));
+    sps_body_add_zone(w, fluid, &out, &outflow);
     lattice = sps_world_particle_count(w);
-    ex_check(w, sps_world_reserve(w, lattice + lattice / 4)); /* the count varies by a few %: no allocation in a step */
+    sps_world_reserve(w, lattice + lattice / 4); /* the count varies by a few %: no allocation in a step */
 
     memset(&s.output, 0, sizeof s.output);
     s.t_end = c.t_end;
     s.window = window > 0 ? fmin(window, c.t_end) : c.t_end / 3;
-    s.quiet = c.quiet;
     s.samples = 0;
     s.capacity = (int)(s.window / c.csv_every) + 16;
     s.t = (double*)malloc(sizeof(double) * (size_t)s.capacity);
@@ -249,13 +243,13 @@ int main(int argc, char** argv) {
         const double t = c.t_end * n / 8;
         sps_particle_state now;
         ex_check_step(w, sps_world_advance(w, (sps_real)t, on_step, &s), &s.output);
-        ex_check(w, sps_world_particle(w, s.tip, &now));
+        sps_world_particle(w, s.tip, &now);
         printf("  t = %7.3f s   tip dx = %+9.3e  dy = %+9.3e m   particles %d\n", t, now.position[0] - s.tip0[0], now.position[1] - s.tip0[1],
                sps_world_particle_count(w));
     }
     wall = output_close(w, &s.output);
     oscillation(s.t, s.y, s.samples, &amplitude, &mean, &frequency);
-    ex_check(w, sps_world_diagnostics(w, (sps_body){0}, &d));
+    sps_world_diagnostics(w, (sps_body){0}, &d);
     printf("the tip's transverse displacement over the last %.3g s: amplitude %.4e m (Turek-Hron %.4e), frequency %.3f Hz (%.2f), mean %.3e m (%.2e)\n",
            s.window, amplitude, tc->amplitude, frequency, tc->frequency, mean, tc->mean);
     printf("RESULT case=turek_hron setting=%s res=%d dp=%g length=%g solver=%s dissipation=%s c0_factor=%g p_out=%g window=%g amplitude=%.5e amplitude_paper=%.5e amplitude_dev=%+.2f%% "

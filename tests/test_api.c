@@ -1,5 +1,5 @@
 /* test_api.c - the API: handles, instability, memory, reliability and the watchdog, output, observers, real time, restart, user scenes, defaults, pass instances.
-   Included by tests/test_sphsolid.c (the runner, its helpers and the RUN list). */
+   Included by tests/test_sphsolid.c (the runner and its helpers); its list of tests is run_api_tests at its end. */
 
 /* ============================================================================================ */
 /* >>handles: BUG exposure                                                                      */
@@ -1424,8 +1424,8 @@ static void random_velocity_of(const sps_real x[3], sps_real v[3], void* user) {
 
 /* A free 2D block of 16 x 16 particles (default material, c0 = 28.9 m/s) with random velocities
    up to `speed`, the given stepping and sub-step cap per advection step; ca (may be NULL)
-   counts its allocations. */
-static sps_world* frame_world(sps_stepping stepping, int max_substeps, double speed, counting_allocator* ca) {
+   counts its allocations; body (may be NULL) receives the block. */
+static sps_world* frame_world(sps_stepping stepping, int max_substeps, double speed, counting_allocator* ca, sps_body* body) {
     sps_world_def wd = sps_default_world_def();
     sps_world* w;
     sps_body b;
@@ -1441,6 +1441,7 @@ static sps_world* frame_world(sps_stepping stepping, int max_substeps, double sp
     field.amplitude = speed;
     b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n);
     if (!b.id || n != 256 || sps_body_set_velocity(w, b, random_velocity_of, &field) != SPS_OK) { sps_world_destroy(w); return NULL; }
+    if (body) *body = b;
     return w;
 }
 
@@ -1465,7 +1466,7 @@ static int same_state(const sps_world* a, const sps_world* b) {
 /* Bad arguments are rejected before anything moves, with a message naming the argument, its
    value and the allowed range (every broken one); an empty world reports its state error. */
 static int test_frame_arguments_rejected(void) {
-    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.3, NULL);
+    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.3, NULL, NULL);
     sps_world* empty = new_world(2, 0.01);
     sps_real covered = 5;
     ENSURE(w && empty);
@@ -1495,7 +1496,7 @@ static int test_frame_arguments_rejected(void) {
 /* Single stepping: an advection step is one sub-step, so 10 frames of 3 sub-steps are the same
    30 steps as sps_world_step's, bit for bit. */
 static int test_frame_single_stepping_equals_steps(void) {
-    sps_world *a = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL), *b = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL);
+    sps_world *a = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL, NULL), *b = frame_world(SPS_STEPPING_SINGLE, 100, 0.3, NULL, NULL);
     int k;
     ENSURE(a && b);
     for (k = 0; k < 10; ++k) ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK);
@@ -1518,8 +1519,8 @@ static int test_frame_whole_advection_steps_equal_steps(void) {
     long calls_after_first;
     int k;
     memset(&ca, 0, sizeof ca); /* whatever fields the counting allocator has */
-    a = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, &ca);
-    b = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, NULL);
+    a = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, &ca, NULL);
+    b = frame_world(SPS_STEPPING_DUAL, 4, 1e-3, NULL, NULL);
     ENSURE(a && b);
     ENSURE(sps_world_advance_substeps(a, 8, 0, &covered) == SPS_OK);
     sum += covered;
@@ -1534,6 +1535,48 @@ static int test_frame_whole_advection_steps_equal_steps(void) {
     ENSURE(same_state(a, b) == 0);
     ENSURE(sps_world_get_def(a)->max_substeps == 4);
     ENSURE_NEAR(sum, sps_world_time(a), 1e-12 * sps_world_time(a)); /* rounding of the differences */
+    sps_world_destroy(a);
+    sps_world_destroy(b);
+    return 0;
+}
+
+static long advection_steps_of(sps_world* w) {
+    sps_diagnostics d;
+    sps_world_diagnostics(w, ALL_BODIES, &d);
+    return d.advection_steps;
+}
+static void no_acceleration(const sps_real x[3], const sps_real x0[3], const sps_real v[3], sps_real t, sps_real a[3], void* user) {
+    (void)x; (void)x0; (void)v; (void)t; (void)user;
+    a[0] = a[1] = a[2] = 0;
+}
+
+/* A frame continues the advection step the last one left open (REAL-TIME FRAMES): 10 frames of
+   3 sub-steps in steps of up to 100 (speeds of 1 mm/s: the advection bound allows ~10^4) are
+   one advection step of 30 sub-steps, bit for bit, with one neighbour-list rebuild. A changed
+   acceleration leaves the step open (the next kick reads it); a particle moved through the API
+   closes it: the next frame starts a fresh step from the changed world. */
+static int test_frame_continues_advection_step(void) {
+    sps_body block;
+    sps_world *a = frame_world(SPS_STEPPING_DUAL, 100, 1e-3, NULL, &block), *b = frame_world(SPS_STEPPING_DUAL, 30, 1e-3, NULL, NULL);
+    sps_particle_state p;
+    int k;
+    ENSURE(a && b);
+    for (k = 0; k < 10; ++k) ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK);
+    ENSURE(sps_world_step(b) == SPS_OK);
+    ENSURE(acoustic_steps_of(a) == 30 && acoustic_steps_of(b) == 30);
+    ENSURE(advection_steps_of(a) == 1 && advection_steps_of(b) == 1);
+    ENSURE(same_state(a, b) == 0);
+    /* the first acceleration of a body: the energy account of its work is allocated at a
+       configuration update, so a fresh step; a later one changes only what the kick reads */
+    ENSURE(sps_body_set_acceleration(a, block, no_acceleration, NULL) == SPS_OK);
+    ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK && advection_steps_of(a) == 2);
+    ENSURE(sps_body_set_acceleration(a, block, no_acceleration, &k) == SPS_OK);
+    ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK && advection_steps_of(a) == 2);
+    ENSURE(sps_world_particle(a, 0, &p) == SPS_OK);
+    p.position[0] += 1e-4f;
+    ENSURE(sps_world_set_particle(a, 0, p.position, NULL) == SPS_OK);
+    ENSURE(sps_world_advance_substeps(a, 3, 0, NULL) == SPS_OK && advection_steps_of(a) == 3);
+    ENSURE(sps_world_step(a) == SPS_OK && advection_steps_of(a) == 4); /* sps_world_step runs whole steps of its own */
     sps_world_destroy(a);
     sps_world_destroy(b);
     return 0;
@@ -2242,7 +2285,7 @@ static int test_rigid_motion_about_current_centre(void) {
    budget too small for anything the frame runs at most one sub-step (the hard cap's promise:
    never more than one sub-step over). */
 static int test_frame_in_seconds(void) {
-    sps_world *a = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL), *b = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL);
+    sps_world *a = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL, NULL), *b = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL, NULL);
     sps_diagnostics d;
     sps_real covered = 0;
     long before;
@@ -2787,7 +2830,7 @@ static int test_oas_instances_2d_only(void) {
    fail: a frame that trusted the last frame's cost alone ran none, and the world never moved
    again. */
 static int test_frame_budget_always_advances(void) {
-    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL);
+    sps_world* w = frame_world(SPS_STEPPING_DUAL, 100, 0.5, NULL, NULL);
     sps_diagnostics d;
     sps_real covered = 0;
     long before;
@@ -2864,4 +2907,68 @@ static int test_penalty_in_pressure_pass_def(void) {
                     ENSURE(add_penalty_body(&bd, 2 + mode / 3, mode % 3 == 2, mode % 3 == 1 ? SPS_KERNEL_CUBIC_SPLINE : SPS_KERNEL_WENDLAND_C2) == SPS_OK);
                 }
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_api_tests). */
+static void run_api_tests(void) {
+    RUN(test_uniform_translation);
+    RUN(test_damping_decays_velocity_exactly);
+    RUN(test_external_acceleration);
+    RUN(test_add_after_step_and_constraints);
+    RUN(test_frame_arguments_rejected);
+    RUN(test_frame_single_stepping_equals_steps);
+    RUN(test_frame_whole_advection_steps_equal_steps);
+    RUN(test_frame_continues_advection_step);
+    RUN(test_frame_cuts_advection_steps);
+    RUN(test_frame_wall_budget);
+    RUN(test_handle_foreign_world_same_tag);
+    RUN(test_unstable_run_reported);
+    RUN(test_unstable_huge_velocity);
+    RUN(test_memory_runaway_particle);
+    RUN(test_null_world_arguments);
+    RUN(test_bad_arguments_named);
+    RUN(test_field_by_name);
+    RUN(test_set_particle);
+    RUN(test_warnings_for_silent_cases);
+    RUN(test_energy_watchdog);
+    RUN(test_energy_account_driven);
+    RUN(test_foreign_and_destroyed_handles);
+    RUN(test_flat_box_is_empty);
+    RUN(test_step_empty_body);
+    RUN(test_add_after_step_stress_output);
+    RUN(test_guard_escape);
+    RUN(test_guard_time_step_collapse);
+    RUN(test_guard_nonfinite_state);
+    RUN(test_last_good_state);
+    RUN(test_world_validate);
+    RUN(test_memory_no_allocation_in_steps);
+    RUN(test_memory_out_of_memory_everywhere);
+    RUN(test_determinism_repeated_runs);
+    RUN(test_vtk_writer);
+    RUN(test_vtk_series);
+    RUN(test_restart_round_trip);
+    RUN(test_restart_last_good_state);
+    RUN(test_restart_refused);
+    RUN(test_restart_crafted);
+    RUN(test_csv_row);
+    /* the scenes users write */
+    RUN(test_user_scene_tumbling_default);
+    RUN(test_watchdog_names_rotation);
+    RUN(test_setup_body_behind_wall);
+    RUN(test_setup_quiet_mistakes_warn);
+    RUN(test_warnings_print_once);
+    RUN(test_setup_mistakes_named);
+    RUN(test_rigid_motion_about_current_centre);
+    RUN(test_frame_in_seconds);
+    RUN(test_user_scene_dragged_jelly);
+    RUN(test_restart_every_def_field);
+    RUN(test_restart_ul_j2_into_tl_j2);
+    RUN(test_unread_parameter_warned);
+    RUN(test_missing_pass_instance);
+    RUN(test_zigzag_tells_zigzag_from_flow);
+    RUN(test_generic_dispatch_per_kind);
+    RUN(test_oas_instances_2d_only);
+    RUN(test_frame_budget_always_advances);
+    RUN(test_penalty_in_pressure_pass_def);
 }

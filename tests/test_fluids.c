@@ -1,5 +1,5 @@
 /* test_fluids.c - fluids, granular media and the fluid-structure coupling.
-   Included by tests/test_sphsolid.c (the runner, its helpers and the RUN list). */
+   Included by tests/test_sphsolid.c (the runner and its helpers); its list of tests is run_fluids_tests at its end. */
 #include "../examples/scenes/infinite_slope.h"
 
 /* ============================================================================================ */
@@ -1191,4 +1191,37 @@ static int test_fluid_transport_carries_velocity(void) {
     ENSURE(sps_world_add_body(w, &bd, &b) == SPS_ERR_INVALID_ARG && strstr(sps_world_last_error(w), "transport_carries_velocity = 2, allowed 0"));
     sps_world_destroy(w);
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_fluids_tests). */
+static void run_fluids_tests(void) {
+    RUN(test_still_water);
+    RUN(test_fluid_corner_images);
+    RUN(test_fluid_smoothing_warning);
+    RUN(test_fluid_churn_warned);
+    RUN(test_fluid_hexagonal_rest);
+    RUN(test_fluid_hexagonal_fill);
+    RUN(test_standing_wave_period);
+    RUN(test_drucker_prager_return_on_cone);
+    RUN(test_drucker_prager_cones_match_mohr_coulomb);
+    RUN(test_granular_limiter_off_in_expansion);
+    RUN(test_granular_block_at_rest);
+    RUN(test_coincident_particles_stay_finite);
+    RUN(test_granular_bad_input);
+    RUN(test_transport_keeps_linear_momentum);
+    RUN(test_tvf_counts_walls);
+    RUN(test_fluid_bad_input);
+    RUN(test_fluid_transport_carries_velocity);
+    RUN(test_coupling_momentum);
+    RUN(test_coupling_hydrostatic_rest);
+    RUN(test_coupling_floating_block);
+    RUN(test_coupling_light_soft_block);
+    RUN(test_coupling_bad_input);
+    RUN(test_granular_block_holds_shape);
+    RUN(test_granular_lattice_moment);
+    RUN(test_granular_free_grain_stops);
+    RUN_LONG(test_granular_infinite_slope_stands_and_flows);
+    RUN_LONG(test_granular_slope_floor_holds);
+    RUN(test_fluid_rest_long);
 }

@@ -1,5 +1,5 @@
 /* test_numerics.c - numerics: the kernel, gradients, the correction matrices, the Riemann solver, rotations, momentum, the plate cases, determinism, the validation of defs, the long regressions.
-   Included by tests/test_sphsolid.c (the runner, its helpers and the RUN list). */
+   Included by tests/test_sphsolid.c (the runner and its helpers); its list of tests is run_numerics_tests at its end. */
 
 /* ============================================================================================ */
 /* >>kernel                                                                                     */
@@ -1373,4 +1373,38 @@ static int test_penalty_in_pressure_pass_holds_plate(void) {
     printf("    relative difference %.3g\n", fabs(deflection[1] - deflection[0]) / fabs(deflection[0]));
     ENSURE_NEAR(deflection[1], deflection[0], 1e-4 * fabs(deflection[0])); /* see above */
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_numerics_tests). */
+static void run_numerics_tests(void) {
+    RUN(test_kernel_partition_of_unity);
+    RUN(test_kernel_integral);
+    RUN(test_kernel_derivative);
+    RUN(test_gradient_antisymmetry);
+    RUN(test_moment_matrix_lattice);
+    RUN(test_velocity_gradient_affine);
+    RUN(test_rodrigues_matrix);
+    RUN(test_riemann_pressure);
+    RUN(test_rigid_rotation_zero_increment);
+    RUN(test_spinning_disc_stays_rigid);
+    RUN(test_translation_keeps_steps);
+    RUN(test_momentum_conservation);
+    RUN(test_determinism_threads);
+    RUN(test_bodies_independent);
+    RUN(test_pair_forces_survive_adds);
+    RUN(test_validation_world_def);
+    RUN(test_validation_zero_def);
+    RUN(test_validation_body_def);
+    RUN(test_validation_handles_and_args);
+    RUN(test_step_empty_world);
+    RUN(test_result_strings_and_version);
+    RUN_LONG(test_plate2d_period_eno_a);
+    RUN_LONG(test_plate2d_period_eno);
+    RUN_LONG(test_plate2d_period_eno_a_pair);
+    RUN_LONG(test_hourglass_og_breaks_others_do_not);
+    RUN_LONG(test_damped_cantilever_sag);
+    RUN_NAMED(test_plate3d_period_mode22); /* 1 min on 2 cores: ./build/test_sphsolid plate3d_period */
+    RUN(test_penalty_in_pressure_pass_matches_paper);
+    RUN(test_penalty_in_pressure_pass_holds_plate);
 }

@@ -1,6 +1,7 @@
 /* test_open.c - open boundaries (sps_body_add_zone; OPEN BOUNDARIES in the header's manual): the
    particle count under inflow and outflow, the creation rate, the outlet pressure, a kill zone,
-   thread counts, restart and bad input. Included by test_sphsolid.c. */
+   thread counts, restart and bad input. Included by test_sphsolid.c; its list of tests
+   is run_open_tests at its end. */
 
 #define OPEN_H 0.01   /* channel width [m] */
 #define OPEN_U 0.01   /* the inflow's peak speed [m/s] */
@@ -351,4 +352,15 @@ static int test_open_restart_every_zone_item(void) {
     }
     remove(path);
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_open_tests). */
+static void run_open_tests(void) {
+    RUN(test_open_channel_steady);
+    RUN(test_open_kill_zone);
+    RUN(test_open_threads_and_restart);
+    RUN(test_open_ramped_inflow_counted);
+    RUN(test_open_bad_input);
+    RUN(test_open_restart_every_zone_item);
 }

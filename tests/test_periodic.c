@@ -1,6 +1,7 @@
 /* test_periodic.c - periodic axes (world def periodic[3]; PERIODIC in the header's manual):
    momentum across the boundary, a body across it, bad input, thread counts and restart.
-   Included by test_sphsolid.c. */
+   Included by test_sphsolid.c; its list of tests is
+   run_periodic_tests at its end. */
 
 /* A 2D world of spacing dp whose axes x (and y if both) repeat with period L from the origin;
    threads as given. */
@@ -305,4 +306,14 @@ static int test_periodic_threads_and_restart(void) {
     sps_world_destroy(w3);
     sps_world_destroy(other);
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_periodic_tests). */
+static void run_periodic_tests(void) {
+    RUN(test_periodic_crossing_keeps_momentum);
+    RUN(test_periodic_body_across_boundary);
+    RUN(test_periodic_bad_input);
+    RUN(test_periodic_taylor_green_decay);
+    RUN(test_periodic_threads_and_restart);
 }

@@ -1,6 +1,7 @@
 /* test_rigid.c - free rigid bodies (material.kind = SPS_MATERIAL_RIGID_DYNAMIC; FREE RIGID BODIES
    in the header's manual): the free turn's invariants, rest on a floor, bad input, restart and
-   thread counts. Included by test_sphsolid.c. */
+   thread counts. Included by test_sphsolid.c; its list of tests is
+   run_rigid_tests at its end. */
 
 /* A world (threads, gravity g downwards along y) with a free rigid box [lo, hi) of spacing dp;
    friction mu and contact damping zeta on the body. */
@@ -186,4 +187,13 @@ static int test_rigid_restart_and_threads(void) {
     sps_world_destroy(w2);
     sps_world_destroy(w3);
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_rigid_tests). */
+static void run_rigid_tests(void) {
+    RUN(test_rigid_free_invariants);
+    RUN(test_rigid_rests_on_floor);
+    RUN(test_rigid_bad_input);
+    RUN(test_rigid_restart_and_threads);
 }

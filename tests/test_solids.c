@@ -1,5 +1,5 @@
 /* test_solids.c - solids: J2 plasticity, contact, friction and Kelvin-Voigt damping, contact damping, the total-Lagrangian solver.
-   Included by tests/test_sphsolid.c (the runner, its helpers and the RUN list). */
+   Included by tests/test_sphsolid.c (the runner and its helpers); its list of tests is run_solids_tests at its end. */
 
 /* ============================================================================================ */
 /* >>plasticity (J2)                                                                            */
@@ -1534,4 +1534,40 @@ static int test_contact_damping_bad_input(void) {
     ENSURE(rejects_body_def(w, &bad, "contact_damping > 0 with contact = 0 or material.kind = fluid") == 0);
     sps_world_destroy(w);
     return 0;
+}
+
+/* ============================================================================================ */
+/* This file's tests, in the order the runner runs them (tests/test_sphsolid.c calls run_solids_tests). */
+static void run_solids_tests(void) {
+    RUN(test_tl_reference_state);
+    RUN(test_tl_homogeneous_stretch);
+    RUN(test_tl_hourglass_affine);
+    RUN(test_tl_momentum);
+    RUN(test_tl_j2_return);
+    RUN(test_tl_damage_rate);
+    RUN(test_tl_damage_tension_only);
+    RUN(test_contact_momentum);
+    RUN(test_contact_determinism);
+    RUN(test_j2_radial_return_on_surface);
+    RUN(test_j2_hardening_raises_surface);
+    RUN(test_j2_uniaxial_strain_closed_form);
+    RUN(test_j2_bad_input);
+    RUN_LONG(test_j2_taylor_bar_coarse); /* 2-4 s; 22 s under the sanitizers, which run --quick */
+    RUN(test_wall_stops_body);
+    RUN(test_contact_bad_input);
+    RUN(test_rigid_wall_body);
+    RUN(test_tl_hourglass_is_energy_gradient);
+    RUN(test_tl_hourglass_stiffness_symmetric);
+    RUN(test_tl_artificial_viscosity);
+    /* friction and material damping */
+    RUN(test_friction_block_on_slope);
+    RUN(test_friction_momentum_exact);
+    RUN(test_friction_unused_is_free);
+    RUN(test_kelvin_voigt_rigid_motion_free);
+    RUN(test_friction_damping_bad_input);
+    RUN(test_kelvin_voigt_decay_account);
+    RUN(test_contact_damping_pair);
+    RUN(test_contact_damping_wall);
+    RUN(test_contact_damping_thread_count);
+    RUN(test_contact_damping_bad_input);
 }

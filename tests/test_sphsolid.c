@@ -1,7 +1,8 @@
-/* test_sphsolid.c - unit, invariant and regression tests of sphsolid.h: the runner, its helpers
-   and the RUN list; the tests are in one file per part of the library, included below
-   (test_numerics.c, test_api.c, test_solids.c, test_fluids.c, test_rigid.c,
-   test_periodic.c).
+/* test_sphsolid.c - unit, invariant and regression tests of sphsolid.h: the runner and its
+   helpers; the tests are in one file per part of the library, included below (test_numerics.c,
+   test_api.c, test_solids.c, test_fluids.c, test_rigid.c, test_periodic.c, test_open.c), and
+   each file ends with its own list of tests (run_numerics_tests, ...), which main calls. A new
+   test is a function and a RUN line in its file's list.
 
    Build and run:    make build/test_sphsolid && ./build/test_sphsolid
    Under sanitizers: make build/test_sanitize && ./build/test_sanitize --quick
@@ -211,167 +212,14 @@ int main(int argc, char** argv) {
     }
     printf("sphsolid %s (%s), %s run\n", sps_version(), sps_is_double() ? "double" : "float", g_quick ? "quick" : "full");
 
-    RUN(test_kernel_partition_of_unity);
-    RUN(test_kernel_integral);
-    RUN(test_kernel_derivative);
-    RUN(test_gradient_antisymmetry);
-    RUN(test_moment_matrix_lattice);
-    RUN(test_velocity_gradient_affine);
-    RUN(test_rodrigues_matrix);
-    RUN(test_riemann_pressure);
-    RUN(test_rigid_rotation_zero_increment);
-    RUN(test_spinning_disc_stays_rigid);
-    RUN(test_translation_keeps_steps);
-    RUN(test_momentum_conservation);
-    RUN(test_tl_reference_state);
-    RUN(test_tl_homogeneous_stretch);
-    RUN(test_tl_hourglass_affine);
-    RUN(test_tl_momentum);
-    RUN(test_tl_j2_return);
-    RUN(test_tl_damage_rate);
-    RUN(test_tl_damage_tension_only);
-    RUN(test_uniform_translation);
-    RUN(test_damping_decays_velocity_exactly);
-    RUN(test_external_acceleration);
-    RUN(test_add_after_step_and_constraints);
-    RUN(test_determinism_threads);
-    RUN(test_bodies_independent);
-    RUN(test_contact_momentum);
-    RUN(test_still_water);
-    RUN(test_fluid_corner_images);
-    RUN(test_fluid_smoothing_warning);
-    RUN(test_fluid_churn_warned);
-    RUN(test_fluid_hexagonal_rest);
-    RUN(test_fluid_hexagonal_fill);
-    RUN(test_standing_wave_period);
-    RUN(test_drucker_prager_return_on_cone);
-    RUN(test_drucker_prager_cones_match_mohr_coulomb);
-    RUN(test_granular_limiter_off_in_expansion);
-    RUN(test_granular_block_at_rest);
-    RUN(test_coincident_particles_stay_finite);
-    RUN(test_granular_bad_input);
-    RUN(test_transport_keeps_linear_momentum);
-    RUN(test_tvf_counts_walls);
-    RUN(test_fluid_bad_input);
-    RUN(test_fluid_transport_carries_velocity);
-    RUN(test_contact_determinism);
-    RUN(test_j2_radial_return_on_surface);
-    RUN(test_j2_hardening_raises_surface);
-    RUN(test_j2_uniaxial_strain_closed_form);
-    RUN(test_j2_bad_input);
-    RUN_LONG(test_j2_taylor_bar_coarse); /* 2-4 s; 22 s under the sanitizers, which run --quick */
-    RUN(test_wall_stops_body);
-    RUN(test_contact_bad_input);
-    RUN(test_rigid_wall_body);
-    RUN(test_pair_forces_survive_adds);
-    RUN(test_frame_arguments_rejected);
-    RUN(test_frame_single_stepping_equals_steps);
-    RUN(test_frame_whole_advection_steps_equal_steps);
-    RUN(test_frame_cuts_advection_steps);
-    RUN(test_frame_wall_budget);
-    RUN(test_validation_world_def);
-    RUN(test_validation_zero_def);
-    RUN(test_validation_body_def);
-    RUN(test_validation_handles_and_args);
-    RUN(test_handle_foreign_world_same_tag);
-    RUN(test_step_empty_world);
-    RUN(test_result_strings_and_version);
-    RUN(test_unstable_run_reported);
-    RUN(test_unstable_huge_velocity);
-    RUN(test_memory_runaway_particle);
-    RUN(test_null_world_arguments);
-    RUN(test_bad_arguments_named);
-    RUN(test_field_by_name);
-    RUN(test_set_particle);
-    RUN(test_warnings_for_silent_cases);
-    RUN(test_energy_watchdog);
-    RUN(test_energy_account_driven);
-    RUN(test_foreign_and_destroyed_handles);
-    RUN(test_flat_box_is_empty);
-    RUN(test_step_empty_body);
-    RUN(test_add_after_step_stress_output);
-    RUN(test_guard_escape);
-    RUN(test_guard_time_step_collapse);
-    RUN(test_guard_nonfinite_state);
-    RUN(test_last_good_state);
-    RUN(test_world_validate);
-    RUN(test_memory_no_allocation_in_steps);
-    RUN(test_memory_out_of_memory_everywhere);
-    RUN(test_determinism_repeated_runs);
-    RUN(test_vtk_writer);
-    RUN(test_vtk_series);
-    RUN(test_restart_round_trip);
-    RUN(test_restart_last_good_state);
-    RUN(test_restart_refused);
-    RUN(test_restart_crafted);
-    RUN(test_csv_row);
-    RUN_LONG(test_plate2d_period_eno_a);
-    RUN_LONG(test_plate2d_period_eno);
-    RUN_LONG(test_plate2d_period_eno_a_pair);
-    RUN_LONG(test_hourglass_og_breaks_others_do_not);
-    RUN_LONG(test_damped_cantilever_sag);
-    RUN_NAMED(test_plate3d_period_mode22); /* 1 min on 2 cores: ./build/test_sphsolid plate3d_period */
-    RUN(test_tl_hourglass_is_energy_gradient);
-    RUN(test_tl_hourglass_stiffness_symmetric);
-    RUN(test_tl_artificial_viscosity);
-    /* friction and material damping */
-    RUN(test_friction_block_on_slope);
-    RUN(test_friction_momentum_exact);
-    RUN(test_friction_unused_is_free);
-    RUN(test_kelvin_voigt_rigid_motion_free);
-    RUN(test_friction_damping_bad_input);
-    RUN(test_coupling_momentum);
-    RUN(test_coupling_hydrostatic_rest);
-    RUN(test_coupling_floating_block);
-    RUN(test_coupling_light_soft_block);
-    RUN(test_coupling_bad_input);
-    /* the scenes users write */
-    RUN(test_user_scene_tumbling_default);
-    RUN(test_watchdog_names_rotation);
-    RUN(test_setup_body_behind_wall);
-    RUN(test_setup_quiet_mistakes_warn);
-    RUN(test_warnings_print_once);
-    RUN(test_setup_mistakes_named);
-    RUN(test_rigid_motion_about_current_centre);
-    RUN(test_frame_in_seconds);
-    RUN(test_user_scene_dragged_jelly);
-    RUN(test_kelvin_voigt_decay_account);
-    RUN(test_contact_damping_pair);
-    RUN(test_contact_damping_wall);
-    RUN(test_contact_damping_thread_count);
-    RUN(test_contact_damping_bad_input);
-    RUN(test_granular_block_holds_shape);
-    RUN(test_granular_lattice_moment);
-    RUN(test_granular_free_grain_stops);
-    RUN_LONG(test_granular_infinite_slope_stands_and_flows);
-    RUN_LONG(test_granular_slope_floor_holds);
-    RUN(test_restart_every_def_field);
-    RUN(test_restart_ul_j2_into_tl_j2);
-    RUN(test_unread_parameter_warned);
-    RUN(test_missing_pass_instance);
-    RUN(test_fluid_rest_long);
-    RUN(test_zigzag_tells_zigzag_from_flow);
-    RUN(test_generic_dispatch_per_kind);
-    RUN(test_oas_instances_2d_only);
-    RUN(test_frame_budget_always_advances);
-    RUN(test_penalty_in_pressure_pass_matches_paper);
-    RUN(test_penalty_in_pressure_pass_holds_plate);
-    RUN(test_penalty_in_pressure_pass_def);
-    RUN(test_rigid_free_invariants);
-    RUN(test_rigid_rests_on_floor);
-    RUN(test_rigid_bad_input);
-    RUN(test_rigid_restart_and_threads);
-    RUN(test_periodic_crossing_keeps_momentum);
-    RUN(test_periodic_body_across_boundary);
-    RUN(test_periodic_bad_input);
-    RUN(test_periodic_taylor_green_decay);
-    RUN(test_periodic_threads_and_restart);
-    RUN(test_open_channel_steady);
-    RUN(test_open_kill_zone);
-    RUN(test_open_threads_and_restart);
-    RUN(test_open_ramped_inflow_counted);
-    RUN(test_open_bad_input);
-    RUN(test_open_restart_every_zone_item);
+    /* each test file's list, in the order the files are included */
+    run_numerics_tests();
+    run_api_tests();
+    run_solids_tests();
+    run_fluids_tests();
+    run_rigid_tests();
+    run_periodic_tests();
+    run_open_tests();
 
     if (g_skipped) printf("(%d long tests skipped)\n", g_skipped);
     printf("%d passed, %d failed\n", g_passed, g_failed);

@@ -41,7 +41,8 @@ typedef struct {
 /* Creates the world of wd (dim and dp set here; the caller's other settings kept) holding the
    plate, a body of def bd (named "plate"; the caller chooses material and shear), clamped for
    x < 0 and started in the first mode, and an observer at the free end (L, 0). On error *w is
-   NULL and the message went to wd.log. */
+   NULL and the message went to wd.log. The tests, the bench and cantilever_sag.c build the
+   plate with it; examples/plate2d.c writes the same steps out in its main, as a scene. */
 SCENE_UNUSED static sps_result plate2d_create(sps_world_def wd, const sps_body_def* bd, const plate2d_params* p, sps_world** w,
                                  sps_body* plate, sps_observer* tip) {
     const double dp = PLATE2D_H / p->res;
