@@ -1448,8 +1448,8 @@ typedef struct sps_material_def {
     sps_real viscosity;      /* fluid: the dynamic viscosity mu [Pa s], finite >= 0 (0: inviscid).
                                 Elastic, J2, Saint Venant-Kirchhoff, Neo-Hookean: the Kelvin-Voigt
                                 viscosity eta [Pa s], finite >= 0, the material damping (DAMPING:
-                                vibrations decay, rigid motion is not braked; 0: none). Not for
-                                rigid and Drucker-Prager bodies. Shared rather than per kind: it
+                                vibrations decay, rigid motion is not braked; 0: none). Refused
+                                for the other kinds. Shared rather than per kind: it
                                 is the one Newtonian shear viscosity of both. Default 0. */
     sps_j2_def j2;             /* SPS_MATERIAL_J2 */
     sps_fluid_def fluid;       /* SPS_MATERIAL_FLUID */
@@ -3784,12 +3784,13 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
    4. its case in each switch over sps_material_kind here and in this chapter's continuations
       (>>generic (continued): the updated-Lagrangian passes' hooks; ... the laws of
       total-Lagrangian bodies): the compiler lists every switch that lacks it (an enum value
-      added without its cases warns in the 16 switches of these chapters, and nowhere else),
+      added without its cases warns in the 17 switches of these chapters, and nowhere else),
       plus its SPS__<KIND>_DEF_ITEMS in sps__body_def_items (>>generic (continued): the body def
       items) and its rules in sps__combination_rules (>>generic (continued): the combination
       rules), if it has any.
-   A kind whose stress has a yield surface adds an sps__yield value and its case in
-   sps__stress_update_lanes; a kind whose walls act through mirror particles takes an
+   A kind with a stress update of its own has its case in sps__stress_update_lanes (a switch
+   over the kind, as the others); one whose stress has a yield surface also adds an sps__yield
+   value (what reads it: the plastic fields and the penalty's scale); a kind whose walls act through mirror particles takes an
    sps__mirror_kind in its row; a kind with pair terms of its own in the pressure pass adds an
    SPS__TERM_ bit (its case in sps__kind_pressure_terms), its part of
    sps__kind_pressure_constants and its calls in sps__kind_pressure_pair and
@@ -4149,7 +4150,7 @@ static int sps__viscosity_updated(int dim, const sps_body_def* def) {
     (void)dim;
     return def->material.tl.artificial_viscosity > 0 && def->solver != SPS_SOLVER_TOTAL_LAGRANGIAN;
 }
-static int sps__viscous_wall_or_granular(int dim, const sps_body_def* def) {
+static int sps__viscosity_without_viscous_force(int dim, const sps_body_def* def) {
     const sps__material_model* material = sps__material_of(def->material.kind);
     (void)dim;
     return def->material.viscosity > 0 && material && material->viscous == SPS__VISCOUS_NONE;
@@ -4178,9 +4179,9 @@ static int sps__penalty_outside_pressure_pass(int dim, const sps_body_def* def) 
    chapters, the solver's and the stabilisations' above */
 
 static const sps__combination_rule sps__combination_rules[] = {
-    {sps__viscous_wall_or_granular, "material.viscosity > 0 with material.kind = rigid or Drucker-Prager: the Kelvin-Voigt damping is "
-                                    "for elastic, J2, Saint Venant-Kirchhoff and Neo-Hookean bodies (a wall body moves as given; a "
-                                    "granular body dissipates by plastic flow)"},
+    {sps__viscosity_without_viscous_force, "material.viscosity > 0 with a material.kind that has no viscous force: the Kelvin-Voigt damping "
+                                    "is for elastic, J2, Saint Venant-Kirchhoff and Neo-Hookean bodies, the Newtonian viscosity for "
+                                    "fluids (a wall body moves as given; a granular body dissipates by plastic flow)"},
     {sps__friction_without_contact, "friction > 0 with contact = 0: a body without contact has no friction"},
     {sps__friction_of_mirrored, "friction > 0 with material.kind = fluid or Drucker-Prager: walls act on these through mirror particles "
                                 "(a no-slip wall holds them), not the solids' contact, so there is no Coulomb friction to set"},
@@ -7273,33 +7274,38 @@ SPS__INLINE void sps__granular_stress_lanes(sps_world* w, const sps__body* b, sp
    lane group, by its yield surface */
 
 /* The stress update of lane group q from its velocity gradients L (the continuity pass's
-   finish): the return map of the body's yield surface (chapters >>material: J2 plasticity and
-   >>material: Drucker-Prager) or, without one, the Jaumann update of a tracked stress. A
-   plastic body is never ENO (combination rules) and its stress is always integrated (it is of
-   the OG family). relax: the GNO penalty is stored per particle (not per pair), so a scaled
-   penalty's stored acceleration relaxes with the stress (sps__penalty). A yield surface the
-   build left out has no body (CONFIG MACROS), so its case is empty there. */
+   finish), by the body's kind: the return map of its yield surface (chapters >>material: J2
+   plasticity and >>material: Drucker-Prager) or, for the kinds without a stress update of
+   their own, the Jaumann update of a tracked stress. A plastic body is never ENO (combination
+   rules) and its stress is always integrated (it is of the OG family). relax: the GNO penalty
+   is stored per particle (not per pair), so a scaled penalty's stored acceleration relaxes
+   with the stress (sps__penalty). A kind the build left out has no body (CONFIG MACROS), so its
+   case is empty there. */
 SPS__INLINE void sps__stress_update_lanes(sps_world* w, const sps__body* b, sps__group q, const int dim, sps_real dt,
                                           sps_real L[9][SPS__LANES], int relax) {
     const sps__model* m = &b->model;
     (void)w; (void)relax; /* read by the return maps only, which a build may leave out */
-    switch ((sps__yield)m->plastic) {
-    case SPS__YIELD_DRUCKER_PRAGER:
+    switch (m->material->kind) {
+    case SPS_MATERIAL_DRUCKER_PRAGER:
 #ifndef SPHSOLID_NO_GRANULAR
         sps__granular_stress_lanes(w, b, q, dim, dt, L, m->diffusion, m->scaled_penalty, relax);
 #endif
-        break;
-    case SPS__YIELD_VON_MISES:
+        return;
+    case SPS_MATERIAL_J2:
 #ifndef SPHSOLID_NO_PLASTICITY
         if (m->scaled_penalty && relax) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 1);
         else if (m->scaled_penalty) sps__j2_stress_lanes(w, b, q, dim, dt, L, 1, 0);
         else sps__j2_stress_lanes(w, b, q, dim, dt, L, 0, 0);
 #endif
-        break;
-    case SPS__YIELD_NONE:
-        if (m->stress) sps__stress_lanes(b, q, dim, dt, L);
-        break;
+        return;
+    case SPS_MATERIAL_ELASTIC:
+    case SPS_MATERIAL_RIGID:
+    case SPS_MATERIAL_RIGID_DYNAMIC:
+    case SPS_MATERIAL_FLUID:
+    case SPS_MATERIAL_SAINT_VENANT_KIRCHHOFF:
+    case SPS_MATERIAL_NEO_HOOKEAN: break;
     }
+    if (m->stress) sps__stress_lanes(b, q, dim, dt, L);
 }
 
 /* >>solver: the updated-Lagrangian passes (continued) */

@@ -1326,7 +1326,7 @@ static int test_friction_damping_bad_input(void) {
     bad = d; bad.material.viscosity = -2;         ENSURE(rejects_body_def(w, &bad, "material.viscosity = -2, allowed finite >= 0") == 0);
     bad = d; bad.material.viscosity = (sps_real)NAN; ENSURE(rejects_body_def(w, &bad, "material.viscosity = nan") == 0);
     bad = d; bad.material.viscosity = 5; bad.material.kind = SPS_MATERIAL_RIGID;
-    ENSURE(rejects_body_def(w, &bad, "material.viscosity > 0 with material.kind = rigid") == 0);
+    ENSURE(rejects_body_def(w, &bad, "material.viscosity > 0 with a material.kind that has no viscous force") == 0);
     ENSURE(sps_world_set_wall_friction(w, -1, 0.3) == SPS_ERR_INVALID_ARG); /* no walls yet */
     ENSURE(strstr(sps_world_last_error(w), "wall = -1") != NULL);
     ENSURE(sps_world_add_wall(w, point, up, SPS_WALL_NO_SLIP) == SPS_OK);
