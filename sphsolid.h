@@ -3777,7 +3777,9 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
       sps__material_defaults here;
    3. its chapter (>>material: ...): its row (sps__material_model), its check, its constants
       (c0, G, K), its stored energy, the rows of its parameters (SPS__<KIND>_DEF_ITEMS and the
-      reads function they name: the restart's fingerprint and the unread-field warnings follow)
+      reads function they name: the restart's fingerprint and the unread-field warnings follow;
+      new rows change the restart file's layout, so SPS__RESTART_VERSION goes up, chapter
+      >>restart, and tests/restore_corpus is saved again)
       and, where they differ from an existing kind's, its setup, warnings, combination rules,
       stress update (a lane update: a "(continued)" chapter after the updated-Lagrangian
       solver's lane helpers), total-Lagrangian law, pair terms and per-particle state rows;
