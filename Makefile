@@ -128,6 +128,14 @@ $(FLOAT)/impl.o: examples/impl.c $(HEADER)
 $(FLOAT)/%: examples/%.c $(EXAMPLE_HEADERS) $(FLOAT)/impl.o
 	$(CC) $(CFLAGS) -DSPHSOLID_FLOAT $< $(FLOAT)/impl.o -o $@ $(LDLIBS)
 float-examples: $(addprefix $(FLOAT)/,$(EXAMPLES))
+# ---- the examples with every pair loop instanced (SPHSOLID_ALL_PAIR_LOOPS: the cubic spline's too;
+# bench/side_by_side.sh compares PySPH's spline plate with this build's) ----
+ALL_LOOPS = $(BUILD)/all_loops
+$(ALL_LOOPS)/impl.o: examples/impl.c $(HEADER)
+	@mkdir -p $(ALL_LOOPS)
+	$(CC) $(CFLAGS) -DSPHSOLID_ALL_PAIR_LOOPS -c $< -o $@
+$(ALL_LOOPS)/%: examples/%.c $(EXAMPLE_HEADERS) $(ALL_LOOPS)/impl.o
+	$(CC) $(CFLAGS) $< $(ALL_LOOPS)/impl.o -o $@ $(LDLIBS)
 
 # ---- bench programs: the real-time loop (double and float), the SVG plotter, the file costs ----
 $(BUILD)/realtime: bench/realtime.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)

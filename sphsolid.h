@@ -56,6 +56,9 @@
                                build for a scene without them (e.g. elastic bodies only).
                                sps_world_add_body refuses a body of a kind left out, naming the
                                macro. Implementation-only.
+      SPHSOLID_ALL_PAIR_LOOPS  vectorised pair loops for the cubic spline kernel too (by
+                               default it runs generic loops, about 3x slower): a longer
+                               compile. Implementation-only.
       SPHSOLID_WALL_SECONDS()  wall clock in seconds for the frame budget of
                                sps_world_advance_frame. Implementation-only. Default:
                                clock_gettime(CLOCK_MONOTONIC) where <time.h> declares it (POSIX:
@@ -6567,15 +6570,15 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
 }
 
 /* A pair loop's instances and its mode table sps__<loop>_<variant>[mode] (sps__mode: dimension x
-   pair geometry). The default pair geometry (Wendland C2 recomputed from the positions) has an
-   instance per dimension and set of pair terms, a named function (it shows up in a profiler)
-   that calls the loop's body with the dimension, the pair geometry and the terms (an SPS__TERM_
-   bit set) literals, so that its loop carries no branch. The rare geometries (the cubic spline,
-   frozen_geometry, a periodic world) run the pass's generic loop of the dimension, one function
-   per pass and dimension (SPS__GENERIC_LOOPS) that reads the pair geometry and the terms at run
-   time: the same operations in the same order, so the same results bit for bit, but not
-   vectorised (bench/VALIDATION.md, "Compile cost"); SPHSOLID_ALL_PAIR_LOOPS (CONFIG MACROS)
-   instances them too. Only the pair loops are instanced: a pass's
+   pair geometry). The Wendland C2 kernel's geometries (recomputed from the positions, the
+   default; frozen_geometry; a periodic world's) have an instance per dimension and set of pair
+   terms, a named function (it shows up in a profiler) that calls the loop's body with the
+   dimension, the pair geometry and the terms (an SPS__TERM_ bit set) literals, so that its loop
+   carries no branch. The cubic spline kernel runs the pass's generic loop of the dimension, one
+   function per pass and dimension (SPS__GENERIC_LOOPS) that reads the pair geometry and the
+   terms at run time: the same operations in the same order, so the same results bit for bit,
+   but not vectorised: about 3x the cost of an instance (bench/VALIDATION.md, "Instances for the
+   Wendland kernel only"); SPHSOLID_ALL_PAIR_LOOPS (CONFIG MACROS) instances it too. Only the pair loops are instanced: a pass's
    finish, what it does once per lane group after the loop (the velocity gradient's correction,
    the stress update and return maps, the rotations, the increments' store), reads the body's
    model at run time and is compiled once per dimension. An instance for every mode and set of
@@ -6586,17 +6589,13 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
         (void)terms_of_call; /* the instance's terms are its literal */                                         \
         sps__##loop(w, b, g, dt, sums, dim, geo, terms);                                                        \
     }
-/* The rare modes of dimension dim in a mode table: their instances with SPHSOLID_ALL_PAIR_LOOPS,
-   else the pass's generic loop of the dimension, defined once per pass (SPS__GENERIC_LOOPS). */
+/* The rare mode of dimension dim in a mode table (the cubic spline kernel): its instances with
+   SPHSOLID_ALL_PAIR_LOOPS, else the pass's generic loop of the dimension, defined once per pass
+   (SPS__GENERIC_LOOPS). */
 #ifdef SPHSOLID_ALL_PAIR_LOOPS
 #define SPS__GENERIC_LOOPS(loop)
-#define SPS__RARE_INSTANCES(loop, variant, dim, terms)                                                          \
-    SPS__INSTANCE(loop, variant, dim##d_spline, dim, SPS__GEO_SPLINE, terms)                                    \
-    SPS__INSTANCE(loop, variant, dim##d_frozen, dim, SPS__GEO_FROZEN, terms)                                    \
-    SPS__INSTANCE(loop, variant, dim##d_periodic, dim, SPS__GEO_PERIODIC, terms)
-#define SPS__RARE_MODES(loop, variant, dim)                                                                     \
-    sps__##loop##_##variant##_##dim##d_spline, sps__##loop##_##variant##_##dim##d_frozen,                       \
-        sps__##loop##_##variant##_##dim##d_periodic
+#define SPS__RARE_INSTANCES(loop, variant, dim, terms) SPS__INSTANCE(loop, variant, dim##d_spline, dim, SPS__GEO_SPLINE, terms)
+#define SPS__RARE_MODE(loop, variant, dim) sps__##loop##_##variant##_##dim##d_spline
 #else
 #define SPS__GENERIC_LOOP(loop, dim)                                                                            \
     static void sps__##loop##_generic_##dim##d(sps_world* w, const sps__body* b, int g, sps_real dt, int terms, \
@@ -6605,23 +6604,30 @@ static void sps__clear_sums(sps__lane_sums* sums, int rows) {
     }
 #define SPS__GENERIC_LOOPS(loop) SPS__GENERIC_LOOP(loop, 2) SPS__GENERIC_LOOP(loop, 3)
 #define SPS__RARE_INSTANCES(loop, variant, dim, terms)
-#define SPS__RARE_MODES(loop, variant, dim) sps__##loop##_generic_##dim##d, sps__##loop##_generic_##dim##d, sps__##loop##_generic_##dim##d
+#define SPS__RARE_MODE(loop, variant, dim) sps__##loop##_generic_##dim##d
 #endif
+/* The instances of a pair loop in dimension dim: the default geometry, frozen_geometry's (the
+   reference code's stored geometry, a speed knob in double) and a periodic world's (the channels
+   and boxes of fluids), then the rare mode. In the mode table's order (sps__geo's). */
+#define SPS__INSTANCES_OF_DIM(loop, variant, dim, terms)                                                        \
+    SPS__INSTANCE(loop, variant, dim##d_wendland, dim, SPS__GEO_WENDLAND, terms)                                \
+    SPS__INSTANCE(loop, variant, dim##d_frozen, dim, SPS__GEO_FROZEN, terms)                                    \
+    SPS__INSTANCE(loop, variant, dim##d_periodic, dim, SPS__GEO_PERIODIC, terms)                                \
+    SPS__RARE_INSTANCES(loop, variant, dim, terms)
+#define SPS__MODES_OF_DIM(loop, variant, dim)                                                                   \
+    sps__##loop##_##variant##_##dim##d_wendland, SPS__RARE_MODE(loop, variant, dim),                            \
+        sps__##loop##_##variant##_##dim##d_frozen, sps__##loop##_##variant##_##dim##d_periodic
 #define SPS__INSTANCES(loop, variant, terms)                                                                    \
-    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
-    SPS__INSTANCE(loop, variant, 3d_wendland, 3, SPS__GEO_WENDLAND, terms)                                      \
-    SPS__RARE_INSTANCES(loop, variant, 2, terms)                                                                \
-    SPS__RARE_INSTANCES(loop, variant, 3, terms)                                                                \
+    SPS__INSTANCES_OF_DIM(loop, variant, 2, terms)                                                              \
+    SPS__INSTANCES_OF_DIM(loop, variant, 3, terms)                                                              \
     static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
-        sps__##loop##_##variant##_2d_wendland, SPS__RARE_MODES(loop, variant, 2),                               \
-        sps__##loop##_##variant##_3d_wendland, SPS__RARE_MODES(loop, variant, 3)};
+        SPS__MODES_OF_DIM(loop, variant, 2), SPS__MODES_OF_DIM(loop, variant, 3)};
 /* The instances of a 2D-only term (OAS's: a combination rule refuses it in 3D): none in 3D, where
    the mode table holds NULL (sps__missing_pass would name the combination). */
 #define SPS__INSTANCES_2D_ONLY(loop, variant, terms)                                                            \
-    SPS__INSTANCE(loop, variant, 2d_wendland, 2, SPS__GEO_WENDLAND, terms)                                      \
-    SPS__RARE_INSTANCES(loop, variant, 2, terms)                                                                \
+    SPS__INSTANCES_OF_DIM(loop, variant, 2, terms)                                                              \
     static const sps__pair_loop sps__##loop##_##variant[2 * SPS__GEO_MODES] = {                                 \
-        sps__##loop##_##variant##_2d_wendland, SPS__RARE_MODES(loop, variant, 2), NULL, NULL, NULL, NULL};
+        SPS__MODES_OF_DIM(loop, variant, 2), NULL, NULL, NULL, NULL};
 
 /* The dissipation limiter of a pair approaching at -u (u = v_ij . e_ij), eta_c0 = eta / c0:
    beta = min(eta max(-u / c0, 0), 1) (UTVF eq. 20). Branch-free for the lane loops. */

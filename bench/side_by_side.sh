@@ -4,8 +4,9 @@
 # whose examples/solid_mech/oscillating_plate.py is our benchmark A1 (L 0.2, H 0.02, H/dp 10,
 # E 2e6, nu 0.3975, rho0 1000, v_f 0.05) with Gray et al.'s artificial stress, the cubic spline,
 # Monaghan's artificial viscosity and XSPH at a fixed dt of 1e-5 s. Equal formulation on our
-# side: --shear oas --kernel spline (Gray's artificial stress, the cubic spline); also our
-# default (ENO-A, Wendland). A peer that is missing is skipped.
+# side: --shear oas --kernel spline (Gray's artificial stress, the cubic spline), built with
+# every pair loop instanced (build/all_loops: the spline's loops vectorised, as the Wendland
+# kernel's are by default); also our default (ENO-A, Wendland). A peer that is missing is skipped.
 # The reference code (SPHinXsys, the papers' code) is not in the package manager: its figures
 # (bench/results/sphinxsys_reference.csv, with the CPU they were measured on) are
 # printed next to ours, measured again here on the same cases (2 threads, best of the rounds);
@@ -30,7 +31,7 @@ MD=$OUT/side_by_side.md
 REFERENCE=${REFERENCE:-1}
 REF=${REF:-bench/results/sphinxsys_reference.csv}
 REF_MD=$OUT/side_by_side_reference.md
-make -s build/plate2d build/spinning_plate build/column_collapse2d
+make -s build/plate2d build/all_loops/plate2d build/spinning_plate build/column_collapse2d
 
 # the Python that has PySPH: Debian's package installs it for /usr/bin/python3
 PY=""
@@ -54,9 +55,9 @@ pysph_run() { # round threads
     steps=$(awk -v t="$TEND" 'BEGIN { printf "%d", t / 1e-5 + 0.5 }') # the example's fixed dt
     echo "$1,pysph,gray artificial stress + cubic spline (dt 1e-5),$2,$n,$steps,$wall,$(awk -v w="$wall" -v n="$n" -v s="$steps" 'BEGIN { printf "%.1f", 1e9 * w / (n * s) }')" >> "$CSV"
 }
-ours_run() { # round threads label args...
-    r=$1 thr=$2 label=$3; shift 3
-    line=$(./build/plate2d --quiet --tend "$TEND" --threads "$thr" --vtk-every 0 --csv-every 1 --out "$TMP/ours" "$@" | grep '^RESULT')
+ours_run() { # binary round threads label args...
+    bin=$1 r=$2 thr=$3 label=$4; shift 4
+    line=$($bin --quiet --tend "$TEND" --threads "$thr" --vtk-every 0 --csv-every 1 --out "$TMP/ours" "$@" | grep '^RESULT')
     n=$(field particles "$line") steps=$(field steps "$line") wall=$(field wall_s "$line")
     echo "$r,sphsolid,$label,$thr,$n,$steps,$wall,$(awk -v w="$wall" -v n="$n" -v s="$steps" 'BEGIN { printf "%.1f", 1e9 * w / (n * s) }')" >> "$CSV"
 }
@@ -67,8 +68,8 @@ r=1
 while [ "$r" -le "$ROUNDS" ]; do
     for thr in $THREADS; do
         [ -z "$PLATE" ] || pysph_run "$r" "$thr"
-        ours_run "$r" "$thr" "gray artificial stress + cubic spline (oas)" --shear oas --kernel spline
-        ours_run "$r" "$thr" "default (eno-a + wendland)"
+        ours_run ./build/all_loops/plate2d "$r" "$thr" "gray artificial stress + cubic spline (oas)" --shear oas --kernel spline
+        ours_run ./build/plate2d "$r" "$thr" "default (eno-a + wendland)"
     done
     r=$((r + 1))
 done
