@@ -3705,15 +3705,16 @@ SPS__INLINE sps__granular_pair_constants sps__granular_pair_constants_of(const s
 /* Its pair terms in the pressure pass (SPS__TERM_GRANULAR, reached through
    sps__kind_pressure_pair), lane l of the pair (i, j) at distance rij with dW and V_j: the
    stress diffusion's sum (Feng et al. 2021), (sigma_i - sigma_j - geostatic difference)
-   r dW/(r^2 + 0.01 h^2) V_j (dp_ij = p_i - p_j; the lanes' deviators tau_i side by side, j's at
-   tau + tj: an int offset from the array, a gather, which a pointer to j's entries defeats).
+   r dW/(r^2 + 0.01 h^2) V_j (dp_ij = p_i - p_j of the pressures p; the lanes' deviators tau_i
+   side by side, j's at tau + tj: an int offset from the array, a gather, which a pointer to j's
+   entries defeats).
    Unscaled by the lattice moment: a smoothing, not the divergence. */
 SPS__INLINE void sps__granular_diffusion_pair(const sps__granular_pair_constants* c, sps_real (*spread)[SPS__LANES], int l,
                                               sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj, sps_real rij, sps_real dw,
-                                              sps_real vol_j, sps_real ex, sps_real ey, sps_real ez, sps_real dp_ij, const int dim) {
+                                              sps_real vol_j, sps_real ex, sps_real ey, sps_real ez, const sps_real* p, int i, int j, const int dim) {
     const sps_real *gravity = c->gravity, *geostatic = c->geostatic;
     const sps_real weight = rij * dw * vol_j / (rij * rij + c->soft2);
-    const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0));
+    const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0)), dp_ij = p[i] - p[j];
     spread[0][l] += weight * (tau_i[0][l] - tau[tj] - dp_ij - geostatic[0] * g_x);
     spread[1][l] += weight * (tau_i[1][l] - tau[tj + 1] - geostatic[1] * g_x);
     spread[3][l] += weight * (tau_i[3][l] - tau[tj + 3] - dp_ij - geostatic[3] * g_x);
@@ -6724,14 +6725,15 @@ SPS__INLINE sps__kind_pressure_constants sps__kind_pressure_constants_of(const s
 
 /* The pair terms of a kind's own in the pressure pass (terms: the instance's literal, whose
    kind bits sps__kind_pressure_terms gives), lane l of the pair (i, j) with geometry e: the
-   lanes' deviators tau_i, j's at tau + tj, V_j and dp_ij = p_i - p_j; into the kind's rows of
-   the sums (SPS__SPREAD). Inlined into the pair loop, so that an instance without the bits has
-   no trace of them. */
+   lanes' deviators tau_i, j's at tau + tj, V_j and the pressures p; into the kind's rows of the
+   sums (SPS__SPREAD). Inlined into the pair loop, so that an instance without the bits has no
+   trace of them (the instances with them compile to the instructions of the terms written in
+   the loop). */
 SPS__INLINE void sps__kind_pressure_pair(const sps__kind_pressure_constants* c, sps__lane_sums* sums, int l,
                                          sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj, sps__pair_geometry e, sps_real vol_j,
-                                         sps_real dp_ij, const int dim, const int terms) {
+                                         const sps_real* p, int i, int j, const int dim, const int terms) {
     if (terms & SPS__TERM_GRANULAR)
-        sps__granular_diffusion_pair(&c->granular, sums->row + SPS__SPREAD, l, tau_i, tau, tj, e.r, e.dw, vol_j, e.ex, e.ey, e.ez, dp_ij, dim);
+        sps__granular_diffusion_pair(&c->granular, sums->row + SPS__SPREAD, l, tau_i, tau, tj, e.r, e.dw, vol_j, e.ex, e.ey, e.ez, p, i, j, dim);
 }
 
 /* The pressure pass's finish of a kind's own sums for lane group q, where the body's model
@@ -6818,7 +6820,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
                     acc[0][l] += (sxx * ex + sxy * ey) * dwv;
                     acc[1][l] += (sxy * ex + syy * ey) * dwv;
                 }
-                sps__kind_pressure_pair(&kind_constants, sums, l, tau_i, tau, tj, e, vol[j], p[i] - p[j], dim, terms);
+                sps__kind_pressure_pair(&kind_constants, sums, l, tau_i, tau, tj, e, vol[j], p, i, j, dim, terms);
             }
             if (penalty) { /* in the penalty's configuration, before this sub-step's half drift */
                 const sps__pair_geometry e_kicked = sps__pair_before_drift(w, i, s, j, dim, geo, SPS_R(0.5) * dt);
