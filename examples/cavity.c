@@ -8,7 +8,7 @@
    points (the walls' own values left out).
 
    Build: make examples        Run: ./build/cavity --res 40 --tend 15
-   Expect (Re 100, TVF carrying the velocity, h = 2 dp, fluid_dissipation none): max_dev 0.018
+   Expect (Re 100, TVF carrying the velocity, h = 2 dp, material.fluid.dissipation none): max_dev 0.018
    at --res 30 --tend 10, 0.012 at --res 40 --tend 15 (0.017 at 20 s, 0.025 at 25 s: the flow
    is steady to a few per cent only, no density diffusion damping the box's sound), 0.005 at
    --res 60 --tend 15; Re 1000 at --res 40 --tend 15 0.26. --carry-velocity 0: 0.029 at --res 40
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
         {"re", OPT_REAL, &re, "Reynolds number U L / nu (Ghia's tables: 100 or 1000)", 1, 1e4, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
         {"carry-velocity", OPT_INT, &carry_velocity, "1: the transport shift carries the velocity and sees the walls (transport_carries_velocity)", 0, 1, NULL},
-        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
+        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (material.fluid.dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"ghia", OPT_STRING, &ghia_path, "Ghia et al.'s table (CSV)", 0, 0, NULL},
     };

@@ -11,7 +11,7 @@
    neighbours than the capacity); --transport tvf (the default here) keeps them apart.
 
    Build: make examples        Run: ./build/taylor_green --res 60
-   Expect (Re 100, TVF, h = 1.5 dp, fluid_dissipation none): decay_error 1.40 % at --res 30
+   Expect (Re 100, TVF, h = 1.5 dp, material.fluid.dissipation none): decay_error 1.40 % at --res 30
    (1/dp), 0.95 % at --res 60, 0.80 % at --res 100; with --dissipation riemann (the library's
    default, whose momentum term is an artificial viscosity of the order of nu here) 28.4 % and
    9.4 %, with --dissipation density 5.3 % and 2.4 %, with --carry-velocity 1 2.1 % and 1.1 %
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
         {"re", OPT_REAL, &tc.re, "Reynolds number U L / nu", 1, 1e4, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "sound speed / U", 2, 1000, NULL},
         {"carry-velocity", OPT_INT, &carry_velocity, "1: the transport shift carries the velocity and sees the walls (transport_carries_velocity)", 0, 1, NULL},
-        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
+        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (material.fluid.dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"tvf-alpha", OPT_REAL, &alpha, "transport_coefficient alpha of TVF, 0: the library's (0.2)", 0, 1, NULL},
     };

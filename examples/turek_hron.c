@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
         {"solver", OPT_CHOICE, &solver, "the flag: updated-Lagrangian linear elastic (ul) or total-Lagrangian Saint Venant-Kirchhoff (tl)", 0, 0, "ul|tl"},
         {"length", OPT_REAL, &length, "the channel's length [m] (Turek and Hron: 2.5)", 1, 10, NULL},
         {"c0-factor", OPT_REAL, &c0_factor, "the fluid's sound speed / U", 2, 1000, NULL},
-        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (fluid_dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
+        {"dissipation", OPT_CHOICE, &dissipation, "the fluid's numerical dissipation (material.fluid.dissipation): the Riemann solver's, its density diffusion only, none", 0, 0,
          "riemann|density|none"},
         {"p-out", OPT_REAL, &p_out, "the outlet pressure [Pa], < 0: the default rho_f (2 U)^2", -1, 1e6, NULL},
         {"window", OPT_REAL, &window, "the last seconds over which amplitude and frequency are measured, 0: the last third", 0, 100, NULL},

@@ -1129,7 +1129,7 @@ static int test_fluid_rest_long(void) {
 }
 
 /* The lid-driven cavity of examples/cavity.c (Re 100, L/dp 20, h = 2 dp, c0 = 10 U,
-   fluid_dissipation none, TVF) to t = 2 s: the smallest spacing over the run and the kinetic
+   material.fluid.dissipation none, TVF) to t = 2 s: the smallest spacing over the run and the kinetic
    energy at its end, with the transport shift carrying the velocity or not. */
 static double cavity_min_spacing(int carries, double* kinetic) {
     sps_world_def wd = sps_default_world_def();

@@ -210,7 +210,7 @@ static double taylor_green_energy_ratio(sps_fluid_dissipation dissipation) {
     return ratio;
 }
 
-/* fluid_dissipation: the Taylor-Green vortex at Re 100 decays at its physical rate, E/E0 =
+/* material.fluid.dissipation: the Taylor-Green vortex at Re 100 decays at its physical rate, E/E0 =
    exp(-16 pi^2 t / Re), only without the Riemann solver's momentum dissipation, an artificial
    viscosity of about 3 |v_ij . e_ij| h, which at 1/dp = 20 is of the order of nu; and the
    setting is refused for an inviscid fluid and out of its range. */
