@@ -502,12 +502,12 @@
       with mu = G = E/(2(1 + nu)), lambda = K - 2G/3. Saint Venant-Kirchhoff and Neo-Hookean
       are for total-Lagrangian bodies only, and a total-Lagrangian body takes only these and J2
       (combination rules). Time step: the signal
-      speed of a TL body in its reference state is c_ref = sqrt(c_p^2 + alpha E h^2 max_i S_i /
-      (d rho0)), c_p the P-wave speed sqrt((K + 4G/3)/rho0) and S_i = sum_j V0_j W_ij / X_ij^2,
-      the stiffness the hourglass springs add (without it alpha = 50 blew up the 2D plate at
-      cfl_acoustic = 0.4; with it the plate runs at 0.8; the variational form's highest
-      frequency is 3-5 % below the paper form's, so the bound holds for both); at every
-      configuration update it is
+      speed of a TL body in its reference state is c_ref = c_p omega_max(alpha) / omega_max(0),
+      c_p the P-wave speed sqrt((K + 4G/3)/rho0) and omega_max the highest frequency of the
+      body's discrete system linearised at its reference state with its hourglass springs and
+      without (power iterations at the first step): the springs take the elastic body's margin
+      of the step and no more (the 2D plate runs at cfl_acoustic 0.8 and blows up at 1.0 for
+      alpha 0, 10 and 50 alike; at alpha 50 c_ref = 2.33 c_p); at every configuration update it is
       c = c_ref / s^2, s the body's smallest principal stretch (at most 1), since a direction
       compressed by s has its spacing shrunk by s and its stiffness grown as 1/s^2 (the D3 block
       reached 50 % compression only so). sps_body_material_constants gives c_p before the
@@ -8063,11 +8063,13 @@ static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* ms
    matrices B_i = -L_i^-1 of TL eq. 15 (sps__tl_reference). With the reference pair direction
    E_ij = (X_i - X_j)/R_ij and dW = dW/dR (< 0), the corrected kernel gradient of TL eq. 14 is
    L_i^-1 grad W_i(X_ij) = dW B_i E_ij, and the other side's L_j^-1 grad W_j(X_ji) = -dW B_j E_ij.
-   Each sub-step runs two passes after the half drift: the stress pass (F_i by TL eq. 17, P_i by
-   the body's law, Q_i = (P_i + Pi_i) B_i with the hourglass stress Pi_i below, the Cauchy stress
-   and density for output) and, after a barrier, the force pass in the pressure pass's place (TL
-   eq. 24 and the hourglass springs' pair forces), whose acceleration the kick applies. No
-   continuity pass: the density is rho0/J.
+   Since the lists never change, the pairs' reference geometry is computed once, into a table
+   in the order the passes walk the lane slots (sps__tl_pair_table). Each sub-step runs two
+   passes after the half drift: the stress pass (F_i by TL eq. 17, P_i by the body's law, the
+   springs of i with F_i, Q_i = (P_i + Pi_i) B_i with the hourglass stress Pi_i below, the
+   Cauchy stress and density for output) and, after a barrier, the force pass in the pressure
+   pass's place (TL eq. 24 and the hourglass springs' pair forces in one loop), whose
+   acceleration the kick applies. No continuity pass: the density is rho0/J.
 
    The hourglass springs (TL eqs. 25-32). Particle i holds a spring to each reference neighbour
    j, of stiffness k_ij = 1/2 alpha E_i V0_i V0_j W_ij / R_ij^2 and stretch
@@ -8528,14 +8530,17 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         SPS__PRAGMA(omp simd)
         for (l = 0; l < SPS__LANES; ++l) {
             const int i = q.i0 + l, j = jk[l];
-            const sps_real dx = (px[j] - px[i]) - Xx[o + l], dy = (py[j] - py[i]) - Xy[o + l];
+            const sps_real x = px[j] - px[i], y = py[j] - py[i], dx = x - Xx[o + l], dy = y - Xy[o + l];
             const sps_real ex = wx[o + l], ey = wy[o + l];
+            ax[o + l] = x; /* x_ij for the springs' loop, which then writes a^i_ij there */
+            ay[o + l] = y;
             M[0][l] += dx * ex;
             M[1][l] += dx * ey;
             M[3][l] += dy * ex;
             M[4][l] += dy * ey;
             if (dim == 3) {
-                const sps_real dz = (pz[j] - pz[i]) - Xz[o + l], ez = wz[o + l];
+                const sps_real z = pz[j] - pz[i], dz = z - Xz[o + l], ez = wz[o + l];
+                az[o + l] = z;
                 M[2][l] += dx * ez;
                 M[5][l] += dy * ez;
                 M[6][l] += dz * ex;
@@ -8573,12 +8578,10 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         El[l] = hourglass ? alpha * sps__tl_hourglass_modulus(b, o, E, Y, law == SPS__LAW_J2) : 0;
     }
     for (k = 0; hourglass && k < q.len; ++k) { /* the springs of i: p^i = F_i X_ij - x_ij, d^i = p^i . x_ij / |x_ij|^2 */
-        const int* SPS__RESTRICT jk = js + k * SPS__LANES;
         const long o = (long)k * SPS__LANES;
         SPS__PRAGMA(omp simd)
         for (l = 0; l < SPS__LANES; ++l) {
-            const int i = q.i0 + l, j = jk[l];
-            const sps_real x = px[j] - px[i], y = py[j] - py[i], z = dim == 3 ? pz[j] - pz[i] : 0;
+            const sps_real x = ax[o + l], y = ay[o + l], z = dim == 3 ? az[o + l] : 0;
             const sps_real X = Xx[o + l], Yr = Xy[o + l], Z = dim == 3 ? Xz[o + l] : 0;
             const sps_real x2 = x * x + y * y + z * z, inv_x2 = 1 / (x2 > 0 ? x2 : 1); /* padding: x = 0, its factor 0 */
             sps_real p_x = Fl[0][l] * X + Fl[1][l] * Yr - x, p_y = Fl[3][l] * X + Fl[4][l] * Yr - y, p_z = 0, d, kd;

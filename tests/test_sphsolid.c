@@ -313,6 +313,7 @@ int main(int argc, char** argv) {
     RUN_NAMED(test_plate3d_period_mode22); /* 1 min on 2 cores: ./build/test_sphsolid plate3d_period */
     RUN(test_tl_hourglass_is_energy_gradient);
     RUN(test_tl_hourglass_stiffness_symmetric);
+    RUN(test_tl_time_step_frequency);
     RUN(test_tl_artificial_viscosity);
     /* friction and material damping */
     RUN(test_friction_block_on_slope);
