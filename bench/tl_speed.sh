@@ -1,7 +1,7 @@
 #!/bin/sh
 # The total-Lagrangian plate's cost per particle-step against the updated-Lagrangian ENO-A
 # plate's, two builds side by side (bench/VALIDATION.md, "Total-Lagrangian cost and time step"):
-# plate2d (A1, H/dp 10) to TEND as TL Saint Venant-Kirchhoff with alpha 50 (the default) and 0,
+# plate2d (A1, H/dp 10) to TEND as TL Saint Venant-Kirchhoff with alpha 50 (the default), 10 and 0,
 # and as ENO-A, each built program in turn within a round (interleaved), ROUNDS rounds, for each
 # thread count; medians of the wall time, the sub-steps and ns per particle-step.
 #   OLD=/path/to/old/build NEW=build sh bench/tl_speed.sh
@@ -38,8 +38,9 @@ while [ "$r" -le "$ROUNDS" ]; do
             if [ "$b" = new ]; then dir=$NEW; else dir=$OLD; fi
             [ -n "$dir" ] || continue
             one "$r" "$b" "$dir" "$thr" "tl alpha 50" --solver tl
+            one "$r" "$b" "$dir" "$thr" "tl alpha 10" --solver tl --alpha 10
             one "$r" "$b" "$dir" "$thr" "tl alpha 0" --solver tl --alpha 0
-            one "$r" "$b" "$dir" "$thr" "ul eno-a" --solver ul
+            one "$r" "$b" "$dir" "$thr" "ul eno-a" --solver ul --shear eno-a
         done
     done
     r=$((r + 1))
@@ -52,8 +53,8 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -
     echo
     echo "| build | case | threads | particles | sub-steps | wall [s] (median) | ns / particle-step (median) | / ENO-A of the same build |"
     echo "|---|---|---|---|---|---|---|---|"
-    awk -F, 'NR > 1 { print $2 "|" $3 "|" $4, $7, $8, $5, $6 }' "$CSV" | awk '
-        { key = $1; n[key]++; w[key, n[key]] = $2; ns[key, n[key]] = $3; np[key] = $4; st[key] = $5; if (!(key in seen)) { seen[key] = 1; order[++c] = key } }
+    awk -F, 'NR > 1 { key = $2 "|" $3 "|" $4; n[key]++; w[key, n[key]] = $7; ns[key, n[key]] = $8; np[key] = $5; st[key] = $6
+            if (!(key in seen)) { seen[key] = 1; order[++c] = key } }
         function med(a, key, m,    i, j, x, v) { for (i = 1; i <= m; ++i) v[i] = a[key, i]
             for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (v[j] < v[i]) { x = v[i]; v[i] = v[j]; v[j] = x }
             return m % 2 ? v[(m + 1) / 2] : (v[m / 2] + v[m / 2 + 1]) / 2 }
@@ -63,7 +64,7 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -
                 key = order[k]; split(key, f, "|"); ul = f[1] "|ul eno-a|" f[3]
                 printf "| %s | %s | %s | %s | %s | %.2f | %.1f | %.2fx |\n", f[1], f[2], f[3], np[key], st[key], mw[key], mn[key], (ul in mn) ? mn[key] / mn[ul] : 0
             }
-        }'
+        }' "$CSV"
 } > "$MD"
 cat "$MD"
 echo "written $CSV and $MD"

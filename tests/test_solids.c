@@ -1073,8 +1073,8 @@ static double largest_eigenvalue(double* S, int m) {
 
 /* The time step of a TL body with hourglass springs (chapter >>solver: total Lagrangian,
    sps__tl_pair_table): its signal speed c_ref = c_p omega_max(alpha 50) / omega_max(0), the
-   highest frequencies from the library's power iterations on its linearised passes. Checked
-   against the exact ratio: omega_max^2, the largest eigenvalue of M^-1/2 K M^-1/2 with the whole
+   highest frequencies from the library's power iterations on its linearised passes, times its
+   margin 1.01. Checked against the exact ratio: omega_max^2, the largest eigenvalue of M^-1/2 K M^-1/2 with the whole
    stiffness K = -df/dx at the reference state by central differences of the forces (the
    passes, alpha 50 and alpha 0), irregular patches (2D 6 x 6, 3D 4 x 4 x 4). The springs'
    summed stiffness (the bound before) is 3.4x c_p on the 2D plate: the check can fail. */
@@ -1112,7 +1112,9 @@ static int test_tl_time_step_frequency(void) {
         ratio = sqrt(omega2[0] / omega2[1]);
         printf("    %dD: omega_max %.4e (alpha 50) / %.4e (alpha 0) 1/s, ratio %.4f; the library's c_ref / c_p %.4f\n", dim, sqrt(omega2[0]),
                sqrt(omega2[1]), ratio, (double)w->bodies[0].tl_c_ref / c_p);
-        ENSURE(fabs((double)w->bodies[0].tl_c_ref / c_p - ratio) < 5e-3 * ratio); /* 100 power iterations, from below: -6e-4 in 3D */
+        /* never below the exact ratio (the step bound holds); above by at most the margin of 1 %
+           (the 100 power iterations approach from below: -6e-4 in 3D without the margin) */
+        ENSURE((double)w->bodies[0].tl_c_ref / c_p >= ratio && (double)w->bodies[0].tl_c_ref / c_p < 1.0105 * ratio);
         free(K);
         sps_world_destroy(w);
     }
