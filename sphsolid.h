@@ -511,12 +511,13 @@
       with mu = G = E/(2(1 + nu)), lambda = K - 2G/3. Saint Venant-Kirchhoff and Neo-Hookean
       are for total-Lagrangian bodies only, and a total-Lagrangian body takes only these and J2
       (combination rules). Time step: the signal
-      speed of a TL body in its reference state is c_ref = sqrt(c_p^2 + alpha E h^2 max_i S_i /
-      (d rho0)), c_p the P-wave speed sqrt((K + 4G/3)/rho0) and S_i = sum_j V0_j W_ij / X_ij^2,
-      the stiffness the hourglass springs add (without it alpha = 50 blew up the 2D plate at
-      cfl_acoustic = 0.4; with it the plate runs at 0.8; the variational form's highest
-      frequency is 3-5 % below the paper form's, so the bound holds for both); at every
-      configuration update it is
+      speed of a TL body in its reference state is c_ref = c_p omega_max(alpha) / omega_max(0),
+      c_p the P-wave speed sqrt((K + 4G/3)/rho0) and omega_max the highest frequency of the
+      body's discrete system linearised at its reference state with its hourglass springs and
+      without (power iterations at the first step, which approach it from below: times 1.01):
+      the springs take the elastic body's margin of the step and no more (the 2D plate runs at
+      cfl_acoustic 0.8 and blows up at 1.0 for alpha 0, 10 and 50 alike; at alpha 50
+      c_ref = 2.36 c_p); at every configuration update it is
       c = c_ref / s^2, s the body's smallest principal stretch (at most 1), since a direction
       compressed by s has its spacing shrunk by s and its stiffness grown as 1/s^2 (the D3 block
       reached 50 % compression only so). sps_body_material_constants gives c_p before the
@@ -2463,6 +2464,10 @@ typedef struct sps__body {
     int reference_built; /* total Lagrangian: its reference neighbour lists and B_i are built (they
                             are rebuilt only when a commit re-sorts the particles) */
     sps_real tl_c_ref;   /* total Lagrangian: its signal speed in the reference state (sps__tl_signal_speeds) */
+    sps_real* tl_pairs;  /* total Lagrangian: its reference pair table, SPS__TLP_ROWS(dim) rows of tl_slots
+                            (sps__tl_pair_table) */
+    int* tl_reverse;     /* ... for each slot the slot of the same pair in the neighbour's list */
+    long tl_slots;       /* ... the body's lane slots, the rows' length (0: to be built) */
     int hexagonal;       /* its fills use the hexagonal lattice (def.lattice resolved: sps__kind_fills_hexagonal) */
     int coupled;         /* a fluid that touches a solid body: its continuity pass takes the solid's
                             particles as wall images (chapter >>coupling: fluid-structure) */
@@ -4570,6 +4575,10 @@ static void sps__free_particle_fields(sps_world* w) {
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_j); sps__free(w, w->nb_count);
     sps__free(w, w->nb_ell);
     sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
+    for (bi = 0; bi < w->nbodies; ++bi) {
+        sps__free(w, w->bodies[bi].tl_pairs);
+        sps__free(w, w->bodies[bi].tl_reverse);
+    }
     sps__free(w, w->pair_force); sps__free(w, w->kept_force); sps__free(w, w->kept_neighbor_id);
     sps__free(w, w->kept_first); sps__free(w, w->kept_count);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm);
@@ -5817,6 +5826,7 @@ SPS__INLINE void sps__blended_inverse(const sps_real* a, int as, sps_real* b, in
 static sps_result sps__fill_lane_slots(sps_world* w);
 static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, int s, int len);
 static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int s, int len);
+static sps_result sps__tl_pair_table(sps_world* w, sps__body* b);
 
 /* The k-th neighbour of particle i (k < nb_count[i]). */
 SPS__INLINE int sps__neighbor(const sps_world* w, int i, int k) { return w->nb_j[w->nb_first[i] + k * SPS__LANES]; }
@@ -6011,6 +6021,11 @@ static sps_result sps__fill_lane_slots(sps_world* w) {
                 else sps__freeze_lanes(w, q, 3, SPS_KERNEL_WENDLAND_C2);
             }
         }
+    }
+    for (bi = 0; bi < w->nbodies; ++bi) { /* a total-Lagrangian body's table, once per reference build */
+        sps__body* b = &w->bodies[bi];
+        sps_result r;
+        if (b->model.total_lagrangian && b->reference_built && b->tl_slots == 0 && (r = sps__tl_pair_table(w, b)) != SPS_OK) return r;
     }
     return SPS_OK;
 }
@@ -8376,11 +8391,13 @@ static int sps__missing_pass(const sps__model* m, const sps__passes* p, char* ms
    matrices B_i = -L_i^-1 of TL eq. 15 (sps__tl_reference). With the reference pair direction
    E_ij = (X_i - X_j)/R_ij and dW = dW/dR (< 0), the corrected kernel gradient of TL eq. 14 is
    L_i^-1 grad W_i(X_ij) = dW B_i E_ij, and the other side's L_j^-1 grad W_j(X_ji) = -dW B_j E_ij.
-   Each sub-step runs two passes after the half drift: the stress pass (F_i by TL eq. 17, P_i by
-   the body's law, Q_i = (P_i + Pi_i) B_i with the hourglass stress Pi_i below, the Cauchy stress
-   and density for output) and, after a barrier, the force pass in the pressure pass's place (TL
-   eq. 24 and the hourglass springs' pair forces), whose acceleration the kick applies. No
-   continuity pass: the density is rho0/J.
+   Since the lists never change, the pairs' reference geometry is computed once, into a table
+   in the order the passes walk the lane slots (sps__tl_pair_table). Each sub-step runs two
+   passes after the half drift: the stress pass (F_i by TL eq. 17, P_i by the body's law, the
+   springs of i with F_i, Q_i = (P_i + Pi_i) B_i with the hourglass stress Pi_i below, the
+   Cauchy stress and density for output) and, after a barrier, the force pass in the pressure
+   pass's place (TL eq. 24 and the hourglass springs' pair forces in one loop), whose
+   acceleration the kick applies. No continuity pass: the density is rho0/J.
 
    The hourglass springs (TL eqs. 25-32). Particle i holds a spring to each reference neighbour
    j, of stiffness k_ij = 1/2 alpha E_i V0_i V0_j W_ij / R_ij^2 and stretch
@@ -8457,45 +8474,46 @@ static void sps__newton_inverse_step(const sps_real A6[6], sps_real B[9], const 
    Newton steps B <- B (2 I - A B): the blend's relative error (1e-6 / det^2, larger at corners)
    is squared twice, so that F is exact for affine motions to round-off (TL eq. 16; the blend
    alone gave |F - F_exact| = 7e-6 for a 20 % stretch, one step 2.4e-10) while an isolated
-   particle's B stays bounded; and the body's signal
-   speed for the time step. The hourglass force of TL eq. 32 is a spring between i and j of
-   stiffness alpha E V0_i V0_j W_ij / R_ij^2, so a particle carries the extra stiffness
-   alpha E V0_i S_i / d per axis, S_i = sum_j V0_j W_ij / R_ij^2; with its elastic P-wave speed
-   c_p the body's signal speed is sqrt(c_p^2 + alpha E h^2 max_i S_i / (d rho0)), so that
-   CFL_ac h / c resolves the stiffest spring too (without the hourglass term, alpha = 50 blew
-   up the 2D plate at cfl_acoustic = 0.4 within 0.04 s). An irregular reference set (close
-   pairs) has a larger S and a shorter step. The variational form's full gradient adds, at the
-   reference state, only the springs' dependence on F (the transverse term vanishes with p);
-   measured from finite-difference stiffness matrices of jittered patches at alpha 50, its
-   highest frequency omega_max is 3-5 % below the paper form's (omega_max h / c = 1.27-1.32
-   against 1.33-1.36, 2D and 3D), so the same c serves both: CFL_ac 0.4 puts omega_max dt near
-   0.53, below leapfrog's limit 2. */
+   particle's B stays bounded. The pair table and the signal speed follow the lane slots
+   (sps__tl_pair_table). */
 static void sps__tl_reference(sps_world* w, sps__body* b) {
     const int dim = w->dim, width = w->ell_width;
-    sps_real s_max = 0, c2;
     int i;
-    SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (b->end - b->begin > 256) reduction(max : s_max))
+    SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (b->end - b->begin > 256))
     for (i = b->begin; i < b->end; ++i) {
-        sps_real A[6] = {0, 0, 0, 0, 0, 0}, *B = b->tl_correction + (size_t)9 * (i - b->begin), S = 0;
+        sps_real A[6] = {0, 0, 0, 0, 0, 0}, *B = b->tl_correction + (size_t)9 * (i - b->begin);
         int k;
         for (k = 0; k < 9; ++k) B[k] = 0;
         for (k = 0; k < w->nb_count[i]; ++k) {
             const int j = w->nb_ell[(size_t)i * width + k];
             const sps__ref_pair e = dim == 2 ? sps__tl_pair(w, i, j, 2) : sps__tl_pair(w, i, j, 3);
             sps__add_moment(A, 1, e.ex, e.ey, e.ez, e.r * e.dw * SPS__V0(w, b, j), dim);
-            S += SPS__V0(w, b, j) * e.w / (e.r * e.r);
         }
         if (dim == 2) sps__blended_inverse(A, 1, B, 1, 2);
         else sps__blended_inverse(A, 1, B, 1, 3);
         sps__newton_inverse_step(A, B, dim);
         sps__newton_inverse_step(A, B, dim);
-        if (S > s_max) s_max = S;
     }
-    c2 = (b->mat.K + b->mat.G * 4 / 3 + b->def.material.tl.hourglass_alpha * b->def.material.youngs_modulus * w->h * w->h * s_max / dim) / b->rho0;
-    b->mat.c0 = b->tl_c_ref = SPS__SQRT(c2);
-    if (b->mat.c0 > w->c0_max) w->c0_max = b->mat.c0;
     b->reference_built = 1;
+    b->tl_slots = 0; /* the pair table is built from the lane slots (sps__fill_lane_slots) */
 }
+
+/* The pair table of a total-Lagrangian body (tl_pairs): the reference lists never change, so
+   every pair's reference geometry is computed once, in the order the passes walk the lane
+   slots: table slot t is lane slot nb_group_start[group0] + t, padding zero. Rows (each
+   tl_slots long; dim is the world's): the pair weight w_ij = V0_i V0_j dW(R_ij) E_ij, whose
+   sums give F (TL eq. 17: V0_i F_i = V0_i I + sum_j (u_j - u_i) (x) w_ij B_i) and the force of
+   TL eq. 24 (f_i = sum_j (Q_i + Q_j) w_ij); X_ij = X_j - X_i; the spring factor
+   1/2 V0_i V0_j W_ij / R_ij^2 (k_ij = alpha E_i times it, TL eq. 31); and the force a^i_ij of
+   i's spring to j on i, which each stress pass writes where it has d^i_ij and the force pass
+   reads from both ends of the pair (tl_reverse: the slot of pair (j, i) in j's list). Memory:
+   (3 d + 1) reals and an int per slot, about 1.7 KB per particle in 2D and 6 KB in 3D at the
+   default h (the updated-Lagrangian lists: 2 reals and an int per slot). */
+#define SPS__TLP_WEIGHT(dim, a) (a)
+#define SPS__TLP_X(dim, a) ((dim) + (a))
+#define SPS__TLP_SPRING(dim) (2 * (dim))
+#define SPS__TLP_FORCE(dim, a) (2 * (dim) + 1 + (a))
+#define SPS__TLP_ROWS(dim) (3 * (dim) + 1)
 
 /* The hourglass spring of pair (i, j) seen from a particle with deformation gradient F: the error
    vector p = F X_ij - x_ij (TL eq. 25) into p, and d = p . x_ij / |x_ij|^2 returned (inv_x2 =
@@ -8807,27 +8825,36 @@ static void sps__tl_damage(sps_real rate, sps_real eps_max, sps_real dt, const s
     sps__mat3_product(T, Finv, 1, P);
 }
 
-/* Deformation gradient of particle i (TL eq. 17): F_i = I + sum_j V0_j (u_j - u_i) (x) dW B_i E_ij,
-   u = x - X, into F (row-major 3 x 3, F_zz = 1 in 2D). */
-SPS__INLINE void sps__tl_deformation(const sps_world* w, const sps__body* b, int i, int first, const int dim, sps_real F[9]) {
-    const sps_real* B = b->tl_correction + (size_t)9 * (i - b->begin);
-    sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}; /* sum_j V0_j dW (u_j - u_i) (x) E_ij */
-    int k, a, c;
-    for (k = 0; k < w->nb_count[i]; ++k) {
-        const int j = w->nb_j[first + k * SPS__LANES];
-        const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
-        const sps_real dir[3] = {e.ex, e.ey, e.ez}, c0 = SPS__V0(w, b, j) * e.dw;
-        for (a = 0; a < dim; ++a) {
-            const sps_real du = (w->pos[a][j] - w->ref[a][j]) - (w->pos[a][i] - w->ref[a][i]);
-            for (c = 0; c < dim; ++c) M[3 * a + c] += c0 * du * dir[c];
-        }
-    }
+/* Lame constants of a total-Lagrangian body: mu = G, lambda = K - 2G/3. */
+#define SPS__LAME_LAMBDA(b) ((b)->mat.K - (b)->mat.G * 2 / 3)
+
+/* F = I + M B_i / V0_i (TL eq. 17) from M = sum_j (u_j - u_i) (x) w_ij, row-major 3 x 3,
+   F_zz = 1 in 2D. */
+SPS__INLINE void sps__tl_gradient(const sps_real M[9], const sps_real B[9], sps_real inv_v0, const int dim, sps_real F[9]) {
+    int a, c, k;
     for (a = 0; a < 3; ++a)
         for (c = 0; c < 3; ++c) {
-            sps_real s = a == c;
+            sps_real s = 0;
             for (k = 0; k < dim; ++k) s += M[3 * a + k] * B[3 * k + c];
-            F[3 * a + c] = a < dim && c < dim ? s : (sps_real)(a == c);
+            F[3 * a + c] = a < dim && c < dim ? (a == c) + s * inv_v0 : (sps_real)(a == c);
         }
+}
+
+/* Deformation gradient of particle i at the current positions (TL eq. 17), from the pair
+   table, into F: the sums of the stress pass in the same order, so the same F. */
+SPS__INLINE void sps__tl_deformation(const sps_world* w, const sps__body* b, int i, const int dim, sps_real F[9]) {
+    const long n = b->tl_slots, base = w->nb_group_start[b->group0];
+    sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    int k, a, c;
+    for (k = 0; k < w->nb_count[i]; ++k) {
+        const int s = w->nb_first[i] + k * SPS__LANES, j = w->nb_j[s];
+        const sps_real* row = b->tl_pairs + (s - base);
+        for (a = 0; a < dim; ++a) {
+            const sps_real du = (w->pos[a][j] - w->pos[a][i]) - row[SPS__TLP_X(dim, a) * n];
+            for (c = 0; c < dim; ++c) M[3 * a + c] += du * row[SPS__TLP_WEIGHT(dim, c) * n];
+        }
+    }
+    sps__tl_gradient(M, b->tl_correction + (size_t)9 * (i - b->begin), 1 / SPS__V0(w, b, i), dim, F);
 }
 
 /* The modulus of particle o's side of the hourglass force (TL eq. 32): Young's modulus E, the
@@ -8840,67 +8867,103 @@ SPS__INLINE sps_real sps__tl_hourglass_modulus(const sps__body* b, int o, sps_re
     return b->damage ? modulus * (1 - b->damage[o]) : modulus;
 }
 
-/* The pair vectors of pair (i, j) with reference geometry e: X_ij = X_j - X_i = -R_ij E_ij and
-   x_ij = x_j - x_i; returns |x_ij|^2. */
-SPS__INLINE sps_real sps__tl_pair_vectors(const sps_world* w, int i, int j, const sps__ref_pair* e, const int dim, sps_real X[3], sps_real x[3]) {
-    const sps_real dir[3] = {e->ex, e->ey, e->ez};
-    sps_real x2 = 0;
-    int a;
-    for (a = 0; a < dim; ++a) {
-        X[a] = -e->r * dir[a];
-        x[a] = w->pos[a][j] - w->pos[a][i];
-        x2 += x[a] * x[a];
+/* The energy of particle i's hourglass springs at its deformation gradient F (modulus:
+   sps__tl_hourglass_modulus): sum_j 1/2 k_ij (delta^i_ij)^2 = sum_j 1/2 k_ij (d^i_ij)^2 |x_ij|^2. */
+static sps_real sps__tl_springs(const sps_world* w, const sps__body* b, int i, const int dim, const sps_real F[9], sps_real modulus) {
+    const long n = b->tl_slots, base = w->nb_group_start[b->group0];
+    const sps_real alpha_E = b->def.material.tl.hourglass_alpha * modulus;
+    sps_real energy = 0;
+    int k, a;
+    for (k = 0; k < w->nb_count[i]; ++k) {
+        const int s = w->nb_first[i] + k * SPS__LANES, j = w->nb_j[s];
+        const sps_real* row = b->tl_pairs + (s - base);
+        sps_real X[3], x[3], p[3], x2 = 0, d;
+        for (a = 0; a < dim; ++a) {
+            X[a] = row[SPS__TLP_X(dim, a) * n];
+            x[a] = w->pos[a][j] - w->pos[a][i];
+            x2 += x[a] * x[a];
+        }
+        d = sps__tl_spring(F, X, x, 1 / x2, dim, p);
+        energy += SPS_R(0.5) * alpha_E * row[SPS__TLP_SPRING(dim) * n] * d * d * x2;
     }
-    return x2;
+    return energy;
 }
 
-/* Whether body b's stress pass adds the hourglass stress Pi (the variational form, alpha > 0). */
-#define SPS__TL_SPRING_STRESS(b) ((b)->def.material.tl.hourglass == SPS_HOURGLASS_VARIATIONAL && (b)->def.material.tl.hourglass_alpha > 0)
-
-/* The hourglass springs of particle i at its deformation gradient F (neighbours from slot first;
-   modulus: sps__tl_hourglass_modulus): their energy sum_j 1/2 k_ij (delta^i_ij)^2, returned, and,
-   if Pi is not NULL, the hourglass stress Pi_i = 1/V0_i dPhi/dF_i =
-   sum_j 1/2 alpha E_i V0_j W_ij / R_ij^2 d^i_ij x_ij (x) X_ij (row-major 3 x 3). */
-static sps_real sps__tl_springs(const sps_world* w, const sps__body* b, int i, int first, const int dim, const sps_real F[9],
-                                sps_real modulus, sps_real Pi[9]) {
-    const sps_real half_alpha_E = SPS_R(0.5) * b->def.material.tl.hourglass_alpha * modulus;
-    sps_real energy = 0;
-    int k, a, c;
-    for (k = 0; Pi && k < 9; ++k) Pi[k] = 0;
-    for (k = 0; k < w->nb_count[i]; ++k) {
-        const int j = w->nb_j[first + k * SPS__LANES];
-        const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
-        const sps_real stiffness = half_alpha_E * SPS__V0(w, b, j) * e.w / (e.r * e.r); /* k_ij / V0_i */
-        sps_real X[3], x[3], p[3], x2, d;
-        x2 = sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
-        d = sps__tl_spring(F, X, x, 1 / x2, dim, p);
-        energy += SPS_R(0.5) * stiffness * d * d * x2;
-        for (a = 0; Pi && a < dim; ++a)
-            for (c = 0; c < dim; ++c) Pi[3 * a + c] += stiffness * d * x[a] * X[c];
-    }
-    return SPS__V0(w, b, i) * energy;
+/* The hourglass form of body b: 0 without springs (alpha = 0), 1 the paper's TL eq. 32, 2 the
+   variational form. */
+static int sps__tl_hourglass_form(const sps__body* b) {
+    return !(b->def.material.tl.hourglass_alpha > 0) ? 0 : b->def.material.tl.hourglass == SPS_HOURGLASS_VARIATIONAL ? 2 : 1;
 }
 
 /* >>solver: total Lagrangian (continued): the stress and force passes, the stored energy */
 
-/* Stress pass of lane group g: F_i, P_i by the body's law (sps__tl_law; degraded by its damage,
-   TL eqs. 45-46, when the body has damage), Q_i = (P_i + Pi_i) B_i with the hourglass stress
-   Pi_i of the variational form (for the force pass; Pi = 0 otherwise),
-   the Cauchy stress sigma = P F^T / J stored as tau = sigma + p I (so that -p I + tau, what the
-   output reads, is sigma) and the density rho0/J (TL eq. 3). dim is a literal; plastic: the
-   law has plastic work (its particles that have flowed take sps__tl_flowed_modulus). */
-SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
+/* Stress pass of lane group g: F_i (TL eq. 17) from the pair weights, P_i by the body's law
+   (degraded by its damage, TL eqs. 45-46, when the body has damage), then the hourglass springs
+   of i with F_i (hourglass: 0 none, alpha = 0; 1 TL eq. 32; 2 the variational form): d^i_ij,
+   the force a^i_ij of i's spring on i into the pair table, a^i_ij = -k_ij d^i x_ij (TL eq. 32)
+   and, in the variational form, + k_ij d^i (p^i - d^i x_ij) (the turn of the pair), and the
+   hourglass stress Pi_i = alpha E_i / V0_i sum_j (k_ij / (alpha E_i)) d^i x_ij (x) X_ij; then
+   Q_i = (P_i + Pi_i) B_i, the Cauchy stress sigma = P F^T / J stored as tau = sigma + p I (so
+   that -p I + tau, what the output reads, is sigma) and the density rho0/J (TL eq. 3). The
+   pair loops run the lanes side by side (sps__pressure_pairs); the law, per particle, between
+   them. dim and hourglass are literals. */
+SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic, const int hourglass) {
     const sps__group q = sps__group_of(w, b, g);
+    const long n = b->tl_slots, t0 = q.s0 - w->nb_group_start[b->group0];
     const sps_real damage_rate = b->damage ? sps__tl_damage_rate(w, b) : 0;
-    const sps_real E = b->def.material.youngs_modulus, Y = sps__tl_flowed_modulus(b);
-    const int springs = SPS__TL_SPRING_STRESS(b);
-    int l, a, c, k;
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+    const sps_real E = b->def.material.youngs_modulus, Y = sps__tl_flowed_modulus(b), alpha = b->def.material.tl.hourglass_alpha;
+    const sps_real *SPS__RESTRICT px = w->pos[0], *SPS__RESTRICT py = w->pos[1], *SPS__RESTRICT pz = w->pos[2];
+    const int* SPS__RESTRICT js = w->nb_j + q.s0;
+    const sps_real* SPS__RESTRICT wx = b->tl_pairs + t0 + SPS__TLP_WEIGHT(dim, 0) * n;
+    const sps_real* SPS__RESTRICT wy = wx + n;
+    const sps_real* SPS__RESTRICT wz = dim == 3 ? wx + 2 * n : wx;
+    const sps_real* SPS__RESTRICT Xx = b->tl_pairs + t0 + SPS__TLP_X(dim, 0) * n;
+    const sps_real* SPS__RESTRICT Xy = Xx + n;
+    const sps_real* SPS__RESTRICT Xz = dim == 3 ? Xx + 2 * n : Xx;
+    const sps_real* SPS__RESTRICT spring = b->tl_pairs + t0 + SPS__TLP_SPRING(dim) * n;
+    sps_real* SPS__RESTRICT ax = b->tl_pairs + t0 + SPS__TLP_FORCE(dim, 0) * n;
+    sps_real* SPS__RESTRICT ay = ax + n;
+    sps_real* SPS__RESTRICT az = dim == 3 ? ax + 2 * n : ax;
+    sps_real M[9][SPS__LANES], Fl[9][SPS__LANES], Pl[9][SPS__LANES], Pil[9][SPS__LANES], Jl[SPS__LANES], El[SPS__LANES];
+    int k, l, a, c;
+    for (a = 0; a < 9; ++a)
+        for (l = 0; l < SPS__LANES; ++l) M[a][l] = Pil[a][l] = 0;
+    for (k = 0; k < q.len; ++k) { /* M = sum_j (u_j - u_i) (x) w_ij, u_j - u_i = x_ij - X_ij */
+        const int* SPS__RESTRICT jk = js + k * SPS__LANES;
+        const long o = (long)k * SPS__LANES;
+        SPS__PRAGMA(omp simd)
+        for (l = 0; l < SPS__LANES; ++l) {
+            const int i = q.i0 + l, j = jk[l];
+            const sps_real x = px[j] - px[i], y = py[j] - py[i], dx = x - Xx[o + l], dy = y - Xy[o + l];
+            const sps_real ex = wx[o + l], ey = wy[o + l];
+            ax[o + l] = x; /* x_ij for the springs' loop, which then writes a^i_ij there */
+            ay[o + l] = y;
+            M[0][l] += dx * ex;
+            M[1][l] += dx * ey;
+            M[3][l] += dy * ex;
+            M[4][l] += dy * ey;
+            if (dim == 3) {
+                const sps_real z = pz[j] - pz[i], dz = z - Xz[o + l], ez = wz[o + l];
+                az[o + l] = z;
+                M[2][l] += dx * ez;
+                M[5][l] += dy * ez;
+                M[6][l] += dz * ex;
+                M[7][l] += dz * ey;
+                M[8][l] += dz * ez;
+            }
+        }
+    }
+    for (l = 0; l < SPS__LANES; ++l) { /* F_i and the law; lanes past the body: F = I, no springs */
         const int i = q.i0 + l, o = i - b->begin;
-        const sps_real* B = b->tl_correction + (size_t)9 * o;
-        sps_real *F = b->tl_deformation + (size_t)9 * o, *Q = b->tl_stress + (size_t)9 * o, *tau = b->tau + (size_t)6 * o;
-        sps_real P[9], Pi[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, sigma[9], J;
-        sps__tl_deformation(w, b, i, q.s0 + l, dim, F);
+        sps_real Mi[9], F[9], P[9], J;
+        if (i >= b->end) {
+            for (a = 0; a < 9; ++a) Fl[a][l] = Pl[a][l] = (sps_real)(a % 4 == 0);
+            Jl[l] = 1;
+            El[l] = 0;
+            continue;
+        }
+        for (a = 0; a < 9; ++a) Mi[a] = M[a][l];
+        sps__tl_gradient(Mi, b->tl_correction + (size_t)9 * o, 1 / SPS__V0(w, b, i), dim, F);
         J = sps__det3(F);
         {
             sps_real work = 0;
@@ -8908,14 +8971,62 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
             if (plastic) b->plastic_work[o] += SPS__V0(w, b, i) * work;
         }
         if (b->damage) sps__tl_damage(damage_rate, b->def.material.tl.damage_strain, dt, F, J, b->damage + o, P);
-        if (springs) sps__tl_springs(w, b, i, q.s0 + l, dim, F, sps__tl_hourglass_modulus(b, o, E, Y, plastic), Pi);
+        for (a = 0; a < 9; ++a) {
+            b->tl_deformation[(size_t)9 * o + a] = Fl[a][l] = F[a];
+            Pl[a][l] = P[a];
+        }
+        Jl[l] = J;
+        El[l] = hourglass ? alpha * sps__tl_hourglass_modulus(b, o, E, Y, plastic) : 0;
+    }
+    for (k = 0; hourglass && k < q.len; ++k) { /* the springs of i: p^i = F_i X_ij - x_ij, d^i = p^i . x_ij / |x_ij|^2 */
+        const long o = (long)k * SPS__LANES;
+        SPS__PRAGMA(omp simd)
+        for (l = 0; l < SPS__LANES; ++l) {
+            const sps_real x = ax[o + l], y = ay[o + l], z = dim == 3 ? az[o + l] : 0;
+            const sps_real X = Xx[o + l], Yr = Xy[o + l], Z = dim == 3 ? Xz[o + l] : 0;
+            const sps_real x2 = x * x + y * y + z * z, inv_x2 = 1 / (x2 > 0 ? x2 : 1); /* padding: x = 0, its factor 0 */
+            sps_real p_x = Fl[0][l] * X + Fl[1][l] * Yr - x, p_y = Fl[3][l] * X + Fl[4][l] * Yr - y, p_z = 0, d, kd;
+            if (dim == 3) {
+                p_x += Fl[2][l] * Z;
+                p_y += Fl[5][l] * Z;
+                p_z = Fl[6][l] * X + Fl[7][l] * Yr + Fl[8][l] * Z - z;
+            }
+            d = (p_x * x + p_y * y + p_z * z) * inv_x2;
+            kd = El[l] * spring[o + l] * d; /* k_ij d^i */
+            if (hourglass == 2) {
+                const sps_real sd = spring[o + l] * d;
+                Pil[0][l] += sd * x * X;
+                Pil[1][l] += sd * x * Yr;
+                Pil[3][l] += sd * y * X;
+                Pil[4][l] += sd * y * Yr;
+                if (dim == 3) {
+                    Pil[2][l] += sd * x * Z;
+                    Pil[5][l] += sd * y * Z;
+                    Pil[6][l] += sd * z * X;
+                    Pil[7][l] += sd * z * Yr;
+                    Pil[8][l] += sd * z * Z;
+                }
+                ax[o + l] = kd * (p_x - (d + 1) * x);
+                ay[o + l] = kd * (p_y - (d + 1) * y);
+                if (dim == 3) az[o + l] = kd * (p_z - (d + 1) * z);
+            } else {
+                ax[o + l] = -kd * x;
+                ay[o + l] = -kd * y;
+                if (dim == 3) az[o + l] = -kd * z;
+            }
+        }
+    }
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        const int i = q.i0 + l, o = i - b->begin;
+        const sps_real *B = b->tl_correction + (size_t)9 * o, pi_scale = hourglass == 2 ? El[l] / SPS__V0(w, b, i) : 0;
+        sps_real *Q = b->tl_stress + (size_t)9 * o, *tau = b->tau + (size_t)6 * o, sigma[9];
         for (a = 0; a < 3; ++a)
             for (c = 0; c < 3; ++c) {
                 sps_real s = 0, t = 0;
-                for (k = 0; k < dim; ++k) s += (P[3 * a + k] + Pi[3 * a + k]) * B[3 * k + c];
-                for (k = 0; k < 3; ++k) t += P[3 * a + k] * F[3 * c + k];
+                for (k = 0; k < dim; ++k) s += (Pl[3 * a + k][l] + pi_scale * Pil[3 * a + k][l]) * B[3 * k + c];
+                for (k = 0; k < 3; ++k) t += Pl[3 * a + k][l] * Fl[3 * c + k][l];
                 Q[3 * a + c] = s;
-                sigma[3 * a + c] = t / J;
+                sigma[3 * a + c] = t / Jl[l];
             }
         tau[0] = sigma[0] + w->p[i];
         tau[1] = sigma[1];
@@ -8923,7 +9034,7 @@ SPS__INLINE void sps__tl_stress(sps_world* w, const sps__body* b, int g, sps_rea
         tau[3] = sigma[4] + w->p[i];
         tau[4] = sigma[5];
         tau[5] = dim == 3 ? sigma[8] + w->p[i] : 0;
-        w->rho[i] = b->rho0 / J;
+        w->rho[i] = b->rho0 / Jl[l];
     }
 }
 
@@ -8940,66 +9051,106 @@ static void sps__tl_kelvin_voigt(const sps_world* w, const sps__body* b, int i, 
     for (a = 0; a < dim; ++a) f[a] += s * xij[a];
 }
 
+/* The rare pair terms of particle i's force, added to f (damp: the Kelvin-Voigt force, for its
+   work): with artificial_viscosity = q1 > 0 (viscosity = q1 c_p h rho0), Monaghan's linear
+   artificial viscosity between reference neighbours (as the TL author's LAMMPS input uses it,
+   there q1 = 0.06; the paper's runs had none): f_i += sum_j q1 c_p h rho0 V0_i V0_j |dW(R_ij)|
+   (v_ij . x_ij) x_ij / (|x_ij| (|x_ij|^2 + 0.01 h^2)), v_ij = v_j - v_i, c_p the P-wave speed:
+   central and antisymmetric (both momenta kept), zero for rigid motions, and its power
+   -sum_pairs C (v_ij . x_ij)^2 is never positive: it only damps the pairs' stretching rates,
+   the hourglass modes' among them; and the Kelvin-Voigt force (sps__tl_kelvin_voigt). */
+static void sps__tl_rare_pairs(const sps_world* w, const sps__body* b, int i, sps_real viscosity, const int dim, sps_real f[3], sps_real damp[3]) {
+    const sps_real vi = SPS__V0(w, b, i);
+    int k, a;
+    for (k = 0; k < w->nb_count[i]; ++k) {
+        const int j = w->nb_j[w->nb_first[i] + k * SPS__LANES];
+        const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
+        const sps_real vv = vi * SPS__V0(w, b, j);
+        sps_real x[3], x2 = 0;
+        for (a = 0; a < dim; ++a) {
+            x[a] = w->pos[a][j] - w->pos[a][i];
+            x2 += x[a] * x[a];
+        }
+        if (viscosity > 0) {
+            sps_real vx = 0, damper;
+            for (a = 0; a < dim; ++a) vx += (w->vel[a][j] - w->vel[a][i]) * x[a];
+            damper = -viscosity * vv * e.dw * vx / (SPS__SQRT(x2) * (x2 + SPS_R(0.01) * w->h * w->h));
+            for (a = 0; a < dim; ++a) f[a] += damper * x[a];
+        }
+        if (b->viscous_work) sps__tl_kelvin_voigt(w, b, i, j, x, 1 / SPS__SQRT(x2), vv * e.dw / e.r, dim, damp);
+    }
+}
+
 /* Force pass of lane group g (in the pressure pass's place): the stress force of TL eq. 24,
    f_i = sum_j V0_i V0_j (P_i L_i^-1 grad W_i(X_ij) - P_j L_j^-1 grad W_j(X_ji))
-       = sum_j V0_i V0_j dW (Q_i + Q_j) E_ij
-   (Q holds the hourglass stress too), and the springs' pair forces: TL eq. 32,
+       = sum_j (Q_i + Q_j) w_ij = Q_i sum_j w_ij + sum_j Q_j w_ij
+   (Q holds the hourglass stress too), and the springs' pair forces (springs, a literal):
+   f_i += sum_j a^i_ij - a^j_ji, i's spring's force from its own slot and j's from the reverse
+   slot (sps__tl_stress; a^j_ji = -a^j_ij, the spring of j seen from j), which is TL eq. 32,
    f_i += -sum_j (k_ij d^i + k_ji d^j) x_ij, and in the variational form the turn of the pair,
-   f_i += sum_j k_ij d^i (p^i - d^i x_ij) + k_ji d^j (p^j - d^j x_ij) (sps__tl_spring; k with E
-   Young's modulus, or for a plastic body (plastic, a literal) sps__tl_flowed_modulus at particles
-   that have flowed, TL section 4.5). All are antisymmetric in i, j, so the pair sums conserve linear
-   momentum; the stress force exerts no torque (P F^T = J sigma is symmetric), and the springs'
-   forces, the gradient of a rotation-invariant energy (or, in the paper's form, central), none
-   either. With material.tl.artificial_viscosity = q1 > 0, Monaghan's linear artificial viscosity between
-   reference neighbours (as the TL author's LAMMPS input uses it, there q1 = 0.06; the paper's
-   runs had none): f_i += sum_j q1 c_p h rho0 V0_i V0_j |dW(R_ij)| (v_ij . x_ij) x_ij /
-   (|x_ij| (|x_ij|^2 + 0.01 h^2)), v_ij = v_j - v_i, c_p the P-wave speed: central and
-   antisymmetric (both momenta kept), zero for rigid motions, and its power
-   -sum_pairs C (v_ij . x_ij)^2 is never positive: it only damps the pairs' stretching rates,
-   the hourglass modes' among them. acc_p = f_i / m_i. */
-SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int plastic) {
+   f_i += sum_j k_ij d^i (p^i - d^i x_ij) + k_ji d^j (p^j - d^j x_ij) (k with E Young's modulus,
+   or for a J2 body the yield stress at particles that have flowed, TL section 4.5). All are
+   antisymmetric in i, j (w_ji = -w_ij exactly), so the pair sums conserve linear momentum; the
+   stress force exerts no torque (P F^T = J sigma is symmetric), and the springs' forces, the
+   gradient of a rotation-invariant energy (or, in the paper's form, central), none either.
+   Then the rare terms (sps__tl_rare_pairs). acc_p = f_i / m_i. */
+SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real dt, const int dim, const int springs) {
     const sps__group q = sps__group_of(w, b, g);
-    const sps_real half_alpha = SPS_R(0.5) * b->def.material.tl.hourglass_alpha, E = b->def.material.youngs_modulus, Y = sps__tl_flowed_modulus(b);
-    const int springs = half_alpha > 0, turn = b->def.material.tl.hourglass == SPS_HOURGLASS_VARIATIONAL;
+    const long n = b->tl_slots, t0 = q.s0 - w->nb_group_start[b->group0];
+    const int begin = b->begin;
     const sps_real viscosity = b->def.material.tl.artificial_viscosity * SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0) * w->h * b->rho0;
-    const int pair_terms = springs || viscosity > 0 || b->viscous_work; /* the terms below that need X_ij and x_ij */
-    int l, a, c, k;
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        const int i = q.i0 + l, o = i - b->begin, first = q.s0 + l;
-        const sps_real *Qi = b->tl_stress + (size_t)9 * o, *Fi = b->tl_deformation + (size_t)9 * o;
-        const sps_real vi = SPS__V0(w, b, i), Ei = springs ? sps__tl_hourglass_modulus(b, o, E, Y, plastic) : 0;
-        sps_real f[3] = {0, 0, 0}, damp[3] = {0, 0, 0}; /* damp: the Kelvin-Voigt force, for its work */
-        for (k = 0; k < w->nb_count[i]; ++k) {
-            const int j = w->nb_j[first + k * SPS__LANES], oj = j - b->begin;
-            const sps__ref_pair e = sps__tl_pair(w, i, j, dim);
-            const sps_real *Qj = b->tl_stress + (size_t)9 * oj, *Fj = b->tl_deformation + (size_t)9 * oj;
-            const sps_real dir[3] = {e.ex, e.ey, e.ez}, vv = vi * SPS__V0(w, b, j);
-            for (a = 0; a < dim; ++a) {
-                sps_real s = 0;
-                for (c = 0; c < dim; ++c) s += (Qi[3 * a + c] + Qj[3 * a + c]) * dir[c];
-                f[a] += vv * e.dw * s;
+    const int rare = viscosity > 0 || b->viscous_work;
+    const int* SPS__RESTRICT js = w->nb_j + q.s0;
+    const int* SPS__RESTRICT reverse = b->tl_reverse + t0;
+    const sps_real* SPS__RESTRICT Q = b->tl_stress;
+    const sps_real* SPS__RESTRICT wx = b->tl_pairs + t0 + SPS__TLP_WEIGHT(dim, 0) * n;
+    const sps_real* SPS__RESTRICT wy = wx + n;
+    const sps_real* SPS__RESTRICT wz = dim == 3 ? wx + 2 * n : wx;
+    const sps_real* SPS__RESTRICT ax_all = b->tl_pairs + SPS__TLP_FORCE(dim, 0) * n; /* read at the reverse slots */
+    const sps_real* SPS__RESTRICT ay_all = ax_all + n;
+    const sps_real* SPS__RESTRICT az_all = dim == 3 ? ax_all + 2 * n : ax_all;
+    sps_real f[3][SPS__LANES], sw[3][SPS__LANES]; /* sw: sum_j w_ij */
+    int k, l, a, c;
+    for (a = 0; a < 3; ++a)
+        for (l = 0; l < SPS__LANES; ++l) f[a][l] = sw[a][l] = 0;
+    for (k = 0; k < q.len; ++k) {
+        const int* SPS__RESTRICT jk = js + k * SPS__LANES;
+        const long o = (long)k * SPS__LANES;
+        SPS__PRAGMA(omp simd)
+        for (l = 0; l < SPS__LANES; ++l) {
+            const int qj = 9 * (jk[l] - begin); /* an int offset from the array: a gather */
+            const sps_real ex = wx[o + l], ey = wy[o + l];
+            sw[0][l] += ex;
+            sw[1][l] += ey;
+            if (dim == 3) {
+                const sps_real ez = wz[o + l];
+                sw[2][l] += ez;
+                f[0][l] += Q[qj] * ex + Q[qj + 1] * ey + Q[qj + 2] * ez;
+                f[1][l] += Q[qj + 3] * ex + Q[qj + 4] * ey + Q[qj + 5] * ez;
+                f[2][l] += Q[qj + 6] * ex + Q[qj + 7] * ey + Q[qj + 8] * ez;
+            } else {
+                f[0][l] += Q[qj] * ex + Q[qj + 1] * ey;
+                f[1][l] += Q[qj + 3] * ex + Q[qj + 4] * ey;
             }
-            sps_real X[3], x[3], x2;
-            if (!pair_terms) continue;
-            x2 = sps__tl_pair_vectors(w, i, j, &e, dim, X, x);
             if (springs) {
-                const sps_real spring = half_alpha * vv * e.w / (e.r * e.r), ki = spring * Ei, kj = spring * sps__tl_hourglass_modulus(b, oj, E, Y, plastic);
-                const sps_real inv_x2 = 1 / x2;
-                sps_real pi[3], pj[3], di, dj;
-                di = sps__tl_spring(Fi, X, x, inv_x2, dim, pi);
-                dj = sps__tl_spring(Fj, X, x, inv_x2, dim, pj);
-                for (a = 0; a < dim; ++a) f[a] -= (ki * di + kj * dj) * x[a]; /* TL eq. 32 */
-                for (a = 0; turn && a < dim; ++a) f[a] += ki * di * (pi[a] - di * x[a]) + kj * dj * (pj[a] - dj * x[a]);
+                const long t = t0 + o + l, r = reverse[o + l];
+                f[0][l] += ax_all[t] - ax_all[r];
+                f[1][l] += ay_all[t] - ay_all[r];
+                if (dim == 3) f[2][l] += az_all[t] - az_all[r];
             }
-            if (viscosity > 0) {
-                sps_real vx = 0, damper;
-                for (a = 0; a < dim; ++a) vx += (w->vel[a][j] - w->vel[a][i]) * x[a];
-                damper = -viscosity * vv * e.dw * vx / (SPS__SQRT(x2) * (x2 + SPS_R(0.01) * w->h * w->h));
-                for (a = 0; a < dim; ++a) f[a] += damper * x[a];
-            }
-            if (b->viscous_work) sps__tl_kelvin_voigt(w, b, i, j, x, 1 / SPS__SQRT(x2), vv * e.dw / e.r, dim, damp);
         }
-        for (a = 0; a < dim; ++a) w->acc_p[a][i] = f[a] / w->mass[i];
+    }
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
+        const int i = q.i0 + l, o = i - begin;
+        const sps_real* Qi = Q + (size_t)9 * o;
+        sps_real fi[3] = {0, 0, 0}, damp[3] = {0, 0, 0};
+        for (a = 0; a < dim; ++a) {
+            sps_real s = f[a][l];
+            for (c = 0; c < dim; ++c) s += Qi[3 * a + c] * sw[c][l];
+            fi[a] = s;
+        }
+        if (rare) sps__tl_rare_pairs(w, b, i, viscosity, dim, fi, damp);
+        for (a = 0; a < dim; ++a) w->acc_p[a][i] = fi[a] / w->mass[i];
         if (b->viscous_work) {
             for (a = 0; a < dim; ++a) w->acc_p[a][i] += damp[a] / w->mass[i];
             b->viscous_work[o] -= dt * (damp[0] * w->vel[0][i] + damp[1] * w->vel[1][i] + (dim == 3 ? damp[2] * w->vel[2][i] : 0));
@@ -9007,19 +9158,31 @@ SPS__INLINE void sps__tl_force(sps_world* w, const sps__body* b, int g, sps_real
     }
 }
 
-/* The passes' kernels: like the updated-Lagrangian passes' finishes, compiled once per dimension
-   (a total-Lagrangian body's pair geometry is its reference one: no mode of its own), the law
-   (sps__tl_law) dispatched at run time. */
+/* The passes' kernels: compiled once per dimension and hourglass form (a total-Lagrangian
+   body's pair geometry is its reference one: no mode of its own), the law (sps__tl_law)
+   dispatched at run time. */
 #ifndef SPHSOLID_NO_TOTAL_LAGRANGIAN /* else no kernel: sps_world_add_body refuses the bodies */
 static void sps__tl_stress_pass(sps_world* w, const sps__body* b, int g, sps_real dt) {
-    const int plastic = b->model.plastic != SPS__YIELD_NONE;
-    if (w->dim == 2) sps__tl_stress(w, b, g, dt, 2, plastic);
-    else sps__tl_stress(w, b, g, dt, 3, plastic);
+    const int plastic = b->model.plastic != SPS__YIELD_NONE, form = sps__tl_hourglass_form(b);
+    if (w->dim == 2) {
+        if (form == 2) sps__tl_stress(w, b, g, dt, 2, plastic, 2);
+        else if (form == 1) sps__tl_stress(w, b, g, dt, 2, plastic, 1);
+        else sps__tl_stress(w, b, g, dt, 2, plastic, 0);
+    } else {
+        if (form == 2) sps__tl_stress(w, b, g, dt, 3, plastic, 2);
+        else if (form == 1) sps__tl_stress(w, b, g, dt, 3, plastic, 1);
+        else sps__tl_stress(w, b, g, dt, 3, plastic, 0);
+    }
 }
 static void sps__tl_force_pass(sps_world* w, const sps__body* b, int g, sps_real dt) {
-    const int plastic = b->model.plastic != SPS__YIELD_NONE;
-    if (w->dim == 2) sps__tl_force(w, b, g, dt, 2, plastic);
-    else sps__tl_force(w, b, g, dt, 3, plastic);
+    const int springs = b->def.material.tl.hourglass_alpha > 0;
+    if (w->dim == 2) {
+        if (springs) sps__tl_force(w, b, g, dt, 2, 1);
+        else sps__tl_force(w, b, g, dt, 2, 0);
+    } else {
+        if (springs) sps__tl_force(w, b, g, dt, 3, 1);
+        else sps__tl_force(w, b, g, dt, 3, 0);
+    }
 }
 #endif
 
@@ -9037,6 +9200,179 @@ static sps__passes sps__tl_passes(const sps_world* w, const sps__model* m) {
     return p;
 }
 
+/* The linearised forces of total-Lagrangian body b at its reference state (F = I, x = X) for the
+   displacements u (dim rows of the body's count) into f (the same layout): the passes above with
+   the laws' common tangent at F = I, P = lambda tr(H) I + mu (H + H^T), H = F - I (Saint
+   Venant-Kirchhoff, Neo-Hookean and Hencky's J2 all reduce to it), and with the hourglass form
+   (sps__tl_hourglass_form) the springs' pair forces a^i_ij = -k_ij d^i X_ij,
+   d^i = (H_i X_ij - u_ij) . X_ij / R_ij^2, and in the variational form the hourglass stress with
+   x_ij = X_ij (the turn of the pair is of second order in u). Q: 9 reals per particle of
+   scratch; the table's force rows are overwritten (each stress pass writes them again). */
+static void sps__tl_linear_forces(sps_world* w, sps__body* b, int form, const sps_real* u, sps_real* f, sps_real* Q) {
+    const int dim = w->dim, count = b->end - b->begin;
+    const long n = b->tl_slots, base = w->nb_group_start[b->group0];
+    const sps_real mu = b->mat.G, lambda = SPS__LAME_LAMBDA(b), alpha_E = b->def.material.tl.hourglass_alpha * b->def.material.youngs_modulus;
+    int o;
+    SPS__PARALLEL_FOR(w, count)
+    for (o = 0; o < count; ++o) {
+        const int i = b->begin + o;
+        const sps_real *B = b->tl_correction + (size_t)9 * o, inv_v0 = 1 / SPS__V0(w, b, i);
+        sps_real M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, H[9], P[9], Pi[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, tr = 0;
+        int k, a, c, m;
+        for (k = 0; k < w->nb_count[i]; ++k) {
+            const int s = w->nb_first[i] + k * SPS__LANES, oj = w->nb_j[s] - b->begin;
+            const sps_real* row = b->tl_pairs + (s - base);
+            for (a = 0; a < dim; ++a)
+                for (c = 0; c < dim; ++c) M[3 * a + c] += (u[a * count + oj] - u[a * count + o]) * row[SPS__TLP_WEIGHT(dim, c) * n];
+        }
+        for (a = 0; a < dim; ++a)
+            for (c = 0; c < dim; ++c) {
+                sps_real s = 0;
+                for (m = 0; m < dim; ++m) s += M[3 * a + m] * B[3 * m + c];
+                H[3 * a + c] = s * inv_v0;
+            }
+        for (a = 0; a < dim; ++a) tr += H[4 * a];
+        for (a = 0; a < dim; ++a)
+            for (c = 0; c < dim; ++c) P[3 * a + c] = mu * (H[3 * a + c] + H[3 * c + a]) + (a == c ? lambda * tr : 0);
+        for (k = 0; form && k < w->nb_count[i]; ++k) {
+            const int s = w->nb_first[i] + k * SPS__LANES, oj = w->nb_j[s] - b->begin;
+            sps_real* row = b->tl_pairs + (s - base);
+            sps_real X[3], d = 0, R2 = 0;
+            for (a = 0; a < dim; ++a) {
+                X[a] = row[SPS__TLP_X(dim, a) * n];
+                R2 += X[a] * X[a];
+            }
+            for (a = 0; a < dim; ++a) {
+                sps_real p = u[a * count + o] - u[a * count + oj]; /* H X_ij - u_ij */
+                for (c = 0; c < dim; ++c) p += H[3 * a + c] * X[c];
+                d += p * X[a] / R2;
+            }
+            for (a = 0; a < dim; ++a) row[SPS__TLP_FORCE(dim, a) * n] = -alpha_E * row[SPS__TLP_SPRING(dim) * n] * d * X[a];
+            for (a = 0; form == 2 && a < dim; ++a)
+                for (c = 0; c < dim; ++c) Pi[3 * a + c] += row[SPS__TLP_SPRING(dim) * n] * d * X[a] * X[c];
+        }
+        for (a = 0; a < dim; ++a)
+            for (c = 0; c < dim; ++c) {
+                sps_real s = 0;
+                for (m = 0; m < dim; ++m) s += (P[3 * a + m] + alpha_E * inv_v0 * Pi[3 * a + m]) * B[3 * m + c];
+                Q[(size_t)9 * o + 3 * a + c] = s;
+            }
+    }
+    SPS__PARALLEL_FOR(w, count)
+    for (o = 0; o < count; ++o) {
+        const int i = b->begin + o;
+        sps_real fi[3] = {0, 0, 0};
+        int k, a, c;
+        for (k = 0; k < w->nb_count[i]; ++k) {
+            const int s = w->nb_first[i] + k * SPS__LANES, oj = w->nb_j[s] - b->begin;
+            const long t = s - base, r = b->tl_reverse[t];
+            for (a = 0; a < dim; ++a) {
+                for (c = 0; c < dim; ++c)
+                    fi[a] += (Q[(size_t)9 * o + 3 * a + c] + Q[(size_t)9 * oj + 3 * a + c]) * b->tl_pairs[SPS__TLP_WEIGHT(dim, c) * n + t];
+                if (form) fi[a] += b->tl_pairs[SPS__TLP_FORCE(dim, a) * n + t] - b->tl_pairs[SPS__TLP_FORCE(dim, a) * n + r];
+            }
+        }
+        for (a = 0; a < dim; ++a) f[a * count + o] = fi[a];
+    }
+}
+
+/* Power iterations on the linearised system at the reference state (sps__tl_linear_forces with
+   the hourglass form): the largest eigenvalue omega^2 of M^-1 K, K = -df/du, by the Rayleigh
+   quotient u.K u / u.M u of the iterate, from a fixed pseudo-random start. Returns omega. The
+   sums are serial: the same value for any thread count. scratch: (2 d + 9) reals per particle. */
+#define SPS__TL_POWER_STEPS 100
+static sps_real sps__tl_highest_frequency(sps_world* w, sps__body* b, int form, sps_real* scratch) {
+    const int count = b->end - b->begin, nu = w->dim * count;
+    sps_real *u = scratch, *f = u + nu, *Q = f + nu, omega2 = 0;
+    unsigned state = 12345u;
+    int it, k;
+    for (k = 0; k < nu; ++k) {
+        state = state * 1103515245u + 12345u;
+        u[k] = (state >> 16) & 1 ? 1 : -1;
+    }
+    for (it = 0; it < SPS__TL_POWER_STEPS; ++it) {
+        sps_real uKu = 0, uMu = 0, norm = 0;
+        sps__tl_linear_forces(w, b, form, u, f, Q);
+        for (k = 0; k < nu; ++k) {
+            const sps_real m = w->mass[b->begin + k % count];
+            uKu -= u[k] * f[k];
+            uMu += m * u[k] * u[k];
+            f[k] /= -m; /* M^-1 K u */
+            norm += m * f[k] * f[k];
+        }
+        omega2 = uKu / uMu;
+        if (!(norm > 0)) break; /* u in the null space (rigid motions) */
+        norm = 1 / SPS__SQRT(norm);
+        for (k = 0; k < nu; ++k) u[k] = f[k] * norm;
+    }
+    return SPS__SQRT(omega2 > 0 ? omega2 : 0);
+}
+
+/* Builds the pair table of total-Lagrangian body b from its lane slots (after
+   sps__fill_lane_slots, whenever sps__tl_reference has run), and its signal speed in the
+   reference state. The time step: TL section 3 integrates with leapfrog at "a CFL-stable time
+   step"; the elastic body's (alpha = 0) is the CFL condition with its P-wave speed
+   c_p = sqrt((K + 4G/3)/rho0). The hourglass springs (TL eqs. 25-32) stiffen the modes they
+   control and raise the highest frequency omega_max of the discrete system, so c_ref =
+   c_p omega_max(alpha) / omega_max(0), both measured by power iterations on the linearised passes
+   (sps__tl_highest_frequency): the springs take the margin omega_max dt of the elastic body's
+   step, no more. The Rayleigh quotients approach omega_max from below: after the 100 iterations
+   the ratio was 0.23-0.31 % under its converged value (3,000 iterations) on the 2D plate at
+   H/dp 10, 20 and 40, the D2 beam and the 3D D6 specimen, hence SPS__TL_FREQUENCY_MARGIN = 1.01
+   (three times the largest shortfall). (The bound c_p^2 + alpha E h^2 max_i S_i / (d rho0),
+   S_i = sum_j V0_j W_ij / R_ij^2, adds the springs' largest stiffness to the elastic one, both at
+   their maximum, as if they acted on the same mode: on the 2D plate at alpha 50 it was 3.4 c_p
+   against the measured 2.34 c_p; bench/VALIDATION.md, "Total-Lagrangian cost and time step".) */
+#define SPS__TL_FREQUENCY_MARGIN SPS_R(1.01)
+static sps_result sps__tl_pair_table(sps_world* w, sps__body* b) {
+    const int dim = w->dim, rows = SPS__TLP_ROWS(dim), base = w->nb_group_start[b->group0], form = sps__tl_hourglass_form(b);
+    const long n = w->nb_group_start[b->group0 + b->ngroups] - base;
+    sps_real c = SPS__SQRT((b->mat.K + b->mat.G * 4 / 3) / b->rho0);
+    int g;
+    sps__free(w, b->tl_pairs);
+    sps__free(w, b->tl_reverse);
+    b->tl_pairs = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)rows * (size_t)n);
+    b->tl_reverse = (int*)sps__alloc(w, sizeof(int) * (size_t)n);
+    if (!b->tl_pairs || !b->tl_reverse) return sps__oom(w, "the total-Lagrangian pair table");
+    SPS__PARALLEL_FOR(w, b->end - b->begin)
+    for (g = 0; g < b->ngroups; ++g) {
+        const sps__group q = sps__group_of(w, b, g);
+        int k, l, a, m;
+        for (k = 0; k < q.len; ++k)
+            for (l = 0; l < SPS__LANES; ++l) {
+                const int i = q.i0 + l, s = q.s0 + k * SPS__LANES + l, t = s - base, j = w->nb_j[s];
+                sps_real* row = b->tl_pairs + t;
+                for (a = 0; a < rows; ++a) row[a * n] = 0;
+                b->tl_reverse[t] = t; /* padding: a^i - a^i = 0 */
+                if (i >= b->end || k >= w->nb_count[i]) continue;
+                {
+                    const sps__ref_pair e = dim == 2 ? sps__tl_pair(w, i, j, 2) : sps__tl_pair(w, i, j, 3);
+                    const sps_real vv = SPS__V0(w, b, i) * SPS__V0(w, b, j), dir[3] = {e.ex, e.ey, e.ez};
+                    for (a = 0; a < dim; ++a) {
+                        row[SPS__TLP_WEIGHT(dim, a) * n] = vv * e.dw * dir[a];
+                        row[SPS__TLP_X(dim, a) * n] = w->ref[a][j] - w->ref[a][i];
+                    }
+                    row[SPS__TLP_SPRING(dim) * n] = SPS_R(0.5) * vv * e.w / (e.r * e.r);
+                    for (m = 0; m < w->nb_count[j]; ++m) /* the lists are symmetric: i is in j's */
+                        if (w->nb_j[w->nb_first[j] + m * SPS__LANES] == i) b->tl_reverse[t] = w->nb_first[j] + m * SPS__LANES - base;
+                }
+            }
+    }
+    b->tl_slots = n;
+    if (form) {
+        sps_real* scratch = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)(2 * dim + 9) * (size_t)(b->end - b->begin));
+        sps_real omega, omega_elastic;
+        if (!scratch) return sps__oom(w, "the total-Lagrangian frequency estimate");
+        omega = sps__tl_highest_frequency(w, b, form, scratch);
+        omega_elastic = sps__tl_highest_frequency(w, b, 0, scratch);
+        sps__free(w, scratch);
+        if (omega > omega_elastic) c *= SPS__TL_FREQUENCY_MARGIN * omega / omega_elastic;
+    }
+    b->mat.c0 = b->tl_c_ref = c;
+    if (c > w->c0_max) w->c0_max = c;
+    return SPS_OK;
+}
+
 /* At every configuration update, after the lists: each total-Lagrangian body's signal speed for
    the time step follows its deformation, c = c_ref / s^2 with s the smallest principal stretch
    (sqrt of the smallest eigenvalue of F^T F, at most 1) of its particles at the current
@@ -9051,11 +9387,11 @@ static void sps__tl_signal_speeds(sps_world* w) {
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__body* b = &w->bodies[bi];
         if (b->model.material->kinematic && !b->model.free_rigid) continue; /* a free rigid body: its contact stiffness */
-        if (b->model.total_lagrangian && b->reference_built) {
+        if (b->model.total_lagrangian && b->tl_slots) {
             sps_real s2 = 1; /* the smallest squared principal stretch */
             for (i = b->begin; i < b->end; ++i) {
                 sps_real F[9], C[9], d[3], Q[9];
-                sps__tl_deformation(w, b, i, w->nb_first[i], w->dim, F);
+                sps__tl_deformation(w, b, i, w->dim, F);
                 for (a = 0; a < 3; ++a)
                     for (c = 0; c < 3; ++c) {
                         sps_real v = 0;
@@ -9083,13 +9419,13 @@ static void sps__tl_signal_speeds(sps_world* w) {
    dissipates (its springs' modulus has the factor 1 - D already). */
 static sps_real sps__tl_energy(const sps_world* w, const sps__body* b, int i) {
     sps_real F[9], P[9], psi, modulus, springs;
-    if (!b->reference_built) return 0;
-    sps__tl_deformation(w, b, i, w->nb_first[i], w->dim, F);
+    if (!b->tl_slots) return 0;
+    sps__tl_deformation(w, b, i, w->dim, F);
     psi = sps__tl_law(b, i - b->begin, F, sps__det3(F), 0, P, NULL); /* the state is not advanced */
     if (b->damage) psi *= 1 - b->damage[i - b->begin];
     modulus = sps__tl_hourglass_modulus(b, i - b->begin, b->def.material.youngs_modulus, sps__tl_flowed_modulus(b),
                                         b->model.plastic != SPS__YIELD_NONE);
-    springs = b->def.material.tl.hourglass_alpha > 0 ? sps__tl_springs(w, b, i, w->nb_first[i], w->dim, F, modulus, NULL) : 0;
+    springs = b->def.material.tl.hourglass_alpha > 0 ? sps__tl_springs(w, b, i, w->dim, F, modulus) : 0;
     return SPS__V0(w, b, i) * psi + springs;
 }
 

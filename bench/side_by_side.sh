@@ -6,7 +6,9 @@
 # Monaghan's artificial viscosity and XSPH at a fixed dt of 1e-5 s. Equal formulation on our
 # side: --shear oas --kernel spline (Gray's artificial stress, the cubic spline), built with
 # every pair loop instanced (build/all_loops: the spline's loops vectorised, as the Wendland
-# kernel's are by default); also our default (ENO-A, Wendland). A peer that is missing is skipped.
+# kernel's are by default); also our default (ENO-A, Wendland), and the plate as a
+# total-Lagrangian body (TL's default hourglass control, alpha 50). A peer that is missing is
+# skipped.
 # The reference code (SPHinXsys, the papers' code) is not in the package manager: its figures
 # (bench/results/sphinxsys_reference.csv, with the CPU they were measured on) are
 # printed next to ours, measured again here on the same cases (2 threads, best of the rounds);
@@ -70,6 +72,7 @@ while [ "$r" -le "$ROUNDS" ]; do
         [ -z "$PLATE" ] || pysph_run "$r" "$thr"
         ours_run ./build/all_loops/plate2d "$r" "$thr" "gray artificial stress + cubic spline (oas)" --shear oas --kernel spline
         ours_run ./build/plate2d "$r" "$thr" "default (eno-a + wendland)"
+        ours_run ./build/plate2d "$r" "$thr" "total Lagrangian (saint venant-kirchhoff, hourglass alpha 50)" --solver tl
     done
     r=$((r + 1))
 done
