@@ -408,12 +408,15 @@ memcheck: $(BUILD)/test_memcheck $(BUILD)/fuzz_memcheck
 bench: examples
 	sh bench/run_bench.sh
 # probes that reach into the library's private state (sps__ functions): built only on request
-probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith $(BUILD)/fsi_cost $(BUILD)/particle_cost $(BUILD)/open_cost
+probes: $(BUILD)/torque_probe $(BUILD)/rotation_probe $(BUILD)/pass_bound $(BUILD)/pass_bound_arith $(BUILD)/fsi_cost $(BUILD)/particle_cost $(BUILD)/open_cost $(BUILD)/pair_once
 # each neighbour pass against its gathers alone and its arithmetic alone (bench/pass_bound.sh)
 $(BUILD)/pass_bound: bench/pass_bound.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 $(BUILD)/pass_bound_arith: bench/pass_bound.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) -DPASS_BOUND_ARITHMETIC $< -o $@ $(LDLIBS)
+# each pair computed once (half lists) against from both sides: the two passes of ENO-A, one thread
+$(BUILD)/pair_once: bench/pair_once.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
+	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)
 # what one particle costs: time per sub-step, bytes, neighbours, contact pairs (bench/scaling.sh)
 $(BUILD)/particle_cost: bench/particle_cost.c $(EXAMPLE_HEADERS) $(HEADER) | $(BUILD)
 	$(CC) $(CFLAGS) $< -o $@ $(LDLIBS)

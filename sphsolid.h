@@ -3788,8 +3788,8 @@ static const sps__material_model sps__neo_hookean_material = {SPS_MATERIAL_NEO_H
    mirrored walls, the density update, the Riemann terms), resolved once per body into its model
    (sps__resolve_model), and never asks which kind a body is.
 
-   Adding a material touches these places and nothing else (the toy kind of issue 48, a Maxwell
-   material, touched exactly these):
+   Adding a material touches these places and nothing else (a Maxwell viscoelastic kind, added as
+   a trial, touched exactly these):
    1. its value in sps_material_kind (>>public), the next one (the def check lists the kinds
       from the rows: sps__material_kinds);
    2. if it has parameters of its own, their sub-struct in sps_material_def (>>public, one field
