@@ -953,9 +953,12 @@
 
    MEMORY
       Allocation happens in sps_world_create, when particles, constraints or observers are added,
-      and at the first step after particles were added (neighbour lists, sized by
-      neighbor_capacity; the last-good-state copy). Steps after that never allocate (tested for
-      every shear formulation with a counting allocator). A failed allocation returns
+      and at the first step after particles were added (neighbour lists; the last-good-state
+      copy). The neighbour slots (and SPS_ROTATION_PAIR's pair forces) are sized from what that
+      step counts, an eighth more, and grow by the same rule only at a step whose configuration
+      update counts more (a body compressed, particles crowding at an impact); they never shrink.
+      A scene in steady state never allocates in steps (tested for every shear formulation with
+      a counting allocator). A failed allocation returns
       SPS_ERR_OUT_OF_MEMORY with a message naming what it was for and leaves the world usable
       (tested by refusing each allocation of a scenario in turn). Open boundaries (OPEN
       BOUNDARIES) grow the particle arrays by half at a step when they are full, unless
@@ -1263,8 +1266,10 @@ typedef struct sps_world_def {
                                          positions: 1.2-1.3x faster in double (not in float);
                                          dW lags the stretch within an advection step.
                                          Default 0 (bench/VALIDATION.md, design notes). */
-    sps_real neighbor_capacity;       /* neighbour slots per particle relative to a full lattice
-                                         support, >= 1. Default 2 (compression to rho/rho0 = 2). */
+    sps_real neighbor_capacity;       /* the most neighbours one particle may have, relative to a
+                                         full lattice support, >= 1 (more stops the run: the
+                                         particles are clustering). Default 2 (compression to
+                                         rho/rho0 = 2). */
     int threads;                      /* OpenMP threads for this world; 0 = OpenMP default. */
     sps_real escape_distance;         /* [m] a particle farther than its body's size (the largest
                                          distance of a reference position from the reference
@@ -1823,8 +1828,9 @@ SPSDEF sps_result sps_world_zone_counts(const sps_world* w, int zone, long* crea
 SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles);
 
 /* Advances one advection step (dual stepping: several acoustic sub-steps; single: one).
-   No allocation except at the first step after particles were added, or when open boundaries
-   create more particles than the capacity holds (sps_world_reserve). O(N neighbours). */
+   No allocation except at the first step after particles were added, when open boundaries
+   create more particles than the capacity holds (sps_world_reserve), or when the neighbour
+   lists outgrow their slots (MEMORY in the doc block). O(N neighbours). */
 SPSDEF sps_result sps_world_step(sps_world* w);
 /* Steps until time t_end (the last step is shortened to land on it), calling fn after each
    step (may be NULL; return nonzero to stop early). */
@@ -1848,7 +1854,8 @@ SPSDEF long sps_world_substep_count(const sps_world* w);
      covered        (may be NULL) the simulated time the frame advanced [s], also on error.
    Returns SPS_OK, SPS_ERR_INVALID_ARG (message names the argument, its value and the allowed
    range) or an error of sps_world_step. No allocation (except, like sps_world_step, at the
-   first step after particles were added). O(N neighbours) per sub-step. Not for two threads on
+   first step after particles were added or when the lists outgrow their slots). O(N
+   neighbours) per sub-step. Not for two threads on
    one world at once. */
 SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered);
 /* One frame of a game loop in simulated seconds (REAL-TIME FRAMES): advances the world by
@@ -2598,7 +2605,7 @@ struct sps_world {
        A particle's neighbours are nb_j[nb_first[i] + k SPS__LANES], k < nb_count[i]. */
     int *nb_group_start, *nb_first, *nb_j, *nb_count, *nb_ell;
     int ell_width, group_cap;
-    long pair_cap; /* slots */
+    long slot_cap; /* slots of nb_j (and nb_dw, nb_inv_r): sized from the counts (sps__ensure_slots) */
     sps_real *nb_dw, *nb_inv_r; /* frozen geometry per slot: dW/dr and 1/r_0 at the update (0 in padding) */
     /* SPS_ROTATION_PAIR: the accumulated shear force g_ij per slot [N] (0 in padding), and its
        copy kept at the end of each step for the next list rebuild: each particle's pairs
@@ -2606,7 +2613,8 @@ struct sps_world {
        ids < kept_ids) */
     sps_real *pair_force, *kept_force;
     int *kept_neighbor_id, *kept_first, *kept_count;
-    long pair_force_cap; /* slots of pair_force and kept_force */
+    long pair_force_cap; /* slots of pair_force */
+    long kept_pair_cap;  /* pairs kept_force and kept_neighbor_id hold */
     int kept_cap, kept_ids;
     int *cell_of, *cell_start, *perm;
     int cell_cap;
@@ -5993,12 +6001,46 @@ SPS__INLINE void sps__freeze_lanes(sps_world* w, sps__group q, const int dim, co
     }
 }
 
+/* Room for `slots` lane slots in every per-slot array (nb_j; nb_dw and nb_inv_r with frozen
+   geometry; pair_force when a body is paired) and for `pairs` kept pair forces: an eighth more
+   than asked (a world with open-boundary zones: for its capacity of particles at the same slots
+   per particle, so that the particles its zones create find their slots), grown only when a
+   list rebuild counts more than they hold and never shrunk, so that a scene in steady state
+   does not allocate while it steps. The first `used` slots and every kept pair force keep their
+   values. Returns 0 when out of memory: every array as it was, or larger with its values. */
+static int sps__ensure_slots(sps_world* w, long slots, long used, long pairs, int paired) {
+    long cap = w->slot_cap;
+    if (slots > cap) {
+        cap = slots + slots / 8;
+        if (w->nzones && w->n > 0 && w->cap > w->n) cap = (long)((double)cap * w->cap / w->n);
+    }
+    if (cap > w->slot_cap) {
+        if (!sps__grow(w, &w->nb_j, sizeof(int), (size_t)used, (size_t)cap)) return 0;
+        if (w->def.frozen_geometry && (!sps__grow(w, &w->nb_dw, sizeof(sps_real), (size_t)used, (size_t)cap) ||
+                                       !sps__grow(w, &w->nb_inv_r, sizeof(sps_real), (size_t)used, (size_t)cap)))
+            return 0;
+        w->slot_cap = cap;
+    }
+    if (paired && w->pair_force_cap < w->slot_cap) {
+        if (!sps__grow(w, &w->pair_force, sizeof(sps_real), (size_t)used, (size_t)w->slot_cap)) return 0;
+        w->pair_force_cap = w->slot_cap;
+    }
+    if (paired && pairs > w->kept_pair_cap) {
+        const long room = pairs + pairs / 8;
+        if (!sps__grow(w, &w->kept_force, sizeof(sps_real), (size_t)w->kept_pair_cap, (size_t)room) ||
+            !sps__grow(w, &w->kept_neighbor_id, sizeof(int), (size_t)w->kept_pair_cap, (size_t)room))
+            return 0;
+        w->kept_pair_cap = room;
+    }
+    return 1;
+}
+
 /* Lane-group slots from the per-particle lists: each group is as long as its longest list
    (serial prefix sum, deterministic). */
 static sps_result sps__fill_lane_slots(sps_world* w) {
     const int dim = w->dim, frozen = w->def.frozen_geometry, spline = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE;
-    int bi, g, total_groups = 0;
-    long total = 0;
+    int bi, g, i, total_groups = 0, paired = 0;
+    long total = 0, pairs = 0;
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
         for (g = 0; g < b->ngroups; ++g) {
@@ -6007,15 +6049,18 @@ static sps_result sps__fill_lane_slots(sps_world* w) {
                 if (w->nb_count[i0 + l] > longest) longest = w->nb_count[i0 + l];
             w->nb_group_start[b->group0 + g] = (int)total;
             total += (long)longest * SPS__LANES;
-            if (total > w->pair_cap) {
-                sps__set_error(w, 0, "t = %g: %ld neighbour slots exceed the capacity %ld (particles are clustering; raise neighbor_capacity)",
-                               (double)w->time, total, w->pair_cap);
-                return SPS_ERR_UNSTABLE;
+            if (total > INT_MAX) { /* the slot indices are ints */
+                sps__set_error(w, 0, "out of memory: %ld neighbour slots and more at t = %g, beyond the %d the lane slots index", total,
+                               (double)w->time, INT_MAX);
+                return SPS_ERR_OUT_OF_MEMORY;
             }
         }
+        for (i = b->begin; i < b->end && b->model.paired; ++i) pairs += w->nb_count[i]; /* what sps__keep_pair_forces keeps */
+        paired |= b->model.paired;
         total_groups = b->group0 + b->ngroups;
     }
     w->nb_group_start[total_groups] = (int)total;
+    if (!sps__ensure_slots(w, total, 0, pairs, paired)) return sps__oom(w, "the neighbour slots");
     for (bi = 0; bi < w->nbodies; ++bi) {
         const sps__body* b = &w->bodies[bi];
         SPS__PARALLEL_FOR(w, b->end - b->begin)
@@ -6189,19 +6234,11 @@ static void sps__set_escape_limits(sps_world* w) {
 
 /* Sorts particles by body (after adds), sets body ranges and allocates what the scene needs:
    neighbour lists, scratch and the optional fields (velocity gradient, B, stress, rotation). */
-/* SPS_ROTATION_PAIR storage: pair_force is refilled at every list rebuild, so it is simply
-   reallocated; the kept copy is grown with its contents, because it holds the forces of the
-   last step until the rebuild after this allocation reads them. */
+/* SPS_ROTATION_PAIR storage by particle id: where each particle's kept pair forces start and how
+   many (the forces themselves are per slot and per pair, sized at the list rebuilds:
+   sps__ensure_slots). Grown with their contents: they describe the kept forces of the last
+   step until the rebuild after this allocation reads them. */
 static sps_result sps__ensure_pair_storage(sps_world* w) {
-    if (w->pair_force_cap < w->pair_cap) {
-        sps__free(w, w->pair_force);
-        w->pair_force = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)w->pair_cap);
-        if (!w->pair_force || !sps__grow(w, &w->kept_force, sizeof(sps_real), (size_t)w->pair_force_cap, (size_t)w->pair_cap) ||
-            !sps__grow(w, &w->kept_neighbor_id, sizeof(int), (size_t)w->pair_force_cap, (size_t)w->pair_cap))
-            return SPS_ERR_OUT_OF_MEMORY;
-        memset(w->pair_force, 0, sizeof(sps_real) * (size_t)w->pair_cap);
-        w->pair_force_cap = w->pair_cap;
-    }
     if (w->kept_cap < w->cap) {
         if (!sps__grow(w, &w->kept_first, sizeof(int), (size_t)w->kept_cap, (size_t)w->cap) ||
             !sps__grow(w, &w->kept_count, sizeof(int), (size_t)w->kept_cap, (size_t)w->cap))
@@ -6263,10 +6300,7 @@ static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b); 
 static sps_real sps__energy_round_off(const sps_world* w);                       /* >>guards */
 static sps_result sps__commit(sps_world* w) {
     int i, bi, k;
-    if (sps__ensure_neighbor_storage(w) != SPS_OK) {
-        w->pair_cap = 0; /* some lists may be NULL: the next call must allocate them again */
-        return SPS_ERR_OUT_OF_MEMORY;
-    }
+    if (sps__ensure_neighbor_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
     for (bi = 0; bi < w->nbodies; ++bi)
         if (w->bodies[bi].model.paired) {
             if (sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
@@ -6303,13 +6337,13 @@ static sps_result sps__commit(sps_world* w) {
     return SPS_OK;
 }
 
-/* Neighbour slots per particle: a full lattice support (counted once for this dim, kernel and
-   h/dp) times neighbor_capacity; sized by the capacity, not the count, so that particles
-   created up to it (open boundaries, sps_world_reserve) find their slots. */
+/* The per-particle neighbour storage: lists of at most a full lattice support (counted once for
+   this dim, kernel and h/dp) times neighbor_capacity, sized by the capacity, not the count, so
+   that particles created up to it (open boundaries, sps_world_reserve) find their lists. The
+   lane slots are sized from the counts at the list rebuilds (sps__ensure_slots). */
 static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     int lattice = 0, reach = (int)(w->support / w->def.dp) + 1, i, j, k, width;
     size_t cap = (size_t)w->cap;
-    long pairs;
     for (i = -reach; i <= reach; ++i)
         for (j = -reach; j <= reach; ++j)
             for (k = (w->dim == 3 ? -reach : 0); k <= (w->dim == 3 ? reach : 0); ++k) {
@@ -6317,40 +6351,26 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
                 if ((i || j || k) && r < w->support) ++lattice;
             }
     width = (int)(lattice * w->def.neighbor_capacity) + 1;
-    /* total slots: half-way between a full lattice and every particle at capacity (local
-       compression is common, uniform compression to the capacity is not), plus the padding of
-       the lane groups (a group is as long as its longest list) */
-    pairs = (long)((double)lattice * w->cap * (1 + w->def.neighbor_capacity) / 2) + (long)lattice * w->cap / 4 +
-            (long)SPS__LANES * width * (w->nbodies + 1);
-    if (pairs > (long)width * (w->cap + SPS__LANES * w->nbodies)) pairs = (long)width * (w->cap + SPS__LANES * w->nbodies);
-    if (w->allocated_for >= w->cap && w->ell_width == width && w->pair_cap >= pairs) return SPS_OK;
+    if (w->allocated_for >= w->cap && w->ell_width == width) return SPS_OK;
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_count); sps__free(w, w->nb_ell);
-    sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm); sps__free(w, w->scratch);
     sps__free(w, w->group_sum);
-    w->nb_dw = w->nb_inv_r = NULL;
-    w->ell_width = width;
-    w->pair_cap = pairs;
+    w->ell_width = 0; /* until every array below is there */
     w->cell_cap = 4 * w->cap + 64 + 1;
     w->group_cap = w->cap / SPS__LANES + w->nbodies + 1;
     w->nb_group_start = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->group_cap + 1));
     w->nb_first = (int*)sps__alloc(w, sizeof(int) * cap);
     w->nb_count = (int*)sps__alloc(w, sizeof(int) * cap);
     w->nb_ell = (int*)sps__alloc(w, sizeof(int) * cap * (size_t)width);
-    w->nb_j = (int*)sps__alloc(w, sizeof(int) * (size_t)pairs);
     w->cell_of = (int*)sps__alloc(w, sizeof(int) * cap);
     w->cell_start = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->cell_cap + (size_t)w->nbodies + 1));
     w->perm = (int*)sps__alloc(w, sizeof(int) * cap);
     w->scratch = sps__alloc(w, sizeof(sps_real) * 9 * cap);
     w->group_sum = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * (size_t)w->group_cap);
-    if (!w->nb_group_start || !w->nb_first || !w->nb_count || !w->nb_ell || !w->nb_j || !w->cell_of || !w->cell_start ||
-        !w->perm || !w->scratch || !w->group_sum)
+    if (!w->nb_group_start || !w->nb_first || !w->nb_count || !w->nb_ell || !w->cell_of || !w->cell_start || !w->perm || !w->scratch ||
+        !w->group_sum)
         return SPS_ERR_OUT_OF_MEMORY;
-    if (w->def.frozen_geometry) {
-        w->nb_dw = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
-        w->nb_inv_r = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
-        if (!w->nb_dw || !w->nb_inv_r) return SPS_ERR_OUT_OF_MEMORY;
-    }
+    w->ell_width = width;
     return SPS_OK;
 }
 
@@ -13347,6 +13367,7 @@ typedef struct sps__reader {
     int* slot_of_id;   /* the file's ids inverted (n of them), built by SPS__READ_LAYOUT */
     unsigned char* seen; /* the last good state's ids met so far (n) */
     const unsigned char* field_at[SPS__NFIELDS]; /* a world field's first array in the payload, once its rule held */
+    long kept_pairs;   /* the kept pair forces in the payload (their storage is grown to them before SPS__READ_APPLY) */
 } sps__reader;
 static int sps__applying(const sps__reader* r) { return r->pass == SPS__READ_APPLY; }
 /* The first broken rule: the item, and what is wrong with it. */
@@ -13611,9 +13632,8 @@ static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
     counts = sps__take(s->in, sizeof(int) * (size_t)kept, "kept pair counts");
     for (id = 0; id < kept && counts && !s->in->bad; ++id) {
         const int count = sps__int_at(counts, (size_t)id);
-        if (count < 0 || count > w->ell_width || first + count > w->pair_force_cap) {
-            sps__refuse(s->in, "kept pair counts", "kept pair count of particle id %d = %d, allowed [0, %d] and %ld in all", id, count,
-                        w->ell_width, w->pair_force_cap);
+        if (count < 0 || count > w->ell_width) {
+            sps__refuse(s->in, "kept pair counts", "kept pair count of particle id %d = %d, allowed [0, %d]", id, count, w->ell_width);
             break;
         }
         if (sps__applying(s->in)) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
@@ -13634,6 +13654,7 @@ static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
         }
         first += count;
     }
+    s->in->kept_pairs = first;
 }
 
 /* keep_last_good_state: the copy of the last configuration update of good_n particles: its
@@ -13756,8 +13777,8 @@ static int sps__transfer_state(sps_world* w, sps__stream* s) {
     }
     lists = w->lists_valid; /* saving: whether the lists are written; restoring: whether the file has them */
     if ((lists = sps__count_item(s, &lists, 1, "list flag")) != 0) sps__transfer_lists(w, s);
-    kept = w->pair_force ? w->kept_ids : 0;
-    if ((kept = sps__count_item(s, &kept, w->pair_force ? w->n : 0, "kept pair count")) != 0) sps__transfer_kept_forces(w, kept, s);
+    kept = w->kept_first ? w->kept_ids : 0; /* a world with a paired body (sps__ensure_pair_storage) */
+    if ((kept = sps__count_item(s, &kept, w->kept_first ? w->n : 0, "kept pair count")) != 0) sps__transfer_kept_forces(w, kept, s);
     good_n = w->good ? w->good_n : 0;
     if ((good_n = sps__count_item(s, &good_n, w->good ? w->n : 0, "last good state")) != 0) sps__transfer_good(w, good_n, s);
     if (s->in && sps__applying(s->in) && !s->in->bad) {
@@ -13802,6 +13823,10 @@ static sps_result sps__read_passes(sps_world* w, sps__reader* r, const unsigned 
     reading.out = NULL;
     reading.in = r;
     for (pass = SPS__READ_LAYOUT; pass <= last && !r->bad; ++pass) {
+        if (pass == SPS__READ_APPLY && !sps__ensure_slots(w, 0, 0, r->kept_pairs, r->kept_pairs > 0)) {
+            sps__free(w, r->slot_of_id); /* nothing was applied */
+            return SPS_ERR_OUT_OF_MEMORY;
+        }
         r->at = payload;
         r->left = bytes;
         r->pass = pass;
