@@ -76,7 +76,7 @@ static size_t take_block(alloc_count* c, const void* p) {
    fields (the world's and the bodies'), the rest. Reads the library's private state. */
 static void print_breakdown(const sps_world* w, alloc_count* c) {
     const struct { const char* name; const void* p; } named[] = {
-        {"nb_j", w->nb_j}, {"nb_ell", w->nb_ell}, {"nb_dw", w->nb_dw}, {"nb_inv_r", w->nb_inv_r},
+        {"nb_j", w->nb_j}, {"list_chunk", w->list_chunk}, {"nb_dw", w->nb_dw}, {"nb_inv_r", w->nb_inv_r},
         {"pair_force", w->pair_force}, {"kept_force", w->kept_force}, {"kept_neighbor_id", w->kept_neighbor_id},
         {"kept_first", w->kept_first}, {"kept_count", w->kept_count}, {"nb_first", w->nb_first}, {"nb_count", w->nb_count},
         {"nb_group_start", w->nb_group_start}, {"group_sum", w->group_sum}, {"cell_of", w->cell_of}, {"cell_start", w->cell_start},
