@@ -2558,6 +2558,7 @@ struct sps_world {
 
     /* particles (SoA, capacity cap) */
     int n, cap;
+    int reserved; /* the most particles sps_world_reserve asked room for (sps__trim_particle_arrays keeps it) */
     sps_real *pos[3], *vel[3], *ref[3], *acc_p[3], *acc_s[3];
     sps_real *rho, *drho, *p, *vol, *mass;
     int *id, *body, *slot_of_id, *cons;
@@ -2621,7 +2622,8 @@ struct sps_world {
     int kept_cap, kept_ids;
     int *cell_of, *cell_start, *perm;
     int cell_cap;
-    void* scratch; /* permutation buffer: cap reals */
+    void* scratch;     /* the sort's permutation buffer: a real per particle (open boundaries: 5, sps__open_boundaries) */
+    int scratch_zoned; /* ... allocated for a world with zones */
     sps_real* group_sum; /* per lane group: its sum of Rodrigues matrices (mean rotation, fixed order) */
     sps_real* diag_scratch; /* 28 * cap reals: B, displacement gradient, position divergence,
                                velocity gradient */
@@ -4791,6 +4793,28 @@ static sps_result sps__reserve(sps_world* w, int need) {
     return SPS_OK;
 }
 
+/* Trims the particle arrays to the particles (or to what sps_world_reserve asked for) at a commit
+   before the first step: adding particles grows them by half when full (sps__reserve), room
+   that a scene built before it steps would carry to the end (a cube of 1e6 particles had room
+   for 1.28e6). Not in a world with open-boundary zones, whose particles fill the room as it
+   runs, nor after the first step (particles added between steps keep the growth by half).
+   Only when more than an eighth is empty. SPS_ERR_OUT_OF_MEMORY when an array could not be
+   reallocated: it keeps its size (larger), the others are trimmed, and the next call goes on. */
+static sps_result sps__trim_particle_arrays(sps_world* w) {
+    const int room = w->n > w->reserved ? w->n : w->reserved;
+    int k, a;
+    if (w->nzones || w->acoustic_steps > 0 || w->cap - room <= room / 8) return SPS_OK;
+    w->cap = room;
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (!sps__world_field_allocated(w, f)) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a)
+            if (!sps__grow(w, sps__field_slot(w, NULL, f, a), sps__field_bytes(f), (size_t)w->n, (size_t)room + SPS__LANES))
+                return SPS_ERR_OUT_OF_MEMORY;
+    }
+    return SPS_OK;
+}
+
 static sps_result sps__add_one(sps_world* w, int body, const sps_real x[3], sps_real volume) {
     int i = w->n, a;
     sps__body* b = &w->bodies[body];
@@ -5731,12 +5755,15 @@ static void sps__permute_real(sps_world* w, sps_real* f, int begin, int count, i
     sps_real* tmp = (sps_real*)w->scratch;
     int i, s;
     if (!f) return;
-    if (stride == 1) /* most fields: a plain gather the compiler vectorises */
+    if (stride == 1) { /* most fields: a plain gather the compiler vectorises */
         for (i = 0; i < count; ++i) tmp[i] = f[begin + w->perm[i]];
-    else
-        for (i = 0; i < count; ++i)
-            for (s = 0; s < stride; ++s) tmp[(size_t)i * stride + s] = f[(size_t)(begin + w->perm[i]) * stride + s];
-    memcpy(f + (size_t)begin * stride, tmp, sizeof(sps_real) * (size_t)count * (size_t)stride);
+        memcpy(f + begin, tmp, sizeof(sps_real) * (size_t)count);
+        return;
+    }
+    for (s = 0; s < stride; ++s) { /* a component at a time: the scratch holds a real per particle */
+        for (i = 0; i < count; ++i) tmp[i] = f[(size_t)(begin + w->perm[i]) * stride + s];
+        for (i = 0; i < count; ++i) f[(size_t)(begin + i) * stride + s] = tmp[i];
+    }
 }
 static void sps__permute_int(sps_world* w, int* f, int begin, int count) {
     int* tmp = (int*)w->scratch;
@@ -6417,7 +6444,7 @@ static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b); 
 static sps_real sps__energy_round_off(const sps_world* w);                       /* >>guards */
 static sps_result sps__commit(sps_world* w) {
     int i, bi, k;
-    if (sps__ensure_neighbor_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
+    if (sps__trim_particle_arrays(w) != SPS_OK || sps__ensure_neighbor_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
     for (bi = 0; bi < w->nbodies; ++bi)
         if (w->bodies[bi].model.paired) {
             if (sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
@@ -6470,7 +6497,7 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
                 if ((i || j || k) && r < w->support) ++lattice;
             }
     width = (int)(lattice * w->def.neighbor_capacity) + 1;
-    if (w->allocated_for >= w->cap && w->ell_width == width) return SPS_OK;
+    if (w->allocated_for >= w->cap && w->ell_width == width && w->scratch_zoned == (w->nzones > 0)) return SPS_OK;
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_count); sps__free(w, w->list_chunk);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm); sps__free(w, w->scratch);
     sps__free(w, w->group_sum);
@@ -6484,7 +6511,8 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     w->cell_of = (int*)sps__alloc(w, sizeof(int) * cap);
     w->cell_start = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->cell_cap + (size_t)w->nbodies + 1));
     w->perm = (int*)sps__alloc(w, sizeof(int) * cap);
-    w->scratch = sps__alloc(w, sizeof(sps_real) * 9 * cap);
+    w->scratch = sps__alloc(w, sizeof(sps_real) * cap * (w->nzones ? 5 : 1));
+    w->scratch_zoned = w->nzones > 0;
     w->group_sum = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * (size_t)w->group_cap);
     if (!w->nb_group_start || !w->nb_first || !w->nb_count || !w->list_chunk || !w->cell_of || !w->cell_start || !w->perm || !w->scratch ||
         !w->group_sum)
@@ -11874,7 +11902,7 @@ static sps_result sps__open_boundaries(sps_world* w) {
     n0 = w->n;
     gone = w->perm;      /* cap ints each: free between configuration updates */
     new_id = w->cell_of;
-    spawn = (sps_real*)w->scratch; /* 9 cap reals: 5 per inflow particle at most */
+    spawn = (sps_real*)w->scratch; /* 5 cap reals in a world with zones (sps__ensure_neighbor_storage) */
     for (k = 0; k < w->nzones; ++k)
         if (w->zones[k].def.kind == SPS_ZONE_OUTFLOW) sps__zone_sample(w, &w->zones[k]);
     for (i = 0; i < n0; ++i) {
@@ -12096,6 +12124,7 @@ SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles) {
         sps__set_error(w, 0, "sps_world_reserve: n_particles = %d, allowed [0, %d]", n_particles, SPS__MAX_PARTICLES);
         return SPS_ERR_INVALID_ARG;
     }
+    if (n_particles > w->reserved) w->reserved = n_particles;
     if (n_particles > w->cap) {
         if (sps__reserve(w, n_particles) != SPS_OK) return sps__oom(w, "sps_world_reserve: the particle arrays");
         w->needs_sort_by_body = 1; /* the next step sizes the neighbour storage and the bodies' arrays for it */

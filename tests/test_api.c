@@ -839,6 +839,29 @@ static int test_memory_no_allocation_in_steps(void) {
     return 0;
 }
 
+/* The particle arrays grow by half when full as particles are added; the first step trims them
+   to the scene (a 40 x 25 block: 1,000 particles, room for 1,296 before), keeps what
+   sps_world_reserve asked for, and particles added after the first step keep the growth by half
+   (no trim, so a scene that adds between steps does not reallocate at each). */
+static int test_memory_trimmed_to_the_scene(void) {
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.4, 0.25, 0};
+    sps_real more[3] = {0.45, 0.1, 0};
+    int reserve, n;
+    for (reserve = 0; reserve < 2; ++reserve) {
+        sps_world* w = new_world(2, 0.01);
+        sps_body b;
+        ENSURE(w && (b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n)).id && n == 1000);
+        ENSURE(w->cap == 1296); /* 256 grown by half four times */
+        if (reserve) ENSURE(sps_world_reserve(w, 1100) == SPS_OK);
+        ENSURE(sps_world_step(w) == SPS_OK);
+        ENSURE(w->cap == (reserve ? 1100 : 1000));
+        ENSURE(sps_body_add_particles(w, b, 1, more, NULL) == SPS_OK && sps_world_step(w) == SPS_OK);
+        ENSURE(w->cap == (reserve ? 1100 : 1500));
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
 /* A block squeezed by its initial velocity, v = -40/s (x - centre) (2D, ENO-A with the pair
    rotation), run `steps` steps with allocator ca: the positions and velocities by id after them
    into state (4 per particle), and into *refused the step that returned SPS_ERR_OUT_OF_MEMORY (-1:
@@ -3022,6 +3045,7 @@ static void run_api_tests(void) {
     RUN(test_world_validate);
     RUN(test_memory_no_allocation_in_steps);
     RUN(test_memory_slots_grow_in_steps);
+    RUN(test_memory_trimmed_to_the_scene);
     RUN(test_memory_out_of_memory_everywhere);
     RUN(test_determinism_repeated_runs);
     RUN(test_vtk_writer);
