@@ -6131,10 +6131,10 @@ static sps_result sps__find_lists(sps_world* w, const sps__body* b, sps_real* co
     return SPS_OK;
 }
 
-/* The lists of body b's particles [i0, i1) into list_chunk without a search: a restart file's
+/* The lists of particles [i0, i1) into list_chunk without a search: a restart file's
    (rb->restored; the counts are in nb_count), or none for a wall body (no pass reads its own
    neighbours). */
-static void sps__read_lists(sps_world* w, const sps__body* b, int i0, int i1, sps__rebuild* rb) {
+static void sps__read_lists(sps_world* w, int i0, int i1, sps__rebuild* rb) {
     int i, m, j;
     for (i = i0; i < i1; ++i) {
         if (!rb->restored) w->nb_count[i] = 0; /* a wall body */
@@ -6143,7 +6143,6 @@ static void sps__read_lists(sps_world* w, const sps__body* b, int i0, int i1, sp
             w->list_chunk[(size_t)(i - i0) * w->ell_width + m] = j;
         }
     }
-    (void)b;
 }
 
 /* A total-Lagrangian body's lane slots after its reference lists are found, slots [base, end):
@@ -6205,7 +6204,7 @@ static sps_result sps__list_body(sps_world* w, sps__body* b, sps__rebuild* rb) {
     for (i0 = b->begin; i0 < b->end; i0 += SPS__LIST_CHUNK) {
         const int i1 = b->end - i0 > SPS__LIST_CHUNK ? i0 + SPS__LIST_CHUNK : b->end;
         if (search && (r = sps__find_lists(w, b, x, i0, i1)) != SPS_OK) return r;
-        if (!search) sps__read_lists(w, b, i0, i1, rb);
+        if (!search) sps__read_lists(w, i0, i1, rb);
         if ((r = sps__place_chunk(w, b, i0, i1, rb)) != SPS_OK) return r;
     }
     if (b->model.total_lagrangian) {
