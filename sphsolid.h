@@ -954,15 +954,21 @@
 
    MEMORY
       Allocation happens in sps_world_create, when particles, constraints or observers are added,
-      and at the first step after particles were added (neighbour lists, sized by
-      neighbor_capacity; the last-good-state copy). Steps after that never allocate (tested for
-      every shear formulation with a counting allocator). A failed allocation returns
-      SPS_ERR_OUT_OF_MEMORY with a message naming what it was for and leaves the world usable
-      (tested by refusing each allocation of a scenario in turn). Open boundaries (OPEN
-      BOUNDARIES) grow the particle arrays by half at a step when they are full, unless
-      sps_world_reserve sized them ahead. sps_world_diagnostics allocates its
+      and at the first step after particles were added (neighbour lists; the last-good-state
+      copy; that step also trims the particle arrays, which adding grows by half, to the
+      particles or to what sps_world_reserve asked for). The neighbour slots (and
+      SPS_ROTATION_PAIR's pair forces) are sized from what a configuration update counts, an
+      eighth more, and grow by the same rule only at a step whose update counts more (a body
+      compressed, particles crowding at an impact); they never shrink. A scene in steady state
+      never allocates in steps (tested for every shear formulation with a counting allocator).
+      A failed allocation returns SPS_ERR_OUT_OF_MEMORY with a message naming what it was for
+      and leaves the world usable (tested by refusing each allocation of a scenario in turn).
+      Open boundaries (OPEN BOUNDARIES) grow the particle arrays by half at a step when they are
+      full, unless sps_world_reserve sized them ahead. sps_world_diagnostics allocates its
       scratch on first use. The cell grid is capped at about 4 cells per particle and wraps
-      around (periodic hashing), so a particle thrown far away never grows memory.
+      around (periodic hashing), so a particle thrown far away never grows memory. A 3D bulk
+      (the spinning cube, 1e6 particles, double) takes about 2.7 KB a particle with ENO-A's pair
+      rotation and 0.94 KB with GNO-A (bench/VALIDATION.md, "Memory per particle").
 
    THREADING & DETERMINISM
       With OpenMP, each pass is a gather: the thread that owns particle i writes only particle i,
@@ -1264,8 +1270,10 @@ typedef struct sps_world_def {
                                          positions: 1.2-1.3x faster in double (not in float);
                                          dW lags the stretch within an advection step.
                                          Default 0 (bench/VALIDATION.md, design notes). */
-    sps_real neighbor_capacity;       /* neighbour slots per particle relative to a full lattice
-                                         support, >= 1. Default 2 (compression to rho/rho0 = 2). */
+    sps_real neighbor_capacity;       /* the most neighbours one particle may have, relative to a
+                                         full lattice support, >= 1 (more stops the run: the
+                                         particles are clustering). Default 2 (compression to
+                                         rho/rho0 = 2). */
     int threads;                      /* OpenMP threads for this world; 0 = OpenMP default. */
     sps_real escape_distance;         /* [m] a particle farther than its body's size (the largest
                                          distance of a reference position from the reference
@@ -1824,8 +1832,9 @@ SPSDEF sps_result sps_world_zone_counts(const sps_world* w, int zone, long* crea
 SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles);
 
 /* Advances one advection step (dual stepping: several acoustic sub-steps; single: one).
-   No allocation except at the first step after particles were added, or when open boundaries
-   create more particles than the capacity holds (sps_world_reserve). O(N neighbours). */
+   No allocation except at the first step after particles were added, when open boundaries
+   create more particles than the capacity holds (sps_world_reserve), or when the neighbour
+   lists outgrow their slots (MEMORY in the doc block). O(N neighbours). */
 SPSDEF sps_result sps_world_step(sps_world* w);
 /* Steps until time t_end (the last step is shortened to land on it), calling fn after each
    step (may be NULL; return nonzero to stop early). */
@@ -1849,7 +1858,8 @@ SPSDEF long sps_world_substep_count(const sps_world* w);
      covered        (may be NULL) the simulated time the frame advanced [s], also on error.
    Returns SPS_OK, SPS_ERR_INVALID_ARG (message names the argument, its value and the allowed
    range) or an error of sps_world_step. No allocation (except, like sps_world_step, at the
-   first step after particles were added). O(N neighbours) per sub-step. Not for two threads on
+   first step after particles were added or when the lists outgrow their slots). O(N
+   neighbours) per sub-step. Not for two threads on
    one world at once. */
 SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, double wall_budget_s, sps_real* covered);
 /* One frame of a game loop in simulated seconds (REAL-TIME FRAMES): advances the world by
@@ -2482,6 +2492,8 @@ typedef struct sps__body {
                             (sps__tl_pair_table) */
     int* tl_reverse;     /* ... for each slot the slot of the same pair in the neighbour's list */
     long tl_slots;       /* ... the body's lane slots, the rows' length (0: to be built) */
+    int* reference_slots; /* total Lagrangian: its lane slots' neighbours (nb_j from its first
+                             slot), placed again by every list rebuild (sps__place_reference_slots) */
     int hexagonal;       /* its fills use the hexagonal lattice (def.lattice resolved: sps__kind_fills_hexagonal) */
     int coupled;         /* a fluid that touches a solid body: its continuity pass takes the solid's
                             particles as wall images (chapter >>coupling: fluid-structure) */
@@ -2551,6 +2563,7 @@ struct sps_world {
 
     /* particles (SoA, capacity cap) */
     int n, cap;
+    int reserved; /* the most particles sps_world_reserve asked room for (sps__trim_particle_arrays keeps it) */
     sps_real *pos[3], *vel[3], *ref[3], *acc_p[3], *acc_s[3];
     sps_real *rho, *drho, *p, *vol, *mass;
     int *id, *body, *slot_of_id, *cons;
@@ -2598,9 +2611,10 @@ struct sps_world {
        SPS__LANES per neighbour rank k: slot nb_group_start[g] + k SPS__LANES + lane holds the k-th
        neighbour of the lane's particle, or the particle itself (padding) past its nb_count.
        A particle's neighbours are nb_j[nb_first[i] + k SPS__LANES], k < nb_count[i]. */
-    int *nb_group_start, *nb_first, *nb_j, *nb_count, *nb_ell;
-    int ell_width, group_cap;
-    long pair_cap; /* slots */
+    int *nb_group_start, *nb_first, *nb_j, *nb_count;
+    int* list_chunk; /* the lists of SPS__LIST_CHUNK particles on their way into the slots (sps__list_body) */
+    int ell_width, group_cap; /* ell_width: the most neighbours of one particle (neighbor_capacity) */
+    long slot_cap; /* slots of nb_j (and nb_dw, nb_inv_r): sized from the counts (sps__ensure_slots) */
     sps_real *nb_dw, *nb_inv_r; /* frozen geometry per slot: dW/dr and 1/r_0 at the update (0 in padding) */
     /* SPS_ROTATION_PAIR: the accumulated shear force g_ij per slot [N] (0 in padding), and its
        copy kept at the end of each step for the next list rebuild: each particle's pairs
@@ -2608,11 +2622,13 @@ struct sps_world {
        ids < kept_ids) */
     sps_real *pair_force, *kept_force;
     int *kept_neighbor_id, *kept_first, *kept_count;
-    long pair_force_cap; /* slots of pair_force and kept_force */
+    long pair_force_cap; /* slots of pair_force */
+    long kept_pair_cap;  /* pairs kept_force and kept_neighbor_id hold */
     int kept_cap, kept_ids;
     int *cell_of, *cell_start, *perm;
     int cell_cap;
-    void* scratch; /* permutation buffer: cap reals */
+    void* scratch;     /* the sort's permutation buffer: a real per particle (open boundaries: 5, sps__open_boundaries) */
+    int scratch_zoned; /* ... allocated for a world with zones */
     sps_real* group_sum; /* per lane group: its sum of Rodrigues matrices (mean rotation, fixed order) */
     sps_real* diag_scratch; /* 28 * cap reals: B, displacement gradient, position divergence,
                                velocity gradient */
@@ -4588,11 +4604,12 @@ static void sps__free_particle_fields(sps_world* w) {
         else
             for (bi = 0; bi < w->nbodies; ++bi) sps__free_field(w, &w->bodies[bi], &sps__fields[k]);
     sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_j); sps__free(w, w->nb_count);
-    sps__free(w, w->nb_ell);
+    sps__free(w, w->list_chunk);
     sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
     for (bi = 0; bi < w->nbodies; ++bi) {
         sps__free(w, w->bodies[bi].tl_pairs);
         sps__free(w, w->bodies[bi].tl_reverse);
+        sps__free(w, w->bodies[bi].reference_slots);
     }
     sps__free(w, w->pair_force); sps__free(w, w->kept_force); sps__free(w, w->kept_neighbor_id);
     sps__free(w, w->kept_first); sps__free(w, w->kept_count);
@@ -4779,6 +4796,28 @@ static sps_result sps__reserve(sps_world* w, int need) {
             if (!sps__grow(w, sps__field_slot(w, NULL, f, a), sps__field_bytes(f), o, m)) return SPS_ERR_OUT_OF_MEMORY;
     }
     w->cap = nc;
+    return SPS_OK;
+}
+
+/* Trims the particle arrays to the particles (or to what sps_world_reserve asked for) at a commit
+   before the first step: adding particles grows them by half when full (sps__reserve), room
+   that a scene built before it steps would carry to the end (a cube of 1e6 particles had room
+   for 1.28e6). Not in a world with open-boundary zones, whose particles fill the room as it
+   runs, nor after the first step (particles added between steps keep the growth by half).
+   Only when more than an eighth is empty. SPS_ERR_OUT_OF_MEMORY when an array could not be
+   reallocated: it keeps its size (larger), the others are trimmed, and the next call goes on. */
+static sps_result sps__trim_particle_arrays(sps_world* w) {
+    const int room = w->n > w->reserved ? w->n : w->reserved;
+    int k, a;
+    if (w->nzones || w->acoustic_steps > 0 || w->cap - room <= room / 8) return SPS_OK;
+    w->cap = room;
+    for (k = 0; k < SPS__NFIELDS; ++k) {
+        const sps__field_info* f = &sps__fields[k];
+        if (!sps__world_field_allocated(w, f)) continue;
+        for (a = 0; a < sps__field_arrays(f); ++a)
+            if (!sps__grow(w, sps__field_slot(w, NULL, f, a), sps__field_bytes(f), (size_t)w->n, (size_t)room + SPS__LANES))
+                return SPS_ERR_OUT_OF_MEMORY;
+    }
     return SPS_OK;
 }
 
@@ -5722,12 +5761,15 @@ static void sps__permute_real(sps_world* w, sps_real* f, int begin, int count, i
     sps_real* tmp = (sps_real*)w->scratch;
     int i, s;
     if (!f) return;
-    if (stride == 1) /* most fields: a plain gather the compiler vectorises */
+    if (stride == 1) { /* most fields: a plain gather the compiler vectorises */
         for (i = 0; i < count; ++i) tmp[i] = f[begin + w->perm[i]];
-    else
-        for (i = 0; i < count; ++i)
-            for (s = 0; s < stride; ++s) tmp[(size_t)i * stride + s] = f[(size_t)(begin + w->perm[i]) * stride + s];
-    memcpy(f + (size_t)begin * stride, tmp, sizeof(sps_real) * (size_t)count * (size_t)stride);
+        memcpy(f + begin, tmp, sizeof(sps_real) * (size_t)count);
+        return;
+    }
+    for (s = 0; s < stride; ++s) { /* a component at a time: the scratch holds a real per particle */
+        for (i = 0; i < count; ++i) tmp[i] = f[(size_t)(begin + w->perm[i]) * stride + s];
+        for (i = 0; i < count; ++i) f[(size_t)(begin + i) * stride + s] = tmp[i];
+    }
 }
 static void sps__permute_int(sps_world* w, int* f, int begin, int count) {
     int* tmp = (int*)w->scratch;
@@ -5838,8 +5880,6 @@ SPS__INLINE int sps__cell_coord(const sps_world* w, int a, sps_real x) {
 
 static sps_result sps__ensure_neighbor_storage(sps_world* w);
 SPS__INLINE void sps__blended_inverse(const sps_real* a, int as, sps_real* b, int bs, const int dim);
-static sps_result sps__fill_lane_slots(sps_world* w);
-static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, int s, int len);
 static void sps__carry_pair_forces(sps_world* w, const sps__body* b, int i, int s, int len);
 static sps_result sps__tl_pair_table(sps_world* w, sps__body* b);
 
@@ -5907,57 +5947,6 @@ SPS__INLINE int sps__collect_neighbors(const sps_world* w, sps_real* const x[3],
 
 static void sps__tl_reference(sps_world* w, sps__body* b);
 
-/* Sorts each body's particles by cell and builds the neighbour lists (same body only). A
-   total-Lagrangian body's lists are those of its reference positions, built once (after each
-   commit) and then kept with its particle order: neither is touched again. */
-static sps_result sps__build_neighbors(sps_world* w) {
-    int bi, i;
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        sps__body* b = &w->bodies[bi];
-        int begin = b->begin, count = b->end - b->begin, ncell, c, overflow = -1;
-        const int dim = w->dim, width = w->ell_width;
-        sps_real* const* x = b->model.total_lagrangian ? w->ref : w->pos;
-        if (count == 0) continue;
-        if (b->model.material->kinematic) { /* no pass reads a wall body's own neighbours */
-            for (i = begin; i < b->end; ++i) w->nb_count[i] = 0;
-            continue;
-        }
-        if (b->model.total_lagrangian && b->reference_built) continue;
-        ncell = sps__setup_grid(w, x, begin, b->end);
-        for (i = 0; i < count; ++i) {
-            int a;
-            for (c = 0, a = dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, x[a][begin + i]);
-            w->cell_of[i] = c;
-        }
-        sps__sort_body(w, b, w->cell_of, ncell);
-        /* sps__sort_keys left cell_start[c] = end of cell c: shift to starts, and note each
-           sorted particle's cell */
-        for (c = ncell; c > 0; --c) w->cell_start[c] = w->cell_start[c - 1];
-        w->cell_start[0] = 0;
-        for (c = 0; c < ncell; ++c)
-            for (i = w->cell_start[c]; i < w->cell_start[c + 1]; ++i) w->cell_of[i] = c;
-        SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (count > 256) reduction(max : overflow))
-        for (i = 0; i < count; ++i) {
-            const int gi = begin + i;
-            int* list = w->nb_ell + (size_t)gi * width;
-            const int m = w->periodic ? (dim == 2 ? sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 2, 1)
-                                                  : sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 3, 1))
-                                      : (dim == 2 ? sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 2, 0)
-                                                  : sps__collect_neighbors(w, x, begin, gi, w->cell_of[i], list, width, 3, 0));
-            w->nb_count[gi] = m;
-            if (m > width && gi > overflow) overflow = gi;
-        }
-        if (overflow >= 0) {
-            sps__set_error(w, 0, "t = %g: particle %d of body '%s' has %d neighbours, more than the capacity %d "
-                           "(particles are clustering; raise world def neighbor_capacity if the compression is physical)",
-                           (double)w->time, w->id[overflow], b->name, w->nb_count[overflow], width);
-            return SPS_ERR_UNSTABLE;
-        }
-        if (b->model.total_lagrangian) sps__tl_reference(w, b);
-    }
-    return sps__fill_lane_slots(w);
-}
-
 /* A lane group g of body b: its first particle, its first slot and its length in slots per lane. */
 typedef struct sps__group {
     int i0, s0, len;
@@ -5996,63 +5985,265 @@ SPS__INLINE void sps__freeze_lanes(sps_world* w, sps__group q, const int dim, co
     }
 }
 
-/* Lane-group slots from the per-particle lists: each group is as long as its longest list
-   (serial prefix sum, deterministic). */
-static sps_result sps__fill_lane_slots(sps_world* w) {
-    const int dim = w->dim, frozen = w->def.frozen_geometry, spline = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE;
-    int bi, g, total_groups = 0;
-    long total = 0;
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        const sps__body* b = &w->bodies[bi];
-        for (g = 0; g < b->ngroups; ++g) {
-            int l, longest = 0, i0 = b->begin + g * SPS__LANES;
-            for (l = 0; l < SPS__LANES && i0 + l < b->end; ++l)
-                if (w->nb_count[i0 + l] > longest) longest = w->nb_count[i0 + l];
-            w->nb_group_start[b->group0 + g] = (int)total;
-            total += (long)longest * SPS__LANES;
-            if (total > w->pair_cap) {
-                sps__set_error(w, 0, "t = %g: %ld neighbour slots exceed the capacity %ld (particles are clustering; raise neighbor_capacity)",
-                               (double)w->time, total, w->pair_cap);
-                return SPS_ERR_UNSTABLE;
-            }
-        }
-        total_groups = b->group0 + b->ngroups;
+/* The frozen geometry of lane group q (sps__freeze_lanes for the world's dim and kernel). */
+static void sps__freeze_group(sps_world* w, sps__group q) {
+    const int spline = w->def.kernel == SPS_KERNEL_CUBIC_SPLINE;
+    if (w->dim == 2 && spline) sps__freeze_lanes(w, q, 2, SPS_KERNEL_CUBIC_SPLINE);
+    else if (w->dim == 2) sps__freeze_lanes(w, q, 2, SPS_KERNEL_WENDLAND_C2);
+    else if (spline) sps__freeze_lanes(w, q, 3, SPS_KERNEL_CUBIC_SPLINE);
+    else sps__freeze_lanes(w, q, 3, SPS_KERNEL_WENDLAND_C2);
+}
+
+/* A list rebuild finds the lists SPS__LIST_CHUNK particles at a time (whole lane groups): a
+   chunk's per-particle lists (at most ell_width each) go into list_chunk and from there into
+   the lane slots, so that they never exist for every particle at once (for all of them, in 3D,
+   they took more memory than the slots they fill). The chunk's size changes no result, only
+   how often a parallel loop starts. */
+#define SPS__LIST_CHUNK (128 * SPS__LANES)
+
+/* A list rebuild under way. */
+typedef struct sps__rebuild {
+    long slots;                    /* the lane slots placed so far: the next group's first */
+    int particles;                 /* the particles whose lists are placed */
+    const unsigned char* restored; /* sps_world_restore: the file's lists, particle after
+                                      particle (nb_count holds their counts); NULL: the lists
+                                      are found in the cell grid */
+    long read;                     /* ... the neighbours read from them so far */
+} sps__rebuild;
+
+/* Room for `slots` lane slots in every per-slot array (nb_j; nb_dw and nb_inv_r with frozen
+   geometry; pair_force when paired): when they hold fewer, `want` (the slots the rebuild will
+   place, estimated, at least `slots`) and an eighth more (a world with open-boundary zones: for
+   its capacity of particles at the same slots per particle, so that the particles its zones
+   create find theirs). Grown only when a rebuild places more than they hold, never shrunk, so
+   that a scene in steady state does not allocate while it steps. The first `used` slots keep
+   their values. Returns 0 when out of memory: every array as it was, or larger with its values. */
+static int sps__ensure_slots(sps_world* w, long slots, long want, long used, int paired) {
+    if (slots > w->slot_cap) {
+        long cap = want > slots ? want : slots;
+        cap += cap / 8;
+        if (w->nzones && w->n > 0 && w->cap > w->n) cap = (long)((double)cap * w->cap / w->n);
+        if (!sps__grow(w, &w->nb_j, sizeof(int), (size_t)used, (size_t)cap)) return 0;
+        if (w->def.frozen_geometry && (!sps__grow(w, &w->nb_dw, sizeof(sps_real), (size_t)used, (size_t)cap) ||
+                                       !sps__grow(w, &w->nb_inv_r, sizeof(sps_real), (size_t)used, (size_t)cap)))
+            return 0;
+        w->slot_cap = cap;
     }
-    w->nb_group_start[total_groups] = (int)total;
-    for (bi = 0; bi < w->nbodies; ++bi) {
-        const sps__body* b = &w->bodies[bi];
-        SPS__PARALLEL_FOR(w, b->end - b->begin)
-        for (g = 0; g < b->ngroups; ++g) {
-            int l, s0 = w->nb_group_start[b->group0 + g], len = (w->nb_group_start[b->group0 + g + 1] - s0) / SPS__LANES;
-            for (l = 0; l < SPS__LANES; ++l) {
-                sps__fill_particle_slots(w, b, b->begin + g * SPS__LANES + l, s0 + l, len);
-                if (b->model.paired) sps__carry_pair_forces(w, b, b->begin + g * SPS__LANES + l, s0 + l, len);
-            }
-            if (frozen) {
-                const sps__group q = sps__group_of(w, b, g);
-                if (dim == 2 && spline) sps__freeze_lanes(w, q, 2, SPS_KERNEL_CUBIC_SPLINE);
-                else if (dim == 2) sps__freeze_lanes(w, q, 2, SPS_KERNEL_WENDLAND_C2);
-                else if (spline) sps__freeze_lanes(w, q, 3, SPS_KERNEL_CUBIC_SPLINE);
-                else sps__freeze_lanes(w, q, 3, SPS_KERNEL_WENDLAND_C2);
-            }
+    if (paired && w->pair_force_cap < w->slot_cap) {
+        if (!sps__grow(w, &w->pair_force, sizeof(sps_real), (size_t)used, (size_t)w->slot_cap)) return 0;
+        w->pair_force_cap = w->slot_cap;
+    }
+    return 1;
+}
+
+/* Room for `pairs` kept pair forces (SPS_ROTATION_PAIR: what sps__keep_pair_forces keeps of the
+   lists just built, or what a restart file holds), an eighth more, grown like the slots, with
+   every kept force (a failed configuration update leaves them for the next one). Returns 0
+   when out of memory: the arrays as they were, or larger with their values. */
+static int sps__ensure_kept(sps_world* w, long pairs) {
+    const long room = pairs + pairs / 8;
+    if (pairs <= w->kept_pair_cap) return 1;
+    if (!sps__grow(w, &w->kept_force, sizeof(sps_real), (size_t)w->kept_pair_cap, (size_t)room) ||
+        !sps__grow(w, &w->kept_neighbor_id, sizeof(int), (size_t)w->kept_pair_cap, (size_t)room))
+        return 0;
+    w->kept_pair_cap = room;
+    return 1;
+}
+
+/* The first slots of body b's lane groups [g0, g1), from rb->slots on, each group as long as its
+   longest list (a serial prefix sum: deterministic), and the slots grown to hold them (the
+   estimate: the slots per particle placed so far, for every particle). */
+static sps_result sps__lay_out_groups(sps_world* w, const sps__body* b, int g0, int g1, sps__rebuild* rb) {
+    const int last = b->begin + g1 * SPS__LANES < b->end ? b->begin + g1 * SPS__LANES : b->end;
+    long total = rb->slots;
+    int g, l;
+    for (g = g0; g < g1; ++g) {
+        const int i0 = b->begin + g * SPS__LANES;
+        int longest = 0;
+        for (l = 0; l < SPS__LANES && i0 + l < b->end; ++l)
+            if (w->nb_count[i0 + l] > longest) longest = w->nb_count[i0 + l];
+        w->nb_group_start[b->group0 + g] = (int)total;
+        total += (long)longest * SPS__LANES;
+        if (total > INT_MAX) { /* the slot indices are ints */
+            sps__set_error(w, 0, "out of memory: %ld neighbour slots and more at t = %g, beyond the %d the lane slots index", total,
+                           (double)w->time, INT_MAX);
+            return SPS_ERR_OUT_OF_MEMORY;
         }
     }
-    for (bi = 0; bi < w->nbodies; ++bi) { /* a total-Lagrangian body's table, once per reference build */
-        sps__body* b = &w->bodies[bi];
-        sps_result r;
-        if (b->model.total_lagrangian && b->reference_built && b->tl_slots == 0 && (r = sps__tl_pair_table(w, b)) != SPS_OK) return r;
+    w->nb_group_start[b->group0 + g1] = (int)total; /* the next group's first slot */
+    rb->particles += last - (b->begin + g0 * SPS__LANES);
+    if ((total > w->slot_cap || (b->model.paired && total > w->pair_force_cap)) &&
+        !sps__ensure_slots(w, total, (long)((double)total * w->n / rb->particles), rb->slots, b->model.paired))
+        return sps__oom(w, "the neighbour slots");
+    rb->slots = total;
+    return SPS_OK;
+}
+
+/* The len slots of particle i (a lane of its group, first slot s): its neighbours (list), then
+   itself as padding; lanes past the body's end get padding only. */
+static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, int s, int len, const int* list) {
+    const int count = i < b->end ? w->nb_count[i] : 0;
+    int k;
+    if (i < b->end) w->nb_first[i] = s;
+    for (k = 0; k < len; ++k, s += SPS__LANES) w->nb_j[s] = k < count ? list[k] : i;
+}
+
+/* The lists of body b's particles [i0, i1) (whole lane groups; list_chunk holds them from i0 on)
+   into the lane slots: each group's neighbours and padding, SPS_ROTATION_PAIR's pair forces
+   carried over, the frozen geometry. */
+static sps_result sps__place_chunk(sps_world* w, const sps__body* b, int i0, int i1, sps__rebuild* rb) {
+    const int g0 = (i0 - b->begin) / SPS__LANES, g1 = (i1 - b->begin + SPS__LANES - 1) / SPS__LANES;
+    const int frozen = w->def.frozen_geometry, width = w->ell_width;
+    int g;
+    sps_result r;
+    if ((r = sps__lay_out_groups(w, b, g0, g1, rb)) != SPS_OK) return r;
+    SPS__PARALLEL_FOR(w, i1 - i0)
+    for (g = g0; g < g1; ++g) {
+        const sps__group q = sps__group_of(w, b, g);
+        int l;
+        for (l = 0; l < SPS__LANES; ++l) {
+            const int i = q.i0 + l;
+            sps__fill_particle_slots(w, b, i, q.s0 + l, q.len, i < b->end ? w->list_chunk + (size_t)(i - i0) * width : NULL);
+            if (b->model.paired) sps__carry_pair_forces(w, b, i, q.s0 + l, q.len);
+        }
+        if (frozen) sps__freeze_group(w, q);
     }
     return SPS_OK;
 }
 
-/* The len slots of particle i (a lane of its group, first slot s): its neighbours, then
-   itself as padding; lanes past the body's end get padding only. */
-static void sps__fill_particle_slots(sps_world* w, const sps__body* b, int i, int s, int len) {
-    const int count = i < b->end ? w->nb_count[i] : 0;
-    const int* list = w->nb_ell + (size_t)i * w->ell_width;
-    int k;
-    if (i < b->end) w->nb_first[i] = s;
-    for (k = 0; k < len; ++k, s += SPS__LANES) w->nb_j[s] = k < count ? list[k] : i;
+/* The lists of body b's particles [i0, i1) into list_chunk: found in the cell grid of positions
+   x (the body sorted by cell, cell_of the sorted particles' cells). A list longer than
+   ell_width stops the run. */
+static sps_result sps__find_lists(sps_world* w, const sps__body* b, sps_real* const x[3], int i0, int i1) {
+    const int dim = w->dim, width = w->ell_width, begin = b->begin;
+    int i, overflow = -1;
+    SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (i1 - i0 > 256) reduction(max : overflow))
+    for (i = i0; i < i1; ++i) {
+        int* list = w->list_chunk + (size_t)(i - i0) * width;
+        const int c = w->cell_of[i - begin];
+        const int m = w->periodic ? (dim == 2 ? sps__collect_neighbors(w, x, begin, i, c, list, width, 2, 1)
+                                              : sps__collect_neighbors(w, x, begin, i, c, list, width, 3, 1))
+                                  : (dim == 2 ? sps__collect_neighbors(w, x, begin, i, c, list, width, 2, 0)
+                                              : sps__collect_neighbors(w, x, begin, i, c, list, width, 3, 0));
+        w->nb_count[i] = m;
+        if (m > width && i > overflow) overflow = i;
+    }
+    if (overflow >= 0) {
+        sps__set_error(w, 0, "t = %g: particle %d of body '%s' has %d neighbours, more than the capacity %d "
+                       "(particles are clustering; raise world def neighbor_capacity if the compression is physical)",
+                       (double)w->time, w->id[overflow], b->name, w->nb_count[overflow], width);
+        return SPS_ERR_UNSTABLE;
+    }
+    return SPS_OK;
+}
+
+/* The lists of particles [i0, i1) into list_chunk without a search: a restart file's
+   (rb->restored; the counts are in nb_count), or none for a wall body (no pass reads its own
+   neighbours). */
+static void sps__read_lists(sps_world* w, int i0, int i1, sps__rebuild* rb) {
+    int i, m, j;
+    for (i = i0; i < i1; ++i) {
+        if (!rb->restored) w->nb_count[i] = 0; /* a wall body */
+        for (m = 0; m < w->nb_count[i]; ++m, ++rb->read) {
+            memcpy(&j, rb->restored + sizeof(int) * (size_t)rb->read, sizeof j); /* unaligned in the payload */
+            w->list_chunk[(size_t)(i - i0) * w->ell_width + m] = j;
+        }
+    }
+}
+
+/* A total-Lagrangian body's lane slots after its reference lists are found, slots [base, end):
+   kept (reference_slots) for the rebuilds after this one, which place them again. Returns 0
+   when out of memory. */
+static int sps__keep_reference_slots(sps_world* w, sps__body* b, long base, long end) {
+    sps__free(w, b->reference_slots);
+    b->reference_slots = (int*)sps__alloc(w, sizeof(int) * (size_t)(end - base + 1));
+    if (!b->reference_slots) return 0;
+    memcpy(b->reference_slots, w->nb_j + base, sizeof(int) * (size_t)(end - base));
+    return 1;
+}
+
+/* A total-Lagrangian body whose reference lists are built: the same lane slots again (its lists
+   and particle order never change; its counts stay in nb_count) from rb->slots on. */
+static sps_result sps__place_reference_slots(sps_world* w, const sps__body* b, sps__rebuild* rb) {
+    const long base = rb->slots;
+    int g;
+    sps_result r;
+    if ((r = sps__lay_out_groups(w, b, 0, b->ngroups, rb)) != SPS_OK) return r;
+    memcpy(w->nb_j + base, b->reference_slots, sizeof(int) * (size_t)(rb->slots - base));
+    SPS__PARALLEL_FOR(w, b->end - b->begin)
+    for (g = 0; g < b->ngroups; ++g) {
+        const sps__group q = sps__group_of(w, b, g);
+        int l;
+        for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) w->nb_first[q.i0 + l] = q.s0 + l;
+        if (w->def.frozen_geometry) sps__freeze_group(w, q);
+    }
+    return SPS_OK;
+}
+
+/* Body b's neighbour lists (same body only) into the lane slots, chunk by chunk: its particles
+   sorted by cell and their lists found in the cell grid, or a restart file's lists in its
+   order (rb->restored). A total-Lagrangian body's lists are those of its reference positions,
+   found once after each commit (and B_i with them, sps__tl_reference), then placed again with
+   its particle order: neither is touched again. */
+static sps_result sps__list_body(sps_world* w, sps__body* b, sps__rebuild* rb) {
+    const int count = b->end - b->begin, search = !rb->restored && !b->model.material->kinematic;
+    sps_real* const* x = b->model.total_lagrangian ? w->ref : w->pos;
+    const long base = rb->slots;
+    int i, i0, c, a, ncell;
+    sps_result r;
+    if (count == 0) return SPS_OK;
+    if (b->model.total_lagrangian && b->reference_built) return sps__place_reference_slots(w, b, rb);
+    if (search) {
+        ncell = sps__setup_grid(w, x, b->begin, b->end);
+        for (i = 0; i < count; ++i) {
+            for (c = 0, a = w->dim - 1; a >= 0; --a) c = c * w->grid_n[a] + sps__cell_coord(w, a, x[a][b->begin + i]);
+            w->cell_of[i] = c;
+        }
+        sps__sort_body(w, b, w->cell_of, ncell);
+        /* sps__sort_keys left cell_start[c] = end of cell c: shift to starts, and note each
+           sorted particle's cell */
+        for (c = ncell; c > 0; --c) w->cell_start[c] = w->cell_start[c - 1];
+        w->cell_start[0] = 0;
+        for (c = 0; c < ncell; ++c)
+            for (i = w->cell_start[c]; i < w->cell_start[c + 1]; ++i) w->cell_of[i] = c;
+    }
+    for (i0 = b->begin; i0 < b->end; i0 += SPS__LIST_CHUNK) {
+        const int i1 = b->end - i0 > SPS__LIST_CHUNK ? i0 + SPS__LIST_CHUNK : b->end;
+        if (search && (r = sps__find_lists(w, b, x, i0, i1)) != SPS_OK) return r;
+        if (!search) sps__read_lists(w, i0, i1, rb);
+        if ((r = sps__place_chunk(w, b, i0, i1, rb)) != SPS_OK) return r;
+    }
+    if (b->model.total_lagrangian) {
+        if (!sps__keep_reference_slots(w, b, base, rb->slots)) return sps__oom(w, "the total-Lagrangian reference lists");
+        sps__tl_reference(w, b);
+    }
+    return SPS_OK;
+}
+
+/* The neighbour lists of every body in lane-group slots (sps__list_body): found in the cell grid,
+   or (restored, sps_world_restore) a restart file's lists, each particle's after the last's.
+   Then the room for the pair forces sps__keep_pair_forces keeps of them, and each
+   total-Lagrangian body's pair table, once per reference build. */
+static sps_result sps__build_neighbors(sps_world* w, const unsigned char* restored) {
+    sps__rebuild rb;
+    long pairs = 0;
+    int bi, i;
+    sps_result r;
+    rb.slots = 0;
+    rb.particles = 0;
+    rb.restored = restored;
+    rb.read = 0;
+    for (bi = 0; bi < w->nbodies; ++bi)
+        if ((r = sps__list_body(w, &w->bodies[bi], &rb)) != SPS_OK) return r;
+    if (w->nbodies) w->nb_group_start[w->bodies[w->nbodies - 1].group0 + w->bodies[w->nbodies - 1].ngroups] = (int)rb.slots;
+    for (i = 0; i < w->n; ++i)
+        if (w->bodies[w->body[i]].model.paired) pairs += w->nb_count[i];
+    if (!sps__ensure_kept(w, pairs)) return sps__oom(w, "the kept pair forces");
+    for (bi = 0; bi < w->nbodies; ++bi) { /* a total-Lagrangian body's table, once per reference build */
+        sps__body* b = &w->bodies[bi];
+        if (b->model.total_lagrangian && b->reference_built && b->tl_slots == 0 && (r = sps__tl_pair_table(w, b)) != SPS_OK) return r;
+    }
+    return SPS_OK;
 }
 
 /* SPS_ROTATION_PAIR: the len slots of particle i (a lane of its group, first slot s) take the
@@ -6192,19 +6383,11 @@ static void sps__set_escape_limits(sps_world* w) {
 
 /* Sorts particles by body (after adds), sets body ranges and allocates what the scene needs:
    neighbour lists, scratch and the optional fields (velocity gradient, B, stress, rotation). */
-/* SPS_ROTATION_PAIR storage: pair_force is refilled at every list rebuild, so it is simply
-   reallocated; the kept copy is grown with its contents, because it holds the forces of the
-   last step until the rebuild after this allocation reads them. */
+/* SPS_ROTATION_PAIR storage by particle id: where each particle's kept pair forces start and how
+   many (the forces themselves are per slot and per pair, sized at the list rebuilds:
+   sps__ensure_slots). Grown with their contents: they describe the kept forces of the last
+   step until the rebuild after this allocation reads them. */
 static sps_result sps__ensure_pair_storage(sps_world* w) {
-    if (w->pair_force_cap < w->pair_cap) {
-        sps__free(w, w->pair_force);
-        w->pair_force = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)w->pair_cap);
-        if (!w->pair_force || !sps__grow(w, &w->kept_force, sizeof(sps_real), (size_t)w->pair_force_cap, (size_t)w->pair_cap) ||
-            !sps__grow(w, &w->kept_neighbor_id, sizeof(int), (size_t)w->pair_force_cap, (size_t)w->pair_cap))
-            return SPS_ERR_OUT_OF_MEMORY;
-        memset(w->pair_force, 0, sizeof(sps_real) * (size_t)w->pair_cap);
-        w->pair_force_cap = w->pair_cap;
-    }
     if (w->kept_cap < w->cap) {
         if (!sps__grow(w, &w->kept_first, sizeof(int), (size_t)w->kept_cap, (size_t)w->cap) ||
             !sps__grow(w, &w->kept_count, sizeof(int), (size_t)w->kept_cap, (size_t)w->cap))
@@ -6266,10 +6449,7 @@ static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b); 
 static sps_real sps__energy_round_off(const sps_world* w);                       /* >>guards */
 static sps_result sps__commit(sps_world* w) {
     int i, bi, k;
-    if (sps__ensure_neighbor_storage(w) != SPS_OK) {
-        w->pair_cap = 0; /* some lists may be NULL: the next call must allocate them again */
-        return SPS_ERR_OUT_OF_MEMORY;
-    }
+    if (sps__trim_particle_arrays(w) != SPS_OK || sps__ensure_neighbor_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
     for (bi = 0; bi < w->nbodies; ++bi)
         if (w->bodies[bi].model.paired) {
             if (sps__ensure_pair_storage(w) != SPS_OK) return SPS_ERR_OUT_OF_MEMORY;
@@ -6306,13 +6486,15 @@ static sps_result sps__commit(sps_world* w) {
     return SPS_OK;
 }
 
-/* Neighbour slots per particle: a full lattice support (counted once for this dim, kernel and
-   h/dp) times neighbor_capacity; sized by the capacity, not the count, so that particles
-   created up to it (open boundaries, sps_world_reserve) find their slots. */
+/* The per-particle neighbour storage, sized by the capacity, not the count, so that particles
+   created up to it (open boundaries, sps_world_reserve) find theirs, and the list chunk: lists
+   of at most a full lattice support (counted once for this dim, kernel and h/dp) times
+   neighbor_capacity. The lane slots are sized from the counts at the list rebuilds
+   (sps__ensure_slots). */
 static sps_result sps__ensure_neighbor_storage(sps_world* w) {
     int lattice = 0, reach = (int)(w->support / w->def.dp) + 1, i, j, k, width;
+    const int chunk = w->cap < SPS__LIST_CHUNK ? w->cap : SPS__LIST_CHUNK;
     size_t cap = (size_t)w->cap;
-    long pairs;
     for (i = -reach; i <= reach; ++i)
         for (j = -reach; j <= reach; ++j)
             for (k = (w->dim == 3 ? -reach : 0); k <= (w->dim == 3 ? reach : 0); ++k) {
@@ -6320,40 +6502,27 @@ static sps_result sps__ensure_neighbor_storage(sps_world* w) {
                 if ((i || j || k) && r < w->support) ++lattice;
             }
     width = (int)(lattice * w->def.neighbor_capacity) + 1;
-    /* total slots: half-way between a full lattice and every particle at capacity (local
-       compression is common, uniform compression to the capacity is not), plus the padding of
-       the lane groups (a group is as long as its longest list) */
-    pairs = (long)((double)lattice * w->cap * (1 + w->def.neighbor_capacity) / 2) + (long)lattice * w->cap / 4 +
-            (long)SPS__LANES * width * (w->nbodies + 1);
-    if (pairs > (long)width * (w->cap + SPS__LANES * w->nbodies)) pairs = (long)width * (w->cap + SPS__LANES * w->nbodies);
-    if (w->allocated_for >= w->cap && w->ell_width == width && w->pair_cap >= pairs) return SPS_OK;
-    sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_count); sps__free(w, w->nb_ell);
-    sps__free(w, w->nb_j); sps__free(w, w->nb_dw); sps__free(w, w->nb_inv_r);
+    if (w->allocated_for >= w->cap && w->ell_width == width && w->scratch_zoned == (w->nzones > 0)) return SPS_OK;
+    sps__free(w, w->nb_group_start); sps__free(w, w->nb_first); sps__free(w, w->nb_count); sps__free(w, w->list_chunk);
     sps__free(w, w->cell_of); sps__free(w, w->cell_start); sps__free(w, w->perm); sps__free(w, w->scratch);
     sps__free(w, w->group_sum);
-    w->nb_dw = w->nb_inv_r = NULL;
-    w->ell_width = width;
-    w->pair_cap = pairs;
+    w->ell_width = 0; /* until every array below is there */
     w->cell_cap = 4 * w->cap + 64 + 1;
     w->group_cap = w->cap / SPS__LANES + w->nbodies + 1;
     w->nb_group_start = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->group_cap + 1));
     w->nb_first = (int*)sps__alloc(w, sizeof(int) * cap);
     w->nb_count = (int*)sps__alloc(w, sizeof(int) * cap);
-    w->nb_ell = (int*)sps__alloc(w, sizeof(int) * cap * (size_t)width);
-    w->nb_j = (int*)sps__alloc(w, sizeof(int) * (size_t)pairs);
+    w->list_chunk = (int*)sps__alloc(w, sizeof(int) * (size_t)chunk * (size_t)width);
     w->cell_of = (int*)sps__alloc(w, sizeof(int) * cap);
     w->cell_start = (int*)sps__alloc(w, sizeof(int) * ((size_t)w->cell_cap + (size_t)w->nbodies + 1));
     w->perm = (int*)sps__alloc(w, sizeof(int) * cap);
-    w->scratch = sps__alloc(w, sizeof(sps_real) * 9 * cap);
+    w->scratch = sps__alloc(w, sizeof(sps_real) * cap * (w->nzones ? 5 : 1));
+    w->scratch_zoned = w->nzones > 0;
     w->group_sum = (sps_real*)sps__alloc(w, sizeof(sps_real) * 9 * (size_t)w->group_cap);
-    if (!w->nb_group_start || !w->nb_first || !w->nb_count || !w->nb_ell || !w->nb_j || !w->cell_of || !w->cell_start ||
-        !w->perm || !w->scratch || !w->group_sum)
+    if (!w->nb_group_start || !w->nb_first || !w->nb_count || !w->list_chunk || !w->cell_of || !w->cell_start || !w->perm || !w->scratch ||
+        !w->group_sum)
         return SPS_ERR_OUT_OF_MEMORY;
-    if (w->def.frozen_geometry) {
-        w->nb_dw = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
-        w->nb_inv_r = (sps_real*)sps__alloc(w, sizeof(sps_real) * (size_t)pairs);
-        if (!w->nb_dw || !w->nb_inv_r) return SPS_ERR_OUT_OF_MEMORY;
-    }
+    w->ell_width = width;
     return SPS_OK;
 }
 
@@ -8483,8 +8652,8 @@ static void sps__newton_inverse_step(const sps_real A6[6], sps_real B[9], const 
         for (c = 0; c < dim; ++c) B[3 * a + c] = N[3 * a + c];
 }
 
-/* B_i of every particle of body b from its reference lists (still the per-particle lists
-   nb_ell: called by sps__build_neighbors before the lane slots are filled), summed and inverted
+/* B_i of every particle of body b from its reference lists (called by sps__list_body once they
+   are in the lane slots), summed and inverted
    as the updated-Lagrangian B (sps__add_moment, sps__blended_inverse), then refined by two
    Newton steps B <- B (2 I - A B): the blend's relative error (1e-6 / det^2, larger at corners)
    is squared twice, so that F is exact for affine motions to round-off (TL eq. 16; the blend
@@ -8492,7 +8661,7 @@ static void sps__newton_inverse_step(const sps_real A6[6], sps_real B[9], const 
    particle's B stays bounded. The pair table and the signal speed follow the lane slots
    (sps__tl_pair_table). */
 static void sps__tl_reference(sps_world* w, sps__body* b) {
-    const int dim = w->dim, width = w->ell_width;
+    const int dim = w->dim;
     int i;
     SPS__PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (b->end - b->begin > 256))
     for (i = b->begin; i < b->end; ++i) {
@@ -8500,7 +8669,7 @@ static void sps__tl_reference(sps_world* w, sps__body* b) {
         int k;
         for (k = 0; k < 9; ++k) B[k] = 0;
         for (k = 0; k < w->nb_count[i]; ++k) {
-            const int j = w->nb_ell[(size_t)i * width + k];
+            const int j = sps__neighbor(w, i, k);
             const sps__ref_pair e = dim == 2 ? sps__tl_pair(w, i, j, 2) : sps__tl_pair(w, i, j, 3);
             sps__add_moment(A, 1, e.ex, e.ey, e.ez, e.r * e.dw * SPS__V0(w, b, j), dim);
         }
@@ -8510,7 +8679,7 @@ static void sps__tl_reference(sps_world* w, sps__body* b) {
         sps__newton_inverse_step(A, B, dim);
     }
     b->reference_built = 1;
-    b->tl_slots = 0; /* the pair table is built from the lane slots (sps__fill_lane_slots) */
+    b->tl_slots = 0; /* the pair table is built from the lane slots (sps__build_neighbors) */
 }
 
 /* The pair table of a total-Lagrangian body (tl_pairs): the reference lists never change, so
@@ -9324,7 +9493,7 @@ static sps_real sps__tl_highest_frequency(sps_world* w, sps__body* b, int form, 
 }
 
 /* Builds the pair table of total-Lagrangian body b from its lane slots (after
-   sps__fill_lane_slots, whenever sps__tl_reference has run), and its signal speed in the
+   sps__build_neighbors, whenever sps__tl_reference has run), and its signal speed in the
    reference state. The time step: TL section 3 integrates with leapfrog at "a CFL-stable time
    step"; the elastic body's (alpha = 0) is the CFL condition with its P-wave speed
    c_p = sqrt((K + 4G/3)/rho0). The hourglass springs (TL eqs. 25-32) stiffen the modes they
@@ -11738,7 +11907,7 @@ static sps_result sps__open_boundaries(sps_world* w) {
     n0 = w->n;
     gone = w->perm;      /* cap ints each: free between configuration updates */
     new_id = w->cell_of;
-    spawn = (sps_real*)w->scratch; /* 9 cap reals: 5 per inflow particle at most */
+    spawn = (sps_real*)w->scratch; /* 5 cap reals in a world with zones (sps__ensure_neighbor_storage) */
     for (k = 0; k < w->nzones; ++k)
         if (w->zones[k].def.kind == SPS_ZONE_OUTFLOW) sps__zone_sample(w, &w->zones[k]);
     for (i = 0; i < n0; ++i) {
@@ -11960,6 +12129,7 @@ SPSDEF sps_result sps_world_reserve(sps_world* w, int n_particles) {
         sps__set_error(w, 0, "sps_world_reserve: n_particles = %d, allowed [0, %d]", n_particles, SPS__MAX_PARTICLES);
         return SPS_ERR_INVALID_ARG;
     }
+    if (n_particles > w->reserved) w->reserved = n_particles;
     if (n_particles > w->cap) {
         if (sps__reserve(w, n_particles) != SPS_OK) return sps__oom(w, "sps_world_reserve: the particle arrays");
         w->needs_sort_by_body = 1; /* the next step sizes the neighbour storage and the bodies' arrays for it */
@@ -12132,7 +12302,7 @@ static sps_result sps__update_configuration(sps_world* w) {
     if ((r = sps__check_escape(w)) != SPS_OK) return r;
     if (w->periodic) sps__wrap_positions(w);
     w->lists_valid = 0;
-    if ((r = sps__build_neighbors(w)) != SPS_OK) return r; /* also B_i when a body needs the velocity gradient */
+    if ((r = sps__build_neighbors(w, NULL)) != SPS_OK) return r; /* also B_i when a body needs the velocity gradient */
     sps__tl_signal_speeds(w); /* total-Lagrangian bodies: the time step follows their deformation */
     sps__report_fragments(w);
     if ((w->contact_dirty || w->sigma_cap < w->cap) && sps__commit_contact(w) != SPS_OK) return sps__oom(w, "the contact tables");
@@ -12297,7 +12467,7 @@ static void sps__restore_good_state(sps_world* w) {
             r->contacts = g->contacts;
         }
     w->time = w->good_time;
-    if (!w->needs_sort_by_body) w->lists_valid = sps__build_neighbors(w) == SPS_OK;
+    if (!w->needs_sort_by_body) w->lists_valid = sps__build_neighbors(w, NULL) == SPS_OK;
 }
 
 /* A step that fails with SPS_ERR_UNSTABLE stops the world for good: the state (or the last
@@ -13355,6 +13525,8 @@ typedef struct sps__reader {
     int* slot_of_id;   /* the file's ids inverted (n of them), built by SPS__READ_LAYOUT */
     unsigned char* seen; /* the last good state's ids met so far (n) */
     const unsigned char* field_at[SPS__NFIELDS]; /* a world field's first array in the payload, once its rule held */
+    long kept_pairs;   /* the kept pair forces in the payload (their storage is grown to them before SPS__READ_APPLY) */
+    const unsigned char* lists; /* the neighbour lists in the payload (sps__transfer_lists) */
 } sps__reader;
 static int sps__applying(const sps__reader* r) { return r->pass == SPS__READ_APPLY; }
 /* The first broken rule: the item, and what is wrong with it. */
@@ -13568,10 +13740,11 @@ static void sps__transfer_field(sps_world* w, sps__body* b, const sps__field_inf
     }
 }
 
-/* The neighbour lists: counts, then each particle's neighbours; read into the per-particle
-   lists (nb_ell) the lane slots are built from, each count and index checked: a neighbour is
-   a particle of the same body other than itself (the passes index the body's arrays with it),
-   and a wall body has no lists (sps__build_neighbors). */
+/* The neighbour lists: counts, then each particle's neighbours, each count and index checked: a
+   neighbour is a particle of the same body other than itself (the passes index the body's
+   arrays with it), and a wall body has no lists (sps__read_lists). Applying reads the counts
+   into nb_count and notes where the neighbours are: sps__restore places them in the lane slots
+   from the payload (sps__build_neighbors). */
 static void sps__transfer_lists(sps_world* w, sps__stream* s) {
     const unsigned char* counts;
     char name[96];
@@ -13583,6 +13756,7 @@ static void sps__transfer_lists(sps_world* w, sps__stream* s) {
         return;
     }
     counts = sps__take(s->in, sizeof(int) * (size_t)w->n, "neighbour counts");
+    s->in->lists = s->in->at;
     for (i = 0; i < w->n && counts && !s->in->bad; ++i) {
         const sps__body* b = &w->bodies[w->body[i]];
         const int count = sps__int_at(counts, (size_t)i), limit = b->model.material->kinematic ? 0 : w->ell_width;
@@ -13594,8 +13768,7 @@ static void sps__transfer_lists(sps_world* w, sps__stream* s) {
         if (sps__applying(s->in)) w->nb_count[i] = count;
         for (m = 0; m < count && !s->in->bad; ++m) {
             const int j = sps__get_count(s->in, w->n - 1, "neighbours");
-            if (sps__applying(s->in)) w->nb_ell[(size_t)i * w->ell_width + m] = j;
-            else if (!s->in->bad && (j < b->begin || j >= b->end || j == i))
+            if (!sps__applying(s->in) && !s->in->bad && (j < b->begin || j >= b->end || j == i))
                 sps__refuse(s->in, "neighbours", "neighbour %d of %s: slot %d, allowed a slot of its body, [%d, %d), other than its own (%d)", m,
                             sps__particle_name(w, s->in, i, name, sizeof name), j, b->begin, b->end, i);
         }
@@ -13619,9 +13792,8 @@ static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
     counts = sps__take(s->in, sizeof(int) * (size_t)kept, "kept pair counts");
     for (id = 0; id < kept && counts && !s->in->bad; ++id) {
         const int count = sps__int_at(counts, (size_t)id);
-        if (count < 0 || count > w->ell_width || first + count > w->pair_force_cap) {
-            sps__refuse(s->in, "kept pair counts", "kept pair count of particle id %d = %d, allowed [0, %d] and %ld in all", id, count,
-                        w->ell_width, w->pair_force_cap);
+        if (count < 0 || count > w->ell_width) {
+            sps__refuse(s->in, "kept pair counts", "kept pair count of particle id %d = %d, allowed [0, %d]", id, count, w->ell_width);
             break;
         }
         if (sps__applying(s->in)) { w->kept_first[id] = (int)first; w->kept_count[id] = count; }
@@ -13642,6 +13814,7 @@ static void sps__transfer_kept_forces(sps_world* w, int kept, sps__stream* s) {
         }
         first += count;
     }
+    s->in->kept_pairs = first;
 }
 
 /* keep_last_good_state: the copy of the last configuration update of good_n particles: its
@@ -13764,8 +13937,8 @@ static int sps__transfer_state(sps_world* w, sps__stream* s) {
     }
     lists = w->lists_valid; /* saving: whether the lists are written; restoring: whether the file has them */
     if ((lists = sps__count_item(s, &lists, 1, "list flag")) != 0) sps__transfer_lists(w, s);
-    kept = w->pair_force ? w->kept_ids : 0;
-    if ((kept = sps__count_item(s, &kept, w->pair_force ? w->n : 0, "kept pair count")) != 0) sps__transfer_kept_forces(w, kept, s);
+    kept = w->kept_first ? w->kept_ids : 0; /* a world with a paired body (sps__ensure_pair_storage) */
+    if ((kept = sps__count_item(s, &kept, w->kept_first ? w->n : 0, "kept pair count")) != 0) sps__transfer_kept_forces(w, kept, s);
     good_n = w->good ? w->good_n : 0;
     if ((good_n = sps__count_item(s, &good_n, w->good ? w->n : 0, "last good state")) != 0) sps__transfer_good(w, good_n, s);
     if (s->in && sps__applying(s->in) && !s->in->bad) {
@@ -13810,6 +13983,10 @@ static sps_result sps__read_passes(sps_world* w, sps__reader* r, const unsigned 
     reading.out = NULL;
     reading.in = r;
     for (pass = SPS__READ_LAYOUT; pass <= last && !r->bad; ++pass) {
+        if (pass == SPS__READ_APPLY && !sps__ensure_kept(w, r->kept_pairs)) {
+            sps__free(w, r->slot_of_id); /* nothing was applied */
+            return SPS_ERR_OUT_OF_MEMORY;
+        }
         r->at = payload;
         r->left = bytes;
         r->pass = pass;
@@ -14079,9 +14256,9 @@ static sps_result sps__restore(sps_world* w, FILE* f, const char* path) {
         return res;
     }
     res = sps__read_passes(w, &r, payload, (size_t)payload_bytes, scene, SPS__READ_APPLY, &lists);
-    sps__free(w, payload);
     if (w->nzones && (res != SPS_OK || r.bad)) sps__zone_resize_back(w, old_counts);
     sps__free(w, old_counts);
+    if (res != SPS_OK || r.bad) sps__free(w, payload);
     if (res != SPS_OK) return sps__oom(w, "sps_world_restore: the check of the file's state"); /* nothing was applied */
     if (r.bad) { /* nothing was applied */
         if (r.why[0]) sps__set_error(w, 0, "sps_world_restore: '%s' is damaged: %s", path, r.why);
@@ -14090,8 +14267,9 @@ static sps_result sps__restore(sps_world* w, FILE* f, const char* path) {
     }
     for (i = 0; i < w->n; ++i) w->slot_of_id[w->id[i]] = i; /* a permutation (SPS__READ_LAYOUT) */
     for (i = 0; lists && i < w->nbodies; ++i) /* total Lagrangian: the restored lists are the reference ones */
-        if (w->bodies[i].model.total_lagrangian && w->bodies[i].end > w->bodies[i].begin) sps__tl_reference(w, &w->bodies[i]);
-    w->lists_valid = lists && sps__fill_lane_slots(w) == SPS_OK; /* else diagnostics rebuild them */
+        if (w->bodies[i].model.total_lagrangian) w->bodies[i].reference_built = 0;
+    w->lists_valid = lists && sps__build_neighbors(w, r.lists) == SPS_OK; /* from the payload; else diagnostics rebuild them */
+    sps__free(w, payload);
     return SPS_OK;
 }
 

@@ -386,7 +386,7 @@ int main(int argc, char** argv) {
         full.v[k] = (sps_real*)calloc((size_t)w->n, sizeof(sps_real));
         half.v[k] = (sps_real*)calloc((size_t)w->n, sizeof(sps_real));
     }
-    pf_full = (sps_real*)calloc((size_t)w->pair_cap, sizeof(sps_real));
+    pf_full = (sps_real*)calloc((size_t)w->nb_group_start[b->group0 + b->ngroups] + 1, sizeof(sps_real)); /* the body's slots */
     pf_half = (sps_real*)calloc((size_t)slots_half + 1, sizeof(sps_real));
     run(w, b, &h, &full, pf_full, pf_half, V_FULL_PRESSURE);
     run(w, b, &h, &half, pf_full, pf_half, V_HALF_PRESSURE);

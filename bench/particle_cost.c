@@ -22,9 +22,12 @@
 #include "../examples/scenes/ball_plate.h"
 #include "../examples/scenes/spinning.h"
 
-/* The counting allocator: each block carries its size in front, so free knows what to subtract. */
+/* The counting allocator: each block carries its size in front, so free knows what to subtract;
+   the live blocks are listed (most recent last) so that the breakdown can name them. */
 typedef struct {
     size_t live, peak;
+    void** blocks;
+    int nblocks, blocks_cap;
 } alloc_count;
 typedef union {
     size_t size;
@@ -37,15 +40,64 @@ static void* counting_alloc(size_t size, void* user) {
     h->size = size;
     c->live += size;
     if (c->live > c->peak) c->peak = c->live;
+    if (c->nblocks == c->blocks_cap) {
+        void** more = (void**)realloc(c->blocks, sizeof(void*) * (size_t)(c->blocks_cap = 2 * c->blocks_cap + 64));
+        if (!more) { c->live -= size; free(h); return NULL; }
+        c->blocks = more;
+    }
+    c->blocks[c->nblocks++] = h + 1;
     return h + 1;
 }
 static void counting_free(void* p, void* user) {
     alloc_count* c = (alloc_count*)user;
     block_head* h;
+    int k;
     if (!p) return;
     h = (block_head*)p - 1;
     c->live -= h->size;
+    for (k = c->nblocks - 1; k >= 0; --k)
+        if (c->blocks[k] == p) { c->blocks[k] = c->blocks[--c->nblocks]; break; }
     free(h);
+}
+
+/* The bytes of the live block p (0 if p is not one), taken off the list so that each block is
+   named once. */
+static size_t take_block(alloc_count* c, const void* p) {
+    int k;
+    for (k = 0; p && k < c->nblocks; ++k)
+        if (c->blocks[k] == p) {
+            c->blocks[k] = c->blocks[--c->nblocks];
+            return ((const block_head*)p - 1)->size;
+        }
+    return 0;
+}
+
+/* What the live blocks hold, per particle: the neighbour storage array by array, the particle
+   fields (the world's and the bodies'), the rest. Reads the library's private state. */
+static void print_breakdown(const sps_world* w, alloc_count* c) {
+    const struct { const char* name; const void* p; } named[] = {
+        {"nb_j", w->nb_j}, {"list_chunk", w->list_chunk}, {"nb_dw", w->nb_dw}, {"nb_inv_r", w->nb_inv_r},
+        {"pair_force", w->pair_force}, {"kept_force", w->kept_force}, {"kept_neighbor_id", w->kept_neighbor_id},
+        {"kept_first", w->kept_first}, {"kept_count", w->kept_count}, {"nb_first", w->nb_first}, {"nb_count", w->nb_count},
+        {"nb_group_start", w->nb_group_start}, {"group_sum", w->group_sum}, {"cell_of", w->cell_of}, {"cell_start", w->cell_start},
+        {"perm", w->perm}, {"scratch", w->scratch}, {"diag_scratch", w->diag_scratch}, {"good", w->good}, {"good_id", w->good_id},
+    };
+    const double n = w->n;
+    size_t fields = 0, total;
+    int k, a, bi;
+    printf("BREAKDOWN particles=%d capacity=%d", w->n, w->cap);
+    for (k = 0; k < (int)(sizeof named / sizeof *named); ++k) {
+        const size_t bytes = take_block(c, named[k].p);
+        if (bytes) printf(" %s=%.1f", named[k].name, bytes / n);
+    }
+    for (k = 0; k < SPS__NFIELDS; ++k)
+        for (a = 0; a < sps__field_arrays(&sps__fields[k]); ++a) {
+            if (!sps__fields[k].per_body) fields += take_block(c, *(void**)sps__field_slot(w, NULL, &sps__fields[k], a));
+            else
+                for (bi = 0; bi < w->nbodies; ++bi) fields += take_block(c, *(void**)sps__field_slot(w, &w->bodies[bi], &sps__fields[k], a));
+        }
+    for (k = 0, total = 0; k < c->nblocks; ++k) total += ((const block_head*)c->blocks[k] - 1)->size;
+    printf(" particle_fields=%.1f other=%.1f live=%.1f\n", fields / n, total / n, c->live / n);
 }
 
 enum { SCENE_PLATE2D, SCENE_PLATE3D, SCENE_BALL_PLATE3D, SCENE_CUBE };
@@ -62,7 +114,7 @@ int main(int argc, char** argv) {
         {"shear", OPT_CHOICE, &shear, "shear formulation", 0, 0, SHEAR_CHOICES},
         {"diagnostics", OPT_INT, &diagnostics, "sps_world_diagnostics calls timed after the run (0: none)", 0, 1000, NULL},
     };
-    alloc_count count = {0, 0};
+    alloc_count count = {0, 0, NULL, 0, 0};
     sps_world_def wd = sps_default_world_def();
     sps_body_def bd = sps_default_body_def();
     sps_world* w = NULL;
@@ -126,6 +178,7 @@ int main(int argc, char** argv) {
            1e9 * wall / ((double)n * (double)(d.acoustic_steps - steps0)), (double)count.peak / n, (double)count.live / n, neighbours / n,
            nb_max, slots / n, w->contact_bodies ? w->ct_first[n] : 0,
            1e9 * diag_best / n, diagnostics > 0 ? diag_best / (wall / (double)(d.acoustic_steps - steps0)) : 0, wall);
+    print_breakdown(w, &count); /* last: it takes the named blocks off the list */
     sps_world_destroy(w);
     return 0;
 }

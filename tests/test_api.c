@@ -839,6 +839,107 @@ static int test_memory_no_allocation_in_steps(void) {
     return 0;
 }
 
+/* The particle arrays grow by half when full as particles are added; the first step trims them
+   to the scene (a 40 x 25 block: 1,000 particles, room for 1,296 before), keeps what
+   sps_world_reserve asked for, and particles added after the first step keep the growth by half
+   (no trim, so a scene that adds between steps does not reallocate at each). */
+static int test_memory_trimmed_to_the_scene(void) {
+    static const double lo[3] = {0, 0, 0}, hi[3] = {0.4, 0.25, 0};
+    sps_real more[3] = {0.45, 0.1, 0};
+    int reserve, n;
+    for (reserve = 0; reserve < 2; ++reserve) {
+        sps_world* w = new_world(2, 0.01);
+        sps_body b;
+        ENSURE(w && (b = add_block(w, SPS_SHEAR_ENO_A, lo, hi, &n)).id && n == 1000);
+        ENSURE(w->cap == 1296); /* 256 grown by half four times */
+        if (reserve) ENSURE(sps_world_reserve(w, 1100) == SPS_OK);
+        ENSURE(sps_world_step(w) == SPS_OK);
+        ENSURE(w->cap == (reserve ? 1100 : 1000));
+        ENSURE(sps_body_add_particles(w, b, 1, more, NULL) == SPS_OK && sps_world_step(w) == SPS_OK);
+        ENSURE(w->cap == (reserve ? 1100 : 1500));
+        sps_world_destroy(w);
+    }
+    return 0;
+}
+
+/* A block squeezed by its initial velocity, v = -40/s (x - centre) (2D, ENO-A with the pair
+   rotation), run `steps` steps with allocator ca: the positions and velocities by id after them
+   into state (4 per particle), and into *refused the step that returned SPS_ERR_OUT_OF_MEMORY (-1:
+   none), whose state before and after it must match. */
+static void squeeze_velocity(const sps_real x[3], sps_real v[3], void* user) {
+    (void)user;
+    v[0] = -40 * (x[0] - 0.05);
+    v[1] = -40 * (x[1] - 0.05);
+    v[2] = 0;
+}
+static int squeeze_run(counting_allocator* ca, int steps, double* state, int* refused, long* calls_after_first) {
+    sps_world_def wd = sps_default_world_def();
+    sps_body_def bd = sps_default_body_def();
+    sps_world* w;
+    sps_body b;
+    sps_particle_state ps;
+    static const sps_real lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.1, 0};
+    int k, i, n;
+    wd.threads = 1; wd.log = quiet_log;
+    wd.allocator.alloc = counting_alloc; wd.allocator.free = counting_free; wd.allocator.user = ca;
+    ENSURE(sps_world_create(&wd, &w) == SPS_OK);
+    bd.shear = SPS_SHEAR_ENO_A; bd.rotation = SPS_ROTATION_PAIR;
+    bd.material.density = 1000; bd.material.youngs_modulus = 1e4; bd.material.poisson_ratio = 0.3; /* c0 2.9 m/s: squeezed at 2 m/s */
+    ENSURE(sps_world_add_body(w, &bd, &b) == SPS_OK && sps_body_add_box(w, b, lo, hi, &n) == SPS_OK);
+    ENSURE(n == 100 && sps_body_set_velocity(w, b, squeeze_velocity, NULL) == SPS_OK); /* 100: the callers' arrays */
+    *refused = -1;
+    for (k = 0; k < steps;) {
+        double before[4] = {0, 0, 0, 0}, time = (double)sps_world_time(w);
+        sps_result r;
+        if (k > 0) {
+            ENSURE(sps_world_particle(w, n / 3, &ps) == SPS_OK); /* a particle by id, sorted away from its slot */
+            before[0] = ps.position[0]; before[1] = ps.position[1]; before[2] = ps.velocity[0]; before[3] = ps.velocity[1];
+        }
+        r = sps_world_step(w);
+        if (k == 0) *calls_after_first = ca->calls;
+        if (r == SPS_ERR_OUT_OF_MEMORY) { /* the world as it was */
+            ENSURE(*refused < 0 && error_names(w, "out of memory: the allocator returned NULL for the neighbour slots") == 0);
+            ENSURE(sps_world_particle(w, n / 3, &ps) == SPS_OK);
+            ENSURE(ps.position[0] == before[0] && ps.position[1] == before[1] && ps.velocity[0] == before[2] && ps.velocity[1] == before[3]);
+            ENSURE((double)sps_world_time(w) == time);
+            *refused = k;
+            continue; /* the same step again */
+        }
+        ENSURE(r == SPS_OK);
+        ++k;
+    }
+    for (i = 0; i < n; ++i) {
+        ENSURE(sps_world_particle(w, i, &ps) == SPS_OK);
+        state[4 * i] = ps.position[0]; state[4 * i + 1] = ps.position[1];
+        state[4 * i + 2] = ps.velocity[0]; state[4 * i + 3] = ps.velocity[1];
+    }
+    sps_world_destroy(w);
+    ENSURE(ca->live == 0);
+    return 0;
+}
+
+/* The neighbour slots grow at a step whose configuration update counts more neighbours than
+   they hold (MEMORY in the doc block): a block squeezed until its mean neighbour count grows
+   from 15.8 to 24.8 (step 6) allocates in its steps; refusing the first of those allocations
+   returns SPS_ERR_OUT_OF_MEMORY with the world as it was, and the run goes on with the next step,
+   bit-identical to the run that was not refused (the kept pair forces survive the refusal). */
+static int test_memory_slots_grow_in_steps(void) {
+    enum { STEPS = 6, N = 100 };
+    static double grown[4 * N], refused_run[4 * N];
+    counting_allocator ca = {0, 0, 0, 0, 0};
+    long first, unused;
+    int refused, i, same = 1;
+    ENSURE(squeeze_run(&ca, STEPS, grown, &refused, &first) == 0 && refused < 0);
+    printf("    %ld allocations in steps 2-%d\n", ca.calls - first, STEPS);
+    ENSURE(ca.calls > first); /* the slots grew */
+    memset(&ca, 0, sizeof ca);
+    ca.fail_at = first + 1; /* the first allocation after the first step: the slots' growth */
+    ENSURE(squeeze_run(&ca, STEPS, refused_run, &refused, &unused) == 0 && refused > 0);
+    for (i = 0; i < 4 * N; ++i) same &= grown[i] == refused_run[i];
+    ENSURE(same);
+    return 0;
+}
+
 /* Refusing each allocation of a full scenario in turn (create, bodies, particles, constraint,
    observer, steps, diagnostics, output): the call that meets it returns SPS_ERR_OUT_OF_MEMORY
    with a message, nothing crashes, later calls work or fail cleanly, and destroy frees all. */
@@ -2943,6 +3044,8 @@ static void run_api_tests(void) {
     RUN(test_last_good_state);
     RUN(test_world_validate);
     RUN(test_memory_no_allocation_in_steps);
+    RUN(test_memory_slots_grow_in_steps);
+    RUN(test_memory_trimmed_to_the_scene);
     RUN(test_memory_out_of_memory_everywhere);
     RUN(test_determinism_repeated_runs);
     RUN(test_vtk_writer);
