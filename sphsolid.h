@@ -3725,47 +3725,73 @@ SPS__INLINE void sps__drucker_prager_update(sps_real sig[6], const sps_real* L, 
 }
 
 /* The constants its pair terms in the pressure pass read, loaded once before the pair loop
-   (sps__kind_pressure_constants_of): 0.01 h^2, the world's gravity and the body's geostatic
-   difference tensor. */
+   (sps__kind_pressure_constants_of): 0.01 h^2 and the world's gravity. */
 typedef struct sps__granular_pair_constants {
     sps_real soft2;
-    const sps_real *gravity, *geostatic;
+    const sps_real* gravity;
 } sps__granular_pair_constants;
-SPS__INLINE sps__granular_pair_constants sps__granular_pair_constants_of(const sps_world* w, const sps__body* b) {
+SPS__INLINE sps__granular_pair_constants sps__granular_pair_constants_of(const sps_world* w) {
     sps__granular_pair_constants c;
     c.soft2 = SPS_R(0.01) * w->h * w->h;
     c.gravity = w->def.gravity;
-    c.geostatic = b->geostatic;
     return c;
 }
 /* Its pair terms in the pressure pass (SPS__TERM_GRANULAR, reached through
-   sps__kind_pressure_pair), lane l of the pair (i, j) at distance rij with dW and V_j: the
-   stress diffusion's sum (Feng et al. 2021), (sigma_i - sigma_j - geostatic difference)
-   r dW/(r^2 + 0.01 h^2) V_j (dp_ij = p_i - p_j of the pressures p; the lanes' deviators tau_i
-   side by side, j's at tau + tj: an int offset from the array, a gather, which a pointer to j's
-   entries defeats).
-   Unscaled by the lattice moment: a smoothing, not the divergence. */
+   sps__kind_pressure_pair): the stress diffusion (Feng et al. 2021), sum_j (sigma_i - sigma_j -
+   geostatic difference) w_ij with the weight w_ij = r dW/(r^2 + 0.01 h^2) V_j (unscaled by the
+   lattice moment: a smoothing, not the divergence), summed per particle, not per pair: the
+   weights' sum W, sum_j w_ij tau_j, sum_j w_ij p_j and the geostatic sum G = sum_j w_ij g . x_ij,
+   which the store combines into W sigma_i - sum_j w_ij sigma_j - G geostatic. The pair then costs
+   its weight and one product-sum per row (the difference formed per pair took four operations
+   per stress entry). The rows of those sums, from SPS__SPREAD on: */
+enum {
+    SPS__SPREAD_TAU = 0,       /* 6: sum_j w_ij tau_j (xx xy xz yy yz zz) */
+    SPS__SPREAD_WEIGHT = 6,    /* W = sum_j w_ij */
+    SPS__SPREAD_PRESSURE = 7,  /* sum_j w_ij p_j */
+    SPS__SPREAD_GEOSTATIC = 8, /* G = sum_j w_ij g . x_ij */
+    SPS__SPREAD_ROWS = 9
+};
+/* ... lane l of the pair (i, j) at distance rij with dW and V_j, j's deviator at tau + tj (an
+   int offset from the array, a gather, which a pointer to j's entries defeats). The division is
+   kept: r/(r^2 + 0.01 h^2) has no cheaper exact form (with the pair's 1/r it is still
+   1/(r + 0.01 h^2/r)). */
 SPS__INLINE void sps__granular_diffusion_pair(const sps__granular_pair_constants* c, sps_real (*spread)[SPS__LANES], int l,
-                                              sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj, sps_real rij, sps_real dw,
-                                              sps_real vol_j, sps_real ex, sps_real ey, sps_real ez, const sps_real* p, int i, int j, const int dim) {
-    const sps_real *gravity = c->gravity, *geostatic = c->geostatic;
+                                              const sps_real* tau, int tj, sps_real rij, sps_real dw, sps_real vol_j, sps_real ex,
+                                              sps_real ey, sps_real ez, const sps_real* p, int j, const int dim) {
+    const sps_real* gravity = c->gravity;
     const sps_real weight = rij * dw * vol_j / (rij * rij + c->soft2);
-    const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0)), dp_ij = p[i] - p[j];
-    spread[0][l] += weight * (tau_i[0][l] - tau[tj] - dp_ij - geostatic[0] * g_x);
-    spread[1][l] += weight * (tau_i[1][l] - tau[tj + 1] - geostatic[1] * g_x);
-    spread[3][l] += weight * (tau_i[3][l] - tau[tj + 3] - dp_ij - geostatic[3] * g_x);
-    spread[5][l] += weight * (tau_i[5][l] - tau[tj + 5] - dp_ij - geostatic[5] * g_x);
+    const sps_real g_x = rij * (gravity[0] * ex + gravity[1] * ey + (dim == 3 ? gravity[2] * ez : 0)); /* g . x_ij */
+    spread[SPS__SPREAD_TAU + 0][l] += weight * tau[tj];
+    spread[SPS__SPREAD_TAU + 1][l] += weight * tau[tj + 1];
+    spread[SPS__SPREAD_TAU + 3][l] += weight * tau[tj + 3];
+    spread[SPS__SPREAD_TAU + 5][l] += weight * tau[tj + 5];
     if (dim == 3) {
-        spread[2][l] += weight * (tau_i[2][l] - tau[tj + 2] - geostatic[2] * g_x);
-        spread[4][l] += weight * (tau_i[4][l] - tau[tj + 4] - geostatic[4] * g_x);
+        spread[SPS__SPREAD_TAU + 2][l] += weight * tau[tj + 2];
+        spread[SPS__SPREAD_TAU + 4][l] += weight * tau[tj + 4];
     }
+    spread[SPS__SPREAD_WEIGHT][l] += weight;
+    spread[SPS__SPREAD_PRESSURE][l] += weight * p[j];
+    spread[SPS__SPREAD_GEOSTATIC][l] += weight * g_x;
 }
 /* ... and the pressure pass's finish (sps__kind_pressure_store): the stress diffusion rate
-   2 zeta h c0 times those sums, for the lanes of the group from particle i0. */
-SPS__INLINE void sps__granular_store_diffusion(const sps__body* b, int i0, sps_real (*spread)[SPS__LANES]) {
+   2 zeta h c0 (W sigma_i - sum_j w_ij sigma_j - G geostatic), sigma = tau - p I, for the lanes of
+   the group from particle i0. The differences are formed here, of sums of the size of the
+   stress, where the pair's difference was small: in float, a rounding of the pressure (about
+   1e-7 of it) per particle rather than per pair, as the pressure itself is rounded. */
+SPS__INLINE void sps__granular_store_diffusion(const sps_world* w, const sps__body* b, int i0, sps_real (*spread)[SPS__LANES]) {
+    const sps_real* geostatic = b->geostatic;
     int l, a;
-    for (l = 0; l < SPS__LANES && i0 + l < b->end; ++l)
-        for (a = 0; a < 6; ++a) b->diffusion[(size_t)6 * (i0 + l - b->begin) + a] = b->diffusion_rate * spread[a][l];
+    for (l = 0; l < SPS__LANES && i0 + l < b->end; ++l) {
+        const int i = i0 + l;
+        const sps_real* tau_i = b->tau + (size_t)6 * (i - b->begin);
+        const sps_real weight = spread[SPS__SPREAD_WEIGHT][l], p_sum = spread[SPS__SPREAD_PRESSURE][l];
+        const sps_real g_sum = spread[SPS__SPREAD_GEOSTATIC][l];
+        for (a = 0; a < 6; ++a) {
+            const int diagonal = sps__sym_diagonal(a);
+            const sps_real own = weight * (tau_i[a] - (diagonal ? w->p[i] : 0)), others = spread[SPS__SPREAD_TAU + a][l] - (diagonal ? p_sum : 0);
+            b->diffusion[(size_t)6 * (i - b->begin) + a] = b->diffusion_rate * (own - others - geostatic[a] * g_sum);
+        }
+    }
 }
 
 /* >>material: Saint Venant-Kirchhoff (total Lagrangian; TL eqs. 18-20) */
@@ -6756,7 +6782,10 @@ enum {
 /* pressure: the acceleration's sum, Gray's artificial stress, the accumulated shear forces, the
    stress diffusion's rate, the Kelvin-Voigt damping (with the Riemann dissipation); with the
    penalty in the pressure pass, the penalty's sums after them */
-enum { SPS__ACC = 0, SPS__GRAY = 3, SPS__SHEAR = 5, SPS__SPREAD = 8, SPS__DAMP = 14, SPS__PRESSURE_SUMS = 17, SPS__PENALTY_SUMS = 17 };
+enum {
+    SPS__ACC = 0, SPS__GRAY = 3, SPS__SHEAR = 5, SPS__SPREAD = 8, SPS__DAMP = SPS__SPREAD + SPS__SPREAD_ROWS,
+    SPS__PRESSURE_SUMS = SPS__DAMP + 3, SPS__PENALTY_SUMS = SPS__PRESSURE_SUMS
+};
 enum { SPS__SUM_ROWS = SPS__PENALTY_SUMS + 3 > SPS__NSUM ? SPS__PENALTY_SUMS + 3 : SPS__NSUM };
 typedef struct sps__lane_sums {
     sps_real row[SPS__SUM_ROWS][SPS__LANES];
@@ -6918,27 +6947,26 @@ typedef struct sps__kind_pressure_constants {
 } sps__kind_pressure_constants;
 SPS__INLINE sps__kind_pressure_constants sps__kind_pressure_constants_of(const sps_world* w, const sps__body* b) {
     sps__kind_pressure_constants c;
-    c.granular = sps__granular_pair_constants_of(w, b);
+    c.granular = sps__granular_pair_constants_of(w);
+    (void)b;
     return c;
 }
 
 /* The pair terms of a kind's own in the pressure pass (terms: the instance's literal, whose
-   kind bits sps__kind_pressure_terms gives), lane l of the pair (i, j) with geometry e: the
-   lanes' deviators tau_i, j's at tau + tj, V_j and the pressures p; into the kind's rows of the
-   sums (SPS__SPREAD). Inlined into the pair loop, so that an instance without the bits has no
-   trace of them (the instances with them compile to the instructions of the terms written in
-   the loop). */
-SPS__INLINE void sps__kind_pressure_pair(const sps__kind_pressure_constants* c, sps__lane_sums* sums, int l,
-                                         sps_real (*tau_i)[SPS__LANES], const sps_real* tau, int tj, sps__pair_geometry e, sps_real vol_j,
-                                         const sps_real* p, int i, int j, const int dim, const int terms) {
+   kind bits sps__kind_pressure_terms gives), lane l of the pair (i, j) with geometry e: j's
+   deviator at tau + tj, V_j and the pressures p; into the kind's rows of the sums (SPS__SPREAD).
+   Inlined into the pair loop, so that an instance without the bits has no trace of them (the
+   instances with them compile to the instructions of the terms written in the loop). */
+SPS__INLINE void sps__kind_pressure_pair(const sps__kind_pressure_constants* c, sps__lane_sums* sums, int l, const sps_real* tau, int tj,
+                                         sps__pair_geometry e, sps_real vol_j, const sps_real* p, int j, const int dim, const int terms) {
     if (terms & SPS__TERM_GRANULAR)
-        sps__granular_diffusion_pair(&c->granular, sums->row + SPS__SPREAD, l, tau_i, tau, tj, e.r, e.dw, vol_j, e.ex, e.ey, e.ez, p, i, j, dim);
+        sps__granular_diffusion_pair(&c->granular, sums->row + SPS__SPREAD, l, tau, tj, e.r, e.dw, vol_j, e.ex, e.ey, e.ez, p, j, dim);
 }
 
 /* The pressure pass's finish of a kind's own sums for lane group q, where the body's model
    stores them: Drucker-Prager's stress diffusion rate (model.diffusion). */
-SPS__INLINE void sps__kind_pressure_store(const sps__body* b, sps__group q, sps__lane_sums* sums) {
-    if (b->model.diffusion) sps__granular_store_diffusion(b, q.i0, sums->row + SPS__SPREAD);
+SPS__INLINE void sps__kind_pressure_store(const sps_world* w, const sps__body* b, sps__group q, sps__lane_sums* sums) {
+    if (b->model.diffusion) sps__granular_store_diffusion(w, b, q.i0, sums->row + SPS__SPREAD);
 }
 
 /* >>solver: the updated-Lagrangian passes (continued): the pressure pass */
@@ -7019,7 +7047,7 @@ SPS__INLINE void sps__pressure_pairs(sps_world* w, const sps__body* b, int g, sp
                     acc[0][l] += (sxx * ex + sxy * ey) * dwv;
                     acc[1][l] += (sxy * ex + syy * ey) * dwv;
                 }
-                sps__kind_pressure_pair(&kind_constants, sums, l, tau_i, tau, tj, e, vol[j], p, i, j, dim, terms);
+                sps__kind_pressure_pair(&kind_constants, sums, l, tau, tj, e, vol[j], p, j, dim, terms);
             }
             if (penalty) { /* in the penalty's configuration, before this sub-step's half drift */
                 const sps__pair_geometry e_kicked = sps__pair_before_drift(w, i, s, j, dim, geo, SPS_R(0.5) * dt);
@@ -7103,7 +7131,7 @@ SPS__INLINE void sps__pressure_finish(sps_world* w, const sps__body* b, sps__gro
             b->viscous_work[i - b->begin] -= w->mass[i] * power * dt;
         }
     }
-    sps__kind_pressure_store(b, q, sums);
+    sps__kind_pressure_store(w, b, q, sums);
 }
 
 /* The pressure pass for lane group g with the pair loop `pairs` and its terms (the body's, or the
