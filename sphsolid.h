@@ -116,10 +116,9 @@
       at F frames per second; the library picks the sub-steps and the last step lands on the
       frame's end. Without a budget the frame is deterministic (bit-identical for any thread
       count). With a wall budget (say 80 % of 1/F) the budget is a hard cap: each advection step
-      is cut to the sub-steps that still fit (at the costs of a sub-step and of a neighbour-list
-      rebuild measured apart, in this frame or the last budgeted ones; a rebuild is set aside
-      only in the calls that start an advection step), so a frame overruns by about one
-      sub-step at most on an idle core, and a machine too slow for
+      is cut to the sub-steps that still fit (at the cost per sub-step measured in this frame, or
+      in the last budgeted one, one sub-step's time kept for the neighbour-list rebuild), so a
+      frame overruns by about one sub-step at most on an idle core, and a machine too slow for
       the scene shows slow motion (covered < 1/F, one sub-step per frame at least) instead of
       dropping frames. A frame continues the advection step the last frame left open, so the
       neighbour lists are rebuilt where a free-running step would rebuild them (every ~25
@@ -1866,8 +1865,7 @@ SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, dou
    frame_seconds of simulated time, the sub-step count chosen by the library (the last step
    lands on the frame's end), or less when wall_budget_s > 0 and the wall clock runs out: a hard
    cap, overshot by at most about one sub-step (each step is cut to the sub-steps that fit at
-   the costs of a sub-step and of a list rebuild measured so far, or in the last budgeted
-   frame), and the scene then
+   the cost per sub-step measured so far, or in the last budgeted frame), and the scene then
    runs in slow motion instead of dropping frames.
      frame_seconds  (0, 1] [s], e.g. 1/60 (a larger value is refused: the old sub-step count
                     passed here by mistake; sub-steps: sps_world_advance_substeps).
@@ -2675,8 +2673,7 @@ struct sps_world {
     sps_real thread_max[SPS__MAX_THREADS]; /* per-thread max |v|^2 of the kick */
     long acoustic_steps, advection_steps;
     int allocated_for; /* particles the neighbour storage was sized for (sps__ensure_neighbor_storage) */
-    double substep_wall_s;   /* wall seconds of one sub-step, and of an advection step's start (its */
-    double step_start_wall_s; /* configuration update), measured in budgeted frames (>>realtime) */
+    double substep_wall_s; /* wall seconds of one sub-step in the last budgeted frame (>>realtime) */
     sps__advection_step step; /* the advection step under way, which a frame may leave open (>>stepping) */
 };
 
@@ -12381,12 +12378,6 @@ static sps_result sps__begin_advection_step(sps_world* w) {
     return SPS_OK;
 }
 
-/* Whether a call with may_stay_open (a frame's) continues the advection step that the last one
-   left open (its neighbour lists still valid), rather than starting one. */
-static int sps__step_resumes(const sps_world* w, int may_stay_open) {
-    return may_stay_open && w->step.open && w->lists_valid && !w->needs_sort_by_body;
-}
-
 /* Runs acoustic sub-steps until the advection step ends, or earlier at t_limit or after
    call_cap sub-steps. may_stay_open: a frame's call (>>realtime), which continues the step a
    frame left open and leaves one open when it stops early; every other call runs whole steps
@@ -12395,7 +12386,8 @@ static sps_result sps__step_until(sps_world* w, sps_real t_limit, int call_cap, 
     sps_result r;
     int unstable = 0;
     long steps_before;
-    if (!sps__step_resumes(w, may_stay_open) && (r = sps__begin_advection_step(w)) != SPS_OK) return r;
+    const int resume = may_stay_open && w->step.open && w->lists_valid && !w->needs_sort_by_body;
+    if (!resume && (r = sps__begin_advection_step(w)) != SPS_OK) return r;
     w->step.open = 0; /* until the step stops early in a frame's call */
     steps_before = w->acoustic_steps;
     /* One thread team for the whole advection step: the passes are work-shared loops. Every
@@ -15932,41 +15924,13 @@ SPSDEF sps_result sps_world_advance_substeps(sps_world* w, int max_substeps, dou
     return r;
 }
 
-/* The wall time a budgeted frame measures: its calls that started an advection step (a
-   configuration update, then sub-steps) and those that continued one (sub-steps only). */
-typedef struct sps__frame_clock {
-    double started_s, resumed_s;
-    long started_substeps, resumed_substeps;
-    int starts;
-} sps__frame_clock;
-
-/* The cost of a sub-step and of an advection step's start: from this frame's calls that
-   continued a step when it has some (the freshest figure), else the last budgeted frame's, else
-   (the first budgeted frame) this frame's calls that started one, their start included; a
-   start's cost is what its calls took beyond their sub-steps. */
-static double sps__frame_substep_s(const sps_world* w, const sps__frame_clock* c) {
-    if (c->resumed_substeps > 0) return c->resumed_s / (double)c->resumed_substeps;
-    if (w->substep_wall_s > 0) return w->substep_wall_s;
-    return c->started_substeps > 0 ? c->started_s / (double)c->started_substeps : 0;
-}
-static void sps__frame_keep_costs(sps_world* w, const sps__frame_clock* c) {
-    double start;
-    w->substep_wall_s = sps__frame_substep_s(w, c);
-    if (c->starts == 0) return;
-    start = (c->started_s - (double)c->started_substeps * w->substep_wall_s) / c->starts;
-    w->step_start_wall_s = start > 0 ? start : 0;
-}
-
-/* A budgeted frame in seconds: every call is cut to the sub-steps that fit in what is left of
-   the budget, less the configuration update when the call starts an advection step, at the
-   costs measured apart (sps__frame_keep_costs: a list rebuild costs several sub-steps, and a
-   mean over both would overrun the frames that rebuild and waste the others); every frame runs
-   one sub-step at least (slow motion when even that does not fit). The step lands on the
-   frame's end like any step of sps_world_advance. */
+/* A budgeted frame in seconds: every step is cut to the sub-steps that fit in what is left of
+   the budget, at the cost per sub-step measured so far in this frame or, for its first step,
+   in the last budgeted frame; every frame runs one sub-step at least (slow motion when even
+   that does not fit). The step lands on the frame's end like any step of sps_world_advance. */
 SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, double wall_budget_s, sps_real* covered) {
     sps_result r = SPS_OK;
     const sps_real t0 = w ? w->time : 0, t_end = t0 + frame_seconds;
-    sps__frame_clock calls = {0, 0, 0, 0, 0};
     double start = 0;
     long done = 0;
     if (covered) *covered = 0;
@@ -15980,12 +15944,12 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, 
     if (wall_budget_s > 0) start = SPHSOLID_WALL_SECONDS();
     while (w->time < t_end) {
         const long before = w->acoustic_steps;
-        const int starts_step = !sps__step_resumes(w, !w->periodic);
-        double fitting = 1e18, call_start = 0;
+        double fitting = 1e18;
         if (wall_budget_s > 0) {
-            const double substep = sps__frame_substep_s(w, &calls);
-            call_start = SPHSOLID_WALL_SECONDS();
-            fitting = substep > 0 ? (wall_budget_s - (call_start - start) - (starts_step ? w->step_start_wall_s : 0)) / substep : 1;
+            const double spent = SPHSOLID_WALL_SECONDS() - start;
+            const double per_substep = done > 0 ? spent / (double)done : w->substep_wall_s;
+            /* one sub-step's time kept for the step's neighbour-list rebuild */
+            fitting = per_substep > 0 ? (wall_budget_s - spent) / per_substep - 1 : 1;
             /* the frame's first sub-step runs anyway: the last frame's cost alone (say the first
                sub-step ever, with its allocations) must not stop the world */
             if (fitting < 1 && done > 0) break;
@@ -15994,19 +15958,8 @@ SPSDEF sps_result sps_world_advance_frame(sps_world* w, sps_real frame_seconds, 
         if (fitting > INT_MAX) fitting = INT_MAX;
         if ((r = sps__step_guarded(w, t_end, (int)fitting, !w->periodic)) != SPS_OK) break;
         done += w->acoustic_steps - before;
-        if (wall_budget_s > 0) {
-            const double call_s = SPHSOLID_WALL_SECONDS() - call_start;
-            if (starts_step) {
-                calls.started_s += call_s;
-                calls.started_substeps += w->acoustic_steps - before;
-                ++calls.starts;
-            } else {
-                calls.resumed_s += call_s;
-                calls.resumed_substeps += w->acoustic_steps - before;
-            }
-        }
     }
-    if (wall_budget_s > 0) sps__frame_keep_costs(w, &calls);
+    if (wall_budget_s > 0 && done > 0) w->substep_wall_s = (SPHSOLID_WALL_SECONDS() - start) / (double)done;
     if (covered) *covered = w->time - t0;
     return r;
 }
