@@ -6357,11 +6357,14 @@ SPS__INLINE void sps__blended_inverse(const sps_real* a, int as, sps_real* b, in
    xx xy xz yy yz zz at A[k as] (the lane sums of the continuity pass, or one matrix). The
    continuity pass and the diagnostics both build B this way. */
 /* out = A B, or A B^T with transposed, for 3 x 3 row-major matrices (out aliases neither). */
-static void sps__mat3_product(const sps_real A[9], const sps_real B[9], int transposed, sps_real out[9]) {
+SPS__INLINE void sps__mat3_product(const sps_real A[9], const sps_real B[9], int transposed, sps_real out[9]) {
     int a, c, k;
+    SPS__UNROLL
     for (a = 0; a < 3; ++a)
+        SPS__UNROLL
         for (c = 0; c < 3; ++c) {
             sps_real s = 0;
+            SPS__UNROLL
             for (k = 0; k < 3; ++k) s += A[3 * a + k] * (transposed ? B[3 * c + k] : B[3 * k + c]);
             out[3 * a + c] = s;
         }
@@ -7653,80 +7656,60 @@ SPS__INLINE void sps__continuity_lanes(sps_world* w, const sps__body* b, sps__gr
    count (an image is never nearer than its particle); in a corner the image across both walls
    is missing. The solids' penalty contact with walls (sigma) is not applied to a fluid. */
 
-/* The distance of point x from wall wl along its normal. */
-static sps_real sps__wall_distance_of(const sps_world* w, const sps__wall* wl, const sps_real x[3]) {
+/* The distance of particle i from wall wl along its normal, in dim dimensions (a literal in
+   the lane loops; sps__wall_distance: the world's). */
+SPS__INLINE sps_real sps__wall_distance_in(const sps_world* w, const sps__wall* wl, int i, const int dim) {
     sps_real d = 0;
     int a;
-    for (a = 0; a < w->dim; ++a) d += (x[a] - wl->point[a]) * wl->normal[a];
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) d += (w->pos[a][i] - wl->point[a]) * wl->normal[a];
     return d;
 }
-/* The distance of particle i from wall wl along its normal. */
-static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int i) {
-    sps_real x[3] = {0, 0, 0};
-    int a;
-    for (a = 0; a < w->dim; ++a) x[a] = w->pos[a][i];
-    return sps__wall_distance_of(w, wl, x);
-}
+static sps_real sps__wall_distance(const sps_world* w, const sps__wall* wl, int i) { return sps__wall_distance_in(w, wl, i, w->dim); }
 
-/* The image of particle j across wall wl: position x, velocity v, viscous velocity vv (no slip:
-   2 v_wall - v_j, the wall's surface velocity, 0 unless set) and pressure *p. */
-static void sps__mirror(const sps_world* w, const sps__body* b, const sps__wall* wl, int j, sps_real x[3], sps_real v[3], sps_real vv[3],
-                        sps_real* p) {
-    const sps_real d = sps__wall_distance(w, wl, j);
-    sps_real vn = 0, gd = 0;
-    int a;
-    for (a = 0; a < w->dim; ++a) vn += w->vel[a][j] * wl->normal[a];
-    for (a = 0; a < 3; ++a) {
-        x[a] = a < w->dim ? w->pos[a][j] - 2 * d * wl->normal[a] : 0;
-        v[a] = a < w->dim ? w->vel[a][j] - 2 * vn * wl->normal[a] : 0;
-        vv[a] = a < w->dim && wl->slip == SPS_WALL_NO_SLIP ? 2 * wl->velocity[a] - w->vel[a][j] : v[a];
-        gd += a < w->dim ? w->def.gravity[a] * (x[a] - w->pos[a][j]) : 0;
-    }
-    *p = w->p[j] + b->rho0 * gd;
-}
-
-/* An image: of particle j across wall wl, at x, with velocity v (reflected), vv (no-slip
-   walls: -v_j) and pressure p. */
+/* An image: of particle j (its volume, its stress), at x, with velocity v (reflected), vv (the
+   viscous force's: at a no-slip wall 2 v_wall - v_j, the wall's surface velocity 0 unless set)
+   and pressure p. No pointer (the wall it is across is its pass's): a lane loop's images are
+   SIMD lanes' private copies, which a pointer would stop from vectorising. */
 typedef struct sps__image {
     int j;
-    const sps__wall* wall;
     sps_real x[3], v[3], vv[3], p;
 } sps__image;
-/* Calls visit(w, b, i, image, user) for every image within 2h of particle i of body b (a
-   mirrored body: fluid or granular): across wall wl (sps__wall_images, for a particle at a
-   distance d_i < 2h from it: its callers skip the others, most particles, before the call),
-   across every wall (sps__each_image). */
-typedef void (*sps__image_fn)(sps_world* w, const sps__body* b, int i, const sps__image* image, void* user);
-/* The image of j is d_i + d_j from i along the wall's normal, so no image with d_i + d_j
-   beyond the support is within it: those (most of the neighbours' images of the second and
-   third row) are skipped before their mirror and geometry are formed. The bound has a margin of
-   a thousandth of the support for the rounding, so an image at the support's edge is still left
-   to sps__image_geometry's own test and nothing changes. */
-static void sps__wall_images(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real d_i, sps__image_fn visit, void* user) {
-    const sps_real beyond = w->support * SPS_R(1.001);
-    int m;
-    for (m = -1; m < w->nb_count[i]; ++m) {
-        sps__image image;
-        sps_real d_j;
-        image.j = m < 0 ? i : sps__neighbor(w, i, m);
-        image.wall = wl;
-        d_j = sps__wall_distance(w, wl, image.j);
-        if (!(d_j < w->support) || d_i + d_j > beyond) continue;
-        sps__mirror(w, b, wl, image.j, image.x, image.v, image.vv, &image.p);
-        visit(w, b, i, &image, user);
+
+/* The image of particle j across wall wl, at distance d_j from it (sps__wall_distance): the
+   pressure continued hydrostatically, p_j + rho0 g . (x' - x_j). */
+SPS__INLINE sps__image sps__mirror(const sps_world* w, const sps__body* b, const sps__wall* wl, int j, sps_real d_j, const int dim) {
+    sps__image m;
+    sps_real vn = 0, gd = 0;
+    int a;
+    m.j = j;
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) vn += w->vel[a][j] * wl->normal[a];
+    SPS__UNROLL
+    for (a = 0; a < 3; ++a) {
+        /* read whatever the wall: a read under a condition is a masked load, which stops vectorisation */
+        const sps_real x_j = a < dim ? w->pos[a][j] : 0, v_j = a < dim ? w->vel[a][j] : 0, v_wall = wl->velocity[a];
+        m.x[a] = a < dim ? x_j - 2 * d_j * wl->normal[a] : 0;
+        m.v[a] = a < dim ? v_j - 2 * vn * wl->normal[a] : 0;
+        m.vv[a] = a < dim && wl->slip == SPS_WALL_NO_SLIP ? 2 * v_wall - v_j : m.v[a];
+        gd += a < dim ? w->def.gravity[a] * (m.x[a] - x_j) : 0;
     }
+    m.p = w->p[j] + b->rho0 * gd;
+    return m;
 }
 /* Image m reflected across a second wall wl at right angles to its own (a corner): position,
    velocities and the pressure continued hydrostatically across the second reflection. */
-static void sps__reflect_image(const sps_world* w, const sps__body* b, const sps__wall* wl, sps__image* m) {
-    const sps_real d = sps__wall_distance_of(w, wl, m->x);
-    sps_real vn = 0, vvn = 0, gd = 0;
+SPS__INLINE void sps__reflect_image(const sps_world* w, const sps__body* b, const sps__wall* wl, sps__image* m, const int dim) {
+    sps_real d = 0, vn = 0, vvn = 0, gd = 0;
     int a;
-    for (a = 0; a < w->dim; ++a) {
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) {
+        d += (m->x[a] - wl->point[a]) * wl->normal[a];
         vn += m->v[a] * wl->normal[a];
         vvn += m->vv[a] * wl->normal[a];
     }
-    for (a = 0; a < w->dim; ++a) {
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) {
         gd -= 2 * d * w->def.gravity[a] * wl->normal[a];
         m->x[a] -= 2 * d * wl->normal[a];
         m->v[a] -= 2 * vn * wl->normal[a];
@@ -7734,26 +7717,58 @@ static void sps__reflect_image(const sps_world* w, const sps__body* b, const sps
     }
     m->p += b->rho0 * gd;
 }
-/* The corner images of particle i between `count` walls at right angles to each other (2: an
-   edge; 3 in 3D: a box's corner): each neighbour within 2h of all of them reflected across
-   all. Without them a particle in a corner misses the images diagonally across it, and the
-   pressure of the rest pulls it into the corner (the corner particle of a 2D tank at rest: 33
-   m/s^2 at h = 1.3 dp; bench/VALIDATION.md, "Still water"). Exact for a box; walls at other
-   angles get none (the backstop holds their corners). */
-static void sps__corner_images(sps_world* w, const sps__body* b, int i, const sps__wall* const* walls, int count, sps__image_fn visit,
-                               void* user) {
-    int m, k;
-    for (m = -1; m < w->nb_count[i]; ++m) {
-        sps__image image;
-        image.j = m < 0 ? i : sps__neighbor(w, i, m);
-        for (k = 0; k < count && sps__wall_distance(w, walls[k], image.j) < w->support; ++k) {}
-        if (k < count) continue;
-        image.wall = walls[0];
-        sps__mirror(w, b, walls[0], image.j, image.x, image.v, image.vv, &image.p);
-        for (k = 1; k < count; ++k) sps__reflect_image(w, b, walls[k], &image);
-        visit(w, b, i, &image, user);
+
+/* An image pair's geometry, particle i and image m at x (as sps__pair_of_offset's): e = (x_i -
+   x') / r, dW/dr, and r; dW/dr = 0 with r = 1 unless `on` and the image within the support.
+   Branch-free, for the lane loops. */
+SPS__INLINE sps__pair_geometry sps__image_geometry(const sps_world* w, int i, sps__image m, int on, const int dim) {
+    sps__pair_geometry q;
+    sps_real e[3], r2 = 0, r;
+    int a;
+    SPS__UNROLL
+    for (a = 0; a < 3; ++a) {
+        e[a] = sps__nearest_image(w, a, a < dim ? w->pos[a][i] - m.x[a] : 0); /* across a period: exact on other axes, no branch */
+        r2 += e[a] * e[a];
     }
+    r = SPS__SQRT(r2);
+    on &= (r > 0) & (r < w->support);
+    r = on ? r : 1;
+    q.ex = e[0] / r;
+    q.ey = e[1] / r;
+    q.ez = e[2] / r;
+    q.dw = sps__dwdr(w, r) * (sps_real)on; /* not a select: a read of the kernel's constants under one stops vectorisation */
+    q.dw_r = q.dw / r;
+    q.r = r;
+    return q;
 }
+
+/* The particles of a SIMD pass over images, one per lane: a lane group's own (the continuity and
+   transport passes, whose sums are the group's), or the particles within 2h of a wall taken
+   LANES at a time from a thread's share of the body (the force and equilibrium passes, which
+   write each particle's result: most particles are far from every wall, and a lane group's
+   lanes next to a side wall are few). A lane's result depends on its particle alone, so no
+   result depends on which particles share a pass. */
+typedef struct sps__image_lanes {
+    int i[SPS__LANES];     /* each lane's particle (an unused lane repeats one, and is never among) */
+    int among[SPS__LANES]; /* the lanes that take images */
+    int len;               /* neighbour ranks to visit: the most neighbours of any lane */
+} sps__image_lanes;
+
+/* The walls and corners whose images a lane set sees: a reflection, across one wall or across
+   the two or three walls of a corner at right angles, with the lanes within 2h of all of its
+   walls. Without a corner's images a particle in the corner misses the images diagonally across
+   it, and the pressure of the rest pulls it into the corner (the corner particle of a 2D tank
+   at rest: 33 m/s^2 at h = 1.3 dp; bench/VALIDATION.md, "Still water"). Exact for a box; walls
+   at other angles get none (the backstop holds their corners). */
+typedef struct sps__reflection {
+    const sps__wall* wall[3]; /* the wall, or the corner's walls */
+    int count;                /* 1: a wall; 2 or 3: a corner */
+    int on[SPS__LANES];       /* the lanes within 2h of each of its walls */
+    sps_real d_i[SPS__LANES]; /* the lanes' distances from wall[0]; 2h for a lane that is off */
+} sps__reflection;
+/* A pass's images of the lanes across reflection rf (its user data: the sums). */
+typedef void (*sps__reflection_fn)(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf, void* user);
+
 /* Whether walls a and b meet at a right angle (their normals orthogonal to rounding). */
 static int sps__walls_square(const sps_world* w, const sps__wall* a, const sps__wall* b) {
     sps_real dot = 0;
@@ -7761,57 +7776,172 @@ static int sps__walls_square(const sps_world* w, const sps__wall* a, const sps__
     for (c = 0; c < w->dim; ++c) dot += a->normal[c] * b->normal[c];
     return dot * dot < SPS_R(1e-10);
 }
-/* Whether wall k is within 2h of particle i and square to the walls already in `corner`. */
-static int sps__joins_corner(const sps_world* w, int i, const sps__wall* const* corner, int count, const sps__wall* wall) {
-    int c;
-    if (!(sps__wall_distance(w, wall, i) < w->support)) return 0;
-    for (c = 0; c < count; ++c)
-        if (!sps__walls_square(w, corner[c], wall)) return 0;
-    return 1;
+
+/* The distances d of the lanes' particles from wall wl (2h for those not `among`), and which of
+   the lanes `among` are within 2h of it (on); returns how many are. */
+static int sps__lanes_near_wall(const sps_world* w, const sps__image_lanes* lanes, const sps__wall* wl, const int* among, sps_real* d, int* on) {
+    int l, count = 0;
+    for (l = 0; l < SPS__LANES; ++l) {
+        d[l] = among[l] ? sps__wall_distance(w, wl, lanes->i[l]) : w->support;
+        on[l] = among[l] && d[l] < w->support;
+        count += on[l];
+    }
+    return count;
 }
-static void sps__each_image(sps_world* w, const sps__body* b, int i, sps__image_fn visit, void* user) {
+
+/* A corner's d_i (its first wall's) set to 2h for the lanes not within 2h of all its walls. */
+static void sps__corner_lanes(const sps_world* w, sps__reflection* rf) {
+    int l;
+    for (l = 0; l < SPS__LANES; ++l)
+        if (!rf->on[l]) rf->d_i[l] = w->support;
+}
+
+/* Calls visit for each reflection seen by some of the lanes among (particles of body b): wall
+   k, then with corners the corners of k with walls k2 > k, each followed by the corners of three
+   walls k3 > k2 (3D). Each lane sums its images in this order, whatever the other lanes'. */
+static void sps__each_reflection(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, int corners, sps__reflection_fn visit,
+                                 void* user) {
+    sps__reflection rf[3];
+    sps_real d[SPS__LANES];
     int k, k2, k3;
     for (k = 0; k < w->nwalls; ++k) {
-        const sps_real d_i = sps__wall_distance(w, &w->walls[k], i);
-        const sps__wall* corner[3];
-        if (!(d_i < w->support)) continue;
-        sps__wall_images(w, b, i, &w->walls[k], d_i, visit, user);
-        if (b->model.mirrored == SPS__MIRROR_STRESS) continue; /* its walls act one by one (sps__stress_images_wall_force) */
-        corner[0] = &w->walls[k];
-        for (k2 = k + 1; k2 < w->nwalls; ++k2) {
-            if (!sps__joins_corner(w, i, corner, 1, &w->walls[k2])) continue;
-            corner[1] = &w->walls[k2];
-            sps__corner_images(w, b, i, corner, 2, visit, user);
+        rf[0].wall[0] = &w->walls[k];
+        rf[0].wall[1] = rf[0].wall[2] = NULL;
+        rf[0].count = 1;
+        if (!sps__lanes_near_wall(w, lanes, rf[0].wall[0], lanes->among, rf[0].d_i, rf[0].on)) continue;
+        visit(w, b, lanes, &rf[0], user);
+        for (k2 = k + 1; k2 < w->nwalls && corners; ++k2) {
+            rf[1] = rf[0];
+            rf[1].wall[1] = &w->walls[k2];
+            rf[1].count = 2;
+            if (!sps__walls_square(w, rf[1].wall[0], rf[1].wall[1]) || !sps__lanes_near_wall(w, lanes, rf[1].wall[1], rf[0].on, d, rf[1].on))
+                continue;
+            sps__corner_lanes(w, &rf[1]);
+            visit(w, b, lanes, &rf[1], user);
             for (k3 = k2 + 1; k3 < w->nwalls && w->dim == 3; ++k3) {
-                if (!sps__joins_corner(w, i, corner, 2, &w->walls[k3])) continue;
-                corner[2] = &w->walls[k3];
-                sps__corner_images(w, b, i, corner, 3, visit, user);
+                rf[2] = rf[1];
+                rf[2].wall[2] = &w->walls[k3];
+                rf[2].count = 3;
+                if (!sps__walls_square(w, rf[2].wall[0], rf[2].wall[2]) || !sps__walls_square(w, rf[2].wall[1], rf[2].wall[2]) ||
+                    !sps__lanes_near_wall(w, lanes, rf[2].wall[2], rf[1].on, d, rf[2].on))
+                    continue;
+                sps__corner_lanes(w, &rf[2]);
+                visit(w, b, lanes, &rf[2], user);
             }
         }
     }
 }
 
-/* An image pair's geometry: e = (x_i - x') / r, dW/dr; 0 if beyond the support. */
-static sps_real sps__image_geometry(const sps_world* w, int i, const sps_real x[3], sps_real e[3], sps_real* r_out) {
-    sps_real r2 = 0, r;
-    int a;
-    for (a = 0; a < 3; ++a) {
-        e[a] = a < w->dim ? w->pos[a][i] - x[a] : 0;
-        if (w->periodic) e[a] = sps__nearest_image(w, a, e[a]); /* the image of a neighbour across the period */
-        r2 += e[a] * e[a];
+/* The image of neighbour j across the walls of a reflection (count of them: wall0, and a
+   corner's wall1 and wall2), and whether it counts (sps__image_counts): the lane is on (its
+   distance d_i from wall0 within 2h: the reflection's d_i is 2h for a lane that is off), j a neighbour (listed: not a padding slot) within 2h of each of the reflection's
+   walls and, across one wall, d_i + d_j within the support. The image of j is d_i + d_j from i
+   along the wall's normal, so no image with d_i + d_j beyond the support is within it: those
+   (most of the neighbours' images of the second and third row) count for nothing. The bound
+   has a margin of a thousandth of the support for the rounding, so an image at the support's
+   edge is still left to sps__image_geometry's own test. */
+SPS__INLINE sps__image sps__image_across(const sps_world* w, const sps__body* b, const sps__wall* wall0, const sps__wall* wall1,
+                                         const sps__wall* wall2, int count, int j, const int dim, const int corner) {
+    sps__image m = sps__mirror(w, b, wall0, j, sps__wall_distance_in(w, wall0, j, dim), dim);
+    if (corner) { /* a literal: most images are a single wall's, and their loops carry none of this */
+        sps__reflect_image(w, b, wall1, &m, dim);
+        if (dim == 3) { /* formed for every 3D corner, kept for a corner of three walls: no masked gather */
+            sps__image m3 = m;
+            sps__reflect_image(w, b, wall2, &m3, dim);
+            if (count == 3) m = m3;
+        }
     }
-    r = SPS__SQRT(r2);
-    *r_out = r;
-    if (!(r > 0) || !(r < w->support)) return 0;
-    for (a = 0; a < 3; ++a) e[a] /= r;
-    return sps__dwdr(w, r);
+    return m;
+}
+SPS__INLINE int sps__image_counts(const sps_world* w, const sps__wall* wall0, const sps__wall* wall1, const sps__wall* wall2, int count, sps_real d_i,
+                                  int j, int listed, const int dim, const int corner) {
+    const sps_real d_j = sps__wall_distance_in(w, wall0, j, dim);
+    int near = d_j < w->support; /* & rather than &&: a branch-free mask for the lane loops */
+    if (corner) {
+        near &= sps__wall_distance_in(w, wall1, j, dim) < w->support;
+        if (dim == 3) near &= (count < 3) | (sps__wall_distance_in(w, wall2, j, dim) < w->support);
+    } else {
+        near &= !(d_i + d_j > w->support * SPS_R(1.001));
+    }
+    return (d_i < w->support) & listed & near;
 }
 
-/* The stress of image m of body b (granular): the neighbour's deviator tau_j reflected across
-   a slip wall, M tau_j M with M = I - 2 n n (no shear traction); at a no-slip wall tau_j
-   continued across the wall by equilibrium (below; as it is, with even, when the pass that
-   measures equilibrium reads it). */
-static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, int even, sps_real t[9]);
+/* The images across a reflection that count, gathered per lane in neighbour order before their
+   terms are evaluated: of a lane's 2h of neighbours, only those near the wall have an image
+   within its support (the second and third rows' images mostly not), so evaluating every rank
+   for every lane would mostly add zeros. */
+#define SPS__IMAGE_BATCH 16 /* images gathered per lane before their terms are evaluated */
+typedef struct sps__image_batch {
+    int j[SPS__IMAGE_BATCH][SPS__LANES]; /* each lane's images' neighbours (the lane's own particle for its own) */
+    int count[SPS__LANES];               /* how many each lane holds */
+    int most;                            /* the most any lane holds */
+    int next_rank;                       /* the next neighbour rank to gather (-1: each lane's own image) */
+    sps__wall wall[3]; /* the reflection's walls copied: a read from a local cannot fault, so a conditional one
+                          needs no masked load (which stops vectorisation); a wall a reflection lacks repeats one */
+} sps__image_batch;
+
+static void sps__image_batch_begin(const sps__reflection* rf, sps__image_batch* batch) {
+    batch->next_rank = -1;
+    batch->wall[0] = *rf->wall[0];
+    batch->wall[1] = rf->count > 1 ? *rf->wall[1] : batch->wall[0];
+    batch->wall[2] = rf->count > 2 ? *rf->wall[2] : batch->wall[1];
+}
+
+/* Gathers into batch the images across rf that count (sps__image_counts, and within the
+   support) from rank batch->next_rank on, until a lane holds SPS__IMAGE_BATCH or the ranks run
+   out; returns 0 when there was no rank left. A lane past its own neighbours reads its first
+   one again (a slot that exists), or the array's first slot if it has none, and takes no image
+   of it. */
+SPS__INLINE int sps__gather_images(const sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf,
+                                   sps__image_batch* batch, const int dim, const int corner) {
+    const int *SPS__RESTRICT counts = w->nb_count, *SPS__RESTRICT firsts = w->nb_first;
+    int keep[SPS__LANES], neighbour[SPS__LANES], l;
+    batch->most = 0;
+    for (l = 0; l < SPS__LANES; ++l) batch->count[l] = 0;
+    if (batch->next_rank >= lanes->len) return 0;
+    while (batch->next_rank < lanes->len && batch->most < SPS__IMAGE_BATCH) {
+        const int m = batch->next_rank++;
+        const int* SPS__RESTRICT js = m < 0 ? lanes->i : w->nb_j;
+        SPS__PRAGMA(omp simd)
+        for (l = 0; l < SPS__LANES; ++l) {
+            const int i = lanes->i[l], listed = counts[i], first = firsts[i], rank = m < listed ? m : 0; /* read unconditionally */
+            const int j = js[m < 0 ? l : listed > 0 ? first + rank * SPS__LANES : 0];
+            const int on = sps__image_counts(w, &batch->wall[0], &batch->wall[1], &batch->wall[2], rf->count, rf->d_i[l], j, m < listed, dim, corner);
+            const sps__image im = sps__image_across(w, b, &batch->wall[0], &batch->wall[1], &batch->wall[2], rf->count, j, dim, corner);
+            keep[l] = sps__image_geometry(w, i, im, on, dim).dw != 0;
+            neighbour[l] = j;
+        }
+        for (l = 0; l < SPS__LANES; ++l)
+            if (keep[l]) {
+                batch->j[batch->count[l]++][l] = neighbour[l];
+                if (batch->count[l] > batch->most) batch->most = batch->count[l];
+            }
+    }
+    return 1;
+}
+
+/* The loop over the images of the lanes across reflection rf, the images' counterpart of
+   SPS__PAIR_LOOP: for each image rank k of the gathered images (sps__gather_images), the lanes l
+   side by side in one SIMD loop, each with its particle i, the image im of its neighbour j and
+   the pair geometry e (dW = 0 past a lane's images: the statements add zeros for them),
+   declared for the pass's statements; corner (a literal) whether rf is a corner. Each lane
+   takes its images in neighbour order. k and l are the caller's ints. */
+#define SPS__IMAGE_LOOP(w, b, lanes, rf, dim, corner, k, l, ...)                                                  \
+    {                                                                                                           \
+        sps__image_batch batch_;                                                                                \
+        sps__image_batch_begin(rf, &batch_);                                                                    \
+        while (sps__gather_images(w, b, lanes, rf, &batch_, dim, corner))                                       \
+            for (k = 0; k < batch_.most; ++k) {                                                                 \
+                SPS__PRAGMA(omp simd)                                                                           \
+                for (l = 0; l < SPS__LANES; ++l) {                                                              \
+                    const int i = (lanes)->i[l], on_ = k < batch_.count[l], j = on_ ? batch_.j[k][l] : i;       \
+                    const sps__image im = sps__image_across(w, b, &batch_.wall[0], &batch_.wall[1], &batch_.wall[2], \
+                                                            (rf)->count, j, dim, corner);                       \
+                    const sps__pair_geometry e = sps__image_geometry(w, i, im, on_, dim);                      \
+                    __VA_ARGS__                                                                                 \
+                }                                                                                               \
+            }                                                                                                   \
+    }
 
 /* >>walls for fluids (continued): the granular images' shear, continued by equilibrium
 
@@ -7846,8 +7976,9 @@ static int sps__wants_wall_equilibrium(const sps_world* w, const sps__body* b) {
 }
 
 /* The Cauchy stress -p I + tau (6 entries) from a pressure and a deviator. */
-static void sps__cauchy_of(sps_real p, const sps_real tau[6], sps_real s[6]) {
+SPS__INLINE void sps__cauchy_of(sps_real p, const sps_real tau[6], sps_real s[6]) {
     int a;
+    SPS__UNROLL
     for (a = 0; a < 6; ++a) s[a] = tau[a] - (sps__sym_diagonal(a) ? p : 0);
 }
 
@@ -7859,22 +7990,109 @@ static void sps__add_stress_difference(const sps_world* w, const sps_real si[6],
         for (c = 0; c < w->dim; ++c) g[3 * a + c] += (sk[a] - si[a]) * dwv * e[c];
 }
 
-/* The stress gradient of image m for sps__measure_wall_equilibrium (its user: particle i's
-   stress and the gradient being summed). */
-typedef struct {
-    const sps_real* si;
-    sps_real* g;
-} sps__gradient_sum;
-static void sps__image_stress_gradient(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
-    const sps__gradient_sum* s = (const sps__gradient_sum*)user;
-    sps_real e[3], r, t[9], tau[6], sk[6];
-    const sps_real dw = sps__image_geometry(w, i, m->x, e, &r);
-    int a;
-    if (dw == 0) return;
-    sps__image_stress(w, b, m, 1, t);
+/* How an image carries its particle's deviator tau_j, a literal of the lane loops: none (a
+   fluid); reflected across a slip wall, M tau_j M with M = I - 2 n n (no shear traction); as
+   it is at a no-slip wall (even: the pass that measures equilibrium reads it so), or continued
+   across it by equilibrium (above). */
+enum { SPS__IMAGE_STRESS_NONE, SPS__IMAGE_STRESS_REFLECTED, SPS__IMAGE_STRESS_EVEN, SPS__IMAGE_STRESS_CONTINUED };
+/* How body b's images across wall wl carry its stress (even: no-slip images as they are). */
+static int sps__image_stress_mode(const sps__body* b, const sps__wall* wl, int even) {
+    if (b->model.mirrored != SPS__MIRROR_STRESS) return SPS__IMAGE_STRESS_NONE;
+    if (wl->slip != SPS_WALL_NO_SLIP) return SPS__IMAGE_STRESS_REFLECTED;
+    return even || !b->wall_equilibrium ? SPS__IMAGE_STRESS_EVEN : SPS__IMAGE_STRESS_CONTINUED;
+}
+
+/* The deviator t (3 x 3) of image m of body b across wall `wall`, which carries it in mode `mode`. */
+SPS__INLINE void sps__image_stress(const sps_world* w, const sps__body* b, const sps__wall* wall, sps__image m, sps_real t[9], const int dim,
+                                   const int mode) {
+    const int tj = 6 * (m.j - b->begin); /* int offsets from the arrays: gathers in the lane loops */
+    const sps_real* n = wall->normal;
+    int a, c, d;
+    SPS__UNROLL
+    for (a = 0; a < 9; ++a) t[a] = b->tau[tj + sps__sym9[a]];
+    if (mode == SPS__IMAGE_STRESS_CONTINUED) {
+        const sps_real* equilibrium = b->wall_equilibrium;
+        const int row = SPS__EQUILIBRIUM_VALUES * (m.j - b->begin);
+        sps_real s[3] = {0, 0, 0}, sn = 0, delta = 0;
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a) delta += (m.x[a] - w->pos[a][m.j]) * n[a];
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a) { /* s_a = -rho b_a - (I - n n)_cd d sigma_ad / dx_c */
+            s[a] = -equilibrium[row + 18 + a];
+            SPS__UNROLL
+            for (c = 0; c < dim; ++c)
+                SPS__UNROLL
+                for (d = 0; d < dim; ++d) s[a] -= ((c == d) - n[c] * n[d]) * equilibrium[row + 3 * sps__sym9[3 * a + d] + c];
+        }
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a) sn += s[a] * n[a];
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a) s[a] -= sn * n[a]; /* along the wall: the normal part is the pressure's */
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a)
+            SPS__UNROLL
+            for (c = 0; c < dim; ++c) t[3 * a + c] += delta * (s[a] * n[c] + n[a] * s[c]);
+    } else if (mode == SPS__IMAGE_STRESS_REFLECTED) {
+        sps_real M[9], Mt[9];
+        SPS__UNROLL
+        for (a = 0; a < 3; ++a)
+            SPS__UNROLL
+            for (c = 0; c < 3; ++c) M[3 * a + c] = (a == c) - 2 * (a < dim ? n[a] : 0) * (c < dim ? n[c] : 0);
+        sps__mat3_product(M, t, 0, Mt);
+        sps__mat3_product(Mt, M, 0, t);
+    }
+}
+
+/* The dispatch of a pass's lane loop over the dimension, and over whether reflection rf is a
+   corner: literals in each call. */
+#define SPS__BY_DIM(w, call2, call3) \
+    do {                            \
+        if ((w)->dim == 2) call2;   \
+        else call3;                 \
+    } while (0)
+#define SPS__BY_CORNER(rf, call_wall, call_corner) \
+    do {                                          \
+        if ((rf)->count == 1) call_wall;          \
+        else call_corner;                         \
+    } while (0)
+
+/* The stress gradients of the lanes of a group within 2h of a no-slip wall, summed in
+   sps__measure_wall_equilibrium: their Cauchy stresses si and gradients g (6 x 3 rows). */
+typedef struct sps__gradient_sums {
+    sps_real si[6][SPS__LANES], g[18][SPS__LANES];
+} sps__gradient_sums;
+/* Adds image m's (sigma' - sigma_i) dW e V_j to particle i's stress gradient g (rows `stride`
+   apart; as sps__add_stress_difference), its stress in mode `mode` (slip walls: reflected;
+   no-slip: even), si particle i's Cauchy stress (entries `stride` apart). */
+SPS__INLINE void sps__image_stress_gradient(const sps_world* w, const sps__body* b, const sps__wall* wall, sps__image m, sps__pair_geometry e,
+                                            const sps_real* si, sps_real* g, int stride, const int dim, const int mode) {
+    const sps_real dir[3] = {e.ex, e.ey, e.ez}, dwv = e.dw * w->vol[m.j];
+    sps_real t[9], tau[6], sk[6];
+    int a, c;
+    sps__image_stress(w, b, wall, m, t, dim, mode);
+    SPS__UNROLL
     for (a = 0; a < 6; ++a) tau[a] = t[3 * sps__sym_row[a] + sps__sym_col[a]];
-    sps__cauchy_of(m->p, tau, sk);
-    sps__add_stress_difference(w, s->si, sk, e, dw * w->vol[m->j], s->g);
+    sps__cauchy_of(m.p, tau, sk);
+    SPS__UNROLL
+    for (a = 0; a < 6; ++a)
+        SPS__UNROLL
+        for (c = 0; c < dim; ++c) g[(3 * a + c) * stride] += (sk[a] - si[a * stride]) * dwv * dir[c];
+}
+SPS__INLINE void sps__images_stress_gradient_lanes(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf,
+                                                   sps__gradient_sums* SPS__RESTRICT s, const int dim, const int mode) {
+    const sps__wall* wall = rf->wall[0];
+    int m, l;
+    SPS__IMAGE_LOOP(w, b, lanes, rf, dim, 0, m, l, /* a stress body's images: no corners */
+                    { sps__image_stress_gradient(w, b, wall, im, e, &s->si[0][l], &s->g[0][l], SPS__LANES, dim, mode); })
+}
+static void sps__images_stress_gradient(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf, void* user) {
+    sps__gradient_sums* s = (sps__gradient_sums*)user;
+    if (sps__image_stress_mode(b, rf->wall[0], 1) == SPS__IMAGE_STRESS_REFLECTED)
+        SPS__BY_DIM(w, sps__images_stress_gradient_lanes(w, b, lanes, rf, s, 2, SPS__IMAGE_STRESS_REFLECTED),
+                    sps__images_stress_gradient_lanes(w, b, lanes, rf, s, 3, SPS__IMAGE_STRESS_REFLECTED));
+    else
+        SPS__BY_DIM(w, sps__images_stress_gradient_lanes(w, b, lanes, rf, s, 2, SPS__IMAGE_STRESS_EVEN),
+                    sps__images_stress_gradient_lanes(w, b, lanes, rf, s, 3, SPS__IMAGE_STRESS_EVEN));
 }
 
 /* The external acceleration of body b at particle i and time t (sps_body_set_acceleration), as
@@ -7899,17 +8117,11 @@ static int sps__near_no_slip_wall(const sps_world* w, int i) {
     return 0;
 }
 
-/* Particle i's row of "wall_equilibrium" (a granular body's particle within 2h of a no-slip
-   wall; the others' rows are not read): its stress gradient from its neighbours and its
-   images (even), and rho_i b at the sub-step's middle time t. */
-static void sps__measure_wall_equilibrium(sps_world* w, int i, sps_real t) {
-    const sps__body* b = &w->bodies[w->body[i]];
-    sps_real *row, si[6], acc[3] = {0, 0, 0};
-    sps__gradient_sum sum;
+
+/* Particle i's Cauchy stress si and its stress gradient from its neighbours into g (6 x 3). */
+static void sps__neighbours_stress_gradient(const sps_world* w, const sps__body* b, int i, sps_real si[6], sps_real g[18]) {
     int m, a;
-    if (!b->wall_equilibrium || !sps__near_no_slip_wall(w, i)) return;
-    row = b->wall_equilibrium + (size_t)SPS__EQUILIBRIUM_VALUES * (i - b->begin);
-    for (a = 0; a < SPS__EQUILIBRIUM_VALUES; ++a) row[a] = 0;
+    for (a = 0; a < 18; ++a) g[a] = 0;
     sps__cauchy_of(w->p[i], b->tau + (size_t)6 * (i - b->begin), si);
     for (m = 0; m < w->nb_count[i]; ++m) {
         const int k = sps__neighbor(w, i, m);
@@ -7919,71 +8131,102 @@ static void sps__measure_wall_equilibrium(sps_world* w, int i, sps_real t) {
         if (!(r > 0) || !(r < w->support)) continue;
         for (a = 0; a < 3; ++a) e[a] = d[a] / r;
         sps__cauchy_of(w->p[k], b->tau + (size_t)6 * (k - b->begin), sk);
-        sps__add_stress_difference(w, si, sk, e, sps__dwdr(w, r) * w->vol[k], row);
+        sps__add_stress_difference(w, si, sk, e, sps__dwdr(w, r) * w->vol[k], g);
     }
-    sum.si = si;
-    sum.g = row;
-    for (a = 0; a < w->nwalls; ++a) {
-        const sps_real d_i = sps__wall_distance(w, &w->walls[a], i);
-        if (d_i < w->support) sps__wall_images(w, b, i, &w->walls[a], d_i, sps__image_stress_gradient, &sum);
-    }
-    for (a = 0; a < 18; ++a) row[a] *= b->divergence_scale;
-    if (b->acceleration) sps__external_acceleration_at(w, b, i, t, acc);
-    for (a = 0; a < w->dim; ++a) row[18 + a] = w->rho[i] * (w->def.gravity[a] + acc[a]);
 }
 
-static void sps__image_stress(const sps_world* w, const sps__body* b, const sps__image* m, int even, sps_real t[9]) {
-    const sps_real* tj = b->tau + (size_t)6 * (m->j - b->begin);
-    const sps_real* n = m->wall->normal;
-    sps_real M[9], Mt[9];
-    int a, c;
-    for (a = 0; a < 9; ++a) t[a] = tj[sps__sym9[a]];
-    if (m->wall->slip == SPS_WALL_NO_SLIP) {
-        const sps_real* row = b->wall_equilibrium + (size_t)SPS__EQUILIBRIUM_VALUES * (m->j - b->begin);
-        sps_real s[3] = {0, 0, 0}, sn = 0, delta = 0;
-        if (even || !b->wall_equilibrium) return;
-        for (a = 0; a < w->dim; ++a) delta += (m->x[a] - w->pos[a][m->j]) * n[a];
-        for (a = 0; a < w->dim; ++a) { /* s_a = -rho b_a - (I - n n)_cd d sigma_ad / dx_c */
-            s[a] = -row[18 + a];
-            for (c = 0; c < w->dim; ++c) {
-                int d;
-                for (d = 0; d < w->dim; ++d)
-                    s[a] -= ((c == d) - n[c] * n[d]) * row[3 * sps__sym9[3 * a + d] + c];
-            }
-        }
-        for (a = 0; a < w->dim; ++a) sn += s[a] * n[a];
-        for (a = 0; a < w->dim; ++a) s[a] -= sn * n[a]; /* along the wall: the normal part is the pressure's */
-        for (a = 0; a < w->dim; ++a)
-            for (c = 0; c < w->dim; ++c) t[3 * a + c] += delta * (s[a] * n[c] + n[a] * s[c]);
-        return;
+/* The rows of "wall_equilibrium" of the lanes' particles of body b (granular, with a no-slip
+   wall), those within 2h of a no-slip wall (the others' rows are not read): their stress
+   gradient from their neighbours and their images (even), and rho_i b at the sub-step's middle
+   time t. */
+static void sps__measure_wall_equilibrium(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, sps_real t) {
+    sps__gradient_sums s;
+    int l, a;
+    for (l = 0; l < SPS__LANES; ++l) {
+        sps_real si[6], grad[18];
+        sps__neighbours_stress_gradient(w, b, lanes->i[l], si, grad); /* a lane not among repeats one that is */
+        for (a = 0; a < 6; ++a) s.si[a][l] = si[a];
+        for (a = 0; a < 18; ++a) s.g[a][l] = grad[a];
     }
-    for (a = 0; a < 3; ++a)
-        for (c = 0; c < 3; ++c) M[3 * a + c] = (a == c) - 2 * (a < w->dim ? n[a] : 0) * (c < w->dim ? n[c] : 0);
-    sps__mat3_product(M, t, 0, Mt);
-    sps__mat3_product(Mt, M, 0, t);
+    sps__each_reflection(w, b, lanes, 0, sps__images_stress_gradient, &s);
+    for (l = 0; l < SPS__LANES && lanes->among[l]; ++l) {
+        const int i = lanes->i[l];
+        sps_real* row = b->wall_equilibrium + (size_t)SPS__EQUILIBRIUM_VALUES * (i - b->begin), acc[3] = {0, 0, 0};
+        for (a = 0; a < 18; ++a) row[a] = s.g[a][l] * b->divergence_scale;
+        if (b->acceleration) sps__external_acceleration_at(w, b, i, t, acc);
+        for (a = 0; a < 3; ++a) row[18 + a] = a < w->dim ? w->rho[i] * (w->def.gravity[a] + acc[a]) : 0;
+    }
 }
 
-/* The pressure pass's terms (sps__pressure) of one image, added to acc (per unit mass * rho_i):
-   the Riemann pressure, the viscous force (a viscous fluid) and the stress divergence (images
-   that carry the stress: SPS__MIRROR_STRESS, granular). */
-static void sps__image_force(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
-    sps_real* acc = (sps_real*)user, e[3], r, u = 0, beta, f2;
-    const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), vol = w->vol[m->j];
+/* The pressure pass's terms of image m of particle i with geometry e, added to acc (entries
+   `stride` apart; per unit mass times rho_i): the Riemann pressure, a viscous fluid's force
+   (newton) and, for images that carry the stress (stress: its mode; granular), the stress
+   divergence across wall `wall` with particle i's deviator tau_i (entries `stride` apart). Also the fluid-structure coupling's, whose images are solid
+   particles (no wall, no stress). */
+SPS__INLINE void sps__image_force(const sps_world* w, const sps__body* b, const sps__wall* wall, int i, sps__image m, sps__pair_geometry e,
+                                  const sps_real* tau_i, sps_real* acc, int stride, const int dim, const int newton, const int stress) {
+    const sps_real vol = w->vol[m.j], dir[3] = {e.ex, e.ey, e.ez};
+    sps_real u = 0, beta, f2;
     int a, c;
-    if (dw == 0) return;
-    for (a = 0; a < w->dim; ++a) u += (w->vel[a][i] - m->v[a]) * e[a];
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) u += (w->vel[a][i] - m.v[a]) * dir[a];
     beta = sps__riemann_limiter(u, b->limiter_eta_c0);
-    f2 = ((w->p[i] + m->p) * b->divergence_scale - b->z_riemann * beta * u) * dw * vol; /* scaled as in sps__pressure */
-    for (a = 0; a < w->dim; ++a) {
-        acc[a] -= f2 * e[a];
-        if (b->model.viscous == SPS__VISCOUS_NEWTON) acc[a] += b->viscous_coefficient * dw * vol / r * (w->vel[a][i] - m->vv[a]);
+    f2 = ((w->p[i] + m.p) * b->divergence_scale - b->z_riemann * beta * u) * e.dw * vol; /* scaled as in sps__pressure */
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) {
+        acc[a * stride] -= f2 * dir[a];
+        if (newton) acc[a * stride] += b->viscous_coefficient * e.dw * vol / e.r * (w->vel[a][i] - m.vv[a]);
     }
-    if (b->model.mirrored == SPS__MIRROR_STRESS) { /* (tau_i + tau_j') . e dW V_j */
-        const sps_real* ti = b->tau + (size_t)6 * (i - b->begin);
+    if (stress != SPS__IMAGE_STRESS_NONE) { /* (tau_i + tau_j') . e dW V_j */
         sps_real tj[9];
-        sps__image_stress(w, b, m, 0, tj);
-        for (a = 0; a < w->dim; ++a)
-            for (c = 0; c < w->dim; ++c) acc[a] += (ti[sps__sym9[3 * a + c]] + tj[3 * a + c]) * e[c] * dw * vol * b->divergence_scale;
+        sps__image_stress(w, b, wall, m, tj, dim, stress);
+        SPS__UNROLL
+        for (a = 0; a < dim; ++a)
+            SPS__UNROLL
+            for (c = 0; c < dim; ++c) acc[a * stride] += (tau_i[sps__sym9[3 * a + c] * stride] + tj[3 * a + c]) * dir[c] * e.dw * vol * b->divergence_scale;
+    }
+}
+SPS__INLINE void sps__images_force_lanes(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf,
+                                         sps_real (*SPS__RESTRICT acc)[SPS__LANES], const int dim, const int corner, const int newton, const int stress) {
+    const sps__wall* wall = rf->wall[0];
+    sps_real tau_i[6][SPS__LANES]; /* the lanes' own deviators side by side (as sps__own_lanes) */
+    int m, l;
+    if (stress != SPS__IMAGE_STRESS_NONE)
+        for (m = 0; m < 6; ++m)
+            for (l = 0; l < SPS__LANES; ++l) tau_i[m][l] = b->tau[6 * (lanes->i[l] - b->begin) + m];
+    SPS__IMAGE_LOOP(w, b, lanes, rf, dim, corner, m, l,
+                    { sps__image_force(w, b, wall, i, im, e, &tau_i[0][l], &acc[0][l], SPS__LANES, dim, newton, stress); })
+}
+/* Adds the images' force across reflection rf to the lanes' sums acc (3 rows). A stress body's
+   images (granular) have no corners. */
+static void sps__images_force(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf, void* acc_rows) {
+    sps_real(*acc)[SPS__LANES] = (sps_real(*)[SPS__LANES])acc_rows;
+    switch (sps__image_stress_mode(b, rf->wall[0], 0)) {
+    case SPS__IMAGE_STRESS_REFLECTED:
+        SPS__BY_DIM(w, sps__images_force_lanes(w, b, lanes, rf, acc, 2, 0, 0, SPS__IMAGE_STRESS_REFLECTED),
+                    sps__images_force_lanes(w, b, lanes, rf, acc, 3, 0, 0, SPS__IMAGE_STRESS_REFLECTED));
+        break;
+    case SPS__IMAGE_STRESS_EVEN:
+        SPS__BY_DIM(w, sps__images_force_lanes(w, b, lanes, rf, acc, 2, 0, 0, SPS__IMAGE_STRESS_EVEN),
+                    sps__images_force_lanes(w, b, lanes, rf, acc, 3, 0, 0, SPS__IMAGE_STRESS_EVEN));
+        break;
+    case SPS__IMAGE_STRESS_CONTINUED:
+        SPS__BY_DIM(w, sps__images_force_lanes(w, b, lanes, rf, acc, 2, 0, 0, SPS__IMAGE_STRESS_CONTINUED),
+                    sps__images_force_lanes(w, b, lanes, rf, acc, 3, 0, 0, SPS__IMAGE_STRESS_CONTINUED));
+        break;
+    default: /* a fluid (no stress), viscous or not, with its corners */
+        if (b->model.viscous == SPS__VISCOUS_NEWTON)
+            SPS__BY_DIM(w,
+                        SPS__BY_CORNER(rf, sps__images_force_lanes(w, b, lanes, rf, acc, 2, 0, 1, SPS__IMAGE_STRESS_NONE),
+                                       sps__images_force_lanes(w, b, lanes, rf, acc, 2, 1, 1, SPS__IMAGE_STRESS_NONE)),
+                        SPS__BY_CORNER(rf, sps__images_force_lanes(w, b, lanes, rf, acc, 3, 0, 1, SPS__IMAGE_STRESS_NONE),
+                                       sps__images_force_lanes(w, b, lanes, rf, acc, 3, 1, 1, SPS__IMAGE_STRESS_NONE)));
+        else
+            SPS__BY_DIM(w,
+                        SPS__BY_CORNER(rf, sps__images_force_lanes(w, b, lanes, rf, acc, 2, 0, 0, SPS__IMAGE_STRESS_NONE),
+                                       sps__images_force_lanes(w, b, lanes, rf, acc, 2, 1, 0, SPS__IMAGE_STRESS_NONE)),
+                        SPS__BY_CORNER(rf, sps__images_force_lanes(w, b, lanes, rf, acc, 3, 0, 0, SPS__IMAGE_STRESS_NONE),
+                                       sps__images_force_lanes(w, b, lanes, rf, acc, 3, 1, 0, SPS__IMAGE_STRESS_NONE)));
     }
 }
 
@@ -8005,84 +8248,178 @@ static void sps__add_backstop(const sps_world* w, const sps__body* b, int i, con
                   wl->normal[a];
 }
 
-/* The force per volume of wall wl on granular particle i, added to acc: its images' and the
+/* The force per volume of wall wl on a granular particle i: its images' and the
    backstop's and, on a free-slip wall with sps_world_set_wall_friction(mu) (its reflected
    images take no shear), Coulomb's friction mu f_n against the tangential velocity, f_n the
    normal part of the images' and backstop's force (sps__add_friction, with the solids' stick
    drag rho_i / (2 dt)): the basal friction of a granular flow on a smooth bed. A no-slip wall
    takes the shear through its images' stress, as much as the particle's stress can carry; a
    Coulomb bound tan(phi) f_n added there stopped C4's free grains but shot a particle out of
-   C7 at dp 0.04 (11 m/s at 0.5 s), so it is not applied (bench/VALIDATION.md). */
-static void sps__stress_images_wall_force(sps_world* w, const sps__body* b, int i, const sps__wall* wl, sps_real dt, sps_real acc[3]) {
-    const sps_real d_i = sps__wall_distance(w, wl, i);
-    sps_real f[3] = {0, 0, 0}, f_n = 0, v_n = 0, v_t[3] = {0, 0, 0};
-    int a;
-    if (!(d_i < w->support)) return; /* no image, no backstop, no friction: most particles */
-    sps__wall_images(w, b, i, wl, d_i, sps__image_force, f);
-    sps__add_backstop(w, b, i, wl, f);
-    if (wl->slip != SPS_WALL_NO_SLIP && wl->friction > 0) {
-        for (a = 0; a < w->dim; ++a) {
-            f_n += f[a] * wl->normal[a];
-            v_n += w->vel[a][i] * wl->normal[a];
+   C7 at dp 0.04 (11 m/s at 0.5 s), so it is not applied (bench/VALIDATION.md). Here for lane
+   group q's lanes within 2h of the wall (rf's), added to the sums of sps__mirror_force. */
+typedef struct sps__wall_forces {
+    sps_real acc[3][SPS__LANES]; /* the lanes' sums */
+    sps_real dt;
+} sps__wall_forces;
+static void sps__stress_images_wall_force(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf, void* user) {
+    sps__wall_forces* s = (sps__wall_forces*)user;
+    const sps__wall* wl = rf->wall[0];
+    sps_real f[3][SPS__LANES];
+    int l, a;
+    memset(f, 0, sizeof f);
+    sps__images_force(w, b, lanes, rf, f);
+    for (l = 0; l < SPS__LANES; ++l) {
+        const int i = lanes->i[l];
+        sps_real fl[3], f_n = 0, v_n = 0, v_t[3] = {0, 0, 0};
+        if (!rf->on[l]) continue; /* no image, no backstop, no friction: most particles */
+        for (a = 0; a < 3; ++a) fl[a] = f[a][l];
+        sps__add_backstop(w, b, i, wl, fl);
+        if (wl->slip != SPS_WALL_NO_SLIP && wl->friction > 0) {
+            for (a = 0; a < w->dim; ++a) {
+                f_n += fl[a] * wl->normal[a];
+                v_n += w->vel[a][i] * wl->normal[a];
+            }
+            for (a = 0; a < w->dim; ++a) v_t[a] = w->vel[a][i] - v_n * wl->normal[a];
+            if (f_n > 0) sps__add_friction(wl->friction, f_n, w->rho[i] / (2 * s->dt), v_t, w->dim, fl);
         }
-        for (a = 0; a < w->dim; ++a) v_t[a] = w->vel[a][i] - v_n * wl->normal[a];
-        if (f_n > 0) sps__add_friction(wl->friction, f_n, w->rho[i] / (2 * dt), v_t, w->dim, f);
+        for (a = 0; a < w->dim; ++a) s->acc[a][l] += fl[a];
     }
-    for (a = 0; a < w->dim; ++a) acc[a] += f[a];
 }
 
-/* Adds the walls' force to particle i's acc_p (contact pass): its images' pressure (and
-   viscous, and stress) force and the backstops; a granular body's wall by wall with each
-   wall's Coulomb bound (sps__stress_images_wall_force). */
-static void sps__mirror_force(sps_world* w, const sps__body* b, int i, sps_real dt) {
-    sps_real acc[3] = {0, 0, 0};
-    int a, k;
+/* Adds the walls' force to the lanes' particles of body b (acc_p; the contact pass, after their
+   contact forces): their images' pressure (and viscous, and stress) force and the backstops; a
+   granular body's wall by wall with each wall's Coulomb bound (sps__stress_images_wall_force). */
+static void sps__mirror_force(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, sps_real dt) {
+    sps__wall_forces s;
+    int l, a, k;
+    memset(&s, 0, sizeof s);
+    s.dt = dt;
     if (b->model.mirrored == SPS__MIRROR_STRESS) { /* wall by wall, for each wall's friction */
-        for (k = 0; k < w->nwalls; ++k) sps__stress_images_wall_force(w, b, i, &w->walls[k], dt, acc);
+        sps__each_reflection(w, b, lanes, 0, sps__stress_images_wall_force, &s);
     } else {
-        sps__each_image(w, b, i, sps__image_force, acc);
-        for (k = 0; k < w->nwalls; ++k) sps__add_backstop(w, b, i, &w->walls[k], acc);
+        sps__each_reflection(w, b, lanes, 1, sps__images_force, s.acc);
+        for (l = 0; l < SPS__LANES && lanes->among[l]; ++l) {
+            sps_real acc[3];
+            for (a = 0; a < 3; ++a) acc[a] = s.acc[a][l];
+            for (k = 0; k < w->nwalls; ++k) sps__add_backstop(w, b, lanes->i[l], &w->walls[k], acc);
+            for (a = 0; a < 3; ++a) s.acc[a][l] = acc[a];
+        }
     }
-    for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += acc[a] / w->rho[i];
+    for (l = 0; l < SPS__LANES && lanes->among[l]; ++l)
+        for (a = 0; a < w->dim; ++a) w->acc_p[a][lanes->i[l]] += s.acc[a][l] / w->rho[lanes->i[l]];
 }
 
-/* The continuity pass's sums (sps__continuity_pairs with gradient and riemann) of one image. */
-typedef struct {
-    sps_real (*sum)[SPS__LANES];
-    int lane;
-} sps__image_sums;
-/* The velocity gradient of a body whose images carry its stress (granular) takes the no-slip image velocity
-   at a no-slip wall (the shear that carries the wall's friction); a fluid's the reflected one
-   (the normal part alone enters its density rate). */
-static void sps__image_continuity(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
-    const sps__image_sums* s = (const sps__image_sums*)user;
-    const sps_real* v = b->model.mirrored == SPS__MIRROR_STRESS ? m->vv : m->v;
+/* Whether particle i is within 2h of a wall (its images' and backstops' force: the others' is 0). */
+static int sps__near_wall(const sps_world* w, int i) {
+    int k;
+    for (k = 0; k < w->nwalls; ++k)
+        if (sps__wall_distance(w, &w->walls[k], i) < w->support) return 1;
+    return 0;
+}
+
+/* Lanes n and on (unused) repeat lane 0's particle and are not among; len is the most
+   neighbours of any lane's particle. */
+static void sps__pad_lanes(const sps_world* w, sps__image_lanes* lanes, int n) {
+    int l;
+    lanes->len = 0;
+    for (l = 0; l < SPS__LANES; ++l) {
+        if (l >= n) lanes->i[l] = lanes->i[0];
+        lanes->among[l] = l < n;
+        if (w->nb_count[lanes->i[l]] > lanes->len) lanes->len = w->nb_count[lanes->i[l]];
+    }
+}
+
+/* Runs `pass` over the particles of body b that `wanted` picks (within 2h of a wall, or of a
+   no-slip wall), LANES at a time in the order of the body, from the lane groups the calling
+   thread owns (sps__group_share), then waits for the other threads. */
+static void sps__run_near_walls(sps_world* w, const sps__body* b, int (*wanted)(const sps_world* w, int i),
+                                void (*pass)(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, sps_real arg), sps_real arg) {
+    sps__image_lanes lanes;
+    int g0, g1, i, end, n = 0;
+    sps__group_share(w, b, &g0, &g1);
+    end = b->begin + g1 * SPS__LANES < b->end ? b->begin + g1 * SPS__LANES : b->end;
+    for (i = b->begin + g0 * SPS__LANES; i < end; ++i) {
+        if (!wanted(w, i)) continue;
+        lanes.i[n++] = i;
+        if (n < SPS__LANES) continue;
+        sps__pad_lanes(w, &lanes, n);
+        pass(w, b, &lanes, arg);
+        n = 0;
+    }
+    if (n > 0) {
+        sps__pad_lanes(w, &lanes, n);
+        pass(w, b, &lanes, arg);
+    }
+    SPS__PRAGMA(omp barrier)
+}
+
+/* Lane group q of body b as image lanes: its lanes past the body's end repeat its first
+   particle and are not among. */
+static void sps__group_lanes(const sps__body* b, sps__group q, sps__image_lanes* lanes) {
+    int l;
+    for (l = 0; l < SPS__LANES; ++l) {
+        lanes->among[l] = q.i0 + l < b->end;
+        lanes->i[l] = lanes->among[l] ? q.i0 + l : q.i0;
+    }
+    lanes->len = q.len;
+}
+
+/* The continuity pass's terms (sps__continuity_pairs with riemann) of image m of particle i
+   with geometry e, added to sum (rows `stride` apart): with gradient the velocity gradient's
+   sums, else a fluid's divergence as sps__continuity_pairs'. The velocity gradient of a body
+   whose images carry its stress (stress; granular) takes the no-slip image velocity at a
+   no-slip wall (the shear that carries the wall's friction); a fluid's the reflected one (the
+   normal part alone enters its density rate). Also the fluid-structure coupling's. */
+SPS__INLINE void sps__image_continuity(const sps_world* w, const sps__body* b, int i, sps__image m, sps__pair_geometry e, sps_real* sum,
+                                       int stride, const int dim, const int gradient, const int stress) {
+    const sps_real* v = stress ? m.vv : m.v;
     const sps_real* rest = b->rest_pressure_gradient;
-    sps_real e[3], r, dv[3], rest_dp;
-    const sps_real dw = sps__image_geometry(w, i, m->x, e, &r), dwv = dw * w->vol[m->j];
+    const sps_real dir[3] = {e.ex, e.ey, e.ez}, dwv = e.dw * w->vol[m.j];
+    sps_real dv[3], rest_dp;
     int a, c;
-    if (dw == 0) return;
-    for (a = 0; a < 3; ++a) dv[a] = a < w->dim ? w->vel[a][i] - v[a] : 0;
-    rest_dp = r * (rest[0] * e[0] + rest[1] * e[1] + rest[2] * e[2]); /* the image pair's hydrostatic difference */
-    s->sum[SPS__DRHO][s->lane] += (w->p[i] - m->p - rest_dp) / b->z_riemann * dwv * b->density_diffusion;
-    if (!b->model.gradient) { /* a fluid: its divergence as sps__continuity_pairs', no velocity gradient */
-        s->sum[SPS__DRHO][s->lane] += b->divergence_scale * (dv[0] * e[0] + dv[1] * e[1] + dv[2] * e[2]) * dwv;
+    SPS__UNROLL
+    for (a = 0; a < 3; ++a) dv[a] = a < dim ? w->vel[a][i] - v[a] : 0;
+    rest_dp = e.r * (rest[0] * dir[0] + rest[1] * dir[1] + rest[2] * dir[2]); /* the image pair's hydrostatic difference */
+    sum[SPS__DRHO * stride] += (w->p[i] - m.p - rest_dp) / b->z_riemann * dwv * b->density_diffusion;
+    if (!gradient) {
+        sum[SPS__DRHO * stride] += b->divergence_scale * (dv[0] * dir[0] + dv[1] * dir[1] + dv[2] * dir[2]) * dwv;
         return;
     }
-    for (a = 0; a < w->dim; ++a)
-        for (c = 0; c < w->dim; ++c) s->sum[SPS__M00 + 3 * a + c][s->lane] -= dv[a] * dwv * e[c];
-    sps__add_moment(&s->sum[SPS__A00][s->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a)
+        SPS__UNROLL
+        for (c = 0; c < dim; ++c) sum[(SPS__M00 + 3 * a + c) * stride] -= dv[a] * dwv * dir[c];
+    sps__add_moment(&sum[SPS__A00 * stride], stride, e.ex, e.ey, e.ez, e.r * dwv, dim);
+}
+SPS__INLINE void sps__images_continuity_lanes(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf,
+                                              sps_real (*SPS__RESTRICT sum)[SPS__LANES], const int dim, const int corner, const int gradient, const int stress) {
+    int m, l;
+    SPS__IMAGE_LOOP(w, b, lanes, rf, dim, corner, m, l, { sps__image_continuity(w, b, i, im, e, &sum[0][l], SPS__LANES, dim, gradient, stress); })
+}
+/* Adds the images' terms across reflection rf to the continuity sums (sps__lane_sums rows). */
+static void sps__images_continuity(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf, void* sum_rows) {
+    sps_real(*sum)[SPS__LANES] = (sps_real(*)[SPS__LANES])sum_rows;
+    if (b->model.mirrored == SPS__MIRROR_STRESS) /* granular: the velocity gradient, from the viscous image velocity; no corners */
+        SPS__BY_DIM(w, sps__images_continuity_lanes(w, b, lanes, rf, sum, 2, 0, 1, 1), sps__images_continuity_lanes(w, b, lanes, rf, sum, 3, 0, 1, 1));
+    else if (b->model.gradient) /* a fluid without gravity */
+        SPS__BY_DIM(w,
+                    SPS__BY_CORNER(rf, sps__images_continuity_lanes(w, b, lanes, rf, sum, 2, 0, 1, 0),
+                                   sps__images_continuity_lanes(w, b, lanes, rf, sum, 2, 1, 1, 0)),
+                    SPS__BY_CORNER(rf, sps__images_continuity_lanes(w, b, lanes, rf, sum, 3, 0, 1, 0),
+                                   sps__images_continuity_lanes(w, b, lanes, rf, sum, 3, 1, 1, 0)));
+    else
+        SPS__BY_DIM(w,
+                    SPS__BY_CORNER(rf, sps__images_continuity_lanes(w, b, lanes, rf, sum, 2, 0, 0, 0),
+                                   sps__images_continuity_lanes(w, b, lanes, rf, sum, 2, 1, 0, 0)),
+                    SPS__BY_CORNER(rf, sps__images_continuity_lanes(w, b, lanes, rf, sum, 3, 0, 0, 0),
+                                   sps__images_continuity_lanes(w, b, lanes, rf, sum, 3, 1, 0, 0)));
 }
 
-/* Adds the images' terms to the continuity sums of lane group q of fluid body b. */
+/* Adds the images' terms to the continuity sums of lane group q of body b. */
 static void sps__mirror_continuity(sps_world* w, const sps__body* b, sps__group q, sps_real sum[SPS__NSUM][SPS__LANES]) {
-    sps__image_sums s;
-    int l;
-    s.sum = sum;
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        s.lane = l;
-        sps__each_image(w, b, q.i0 + l, sps__image_continuity, &s);
-    }
+    sps__image_lanes lanes;
+    sps__group_lanes(b, q, &lanes);
+    sps__each_reflection(w, b, &lanes, b->model.mirrored != SPS__MIRROR_STRESS, sps__images_continuity, sum);
 }
 
 /* >>coupling: fluid-structure (Zhang, Rezavand and Hu 2021, JCP 429, 110028, section 3; the
@@ -8163,7 +8500,6 @@ static void sps__solid_image(const sps_world* w, int f, int s, sps__image* image
     sps_real gd = 0;
     int a;
     image->j = s;
-    image->wall = NULL; /* a fluid's image terms read no wall (that is a stress body's) */
     for (a = 0; a < 3; ++a) {
         image->x[a] = a < w->dim ? w->pos[a][s] : 0;
         image->v[a] = image->vv[a] = a < w->dim ? 2 * w->vel[a][s] - w->vel[a][f] : 0;
@@ -8179,35 +8515,35 @@ static void sps__coupling_force(sps_world* w, int i, int j, sps_real force[3]) {
     const int i_fluid = !w->bodies[w->body[i]].model.material->shear; /* the fluid: no shear stress */
     const int f = i_fluid ? i : j, s = i_fluid ? j : i;
     const sps_real sign = i_fluid ? w->vol[f] : -w->vol[f];
+    const sps__body* fluid = &w->bodies[w->body[f]];
     sps_real acc[3] = {0, 0, 0};
     sps__image image;
     int a;
     sps__solid_image(w, f, s, &image);
-    sps__image_force(w, &w->bodies[w->body[f]], f, &image, acc);
+    sps__image_force(w, fluid, NULL, f, image, sps__image_geometry(w, f, image, 1, w->dim), NULL, acc, 1, w->dim,
+                     fluid->model.viscous == SPS__VISCOUS_NEWTON, SPS__IMAGE_STRESS_NONE);
     for (a = 0; a < w->dim; ++a) force[a] += sign * acc[a];
 }
 
-/* Calls visit(w, b, f, image, user) for every coupled solid particle within 2h of fluid particle
-   f of body b, as its image (the walls' sps__each_image for the solids). */
-static void sps__each_solid_image(sps_world* w, const sps__body* b, int f, sps__image_fn visit, void* user) {
-    sps__image image;
-    int k;
-    for (k = w->ct_first[f]; k < w->ct_first[f + 1]; ++k) {
-        if (!sps__coupled_pair(w, f, w->ct_j[k])) continue;
-        sps__solid_image(w, f, w->ct_j[k], &image);
-        visit(w, b, f, &image, user);
-    }
+/* The next coupled solid particle within 2h of fluid particle f from its contact *k on, as its
+   image (the walls' images for the solids): 1 with *k at it, 0 past f's last contact. */
+static int sps__next_solid_image(const sps_world* w, int f, int* k, sps__image* image) {
+    for (; *k < w->ct_first[f + 1]; ++*k)
+        if (sps__coupled_pair(w, f, w->ct_j[*k])) {
+            sps__solid_image(w, f, w->ct_j[*k], image);
+            return 1;
+        }
+    return 0;
 }
 
 /* Adds the solid images' terms to the continuity sums of lane group q of fluid body b. */
 static void sps__coupling_continuity(sps_world* w, const sps__body* b, sps__group q, sps_real sum[SPS__NSUM][SPS__LANES]) {
-    sps__image_sums sums;
-    int l;
-    sums.sum = sum;
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        sums.lane = l;
-        sps__each_solid_image(w, b, q.i0 + l, sps__image_continuity, &sums);
-    }
+    sps__image image;
+    int l, k;
+    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l)
+        for (k = w->ct_first[q.i0 + l]; sps__next_solid_image(w, q.i0 + l, &k, &image); ++k)
+            sps__image_continuity(w, b, q.i0 + l, image, sps__image_geometry(w, q.i0 + l, image, 1, w->dim), &sum[0][l], SPS__LANES, w->dim,
+                                  b->model.gradient, 0);
 }
 
 /* The pair loop of the continuity pass for lane group g. Pair terms: u = v_ij.e_ij; drho += u dW
@@ -10216,21 +10552,21 @@ static void sps__contact_force(sps_world* w, int i, sps_real dt) {
     if (w->contact_damped) sps__add_dashpot_acceleration(w, bi, i, dashpot, dt);
     if (bi->coupled)
         for (a = 0; a < w->dim; ++a) w->acc_p[a][i] += coupling[a] / w->mass[i];
-    if (bi->model.mirrored && w->nwalls > 0) sps__mirror_force(w, bi, i, dt);
 }
 
 /* The contact pass of a sub-step (after the pressure pass, before the kick): the contact
    densities of all particles, then their forces. Work-shared over the step's team. */
 static void sps__contact_pass(sps_world* w, sps_real t, sps_real dt) {
-    int i;
+    int i, bi;
     if (!w->contact_bodies && w->nwalls == 0) return;
     SPS__PRAGMA(omp for schedule(static))
-    for (i = 0; i < w->n; ++i) {
-        w->sigma[i] = sps__contact_density(w, i);
-        if (w->wall_equilibrium) sps__measure_wall_equilibrium(w, i, t);
-    }
+    for (i = 0; i < w->n; ++i) w->sigma[i] = sps__contact_density(w, i);
+    for (bi = 0; bi < w->nbodies && w->wall_equilibrium; ++bi)
+        if (w->bodies[bi].wall_equilibrium) sps__run_near_walls(w, &w->bodies[bi], sps__near_no_slip_wall, sps__measure_wall_equilibrium, t);
     SPS__PRAGMA(omp for schedule(static))
     for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
+    for (bi = 0; bi < w->nbodies && w->nwalls > 0; ++bi) /* the walls' images, after the contact forces */
+        if (w->bodies[bi].model.mirrored) sps__run_near_walls(w, &w->bodies[bi], sps__near_wall, sps__mirror_force, dt);
 }
 
 /* >>material: free rigid bodies (continued): motion
@@ -11671,29 +12007,35 @@ SPS__INSTANCES(transport_surface_pairs, plain, 0)
    next to every wall, and the wake of Turek and Hron's cylinder tore voids along the channel's
    walls that nothing closed (bench/VALIDATION.md, "Turek-Hron"). UTVF keeps the paper's sums
    over the body's own particles unless it carries the velocity (transport_carries_velocity). */
-typedef struct {
-    sps__lane_sums* sums;
-    int lane;
-} sps__transport_image_sums;
-static void sps__image_transport(sps_world* w, const sps__body* b, int i, const sps__image* m, void* user) {
-    const sps__transport_image_sums* s = (const sps__transport_image_sums*)user;
-    sps_real e[3], r;
-    const sps_real dwv = sps__image_geometry(w, i, m->x, e, &r) * w->vol[m->j];
+/* An image's terms of the transport sums (sps__transport_sum_pairs'), added to sums (rows
+   `stride` apart). */
+SPS__INLINE void sps__image_transport(const sps_world* w, sps__image m, sps__pair_geometry e, sps_real* sums, int stride, const int dim) {
+    const sps_real dwv = e.dw * w->vol[m.j], dir[3] = {e.ex, e.ey, e.ez};
     int a;
-    (void)b;
-    if (dwv == 0) return;
-    for (a = 0; a < w->dim; ++a) s->sums->row[a][s->lane] += dwv * e[a];
-    sps__add_moment(&s->sums->row[3][s->lane], SPS__LANES, e[0], e[1], e[2], r * dwv, w->dim);
+    SPS__UNROLL
+    for (a = 0; a < dim; ++a) sums[a * stride] += dwv * dir[a];
+    sps__add_moment(&sums[3 * stride], stride, e.ex, e.ey, e.ez, e.r * dwv, dim);
+}
+SPS__INLINE void sps__images_transport_lanes(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf,
+                                             sps__lane_sums* SPS__RESTRICT sums, const int dim, const int corner) {
+    int m, l;
+    SPS__IMAGE_LOOP(w, b, lanes, rf, dim, corner, m, l, { sps__image_transport(w, im, e, &sums->row[0][l], SPS__LANES, dim); })
+}
+static void sps__images_transport(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, const sps__reflection* rf, void* sums) {
+    sps__lane_sums* lane_sums = (sps__lane_sums*)sums;
+    SPS__BY_DIM(w,
+                SPS__BY_CORNER(rf, sps__images_transport_lanes(w, b, lanes, rf, lane_sums, 2, 0), sps__images_transport_lanes(w, b, lanes, rf, lane_sums, 2, 1)),
+                SPS__BY_CORNER(rf, sps__images_transport_lanes(w, b, lanes, rf, lane_sums, 3, 0), sps__images_transport_lanes(w, b, lanes, rf, lane_sums, 3, 1)));
 }
 static void sps__transport_wall_sums(sps_world* w, const sps__body* b, sps__group q, sps__lane_sums* sums) {
-    sps__transport_image_sums s;
-    int l;
-    s.sums = sums;
-    for (l = 0; l < SPS__LANES && q.i0 + l < b->end; ++l) {
-        s.lane = l;
-        if (b->model.mirrored) sps__each_image(w, b, q.i0 + l, sps__image_transport, &s);
-        if (b->coupled) sps__each_solid_image(w, b, q.i0 + l, sps__image_transport, &s);
-    }
+    sps__image image;
+    sps__image_lanes lanes;
+    int l, k;
+    sps__group_lanes(b, q, &lanes);
+    if (b->model.mirrored) sps__each_reflection(w, b, &lanes, b->model.mirrored != SPS__MIRROR_STRESS, sps__images_transport, sums);
+    for (l = 0; l < SPS__LANES && lanes.among[l] && b->coupled; ++l)
+        for (k = w->ct_first[q.i0 + l]; sps__next_solid_image(w, q.i0 + l, &k, &image); ++k)
+            sps__image_transport(w, image, sps__image_geometry(w, q.i0 + l, image, 1, w->dim), &sums->row[0][l], SPS__LANES, w->dim);
 }
 
 /* The transport passes' kernels for lane group g: the world mode's pair loop, the finish. */
