@@ -7779,14 +7779,21 @@ static int sps__walls_square(const sps_world* w, const sps__wall* a, const sps__
 
 /* The distances d of the lanes' particles from wall wl (2h for those not `among`), and which of
    the lanes `among` are within 2h of it (on); returns how many are. */
-static int sps__lanes_near_wall(const sps_world* w, const sps__image_lanes* lanes, const sps__wall* wl, const int* among, sps_real* d, int* on) {
+SPS__INLINE int sps__lanes_near_wall_in(const sps_world* w, const sps__image_lanes* lanes, const sps__wall* wl, const int* among, sps_real* d,
+                                        int* on, const int dim) {
+    const sps__wall wall = *wl; /* a local: no pointer read in the loop */
     int l, count = 0;
+    SPS__PRAGMA(omp simd reduction(+ : count))
     for (l = 0; l < SPS__LANES; ++l) {
-        d[l] = among[l] ? sps__wall_distance(w, wl, lanes->i[l]) : w->support;
-        on[l] = among[l] && d[l] < w->support;
+        const sps_real distance = sps__wall_distance_in(w, &wall, lanes->i[l], dim);
+        d[l] = among[l] ? distance : w->support;
+        on[l] = among[l] & (distance < w->support);
         count += on[l];
     }
     return count;
+}
+static int sps__lanes_near_wall(const sps_world* w, const sps__image_lanes* lanes, const sps__wall* wl, const int* among, sps_real* d, int* on) {
+    return w->dim == 2 ? sps__lanes_near_wall_in(w, lanes, wl, among, d, on, 2) : sps__lanes_near_wall_in(w, lanes, wl, among, d, on, 3);
 }
 
 /* A corner's d_i (its first wall's) set to 2h for the lanes not within 2h of all its walls. */
@@ -8109,15 +8116,6 @@ static void sps__external_acceleration_at(const sps_world* w, const sps__body* b
     b->acceleration(x, x0, v, t, acc, b->acceleration_user);
 }
 
-/* Whether particle i is within 2h of a no-slip wall. */
-static int sps__near_no_slip_wall(const sps_world* w, int i) {
-    int k;
-    for (k = 0; k < w->nwalls; ++k)
-        if (w->walls[k].slip == SPS_WALL_NO_SLIP && sps__wall_distance(w, &w->walls[k], i) < w->support) return 1;
-    return 0;
-}
-
-
 /* Particle i's Cauchy stress si and its stress gradient from its neighbours into g (6 x 3). */
 static void sps__neighbours_stress_gradient(const sps_world* w, const sps__body* b, int i, sps_real si[6], sps_real g[18]) {
     int m, a;
@@ -8143,8 +8141,8 @@ static void sps__measure_wall_equilibrium(sps_world* w, const sps__body* b, cons
     sps__gradient_sums s;
     int l, a;
     for (l = 0; l < SPS__LANES; ++l) {
-        sps_real si[6], grad[18];
-        sps__neighbours_stress_gradient(w, b, lanes->i[l], si, grad); /* a lane not among repeats one that is */
+        sps_real si[6] = {0, 0, 0, 0, 0, 0}, grad[18] = {0}; /* a lane not among: zeros, so its image terms are finite */
+        if (lanes->among[l]) sps__neighbours_stress_gradient(w, b, lanes->i[l], si, grad);
         for (a = 0; a < 6; ++a) s.si[a][l] = si[a];
         for (a = 0; a < 18; ++a) s.g[a][l] = grad[a];
     }
@@ -8309,12 +8307,19 @@ static void sps__mirror_force(sps_world* w, const sps__body* b, const sps__image
         for (a = 0; a < w->dim; ++a) w->acc_p[a][lanes->i[l]] += s.acc[a][l] / w->rho[lanes->i[l]];
 }
 
-/* Whether particle i is within 2h of a wall (its images' and backstops' force: the others' is 0). */
-static int sps__near_wall(const sps_world* w, int i) {
-    int k;
-    for (k = 0; k < w->nwalls; ++k)
-        if (sps__wall_distance(w, &w->walls[k], i) < w->support) return 1;
-    return 0;
+/* Which particles of lane group q of body b are within 2h of a wall (of a no-slip wall with
+   no_slip), into near: the others take no images, no backstop (their force is 0) and measure no
+   equilibrium. */
+SPS__INLINE void sps__group_near_walls_in(const sps_world* w, const sps__body* b, sps__group q, int no_slip, int* near, const int dim) {
+    int k, l;
+    for (l = 0; l < SPS__LANES; ++l) near[l] = 0;
+    for (k = 0; k < w->nwalls; ++k) {
+        const sps__wall wall = w->walls[k]; /* a local: no pointer read in the loop */
+        if (no_slip && wall.slip != SPS_WALL_NO_SLIP) continue;
+        SPS__PRAGMA(omp simd)
+        for (l = 0; l < SPS__LANES; ++l) near[l] |= sps__wall_distance_in(w, &wall, q.i0 + l, dim) < w->support; /* padded arrays */
+    }
+    for (l = 0; l < SPS__LANES; ++l) near[l] &= q.i0 + l < b->end;
 }
 
 /* Lanes n and on (unused) repeat lane 0's particle and are not among; len is the most
@@ -8329,22 +8334,25 @@ static void sps__pad_lanes(const sps_world* w, sps__image_lanes* lanes, int n) {
     }
 }
 
-/* Runs `pass` over the particles of body b that `wanted` picks (within 2h of a wall, or of a
-   no-slip wall), LANES at a time in the order of the body, from the lane groups the calling
-   thread owns (sps__group_share), then waits for the other threads. */
-static void sps__run_near_walls(sps_world* w, const sps__body* b, int (*wanted)(const sps_world* w, int i),
+/* Runs `pass` over the particles of body b within 2h of a wall (of a no-slip wall with
+   no_slip), LANES at a time in the order of the body, from the lane groups the calling thread
+   owns (sps__group_share), then waits for the other threads. */
+static void sps__run_near_walls(sps_world* w, const sps__body* b, int no_slip,
                                 void (*pass)(sps_world* w, const sps__body* b, const sps__image_lanes* lanes, sps_real arg), sps_real arg) {
     sps__image_lanes lanes;
-    int g0, g1, i, end, n = 0;
+    int g, g0, g1, l, near[SPS__LANES], n = 0;
     sps__group_share(w, b, &g0, &g1);
-    end = b->begin + g1 * SPS__LANES < b->end ? b->begin + g1 * SPS__LANES : b->end;
-    for (i = b->begin + g0 * SPS__LANES; i < end; ++i) {
-        if (!wanted(w, i)) continue;
-        lanes.i[n++] = i;
-        if (n < SPS__LANES) continue;
-        sps__pad_lanes(w, &lanes, n);
-        pass(w, b, &lanes, arg);
-        n = 0;
+    for (g = g0; g < g1; ++g) {
+        const sps__group q = sps__group_of(w, b, g);
+        SPS__BY_DIM(w, sps__group_near_walls_in(w, b, q, no_slip, near, 2), sps__group_near_walls_in(w, b, q, no_slip, near, 3));
+        for (l = 0; l < SPS__LANES; ++l) {
+            if (!near[l]) continue;
+            lanes.i[n++] = q.i0 + l;
+            if (n < SPS__LANES) continue;
+            sps__pad_lanes(w, &lanes, n);
+            pass(w, b, &lanes, arg);
+            n = 0;
+        }
     }
     if (n > 0) {
         sps__pad_lanes(w, &lanes, n);
@@ -10562,11 +10570,11 @@ static void sps__contact_pass(sps_world* w, sps_real t, sps_real dt) {
     SPS__PRAGMA(omp for schedule(static))
     for (i = 0; i < w->n; ++i) w->sigma[i] = sps__contact_density(w, i);
     for (bi = 0; bi < w->nbodies && w->wall_equilibrium; ++bi)
-        if (w->bodies[bi].wall_equilibrium) sps__run_near_walls(w, &w->bodies[bi], sps__near_no_slip_wall, sps__measure_wall_equilibrium, t);
+        if (w->bodies[bi].wall_equilibrium) sps__run_near_walls(w, &w->bodies[bi], 1, sps__measure_wall_equilibrium, t);
     SPS__PRAGMA(omp for schedule(static))
     for (i = 0; i < w->n; ++i) sps__contact_force(w, i, dt);
     for (bi = 0; bi < w->nbodies && w->nwalls > 0; ++bi) /* the walls' images, after the contact forces */
-        if (w->bodies[bi].model.mirrored) sps__run_near_walls(w, &w->bodies[bi], sps__near_wall, sps__mirror_force, dt);
+        if (w->bodies[bi].model.mirrored) sps__run_near_walls(w, &w->bodies[bi], 0, sps__mirror_force, dt);
 }
 
 /* >>material: free rigid bodies (continued): motion
