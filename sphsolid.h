@@ -988,6 +988,12 @@
       omega R / v_t 1.09-1.21; free rigid bodies have it); joints between bodies.
 
    REVISION HISTORY
+      0.21.0 (2026-12-07) the walls' mirror images in SIMD lane loops (each image term one inline
+                         function, shared with the fluid-structure coupling's solid images; the
+                         images that count gathered per lane before their terms; the force and
+                         equilibrium passes over the particles near a wall, sixteen at a time):
+                         bit for bit, the column collapse at 0.865 of its cost per
+                         particle-step, a 3D soil cube 0.84, a dam break 0.91.
       0.20.0 (2026-12-07) memory: neighbour slots sized from the counts at each rebuild (grown
                          by an eighth, never shrunk), the lists found in chunks of lane groups
                          (no per-particle list array), particle arrays trimmed to the scene at
@@ -1153,9 +1159,9 @@
 #include <stdint.h>
 
 #define SPHSOLID_VERSION_MAJOR 0
-#define SPHSOLID_VERSION_MINOR 20
+#define SPHSOLID_VERSION_MINOR 21
 #define SPHSOLID_VERSION_PATCH 0
-#define SPHSOLID_VERSION_STRING "0.20.0"
+#define SPHSOLID_VERSION_STRING "0.21.0"
 #define SPHSOLID_VERSION_NUMBER (SPHSOLID_VERSION_MAJOR * 10000 + SPHSOLID_VERSION_MINOR * 100 + SPHSOLID_VERSION_PATCH)
 
 #ifndef SPSDEF
