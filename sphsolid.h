@@ -993,7 +993,10 @@
                          images that count gathered per lane before their terms; the force and
                          equilibrium passes over the particles near a wall, sixteen at a time):
                          bit for bit, the column collapse at 0.865 of its cost per
-                         particle-step, a 3D soil cube 0.84, a dam break 0.91.
+                         particle-step, a 3D soil cube 0.84, a dam break 0.91; the energy
+                         watchdog names the body whose account grew most, and water at rest
+                         fewer than 14 particles deep as the cause (bench/VALIDATION.md,
+                         "Shallow water").
       0.20.0 (2026-12-07) memory: neighbour slots sized from the counts at each rebuild (grown
                          by an eighth, never shrunk), the lists found in chunks of lane groups
                          (no per-particle list array), particle arrays trimmed to the scene at
@@ -2461,7 +2464,8 @@ typedef struct sps__body {
     int driven;                /* the watchdog counts the work done on it: a rigid body (its
                                   work on the others), a moving velocity constraint or an
                                   external acceleration */
-    sps_real energy_start;     /* its kinetic + strain + contact energy at the watchdog's start */
+    sps_real energy_start;     /* its account (kinetic + strain + contact + gravity potential + plastic
+                                  work - work of prescribed motions) at the watchdog's start */
     sps__churn churn;          /* a fluid's kinetic energy, watched for a churn (sps__watch_churn) */
     /* its optional per-particle arrays (the sps__fields rows owned by a body), allocated at commit
        when its model needs them, else NULL: particle begin + k at [components k], with
@@ -2955,7 +2959,7 @@ static void sps__rearm_watchdog(sps_world* w) { w->watch.armed = 0; }
 static void sps__watch_adjust(sps_world* w, int body, sps_real kinetic_change, sps_real potential_change) {
     if (!w->watch.armed || (w->bodies[body].model.material->kinematic && !w->bodies[body].model.free_rigid)) return;
     w->watch.start += kinetic_change + potential_change;
-    w->bodies[body].energy_start += kinetic_change;
+    w->bodies[body].energy_start += kinetic_change + potential_change;
 }
 /* Particle i's kinetic energy 1/2 m |v|^2. */
 static sps_real sps__kinetic(const sps_world* w, int i) {
@@ -11743,6 +11747,28 @@ static int sps__particles_behind_wall(const sps_world* w, int bi, int k) {
 /* The watchdog's diagnosis, most likely first: what in body b's model or the world's settings
    is known to gain energy (the stability map and the user scenes of bench/VALIDATION.md), and
    the setting that fixes it. */
+/* Water at rest fewer particles deep than this can gain potential energy (bench/VALIDATION.md,
+   "Shallow water": a 2D tank 0.32 m deep with c0 = 10 sqrt(2 g H), 8, 10, 12 particles deep,
+   +37, +14, +2.3 % of its compression energy in 1 s at h = 1.3 dp, the same at half the CFL
+   number; 14, 16 and 32 deep lose energy; with c0 = 10 sqrt(g H) 8 deep gains, 12 deep loses). */
+#define SPS__FLUID_SHALLOW_ROWS 14
+/* The spread of body b's particles' heights along gravity [m] (0 for none). */
+static sps_real sps__height_spread(const sps_world* w, const sps__body* b) {
+    const sps_real* g = w->def.gravity;
+    const sps_real g_norm = SPS__SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    sps_real lo = (sps_real)INFINITY, hi = -(sps_real)INFINITY;
+    int i, a;
+    for (i = b->begin; i < b->end; ++i) {
+        sps_real up = 0;
+        for (a = 0; a < w->dim; ++a) up -= g[a] / g_norm * w->pos[a][i];
+        if (up < lo) lo = up;
+        if (up > hi) hi = up;
+    }
+    return b->end > b->begin ? hi - lo : 0;
+}
+/* The depth of fluid body b along gravity [m]: its particles' heights' spread plus dp. */
+static sps_real sps__fluid_depth(const sps_world* w, const sps__body* b) { return sps__height_spread(w, b) + w->def.dp; }
+
 static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out, size_t size) {
     const sps__stabilisation* st = b->model.stabilisation;
     const sps_real stable = st->stable_cfl[w->dim - 2];
@@ -11760,6 +11786,11 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
                   (double)w->def.cfl_acoustic, (double)stable, st->name, w->dim);
     if (!st->eno && !st->penalty && !b->model.material->kinematic && b->model.material->shear && b->model.plastic == SPS__YIELD_NONE)
         sps__rule(out, size, &causes, "shear = %s resists no hourglass mode: use ENO-A or GNO-A", st->name);
+    if (!b->model.material->shear && !b->model.material->kinematic && sps__has_gravity(w) &&
+        sps__fluid_depth(w, b) < SPS__FLUID_SHALLOW_ROWS * w->def.dp) /* a fluid: no shear stress */
+        sps__rule(out, size, &causes, "it is %.0f particles deep: water at rest fewer than %d particles deep can gain potential energy "
+                  "as its rows under the free surface close up towards it, whatever the time step; fill it with a smaller dp "
+                  "(bench/VALIDATION.md, \"Shallow water\")", (double)(sps__fluid_depth(w, b) / w->def.dp), SPS__FLUID_SHALLOW_ROWS);
     for (k = 0; k < w->nwalls; ++k) behind += sps__particles_behind_wall(w, (int)(b - w->bodies), k);
     if (behind > 0)
         sps__rule(out, size, &causes, "%d of its particles are on the solid side of a wall: check that each wall's normal points into "
@@ -11772,7 +11803,7 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
 
 /* Takes the start of the account (after a user's change: sps__rearm_watchdog) or compares with
    it: a growth above energy_growth_limit times the largest mechanical energy seen is reported
-   once (log level 1), naming the body whose kinetic + strain energy grew most, or stops the run
+   once (log level 1), naming the body whose account grew most, or stops the run
    (energy_growth_stops). */
 /* A fluid at rest that churns: its kinetic energy grows without anything driving it, while it
    stays far below what its weight could give (a dam break's or a splash's grows as fast, but
@@ -11797,18 +11828,13 @@ static void sps__watch_churn(sps_world* w, sps__body* b) {
     const sps_real* g = w->def.gravity;
     const sps_real g_norm = SPS__SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
     sps_real kinetic = 0;
-    int i, a;
+    int i;
     for (i = b->begin; i < b->end; ++i) kinetic += sps__kinetic(w, i);
     if (c->weight_height == 0) { /* the first check: the scale and the first window */
-        sps_real lo = (sps_real)INFINITY, hi = -(sps_real)INFINITY, mass = 0;
-        for (i = b->begin; i < b->end; ++i) {
-            sps_real up = 0;
-            for (a = 0; a < w->dim; ++a) up -= g[a] / g_norm * w->pos[a][i];
-            if (up < lo) lo = up;
-            if (up > hi) hi = up;
-            mass += w->mass[i];
-        }
-        c->weight_height = mass * g_norm * (hi > lo ? hi - lo : w->def.dp);
+        const sps_real spread = sps__height_spread(w, b);
+        sps_real mass = 0;
+        for (i = b->begin; i < b->end; ++i) mass += w->mass[i];
+        c->weight_height = mass * g_norm * (spread > 0 ? spread : w->def.dp);
         c->window_end = w->time + SPS__CHURN_WINDOW;
     }
     if (kinetic > c->window_max) c->window_max = kinetic;
@@ -11868,7 +11894,7 @@ static sps_result sps__watch_energy(sps_world* w) {
         w->watch.start_time = w->time;
         for (bi = 0; bi < w->nbodies; ++bi) {
             sps_real share;
-            sps__body_account(w, &w->bodies[bi], &share, &w->bodies[bi].energy_start);
+            sps__body_account(w, &w->bodies[bi], &w->bodies[bi].energy_start, &share);
         }
         return SPS_OK;
     }
@@ -11879,10 +11905,10 @@ static sps_result sps__watch_energy(sps_world* w) {
     ++w->watch.events; /* counted at every check above the limit: the caller's evidence (diagnostics) */
     if (w->watch.fired && !w->def.energy_growth_stops) return SPS_OK; /* warned once */
     w->watch.fired = 1;
-    for (bi = 0; bi < w->nbodies; ++bi) { /* the body that gained most: where it went wrong */
-        sps_real share, m;
-        sps__body_account(w, &w->bodies[bi], &share, &m);
-        if (bi == 0 || m - w->bodies[bi].energy_start > gain) { gain = m - w->bodies[bi].energy_start; most = bi; }
+    for (bi = 0; bi < w->nbodies; ++bi) { /* the body whose account grew most: where it went wrong */
+        sps_real body_account, m;
+        sps__body_account(w, &w->bodies[bi], &body_account, &m);
+        if (bi == 0 || body_account - w->bodies[bi].energy_start > gain) { gain = body_account - w->bodies[bi].energy_start; most = bi; }
     }
     snprintf(msg, sizeof msg,
              "energy watchdog at t = %g: the energy (kinetic + volumetric strain + contact + gravity potential + plastic work - work of "
