@@ -141,7 +141,7 @@ SPS__INLINE void pressure_full(sps_world* w, const sps__body* b, outputs* o, con
 SPS__INLINE void pressure_half(sps_world* w, const sps__body* b, const half_lists* h, outputs* o, const int dim) {
     const sps_real *SPS__RESTRICT p = w->p, *SPS__RESTRICT vol = w->vol, *SPS__RESTRICT tau = b->tau, *SPS__RESTRICT pf = h->pf;
     const sps_real z = b->z_riemann;
-    const sps_real *vx = w->vel[0], *vy = w->vel[1], *vz = w->vel[2], *px = w->pos[0], *py = w->pos[1], *pz = w->pos[2];
+    const sps_real *vx = w->vel[0], *vy = w->vel[1], *vz = w->vel[2];
     const int begin = b->begin;
     int g, k, l, a;
     for (a = 0; a < 2 * 3; ++a) memset(o->v[a] + begin, 0, sizeof(sps_real) * (size_t)(b->end - begin));
@@ -156,8 +156,7 @@ SPS__INLINE void pressure_half(sps_world* w, const sps__body* b, const half_list
             SPS__PRAGMA(omp simd)
             for (l = 0; l < L; ++l) {
                 const int i = i0 + l, s = s0 + k * L + l, j = js[l];
-                const sps_real dx = px[i] - px[j], dy = py[i] - py[j], dz = dim == 3 ? pz[i] - pz[j] : 0;
-                const sps__pair_geometry e = sps__pair_of_offset(w, s, dx, dy, dz, SPS__GEO_WENDLAND);
+                const sps__pair_geometry e = sps__pair(w, i, s, j, dim, SPS__GEO_WENDLAND); /* the library's pair geometry */
                 const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw;
                 const sps_real u = (vx[i] - vx[j]) * ex + (vy[i] - vy[j]) * ey + (dim == 3 ? (vz[i] - vz[j]) * ez : 0);
                 const sps_real f2 = ((p[i] + p[j]) - z * u) * dw, f = pf[s];
@@ -244,7 +243,6 @@ static const int c_used3[] = {C_DRHO, C_M + 0, C_M + 1, C_M + 2, C_M + 3, C_M + 
 
 SPS__INLINE void continuity_half(sps_world* w, const sps__body* b, const half_lists* h, outputs* o, sps_real* pair_force, const int dim) {
     const sps_real *vol = w->vol, *vx = w->vel[0], *vy = w->vel[1], *vz = w->vel[2], rate = 1e-9;
-    const sps_real *px = w->pos[0], *py = w->pos[1], *pz = w->pos[2];
     const int* used = dim == 3 ? c_used3 : c_used2;
     const int nused = dim == 3 ? 16 : 8;
     int g, k, l, a;
@@ -259,8 +257,7 @@ SPS__INLINE void continuity_half(sps_world* w, const sps__body* b, const half_li
             SPS__PRAGMA(omp simd)
             for (l = 0; l < L; ++l) {
                 const int i = i0 + l, s = s0 + k * L + l, j = js[l];
-                const sps_real dx = px[i] - px[j], dy = py[i] - py[j], dz = dim == 3 ? pz[i] - pz[j] : 0;
-                const sps__pair_geometry e = sps__pair_of_offset(w, s, dx, dy, dz, SPS__GEO_WENDLAND);
+                const sps__pair_geometry e = sps__pair(w, i, s, j, dim, SPS__GEO_WENDLAND); /* the library's pair geometry */
                 const sps_real ex = e.ex, ey = e.ey, ez = e.ez, dw = e.dw, dw_r = e.dw_r;
                 const sps_real dvx = vx[i] - vx[j], dvy = vy[i] - vy[j], dvz = dim == 3 ? vz[i] - vz[j] : 0;
                 const sps_real u = dvx * ex + dvy * ey + dvz * ez, vi = vol[i], vj = vol[j];
