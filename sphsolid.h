@@ -11773,6 +11773,7 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
     const sps__stabilisation* st = b->model.stabilisation;
     const sps_real stable = st->stable_cfl[w->dim - 2];
     const int uses_shear = !sps__kind_stabilisation(&b->def); /* the def's shear is used */
+    const sps_real rows = sps__fluid_depth(w, b) / w->def.dp; /* its depth in particles (read for a fluid) */
     int causes = 0, k, behind = 0;
     out[0] = 0;
     if (st->eno && b->model.turn != SPS__TURN_NONE) /* ENO-A: the pair rotation (SPS_ROTATION_AUTO) holds */
@@ -11787,10 +11788,10 @@ static void sps__growth_causes(const sps_world* w, const sps__body* b, char* out
     if (!st->eno && !st->penalty && !b->model.material->kinematic && b->model.material->shear && b->model.plastic == SPS__YIELD_NONE)
         sps__rule(out, size, &causes, "shear = %s resists no hourglass mode: use ENO-A or GNO-A", st->name);
     if (!b->model.material->shear && !b->model.material->kinematic && sps__has_gravity(w) &&
-        sps__fluid_depth(w, b) < SPS__FLUID_SHALLOW_ROWS * w->def.dp) /* a fluid: no shear stress */
+        rows < SPS__FLUID_SHALLOW_ROWS) /* a fluid: no shear stress */
         sps__rule(out, size, &causes, "it is %.0f particles deep: water at rest fewer than %d particles deep can gain potential energy "
                   "as its rows under the free surface close up towards it, whatever the time step; fill it with a smaller dp "
-                  "(bench/VALIDATION.md, \"Shallow water\")", (double)(sps__fluid_depth(w, b) / w->def.dp), SPS__FLUID_SHALLOW_ROWS);
+                  "(bench/VALIDATION.md, \"Shallow water\")", (double)rows, SPS__FLUID_SHALLOW_ROWS);
     for (k = 0; k < w->nwalls; ++k) behind += sps__particles_behind_wall(w, (int)(b - w->bodies), k);
     if (behind > 0)
         sps__rule(out, size, &causes, "%d of its particles are on the solid side of a wall: check that each wall's normal points into "
